@@ -1,0 +1,43 @@
+// tristim CLI: one file per command group (cmd_<topic>.cpp), each registering its commands.
+#pragma once
+#include <functional>
+#include <iosfwd>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace tristim::cli {
+
+/// Parsed `--key value` / `--flag` options and positional arguments.
+struct Args {
+  std::vector<std::string> positional;
+  std::map<std::string, std::vector<std::string>> options;  // repeated options keep every value
+  bool has(const std::string& key) const { return options.count(key) > 0; }
+  /// The option's last value; throws Error(InvalidArgument) if absent and no default given.
+  std::string get(const std::string& key) const;
+  std::string get(const std::string& key, const std::string& fallback) const;
+  std::vector<std::string> all(const std::string& key) const;
+  double get_double(const std::string& key, double fallback) const;
+  /// Throws Error(InvalidArgument) naming any option not in `known`.
+  void allow_only(const std::vector<std::string>& known) const;
+};
+
+struct Command {
+  std::string name;
+  std::string summary;  // one line, for `tristim --help`
+  std::string usage;    // full help text for `tristim <name> --help`
+  std::function<int(const Args&, std::ostream& out)> run;
+};
+
+/// Adds a command; called from static initialisers in cmd_*.cpp via CommandRegistration.
+void register_command(Command command);
+const std::map<std::string, Command>& commands();
+
+struct CommandRegistration {
+  explicit CommandRegistration(Command command) { register_command(std::move(command)); }
+};
+
+/// Reads a whole file as bytes/text; Error(InvalidArgument) naming the path if unreadable.
+std::string read_file(const std::string& path);
+
+}  // namespace tristim::cli

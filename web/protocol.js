@@ -1,0 +1,37 @@
+// Page <-> worker protocol. Requests: {type, id, ...args}. Replies: {type:'result', id, result},
+// {type:'error', id, code, message}, {type:'progress', id, fraction, stage}.
+// The page talks to the worker only through `call`, which returns a promise.
+
+export class EngineClient {
+  constructor(url = new URL('./worker.js', import.meta.url)) {
+    this.worker = new Worker(url, { type: 'module' });
+    this.nextId = 1;
+    this.pending = new Map();
+    this.worker.onmessage = (ev) => this.onMessage(ev.data);
+    this.worker.onerror = (ev) => {
+      ev.preventDefault();
+      for (const p of this.pending.values()) p.reject(Object.assign(new Error(`worker failed: ${ev.message}`), { code: 'WORKER_FAILED' }));
+      this.pending.clear();
+    };
+  }
+
+  /// Sends a request; resolves with the result, rejects with an Error carrying `.code`.
+  call(type, args = {}, { transfer = [], onProgress } = {}) {
+    const id = this.nextId++;
+    return new Promise((resolve, reject) => {
+      this.pending.set(id, { resolve, reject, onProgress });
+      this.worker.postMessage({ type, id, ...args }, transfer);
+    });
+  }
+
+  onMessage(msg) {
+    const p = this.pending.get(msg.id);
+    if (!p) return;
+    if (msg.type === 'progress') { p.onProgress?.(msg); return; }
+    this.pending.delete(msg.id);
+    if (msg.type === 'result') p.resolve(msg.result);
+    else p.reject(Object.assign(new Error(msg.message), { code: msg.code }));
+  }
+
+  terminate() { this.worker.terminate(); }
+}
