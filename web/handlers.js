@@ -1,5 +1,128 @@
 // Worker request handlers, by request type: (T, msg, {state, progress}) -> {result, transfer}.
-// T is the wasm module; handlers stay thin and call the core through it.
+// T is the wasm module; handlers stay thin: they call the engine, copy arrays out of the wasm
+// heap and list them for transfer. Decoded images stay here (state.raw[slot]).
+import { renderXYZ, labOf } from './lib/render.js';
+import { referenceOut, sampleOut, fitOut, evaluationOut, applyOut } from './lib/shapes.js';
+
+const ENGINE_FUNCTIONS = ['listCharts', 'listIlluminants', 'listCameras', 'referenceChart', 'parseReferenceFile',
+  'spectralLocus', 'decodeRaw', 'sampleChart', 'listModels', 'listObjectives', 'fitModel', 'evaluateProfile',
+  'applyProfile', 'exportIcc', 'exportCube', 'listLayouts', 'averageFrames'];
+
+function need(T, fn) {
+  if (typeof T[fn] !== 'function') {
+    throw Object.assign(new Error(`this build of the colour engine has no ${fn}()`), { code: 'NOT_AVAILABLE' });
+  }
+  return T[fn];
+}
+
+/// Buffers of every typed array found in a (shallow or nested) plain object.
+function buffers(obj, out = []) {
+  if (ArrayBuffer.isView(obj)) out.push(obj.buffer);
+  else if (obj && typeof obj === 'object') for (const v of Object.values(obj)) buffers(v, out);
+  return [...new Set(out)];
+}
+const reply = (result) => ({ result, transfer: buffers(result) });
+
+function dropRaw(state, slot) {
+  const old = state.raw?.[slot];
+  if (old) { old.delete(); delete state.raw[slot]; }
+}
+
 export const handlers = {
   hello: (T) => ({ result: { version: T.version() } }),
+
+  capabilities: (T) => ({
+    result: Object.fromEntries(ENGINE_FUNCTIONS.map((f) => [f, typeof T[f] === 'function'])),
+  }),
+
+  catalog: (T) => {
+    const list = (fn) => (typeof T[fn] === 'function' ? T[fn]() : null);
+    return { result: { charts: list('listCharts'), illuminants: list('listIlluminants'), models: list('listModels'),
+      objectives: list('listObjectives'), cameras: list('listCameras') } };
+  },
+
+  reference: (T, { chart, illuminant, observer }) =>
+    reply(referenceOut(need(T, 'referenceChart')(chart, illuminant, observer))),
+
+  parseReference: (T, { text, fileName, illuminant, observer }) =>
+    reply(referenceOut(need(T, 'parseReferenceFile')(text, fileName, illuminant, observer))),
+
+  spectralLocus: (T, { observer }) => {
+    const l = need(T, 'spectralLocus')(observer);
+    return reply({ wavelengths: Float64Array.from(l.wavelengths), x: Float64Array.from(l.x), y: Float64Array.from(l.y) });
+  },
+
+  /// Decodes RAW bytes into state.raw[slot] ('chart', 'dark', 'flat'); returns metadata + preview.
+  decode: (T, { slot = 'chart', bytes, previewSide = 1200 }, { state, progress }) => {
+    const decodeRaw = need(T, 'decodeRaw');
+    progress(NaN, 'decoding RAW');
+    state.raw ??= {};
+    dropRaw(state, slot);
+    const raw = decodeRaw(new Uint8Array(bytes));
+    state.raw[slot] = raw;
+    progress(0.8, 'building preview');
+    const meta = typeof raw.metadata === 'function' ? raw.metadata() : {};
+    const metadata = typeof meta === 'string' ? JSON.parse(meta) : meta;
+    const result = { width: raw.width(), height: raw.height(), metadata };
+    if (slot === 'chart' && typeof raw.preview === 'function') {
+      const p = raw.preview(previewSide);
+      result.preview = { width: p.width, height: p.height, rgba: new Uint8ClampedArray(p.rgba.slice().buffer) };
+    }
+    return reply(result);
+  },
+
+  sample: (T, { layout, corners, sampleOptions = {} }, { state }) => {
+    const raw = state.raw?.chart;
+    if (!raw) throw Object.assign(new Error('no RAW image decoded yet'), { code: 'NO_IMAGE' });
+    const extra = {};
+    if (state.raw.dark) extra.dark = state.raw.dark;
+    if (state.raw.flat) extra.flat = state.raw.flat;
+    const out = need(T, 'sampleChart')(raw, layout, Float64Array.from(corners), { ...sampleOptions, ...extra });
+    return reply(sampleOut(out));
+  },
+
+  forget: (T, { slot }, { state }) => { dropRaw(state, slot); return { result: true }; },
+
+  fit: (T, { rgb, xyz, ids, options }, { progress }) => {
+    progress(NaN, `fitting ${options.model}`);
+    return reply(fitOut(need(T, 'fitModel')(Float64Array.from(rgb), Float64Array.from(xyz), ids, options)));
+  },
+
+  evaluate: (T, { profile, rgb, xyz, ids }) =>
+    reply(evaluationOut(need(T, 'evaluateProfile')(profile, Float64Array.from(rgb), Float64Array.from(xyz), ids))),
+
+  apply: (T, { profile, slot = 'chart' }, { state, progress }) => {
+    const raw = state.raw?.[slot];
+    if (!raw) throw Object.assign(new Error('no RAW image decoded yet'), { code: 'NO_IMAGE' });
+    progress(NaN, 'applying the profile');
+    return reply(applyOut(need(T, 'applyProfile')(profile, raw)));
+  },
+
+  /// Applies a profile to a decoded RAW, keeps the XYZ image here and returns display renders.
+  applyRender: (T, { profile, slot = 'chart', white, lut, maxSide }, { state, progress }) => {
+    const raw = state.raw?.[slot];
+    if (!raw) throw Object.assign(new Error('no RAW image decoded for this step yet'), { code: 'NO_IMAGE' });
+    progress(NaN, 'applying the profile');
+    const t0 = performance.now();
+    const img = applyOut(need(T, 'applyProfile')(profile, raw));
+    const tApply = performance.now() - t0;
+    progress(0.7, 'rendering');
+    state.xyz = { ...img, white };
+    const r = renderXYZ(img.XYZ, img.width, img.height, { white, lut: new Uint8Array(lut), maxSide });
+    return reply({ ...r, fullWidth: img.width, fullHeight: img.height, msApply: tApply, msRender: performance.now() - t0 - tApply });
+  },
+
+  /// X, Y, Z, x, y and L*a*b* of one pixel of the last applied image.
+  pixel: (T, { x, y }, { state }) => {
+    const img = state.xyz;
+    if (!img) throw Object.assign(new Error('no applied image'), { code: 'NO_IMAGE' });
+    const i = Math.floor(y) * img.width + Math.floor(x);
+    if (x < 0 || y < 0 || x >= img.width || y >= img.height) return { result: null };
+    const XYZ = [img.XYZ[3 * i], img.XYZ[3 * i + 1], img.XYZ[3 * i + 2]];
+    const s = XYZ[0] + XYZ[1] + XYZ[2];
+    return { result: { XYZ, xy: s > 0 ? [XYZ[0] / s, XYZ[1] / s] : [NaN, NaN], Lab: labOf(XYZ, img.white) } };
+  },
+
+  exportIcc: (T, { profile }) => reply({ bytes: Uint8Array.from(need(T, 'exportIcc')(profile)) }),
+  exportCube: (T, { profile, size = 33 }) => ({ result: { text: need(T, 'exportCube')(profile, size) } }),
 };

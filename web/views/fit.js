@@ -1,0 +1,158 @@
+// Step 3: pick any number of models x objectives and fit them in the worker, with progress and a
+// cancel button (which terminates the worker; the page re-sends the RAW bytes it keeps).
+import { h, field, showError, clearError, unavailable, progressBar } from '../lib/ui.js';
+import { options as listOptions } from '../lib/catalog.js';
+import { describe, DEFAULT_MODEL_PATTERNS } from '../methods/index.js';
+import { pairData } from '../lib/pairs.js';
+
+export function mount(section, app) {
+  const { engine } = app;
+  const models = (app.catalog.models ?? []).map(describe);
+  const objectives = listOptions(app.catalog.objectives);
+  const choice = (app.session.fitChoice ??= defaultChoice(models, objectives));
+
+  const modelBox = h('fieldset', { class: 'checklist' }, h('legend', {}, 'Models'));
+  for (const m of models) {
+    const opts = (choice.options[m.id] ??= { ...m.defaults });
+    const cb = h('input', { type: 'checkbox', value: m.id, checked: choice.models.includes(m.id), dataset: { model: m.id } });
+    cb.id = `model-${m.id}`;
+    cb.addEventListener('change', () => { toggle(choice.models, m.id, cb.checked); persist(); });
+    const form = m.form(opts, (o) => { choice.options[m.id] = o; persist(); });
+    modelBox.append(h('div', { class: 'check' }, cb, h('label', { for: cb.id }, m.label), m.about ? h('small', { class: 'hint' }, ` ${m.about}`) : null, form));
+  }
+  const objBox = h('fieldset', { class: 'checklist' }, h('legend', {}, 'Objectives'));
+  for (const o of objectives) {
+    const cb = h('input', { type: 'checkbox', value: o.value, checked: choice.objectives.includes(o.value), dataset: { objective: o.value } });
+    cb.id = `objective-${o.value}`;
+    cb.addEventListener('change', () => { toggle(choice.objectives, o.value, cb.checked); persist(); });
+    objBox.append(h('div', { class: 'check' }, cb, h('label', { for: cb.id }, o.label), o.description ? h('small', { class: 'hint' }, ` ${o.description}`) : null));
+  }
+  const excludeCb = h('input', { type: 'checkbox', checked: choice.excludeFlagged !== false });
+  excludeCb.addEventListener('change', () => { choice.excludeFlagged = excludeCb.checked; persist(); });
+  const whiteCb = h('input', { type: 'checkbox', checked: !!choice.preserveWhite });
+  whiteCb.addEventListener('change', () => { choice.preserveWhite = whiteCb.checked; persist(); });
+  const runBtn = h('button', { type: 'button', class: 'primary' }, 'Fit selected');
+  const cancelBtn = h('button', { type: 'button', disabled: true }, 'Cancel');
+  const progress = progressBar('Fitting');
+  const log = h('ul', { class: 'fit-log', 'aria-live': 'polite' });
+  const dataNote = h('p', { class: 'summary' });
+
+  section.append(dataNote, h('div', { class: 'fit-choice' }, modelBox, objBox),
+    h('div', { class: 'controls' },
+      h('div', { class: 'check' }, excludeCb, h('label', { for: excludeCb.id = 'exclude-flagged' }, 'Leave out flagged patches (saturated, too dark, non-uniform)')),
+      h('div', { class: 'check' }, whiteCb, h('label', { for: whiteCb.id = 'preserve-white' }, 'Preserve the white (the fit maps the reference white exactly)'))),
+    h('div', { class: 'controls' }, runBtn, cancelBtn), progress.el, log);
+  runBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'fit-error' });
+  runBtn.setAttribute('aria-describedby', 'fit-error');
+  runBtn.after(cancelBtn, runBtn._errorSlot);
+  if (!engine.has('fitModel')) { section.insertBefore(unavailable('Fitting models', 'fitModel'), dataNote); runBtn.disabled = true; }
+  if (!models.length && engine.has('listModels')) modelBox.append(h('p', {}, 'The engine lists no models.'));
+
+  const persist = () => app.save('fitChoice', JSON.parse(JSON.stringify(choice)));
+
+  function describeData() {
+    const s = app.derived.sample, r = app.derived.reference;
+    if (!s || !r) { dataNote.textContent = 'Fitting needs a reference (step 1) and a sampled chart (step 2).'; return null; }
+    const d = pairData(s, r, { excludeFlagged: excludeCb.checked });
+    dataNote.textContent = `${d.ids.length} patches pair sampled RGB with reference XYZ`
+      + (d.excluded.length ? `; left out as flagged: ${d.excluded.map((e) => e.id).join(', ')}` : '')
+      + (d.missing.length ? `; not in the reference: ${d.missing.join(', ')}` : '') + '.';
+    return d;
+  }
+  app.on('sample', describeData);
+  app.on('reference', describeData);
+  excludeCb.addEventListener('change', describeData);
+
+  let running = false;
+  cancelBtn.addEventListener('click', () => {
+    if (!running) return;
+    engine.restart();    // pending calls reject with CANCELLED; images are re-sent on demand
+    log.append(h('li', {}, 'Cancelled; the colour engine was restarted.'));
+  });
+
+  /// Fits every selected model x objective; returns the results (also kept in the session).
+  async function run() {
+    clearError(runBtn);
+    const data = describeData();
+    if (!data) { showError(runBtn, new Error('no paired data yet: set the reference and sample the chart first'), 'Fit'); return null; }
+    const jobs = [];
+    for (const mId of choice.models) for (const obj of choice.objectives) jobs.push({ mId, obj });
+    if (!jobs.length) { showError(runBtn, Object.assign(new Error('choose at least one model and one objective'), { code: 'NOTHING_SELECTED' }), 'Fit'); return null; }
+    running = true; runBtn.disabled = true; cancelBtn.disabled = false;
+    progress.start('Fitting…');
+    log.replaceChildren();
+    const results = [];
+    const ref = app.derived.reference;
+    const t0 = performance.now();
+    try {
+      for (const [k, { mId, obj }] of jobs.entries()) {
+        const m = models.find((x) => x.id === mId) ?? describe(mId);
+        const label = `${m.label}${optionText(choice.options[mId])} · ${objectives.find((o) => o.value === obj)?.label ?? obj}`;
+        progress.update({ fraction: k / jobs.length, stage: `Fitting ${label} (${k + 1} of ${jobs.length})` });
+        const options = { model: mId, objective: obj, ...choice.options[mId], white: ref.white, illuminant: ref.settings.illuminant, observer: ref.settings.observer };
+        if (choice.preserveWhite) options.preserveWhite = true;
+        try {
+          const t1 = performance.now();
+          const fit = await engine.call('fit', { rgb: data.rgb, xyz: data.xyz, ids: data.ids, options });
+          let evaluation = null;
+          if (engine.has('evaluateProfile')) evaluation = await engine.call('evaluate', { profile: fit.profile, rgb: data.rgb, xyz: data.xyz, ids: data.ids });
+          results.push({ key: `${mId}|${obj}|${JSON.stringify(choice.options[mId])}`, modelId: mId, objective: obj, label, options, ids: data.ids, rgb: data.rgb, xyz: data.xyz, fit, evaluation });
+          log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${fit.status && fit.status !== 'ok' ? ` — ${fit.status}: ${fit.message ?? ''}` : ''}`));
+        } catch (e) {
+          if (e.code === 'CANCELLED') throw e;
+          log.append(h('li', { class: 'error', dataset: { code: e.code } }, `${label}: ${e.message} (${e.code})`));
+        }
+      }
+      progress.update({ fraction: 1, stage: 'done' });
+      log.append(h('li', {}, `${results.length} of ${jobs.length} fits in ${((performance.now() - t0) / 1000).toFixed(2)} s.`));
+      if (results.length) {
+        await app.save('results', results);
+        await app.save('selected', results[0].key);
+        app.mark('fit', 'done');
+        app.emit('results', results);
+      } else if (jobs.length) {
+        showError(runBtn, Object.assign(new Error('no fit succeeded; see the list below'), { code: 'FIT_FAILED' }), 'Fit');
+      }
+      return results;
+    } catch (e) {
+      if (e.code !== 'CANCELLED') showError(runBtn, e, 'Fit');
+      return null;
+    } finally {
+      running = false; runBtn.disabled = !engine.has('fitModel'); cancelBtn.disabled = true;
+      progress.done();
+    }
+  }
+  runBtn.addEventListener('click', async () => { if (await run()) app.goto('results'); });
+
+  /// First visit: fit the default models with the first objective, then show the results.
+  async function runDefault() {
+    if (!engine.has('fitModel') || !app.derived.sample || !app.derived.reference) return null;
+    return run();
+  }
+  describeData();
+  return { run, runDefault, cancel: () => cancelBtn.click(), runBtn };
+}
+
+function optionText(o = {}) {
+  const bits = [];
+  if (o.degree) bits.push(`degree ${o.degree}`);
+  if (o.terms) bits.push(`${o.terms} terms`);
+  return bits.length ? ` (${bits.join(', ')})` : '';
+}
+
+function toggle(list, v, on) {
+  const i = list.indexOf(v);
+  if (on && i < 0) list.push(v);
+  if (!on && i >= 0) list.splice(i, 1);
+}
+
+function defaultChoice(models, objectives) {
+  const picked = [];
+  for (const re of DEFAULT_MODEL_PATTERNS) {
+    const m = models.find((x) => re.test(x.id) && !picked.includes(x.id));
+    if (m) picked.push(m.id);
+  }
+  for (const m of models) if (picked.length < 3 && !picked.includes(m.id)) picked.push(m.id);
+  const ls = objectives.find((o) => /^(ls|least)/i.test(o.value)) ?? objectives[0];
+  return { models: picked, objectives: ls ? [ls.value] : [], options: {}, excludeFlagged: true, preserveWhite: false };
+}
