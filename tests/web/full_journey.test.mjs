@@ -1,0 +1,129 @@
+// The full journey with the real Passport DNG: reference -> RAW -> corners -> fit three models
+// -> every plot has marks -> apply -> export and re-import the profile. Screenshots of each step
+// go to test-artifacts/.
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { screenshot, repoRoot } from './harness.mjs';
+import { openPage, caps, step, upload, fileBuffer, DNG, marks, markCounts, noErrorNear } from './journey.mjs';
+
+const NEEDED = ['referenceChart', 'decodeRaw', 'sampleChart', 'fitModel', 'evaluateProfile'];
+const example = JSON.parse(fs.readFileSync(path.join(repoRoot, 'examples/web/passport.json'), 'utf8'));
+
+test('full journey: Passport DNG to fitted models, plots, applied image and re-imported profile', async (t) => {
+  const b = await openPage();
+  try {
+    const { page } = b;
+    const c = await caps(page);
+    const missing = NEEDED.filter((f) => !c[f]);
+    if (missing.length) { t.skip(`engine lacks ${missing.join(', ')}`); return; }
+
+    // 1 Reference
+    await step(page, 'reference');
+    await page.waitForSelector('#step-reference .swatch');
+    await screenshot(page, 'journey-1-reference');
+
+    // 2 Images: the real DNG from the shared data, corners placed, table with flags.
+    await step(page, 'images');
+    await upload(page, '#step-images input[data-slot="chart"]', 'passport.dng', fileBuffer(DNG));
+    await page.waitForFunction(() => /passport\.dng/.test(document.querySelector('#step-images .file-state')?.textContent ?? ''), null, { timeout: 60000 });
+    await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, example.corners);
+    await page.waitForFunction(() => document.querySelectorAll('#step-images .patch-table tbody tr').length === 24, null, { timeout: 30000 });
+    const table0 = await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]');
+    // Keyboard: nudge corner 1 by 10 px right; the table is re-sampled.
+    await page.focus('#step-images .handle[data-corner="0"]');
+    await page.keyboard.press('Shift+ArrowRight');
+    await page.waitForFunction((t0) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent !== t0, table0);
+    await page.keyboard.press('Shift+ArrowLeft');
+    await page.waitForFunction((t0) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent === t0, table0);
+    // Pointer: drag corner 3 a little and back.
+    const h = page.locator('#step-images .handle[data-corner="2"]');
+    const box = await h.boundingBox();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(box.x + box.width / 2 + 6, box.y + box.height / 2 + 4, { steps: 3 });
+    await page.mouse.up();
+    const moved = await page.evaluate(() => Array.from(window.tristim.session.corners));
+    assert.notDeepEqual(moved, example.corners);
+    await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, example.corners);
+    await page.waitForFunction((t0) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent === t0, table0);
+    assert.equal(await page.locator('#step-images .overlay .cell').count(), 24);
+    await screenshot(page, 'journey-2-images');
+
+    // 3 Fit three models with the first objective.
+    await step(page, 'fit');
+    const boxes = page.locator('#step-fit input[data-model]');
+    const nModels = await boxes.count();
+    assert.ok(nModels >= 3, `the engine should offer at least three models, got ${nModels}`);
+    for (let i = 0; i < nModels; i++) await boxes.nth(i).setChecked(i < 3);
+    const objs = page.locator('#step-fit input[data-objective]');
+    for (let i = 0; i < await objs.count(); i++) await objs.nth(i).setChecked(i === 0);
+    await page.click('#step-fit button.primary');
+    await page.waitForSelector('#step-results:not([hidden]) table.compare', { timeout: 120000 });
+    const rows = await page.locator('#step-results table.compare tbody tr').count();
+    assert.ok(rows >= 3, `three fitted models in the comparison table, got ${rows}`);
+    assert.ok(await noErrorNear(page, '#step-fit button.primary'));
+
+    // 4 Results: every plot has marks.
+    const need = { 'xy-arrows': 24, 'lab-a-L': 48, 'lab-C-L': 48, 'de2000-bars': 72, 'xyz-scatter': 72, 'swatch-pairs': 48 };
+    for (const [name, min] of Object.entries(need)) {
+      const m = await marks(page, name);
+      assert.ok(m >= min, `${name}: ${m} marks, expected ≥ ${min} (${JSON.stringify(await markCounts(page, name))})`);
+    }
+    const arrows = (await markCounts(page, 'xy-arrows')).arrow ?? 0;
+    assert.ok(arrows >= 20, `reference → estimate arrows drawn (${arrows})`);
+    // Sorting by a column reorders (or keeps) rows without losing any.
+    await page.click('#step-results th[data-col="train-mean"] button');
+    assert.equal(await page.locator('#step-results table.compare tbody tr').count(), rows);
+    const cells = await page.locator('#step-results table.compare tbody td[data-col="train-mean"]').allTextContents();
+    const nums = cells.map(Number);
+    assert.ok(nums.every(Number.isFinite), `training means are numbers: ${cells}`);
+    assert.deepEqual(nums, [...nums].sort((a, b) => a - b));
+    await screenshot(page, 'journey-4-results');
+
+    // 5 Apply
+    await step(page, 'apply');
+    if (c.applyProfile) {
+      await page.click('#step-apply button.primary');
+      await page.waitForSelector('#step-apply .apply-images:not([hidden])', { timeout: 60000 });
+      assert.match(await page.textContent('#step-apply .legend-box'), /viridis/);
+      const cv = page.locator('#step-apply canvas.apply-img').first();
+      const cb = await cv.boundingBox();
+      await page.mouse.move(cb.x + cb.width * 0.55, cb.y + cb.height * 0.7);
+      await page.waitForFunction(() => /X .* Y .* Z .* x .* y .* L\*/.test(document.querySelector('#step-apply .readout')?.textContent ?? ''));
+      await screenshot(page, 'journey-5-apply');
+    }
+
+    // 6 Export the profile JSON and load it back.
+    await step(page, 'export');
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#step-export button[data-export="Profile JSON"]')]);
+    const saved = path.join(repoRoot, 'test-artifacts', 'journey-profile.json');
+    await dl.saveAs(saved);
+    const profileText = fs.readFileSync(saved, 'utf8');
+    JSON.parse(profileText);
+    const [dlCsv] = await Promise.all([page.waitForEvent('download'), page.click('#step-export button[data-export="Per-patch CSV"]')]);
+    const csv = fs.readFileSync(await dlCsv.path(), 'utf8').trim().split('\n');
+    const nIds = await page.evaluate(() => { const s = window.tristim.session; return (s.results.find((r) => r.key === s.selected) ?? s.results[0]).ids.length; });
+    assert.equal(csv.length, 1 + nIds);
+    await upload(page, '#step-export input[type=file]', 'journey-profile.json', Buffer.from(profileText));
+    await page.waitForSelector('#step-export [data-imported]', { timeout: 30000 });
+    assert.equal(await page.locator('#step-results table.compare tbody tr').count(), rows + 1);
+    if (c.exportIcc) {
+      const [icc] = await Promise.all([page.waitForEvent('download'), page.click('#step-export button[data-export="ICC profile"]')]);
+      const bytes = fs.readFileSync(await icc.path());
+      assert.equal(bytes.subarray(36, 40).toString('latin1'), 'acsp');
+      await upload(page, '#step-export input[type=file]', 'journey.icc', bytes);
+      await page.waitForFunction(() => /ICC v/.test(document.querySelector('#step-export .import-result')?.textContent ?? ''));
+    }
+    if (c.exportCube) {
+      const [cube] = await Promise.all([page.waitForEvent('download'), page.click('#step-export button[data-export=".cube LUT"]')]);
+      await upload(page, '#step-export input[type=file]', 'journey.cube', fs.readFileSync(await cube.path()));
+      await page.waitForFunction(() => /3D LUT/.test(document.querySelector('#step-export .import-result')?.textContent ?? ''));
+    }
+    await screenshot(page, 'journey-6-export');
+    assert.deepEqual(b.problems, []);
+  } finally {
+    await b.close();
+  }
+});
