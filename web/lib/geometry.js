@@ -21,16 +21,18 @@ export function squareToQuad(c) {
   };
 }
 
-/// Patch cells of a rows x cols grid inside the corners: [{row, col, quad: [[x,y]x4], centre}],
-/// each shrunk to `area` (fraction of the cell's side lengths squared = area).
-export function gridCells(corners, rows, cols, area = 0.5) {
+/// Patch cells of a rows x cols grid inside the corners (the outer corners of the corner
+/// patches), with `gap` between patches as a fraction of the patch size (as the engine's
+/// chart_layout), each shrunk to its central `area` fraction of width and height:
+/// [{row, col, quad: [[x,y]x4], centre}].
+export function gridCells(corners, rows, cols, area = 0.5, gap = 0) {
   const map = squareToQuad(corners);
-  const s = Math.sqrt(area) / 2;
+  const pu = 1 / (cols + (cols - 1) * gap), pv = 1 / (rows + (rows - 1) * gap);
   const cells = [];
   for (let r = 0; r < rows; r++) {
     for (let c = 0; c < cols; c++) {
-      const uc = (c + 0.5) / cols, vc = (r + 0.5) / rows;
-      const du = s / cols, dv = s / rows;
+      const uc = c * pu * (1 + gap) + pu / 2, vc = r * pv * (1 + gap) + pv / 2;
+      const du = (pu * area) / 2, dv = (pv * area) / 2;
       const quad = [[uc - du, vc - dv], [uc + du, vc - dv], [uc + du, vc + dv], [uc - du, vc + dv]].map(([u, v]) => map(u, v));
       cells.push({ row: r, col: c, quad, centre: map(uc, vc) });
     }

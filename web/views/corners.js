@@ -16,7 +16,7 @@ export class CornerEditor {
     this.onChange = onChange;
     this.width = 0; this.height = 0;
     this.corners = new Float64Array(8);
-    this.grid = { rows: 4, cols: 6, area: 0.5, layout: 'passport' };
+    this.grid = { rows: 4, cols: 6, area: 0.5, layout: 'passport', gap: 0.14 };
     this.sample = null;
     this.el = document.createElement('div');
     this.el.className = 'corner-editor';
@@ -117,14 +117,14 @@ export class CornerEditor {
       g.setAttribute('transform', `translate(${c[2 * i]},${c[2 * i + 1]})`);
       g.setAttribute('aria-valuetext', `x ${c[2 * i].toFixed(1)}, y ${c[2 * i + 1].toFixed(1)}`);
     });
-    const { rows, cols, area, layout } = this.grid;
+    const { rows, cols, area, layout, gap = 0 } = this.grid;
     const flagsById = new Map();
     if (this.sample && this.sample.corners?.every((v, i) => v === c[i])) {
       this.sample.ids.forEach((id, i) => flagsById.set(id, this.sample.flagNames[i]));
     }
     const scale = Math.max(1, this.width / 900);
     this.svg.style.setProperty('--stroke', `${1.2 * scale}px`);
-    this.gridLayer.replaceChildren(...gridCells(c, rows, cols, area).map((cell) => {
+    this.gridLayer.replaceChildren(...gridCells(c, rows, cols, area, gap).map((cell) => {
       const id = cellId(layout, cell.row, cell.col);
       const flags = flagsById.get(id);
       const poly = svgEl('polygon', { points: cell.quad.map((p) => p.join(',')).join(' '), class: flags?.length ? 'cell flagged' : 'cell' });

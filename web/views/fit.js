@@ -27,8 +27,11 @@ export function mount(section, app) {
     cb.addEventListener('change', () => { toggle(choice.objectives, o.value, cb.checked); persist(); });
     objBox.append(h('div', { class: 'check' }, cb, h('label', { for: cb.id }, o.label), o.description ? h('small', { class: 'hint' }, ` ${o.description}`) : null));
   }
-  const excludeCb = h('input', { type: 'checkbox', checked: choice.excludeFlagged !== false });
-  excludeCb.addEventListener('change', () => { choice.excludeFlagged = excludeCb.checked; persist(); });
+  const excludeCb = h('input', { type: 'checkbox', checked: choice.excludeSaturated !== false });
+  excludeCb.addEventListener('change', () => { choice.excludeSaturated = excludeCb.checked; persist(); });
+  const excludeAllCb = h('input', { type: 'checkbox', checked: !!choice.excludeAllFlagged });
+  excludeAllCb.addEventListener('change', () => { choice.excludeAllFlagged = excludeAllCb.checked; persist(); describeData(); });
+  const exclude = (f) => (excludeAllCb.checked ? f.length > 0 : excludeCb.checked && f.includes('saturated'));
   const whiteCb = h('input', { type: 'checkbox', checked: !!choice.preserveWhite });
   whiteCb.addEventListener('change', () => { choice.preserveWhite = whiteCb.checked; persist(); });
   const runBtn = h('button', { type: 'button', class: 'primary' }, 'Fit selected');
@@ -39,7 +42,8 @@ export function mount(section, app) {
 
   section.append(dataNote, h('div', { class: 'fit-choice' }, modelBox, objBox),
     h('div', { class: 'controls' },
-      h('div', { class: 'check' }, excludeCb, h('label', { for: excludeCb.id = 'exclude-flagged' }, 'Leave out flagged patches (saturated, too dark, non-uniform)')),
+      h('div', { class: 'check' }, excludeCb, h('label', { for: excludeCb.id = 'exclude-saturated' }, 'Leave out saturated patches')),
+      h('div', { class: 'check' }, excludeAllCb, h('label', { for: excludeAllCb.id = 'exclude-flagged' }, 'Also leave out patches flagged too dark or non-uniform')),
       h('div', { class: 'check' }, whiteCb, h('label', { for: whiteCb.id = 'preserve-white' }, 'Preserve the white (the fit maps the reference white exactly)'))),
     h('div', { class: 'controls' }, runBtn, cancelBtn), progress.el, log);
   runBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'fit-error' });
@@ -53,7 +57,7 @@ export function mount(section, app) {
   function describeData() {
     const s = app.derived.sample, r = app.derived.reference;
     if (!s || !r) { dataNote.textContent = 'Fitting needs a reference (step 1) and a sampled chart (step 2).'; return null; }
-    const d = pairData(s, r, { excludeFlagged: excludeCb.checked });
+    const d = pairData(s, r, { exclude });
     dataNote.textContent = `${d.ids.length} patches pair sampled RGB with reference XYZ`
       + (d.excluded.length ? `; left out as flagged: ${d.excluded.map((e) => e.id).join(', ')}` : '')
       + (d.missing.length ? `; not in the reference: ${d.missing.join(', ')}` : '') + '.';
@@ -154,5 +158,5 @@ function defaultChoice(models, objectives) {
   }
   for (const m of models) if (picked.length < 3 && !picked.includes(m.id)) picked.push(m.id);
   const ls = objectives.find((o) => /^(ls|least)/i.test(o.value)) ?? objectives[0];
-  return { models: picked, objectives: ls ? [ls.value] : [], options: {}, excludeFlagged: true, preserveWhite: false };
+  return { models: picked, objectives: ls ? [ls.value] : [], options: {}, excludeSaturated: true, excludeAllFlagged: false, preserveWhite: false };
 }
