@@ -1,27 +1,30 @@
-// The method list: one descriptor per model family (id, label, default options, options form).
-// The picker shows what the engine's listModels() offers, each with the descriptor that matches
-// its id (or a plain one), so a new engine model appears without a page change.
-import linear from './linear.js';
-import affine from './affine.js';
+// The method list: one descriptor per model family (family label, about, default options, an
+// optional options form). The picker shows the models the engine's listModels() offers, grouped
+// by the descriptor that matches each id, so a new engine model appears without a page change.
+import matrix from './matrix.js';
 import polynomial from './polynomial.js';
 import rootPolynomial from './root_polynomial.js';
+import guarnera from './guarnera.js';
 
-const DESCRIPTORS = [affine, rootPolynomial, polynomial, linear];
+export const FAMILIES = [matrix, rootPolynomial, polynomial, guarnera];
+const OTHER = { family: 'Other models', about: '', defaults: {}, form: () => null };
 
-/// engine model entry (string or {id, label, ...}) -> descriptor with id, label, defaults, form.
+/// engine model entry (string or {id, label, reference, duplicateOf, ...}) -> descriptor.
 export function describe(model) {
-  const id = typeof model === 'string' ? model : String(model.id);
-  const engineLabel = typeof model === 'string' ? null : (model.label ?? model.name);
-  const d = DESCRIPTORS.find((x) => x.match(id));
-  const defaults = { ...(d?.defaults ?? {}), ...(typeof model === 'object' ? model.defaults ?? {} : {}) };
+  const m = typeof model === 'string' ? { id: model } : model;
+  const id = String(m.id);
+  const d = FAMILIES.find((x) => x.match(id)) ?? OTHER;
+  const dup = m.duplicateOf ?? m.duplicate_of ?? '';
   return {
     id,
-    label: engineLabel ?? d?.label ?? id,
-    about: d?.about ?? (typeof model === 'object' ? model.description ?? '' : ''),
-    defaults,
-    form: d?.form ? (opts, onChange) => d.form.call({ id }, opts, onChange) : () => null,
+    label: m.label ?? id,
+    family: d.family,
+    about: m.reference ?? d.about,
+    duplicateOf: dup,
+    defaults: { ...d.defaults, ...(m.defaults ?? {}) },
+    form: (opts, onChange) => d.form(opts, onChange),
   };
 }
 
-/// The models a fresh session fits (the first three the engine offers from this preference list).
-export const DEFAULT_MODEL_PATTERNS = [/^(linear|matrix|3x3)/i, /root/i, /(poly|shen)/i];
+/// The models a fresh session fits: these ids when the engine has them, else the first three.
+export const DEFAULT_MODELS = ['matrix-3x3', 'Finlayson2015-2', 'Shen2008'];

@@ -2,7 +2,7 @@
 // cancel button (which terminates the worker; the page re-sends the RAW bytes it keeps).
 import { h, field, showError, clearError, unavailable, progressBar } from '../lib/ui.js';
 import { options as listOptions } from '../lib/catalog.js';
-import { describe, DEFAULT_MODEL_PATTERNS } from '../methods/index.js';
+import { describe, FAMILIES, DEFAULT_MODELS } from '../methods/index.js';
 import { pairData } from '../lib/pairs.js';
 
 export function mount(section, app) {
@@ -12,13 +12,21 @@ export function mount(section, app) {
   const choice = (app.session.fitChoice ??= defaultChoice(models, objectives));
 
   const modelBox = h('fieldset', { class: 'checklist' }, h('legend', {}, 'Models'));
-  for (const m of models) {
-    const opts = (choice.options[m.id] ??= { ...m.defaults });
-    const cb = h('input', { type: 'checkbox', value: m.id, checked: choice.models.includes(m.id), dataset: { model: m.id } });
-    cb.id = `model-${m.id}`;
-    cb.addEventListener('change', () => { toggle(choice.models, m.id, cb.checked); persist(); });
-    const form = m.form(opts, (o) => { choice.options[m.id] = o; persist(); });
-    modelBox.append(h('div', { class: 'check' }, cb, h('label', { for: cb.id }, m.label), m.about ? h('small', { class: 'hint' }, ` ${m.about}`) : null, form));
+  const families = [...new Set(models.map((m) => m.family))];
+  for (const fam of families) {
+    const group = h('div', { class: 'family' }, h('h4', {}, fam));
+    const about = FAMILIES.find((f) => f.family === fam)?.about;
+    if (about) group.append(h('small', { class: 'hint' }, about));
+    for (const m of models.filter((x) => x.family === fam)) {
+      const opts = (choice.options[m.id] ??= { ...m.defaults });
+      const cb = h('input', { type: 'checkbox', value: m.id, checked: choice.models.includes(m.id), dataset: { model: m.id } });
+      cb.id = `model-${m.id}`;
+      cb.addEventListener('change', () => { toggle(choice.models, m.id, cb.checked); persist(); });
+      const form = m.form(opts, (o) => { choice.options[m.id] = o; persist(); });
+      group.append(h('div', { class: 'check', title: m.about }, cb, h('label', { for: cb.id }, m.label),
+        h('code', { class: 'model-id' }, m.id), m.duplicateOf ? h('small', { class: 'hint' }, `same span as ${m.duplicateOf}`) : null, form));
+    }
+    modelBox.append(group);
   }
   const objBox = h('fieldset', { class: 'checklist' }, h('legend', {}, 'Objectives'));
   for (const o of objectives) {
@@ -91,7 +99,7 @@ export function mount(section, app) {
     try {
       for (const [k, { mId, obj }] of jobs.entries()) {
         const m = models.find((x) => x.id === mId) ?? describe(mId);
-        const label = `${m.label}${optionText(choice.options[mId])} · ${objectives.find((o) => o.value === obj)?.label ?? obj}`;
+        const label = `${m.label} · ${objectives.find((o) => o.value === obj)?.label ?? obj}`;
         progress.update({ fraction: k / jobs.length, stage: `Fitting ${label} (${k + 1} of ${jobs.length})` });
         const options = { model: mId, objective: obj, ...choice.options[mId], white: ref.white, illuminant: ref.settings.illuminant, observer: ref.settings.observer };
         if (choice.preserveWhite) options.preserveWhite = true;
@@ -137,13 +145,6 @@ export function mount(section, app) {
   return { run, runDefault, cancel: () => cancelBtn.click(), runBtn };
 }
 
-function optionText(o = {}) {
-  const bits = [];
-  if (o.degree) bits.push(`degree ${o.degree}`);
-  if (o.terms) bits.push(`${o.terms} terms`);
-  return bits.length ? ` (${bits.join(', ')})` : '';
-}
-
 function toggle(list, v, on) {
   const i = list.indexOf(v);
   if (on && i < 0) list.push(v);
@@ -151,11 +152,7 @@ function toggle(list, v, on) {
 }
 
 function defaultChoice(models, objectives) {
-  const picked = [];
-  for (const re of DEFAULT_MODEL_PATTERNS) {
-    const m = models.find((x) => re.test(x.id) && !picked.includes(x.id));
-    if (m) picked.push(m.id);
-  }
+  const picked = DEFAULT_MODELS.filter((id) => models.some((m) => m.id === id));
   for (const m of models) if (picked.length < 3 && !picked.includes(m.id)) picked.push(m.id);
   const ls = objectives.find((o) => /^(ls|least)/i.test(o.value)) ?? objectives[0];
   return { models: picked, objectives: ls ? [ls.value] : [], options: {}, excludeSaturated: true, excludeAllFlagged: false, preserveWhite: false };

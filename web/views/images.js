@@ -89,10 +89,13 @@ export function mount(section, app) {
   async function setFile(slot, file) {
     clearError(inputs[slot]);
     const bytes = await fileBytes(file);
+    const before = app.derived.image;
     const ok = await decode(slot, { name: file.name, bytes });
     if (ok) {
       await app.save(`files.${slot}`, { name: file.name, bytes: bytes.buffer });
-      if (slot === 'chart') {
+      // A new chart image of another size gets fresh corners; same size keeps them (same set-up).
+      const img = app.derived.image;
+      if (slot === 'chart' && !(before && img.width === before.width && img.height === before.height && app.session.corners)) {
         await app.save('corners', undefined);
         editor.reset();
       }
