@@ -41,20 +41,26 @@ export function mount(section, app) {
     const f = sceneInput.files[0];
     if (!f) return;
     clearError(sceneInput);
+    await scenePromise;
     sceneBytes = { name: f.name, bytes: await fileBytes(f) };
     sceneGen = -1;
     await decodeScene();
   });
 
-  async function decodeScene() {
-    if (sceneGen === engine.generation) return true;
-    progress.start(`Decoding ${sceneBytes.name}…`);
-    try {
-      const copy = sceneBytes.bytes.slice();
-      await engine.call('decode', { slot: 'scene', bytes: copy.buffer }, { transfer: [copy.buffer] });
-      sceneGen = engine.generation;
-      return true;
-    } catch (e) { showError(sceneInput, e, sceneBytes.name); return false; } finally { progress.done(); }
+  let scenePromise = null;
+  /// Decodes the scene RAW once per worker generation (a cancelled fit restarts the worker).
+  function decodeScene() {
+    if (sceneGen === engine.generation) return Promise.resolve(true);
+    scenePromise ??= (async () => {
+      progress.start(`Decoding ${sceneBytes.name}…`);
+      try {
+        const copy = sceneBytes.bytes.slice();
+        await engine.call('decode', { slot: 'scene', bytes: copy.buffer }, { transfer: [copy.buffer] });
+        sceneGen = engine.generation;
+        return true;
+      } catch (e) { showError(sceneInput, e, sceneBytes.name); return false; } finally { progress.done(); scenePromise = null; }
+    })();
+    return scenePromise;
   }
 
   function selected() {
