@@ -86,9 +86,13 @@ async function start() {
 
   // Restore (or, on a first visit, load the example), one step after the other.
   await app.views.reference.ready;
+  if (fresh) app.views.results.setStatus('Loading the example: a ColorChecker Passport photographed as DNG, decoding and sampling it in the worker…');
   await app.views.images.restore(fresh);
-  if (fresh) await app.views.fit.runDefault();
-  else app.views.results.refresh();
+  if (fresh) {
+    app.views.results.setStatus('Fitting the example with three models…');
+    const r = await app.views.fit.runDefault();
+    if (!r) app.views.results.setStatus('No fitted model yet: the example could not be fitted with this build of the colour engine (see steps 1–3).');
+  } else app.views.results.refresh();
   document.body.dataset.ready = 'true';
 }
 

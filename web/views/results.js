@@ -87,5 +87,7 @@ export function mount(section, app) {
 
   app.on('results', refresh);
   app.on('reference', () => { if (app.session.results?.length) refresh(); });
-  return { refresh };
+  /// A line shown while there is nothing to show yet (e.g. the example being fitted).
+  const setStatus = (text) => { empty.textContent = text; };
+  return { refresh, setStatus };
 }
