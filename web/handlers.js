@@ -2,11 +2,11 @@
 // T is the wasm module; handlers stay thin: they call the engine, copy arrays out of the wasm
 // heap and list them for transfer. Decoded images stay here (state.raw[slot]).
 import { renderXYZ, labOf } from './lib/render.js';
-import { referenceOut, sampleOut, fitOut, evaluationOut, applyOut } from './lib/shapes.js';
+import { plain, referenceOut, sampleOut, fitOut, evaluationOut, applyOut } from './lib/shapes.js';
 
 const ENGINE_FUNCTIONS = ['listCharts', 'listIlluminants', 'listCameras', 'referenceChart', 'parseReferenceFile',
   'spectralLocus', 'decodeRaw', 'sampleChart', 'listModels', 'listObjectives', 'fitModel', 'evaluateProfile',
-  'applyProfile', 'exportIcc', 'exportCube', 'listLayouts', 'averageFrames'];
+  'applyProfile', 'exportIcc', 'exportCube', 'listChartLayouts'];
 
 function need(T, fn) {
   if (typeof T[fn] !== 'function') {
@@ -22,6 +22,20 @@ function buffers(obj, out = []) {
   return [...new Set(out)];
 }
 const reply = (result) => ({ result, transfer: buffers(result) });
+
+/// Sets the chart image's dark frame and flat field from the decoded slots (Abed 2013 App. C);
+/// returns what the engine reports. Throws (e.g. FRAME_MISMATCH) when a frame does not fit.
+function calibrate(state) {
+  const chart = state.raw?.chart;
+  if (!chart || typeof chart.setDark !== 'function') return null;
+  const out = {};
+  if (state.raw.dark) out.dark = plain(chart.setDark(state.raw.dark)); else chart.clearDark();
+  if (state.raw.flat) out.flat = plain(chart.setFlat(state.raw.flat)); else chart.clearFlat();
+  return out;
+}
+function calibrateQuietly(state) {
+  try { return calibrate(state); } catch { state.raw?.chart?.clearDark?.(); state.raw?.chart?.clearFlat?.(); return null; }
+}
 
 function dropRaw(state, slot) {
   const old = state.raw?.[slot];
@@ -52,21 +66,31 @@ export const handlers = {
     return reply({ wavelengths: Float64Array.from(l.wavelengths), x: Float64Array.from(l.x), y: Float64Array.from(l.y) });
   },
 
-  /// Decodes RAW bytes into state.raw[slot] ('chart', 'dark', 'flat'); returns metadata + preview.
+  /// Decodes RAW bytes into state.raw[slot] ('chart', 'dark', 'flat', 'scene'); returns metadata,
+  /// the display preview (chart and scene) and, for dark/flat, the calibration it gave the chart.
   decode: (T, { slot = 'chart', bytes, previewSide = 1200 }, { state, progress }) => {
     const decodeRaw = need(T, 'decodeRaw');
     progress(NaN, 'decoding RAW');
     state.raw ??= {};
-    dropRaw(state, slot);
     const raw = decodeRaw(new Uint8Array(bytes));
+    dropRaw(state, slot);
     state.raw[slot] = raw;
     progress(0.8, 'building preview');
     const meta = typeof raw.metadata === 'function' ? raw.metadata() : {};
-    const metadata = typeof meta === 'string' ? JSON.parse(meta) : meta;
+    const metadata = typeof meta === 'string' ? JSON.parse(meta) : plain(meta);
     const result = { width: raw.width(), height: raw.height(), metadata };
-    if (slot === 'chart' && typeof raw.preview === 'function') {
+    if ((slot === 'chart' || slot === 'scene') && typeof raw.preview === 'function') {
       const p = raw.preview(previewSide);
-      result.preview = { width: p.width, height: p.height, rgba: new Uint8ClampedArray(p.rgba.slice().buffer) };
+      result.preview = { width: p.width, height: p.height, scale: p.scale, rgba: new Uint8ClampedArray(p.rgba.slice().buffer) };
+    }
+    if (slot !== 'scene') {
+      try {
+        result.calibration = calibrate(state);
+      } catch (e) {
+        if (slot !== 'chart') dropRaw(state, slot);   // a dark/flat that does not fit is refused
+        calibrateQuietly(state);
+        throw e;
+      }
     }
     return reply(result);
   },
@@ -74,14 +98,11 @@ export const handlers = {
   sample: (T, { layout, corners, sampleOptions = {} }, { state }) => {
     const raw = state.raw?.chart;
     if (!raw) throw Object.assign(new Error('no RAW image decoded yet'), { code: 'NO_IMAGE' });
-    const extra = {};
-    if (state.raw.dark) extra.dark = state.raw.dark;
-    if (state.raw.flat) extra.flat = state.raw.flat;
-    const out = need(T, 'sampleChart')(raw, layout, Float64Array.from(corners), { ...sampleOptions, ...extra });
+    const out = need(T, 'sampleChart')(raw, layout, Float64Array.from(corners), sampleOptions);
     return reply(sampleOut(out));
   },
 
-  forget: (T, { slot }, { state }) => { dropRaw(state, slot); return { result: true }; },
+  forget: (T, { slot }, { state }) => { dropRaw(state, slot); return { result: calibrateQuietly(state) }; },
 
   fit: (T, { rgb, xyz, ids, options }, { progress }) => {
     progress(NaN, `fitting ${options.model}`);

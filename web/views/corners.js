@@ -119,13 +119,16 @@ export class CornerEditor {
     });
     const { rows, cols, area, layout, gap = 0 } = this.grid;
     const flagsById = new Map();
-    if (this.sample && this.sample.corners?.every((v, i) => v === c[i])) {
-      this.sample.ids.forEach((id, i) => flagsById.set(id, this.sample.flagNames[i]));
-    }
+    const s = this.sample && this.sample.corners?.every((v, i) => v === c[i]) ? this.sample : null;
+    if (s) s.ids.forEach((id, i) => flagsById.set(id, s.flagNames[i]));
     const scale = Math.max(1, this.width / 900);
     this.svg.style.setProperty('--stroke', `${1.2 * scale}px`);
-    this.gridLayer.replaceChildren(...gridCells(c, rows, cols, area, gap).map((cell) => {
-      const id = cellId(layout, cell.row, cell.col);
+    // The engine's own sample areas when they belong to these corners; the JS grid while dragging.
+    const cells = s?.sampleQuads
+      ? s.ids.map((id, i) => ({ id, quad: [0, 1, 2, 3].map((k) => [s.sampleQuads[8 * i + 2 * k], s.sampleQuads[8 * i + 2 * k + 1]]) }))
+      : gridCells(c, rows, cols, area, gap).map((cell) => ({ ...cell, id: cellId(layout, cell.row, cell.col) }));
+    this.gridLayer.replaceChildren(...cells.map((cell) => {
+      const id = cell.id;
       const flags = flagsById.get(id);
       const poly = svgEl('polygon', { points: cell.quad.map((p) => p.join(',')).join(' '), class: flags?.length ? 'cell flagged' : 'cell' });
       const t = svgEl('title');

@@ -80,6 +80,7 @@ export function mount(section, app) {
   for (const el of [layoutSel, rowsIn, colsIn, areaIn]) {
     el.addEventListener('change', () => {
       syncLayout();
+      editor.setSample(null);
       app.save('layout', layoutOptions());
       app.save('sampleOptions', { area: Number(areaIn.value) });
       resample();
@@ -121,12 +122,13 @@ export function mount(section, app) {
       const copy = new Uint8Array(file.bytes).slice();   // the page keeps its own bytes
       const r = await engine.call('decode', { slot, bytes: copy.buffer }, { transfer: [copy.buffer], onProgress: progress.update });
       decodedGen[slot] = engine.generation;
-      names[slot].textContent = `${file.name} — ${r.width}×${r.height} (decoded in ${((performance.now() - t0) / 1000).toFixed(2)} s)`;
+      names[slot].textContent = `${file.name} — ${r.width}×${r.height} (decoded in ${((performance.now() - t0) / 1000).toFixed(2)} s)`
+        + calibrationText(slot, r.calibration);
       if (slot === 'chart') {
         app.derived.image = r;
         const m = r.metadata ?? {};
-        const bits = [m.make, m.model, m.iso && `ISO ${m.iso}`, m.shutter && `${fmtShutter(m.shutter)} s`,
-          m.aperture && `f/${m.aperture}`, m.cfaPattern ?? m.cfa].filter(Boolean);
+        const bits = [m.make, m.model, m.lens, m.iso && `ISO ${m.iso}`, m.shutter_s && `${fmtShutter(m.shutter_s)} s`,
+          m.f_number && `f/${m.f_number}`, m.cfa_pattern && `${m.layout ?? ''} ${m.cfa_pattern}`, m.bits && `${m.bits} bit`, m.timestamp_iso].filter(Boolean);
         meta.textContent = `${bits.join(' · ')} — measurement image ${r.width}×${r.height} (half resolution, linear, no white balance).`
           + ' The preview below uses the camera matrix and sRGB gamma for display only.';
         editor.setImage(r);
@@ -140,6 +142,12 @@ export function mount(section, app) {
     } finally {
       progress.done();
     }
+  }
+  function calibrationText(slot, c) {
+    const d = c?.dark, f = c?.flat;
+    if (slot === 'dark' && d) return `; dark: ${d.frames} frame(s), mean ${d.mean.map((v) => fmt(v, 1)).join(' / ')} DN, noise ${d.noise.map((v) => fmt(v, 1)).join(' / ')} DN`;
+    if (slot === 'flat' && f) return f.mode === 'radial' ? `; radial fall-off p1 ${fmt(f.p1, 4)}, p2 ${fmt(f.p2, 4)}, p3 ${fmt(f.p3, 4)}, rms residual ${fmt(f.rmsResidual, 4)}` : `; flat field (${f.mode}) applied`;
+    return '';
   }
   const fmtShutter = (t) => (t > 0 && t < 1 ? `1/${Math.round(1 / t)}` : `${t}`);
 
@@ -211,10 +219,11 @@ export function mount(section, app) {
       const res = await fetch(`examples/${cfg.file}`);
       if (!res.ok) throw Object.assign(new Error(`examples/${cfg.file}: HTTP ${res.status}`), { code: 'EXAMPLE_MISSING' });
       const bytes = await res.arrayBuffer();
-      app.session.layout = cfg.layout;
-      layoutSel.value = cfg.layout.chart;
+      const layout = cfg.layout ?? { chart: cfg.chart ?? 'passport' };
+      layoutSel.value = layout.chart;
+      if (cfg.area) areaIn.value = cfg.area;
       syncLayout();
-      await app.save('layout', cfg.layout);
+      await app.save('layout', layout);
       await app.save('corners', cfg.corners);
       await app.save('files.chart', { name: cfg.file, bytes });
     } catch (e) {
