@@ -24,10 +24,15 @@ export class CornerEditor {
     this.canvas = document.createElement('canvas');
     this.canvas.setAttribute('aria-hidden', 'true');
     this.svg = svgEl('svg', { class: 'overlay', role: 'group', 'aria-label': 'Chart corners on the preview' });
-    this.gridLayer = svgEl('g', { class: 'grid' });
+    this.gridLayer = svgEl('g', { class: 'grid', 'clip-path': 'url(#image-clip)' });
+    const clip = svgEl('clipPath', { id: 'image-clip' });
+    this.clipRect = svgEl('rect', { x: 0, y: 0, width: 1, height: 1 });
+    clip.append(this.clipRect);
+    const defs = svgEl('defs');
+    defs.append(clip);
     this.outline = svgEl('polygon', { class: 'outline' });
     this.handleLayer = svgEl('g', { class: 'handles' });
-    this.svg.append(this.outline, this.gridLayer, this.handleLayer);
+    this.svg.append(defs, this.outline, this.gridLayer, this.handleLayer);
     this.el.append(this.canvas, this.svg);
     this.el.hidden = true;
     this.handles = CORNER_NAMES.map((name, i) => this.makeHandle(i, name));
@@ -113,6 +118,8 @@ export class CornerEditor {
     const c = this.corners;
     this.outline.setAttribute('points', [0, 1, 2, 3].map((i) => `${c[2 * i]},${c[2 * i + 1]}`).join(' '));
     this.outline.classList.toggle('crossed', isCrossed(c));
+    this.clipRect.setAttribute('width', this.width);
+    this.clipRect.setAttribute('height', this.height);
     this.handles.forEach((g, i) => {
       g.setAttribute('transform', `translate(${c[2 * i]},${c[2 * i + 1]})`);
       g.setAttribute('aria-valuetext', `x ${c[2 * i].toFixed(1)}, y ${c[2 * i + 1].toFixed(1)}`);
@@ -124,13 +131,14 @@ export class CornerEditor {
     const scale = Math.max(1, this.width / 900);
     this.svg.style.setProperty('--stroke', `${1.2 * scale}px`);
     // The engine's own sample areas when they belong to these corners; the JS grid while dragging.
-    const cells = s?.sampleQuads
+    const crossed = isCrossed(c);
+    const cells = crossed ? [] : s?.sampleQuads
       ? s.ids.map((id, i) => ({ id, quad: [0, 1, 2, 3].map((k) => [s.sampleQuads[8 * i + 2 * k], s.sampleQuads[8 * i + 2 * k + 1]]) }))
       : gridCells(c, rows, cols, area, gap).map((cell) => ({ ...cell, id: cellId(layout, cell.row, cell.col) }));
     this.gridLayer.replaceChildren(...cells.map((cell) => {
       const id = cell.id;
       const flags = flagsById.get(id);
-      const poly = svgEl('polygon', { points: cell.quad.map((p) => p.join(',')).join(' '), class: flags?.length ? 'cell flagged' : 'cell' });
+      const poly = svgEl('polygon', { points: cell.quad.map((p) => p.join(',')).join(' '), class: `cell${flags?.includes('saturated') ? ' saturated' : flags?.length ? ' warn' : ''}` });
       const t = svgEl('title');
       t.textContent = `${id}${flags?.length ? ': ' + flags.join(', ') : ''}`;
       poly.append(t);

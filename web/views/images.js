@@ -187,11 +187,16 @@ export function mount(section, app) {
       if (seq !== sampleSeq || e.code === 'CANCELLED') return null;
       showError(editor.el, e, 'Corners');
       editor.setSample(null);
+      if (app.derived.sample) {
+        tableBox.classList.add('stale');
+        sampleSummary.textContent = 'These corners were refused; the table shows the last good sampling.';
+      }
       return null;
     }
   }
 
   function renderTable(s) {
+    tableBox.classList.remove('stale');
     const flagged = s.flagNames.filter((f) => f.length).length;
     sampleSummary.textContent = `${s.ids.length} patches sampled; ${flagged} flagged.`;
     tableBox.replaceChildren(patchTable(s));

@@ -6,7 +6,7 @@ export function patchTable(s) {
   const rows = [];
   for (let i = 0; i < n; i++) {
     const f = s.flagNames[i];
-    rows.push(h('tr', { class: f.length ? 'flagged' : '', dataset: { id: s.ids[i] } },
+    rows.push(h('tr', { class: f.includes('saturated') ? 'flagged saturated' : f.length ? 'flagged' : '', dataset: { id: s.ids[i] } },
       h('th', { scope: 'row' }, s.ids[i]),
       [0, 1, 2].map((k) => h('td', {}, fmt(s.RGB[3 * i + k], 1))),
       [0, 1, 2].map((k) => h('td', {}, s.std ? fmt(s.std[3 * i + k], 1) : '–')),
@@ -15,7 +15,7 @@ export function patchTable(s) {
       h('td', { class: 'flags' }, f.length ? f.join(', ') : 'ok')));
   }
   return h('table', { class: 'patch-table' },
-    h('caption', {}, 'Sampled camera RGB per patch (linear, black subtracted; mean over the central area)'),
+    h('caption', {}, 'Sampled camera RGB per patch (linear DN, black subtracted, no white balance; mean and σ over the central area). Flags: saturated (left out of fits), dark (near the noise floor), nonuniform (σ/mean > 10 %).'),
     h('thead', {}, h('tr', {}, ['Patch', 'R', 'G', 'B', 'σR', 'σG', 'σB', 'pixels', 'saturated', 'flags'].map((t) => h('th', { scope: 'col' }, t)))),
     h('tbody', {}, rows));
 }
