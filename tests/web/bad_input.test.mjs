@@ -4,7 +4,7 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import { screenshot } from './harness.mjs';
-import { openPage, caps, step, upload, fileBuffer, errorNear, noErrorNear, DNG, JPEG, fixture } from './journey.mjs';
+import { openPage, caps, step, upload, fileBuffer, errorNear, noErrorNear, DNG, CR2, JPEG, fixture } from './journey.mjs';
 
 const CHART = '#step-images input[data-slot="chart"]';
 const rowCount = (page) => page.locator('#step-images .patch-table tbody tr').count();
@@ -54,12 +54,23 @@ test('bad inputs show coded errors next to their control and the page recovers',
       await setCorners([-500, -500, x1, y1, x2, y2, x3, y3]);
       const outside = await errorNear(page, '#step-images .corner-editor');
       assert.notEqual(outside.code, 'INTERNAL');
+      // Patches smaller than 4 pixels.
+      await setCorners([x0, y0, x0 + 6, y0, x0 + 6, y0 + 4, x0, y0 + 4]);
+      const tiny = await errorNear(page, '#step-images .corner-editor');
+      assert.notEqual(tiny.code, 'INTERNAL');
+      codes.tiny = tiny.code;
       // Recovery: good corners clear the error and sample again.
       await setCorners(before);
       await page.waitForFunction(() => document.getElementById('corners-error')?.hidden === true);
       assert.equal(await rowCount(page), good);
       codes.crossed = crossed.code; codes.outside = outside.code;
     }
+    // A dark frame from another camera (the CR2) does not fit the chart image.
+    await upload(page, '#step-images input[data-slot="dark"]', 'other-camera.CR2', fileBuffer(CR2));
+    const dark = await errorNear(page, '#step-images input[data-slot="dark"]', 60000);
+    assert.notEqual(dark.code, 'INTERNAL');
+    codes.dark = dark.code;
+    if (c.sampleChart && good) assert.equal(await rowCount(page), good);
     // A good file after the bad ones decodes.
     await upload(page, CHART, 'passport.dng', fileBuffer(DNG));
     await page.waitForFunction(() => /passport\.dng — \d+×\d+/.test(document.querySelector('#step-images .file-state')?.textContent ?? ''), null, { timeout: 60000 });
