@@ -47,7 +47,8 @@ export function errorSlot(control) {
 export function showError(control, error, context = '') {
   const slot = control?._errorSlot;
   const code = error?.code ?? 'ERROR';
-  const text = `${context ? context + ': ' : ''}${error?.message ?? error} (${code})`;
+  const message = String(error?.message ?? error);
+  const text = `${context && !message.includes(context) ? context + ': ' : ''}${message} (${code})`;
   if (!slot) { console.warn(text); return; }
   slot.textContent = text;
   slot.dataset.code = code;

@@ -23,7 +23,8 @@ export function xyPlot({ locus, points = [], arrows = [], white, width = 460, ob
   const marks = [
     Plot.line(L.line, { x: 'x', y: 'y', stroke: '#444', strokeWidth: 1.2 }),
     Plot.dot(L.ticks, { x: 'x', y: 'y', r: 1.5, fill: '#444' }),
-    Plot.text(L.ticks, { x: 'x', y: 'y', text: (d) => `${d.nm}`, dx: (d) => (d.x < 0.2 ? -14 : 12), fontSize: 9, fill: '#444' }),
+    Plot.text(L.ticks.filter((d) => d.nm < 510), { x: 'x', y: 'y', text: (d) => `${d.nm}`, dx: -6, textAnchor: 'end', fontSize: 9, fill: '#444' }),
+    Plot.text(L.ticks.filter((d) => d.nm >= 510), { x: 'x', y: 'y', text: (d) => `${d.nm}`, dx: 6, textAnchor: 'start', fontSize: 9, fill: '#444' }),
     Plot.line(SRGB_GAMUT, { x: 'x', y: 'y', stroke: '#888', strokeDasharray: '4,3' }),
     Plot.text([{ x: 0.64, y: 0.33 }], { x: 'x', y: 'y', text: () => 'sRGB', dx: 16, dy: 6, fontSize: 10, fill: '#666' }),
   ];
