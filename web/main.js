@@ -81,6 +81,7 @@ async function start() {
   for (const [step, mod] of Object.entries(mounts)) {
     app.views[step] = mod.mount(document.getElementById(`step-${step}`), app);
   }
+  if (fresh) await app.save('settings', { ...app.session.settings });   // the session now exists
   const hash = location.hash.slice(1);
   app.goto(STEPS.includes(hash) ? hash : (app.session.step ?? (fresh ? 'results' : 'reference')));
 
