@@ -2,11 +2,11 @@
 // T is the wasm module; handlers stay thin: they call the engine, copy arrays out of the wasm
 // heap and list them for transfer. Decoded images stay here (state.raw[slot]).
 import { renderXYZ, labOf } from './lib/render.js';
-import { plain, referenceOut, sampleOut, fitOut, evaluationOut, applyOut } from './lib/shapes.js';
+import { plain, referenceOut, sampleOut, fitOut, evaluationOut } from './lib/shapes.js';
 
 const ENGINE_FUNCTIONS = ['listCharts', 'listIlluminants', 'listCameras', 'referenceChart', 'parseReferenceFile',
   'spectralLocus', 'decodeRaw', 'sampleChart', 'listModels', 'listObjectives', 'fitModel', 'evaluateProfile',
-  'applyProfile', 'exportIcc', 'exportCube', 'listChartLayouts'];
+  'applyProfileToImage', 'exportIcc', 'exportCube', 'exportPatchCsv', 'listChartLayouts'];
 
 function need(T, fn) {
   if (typeof T[fn] !== 'function') {
@@ -32,6 +32,13 @@ function calibrate(state) {
   if (state.raw.dark) out.dark = plain(chart.setDark(state.raw.dark)); else chart.clearDark();
   if (state.raw.flat) out.flat = plain(chart.setFlat(state.raw.flat)); else chart.clearFlat();
   return out;
+}
+/// The profile applied to the decoded image's linear camera RGB (dark/flat applied) -> XYZ.
+function applyImage(T, profile, raw) {
+  const width = raw.width(), height = raw.height();
+  const rgb = raw.linearRGB();
+  const XYZ = need(T, 'applyProfileToImage')(profile, rgb, width, height);
+  return { width, height, XYZ: XYZ instanceof Float32Array ? XYZ : Float32Array.from(XYZ) };
 }
 function calibrateQuietly(state) {
   try { return calibrate(state); } catch { state.raw?.chart?.clearDark?.(); state.raw?.chart?.clearFlat?.(); return null; }
@@ -112,20 +119,13 @@ export const handlers = {
   evaluate: (T, { profile, rgb, xyz, ids }) =>
     reply(evaluationOut(need(T, 'evaluateProfile')(profile, Float64Array.from(rgb), Float64Array.from(xyz), ids))),
 
-  apply: (T, { profile, slot = 'chart' }, { state, progress }) => {
-    const raw = state.raw?.[slot];
-    if (!raw) throw Object.assign(new Error('no RAW image decoded yet'), { code: 'NO_IMAGE' });
-    progress(NaN, 'applying the profile');
-    return reply(applyOut(need(T, 'applyProfile')(profile, raw)));
-  },
-
   /// Applies a profile to a decoded RAW, keeps the XYZ image here and returns display renders.
   applyRender: (T, { profile, slot = 'chart', white, lut, maxSide }, { state, progress }) => {
     const raw = state.raw?.[slot];
     if (!raw) throw Object.assign(new Error('no RAW image decoded for this step yet'), { code: 'NO_IMAGE' });
     progress(NaN, 'applying the profile');
     const t0 = performance.now();
-    const img = applyOut(need(T, 'applyProfile')(profile, raw));
+    const img = applyImage(T, profile, raw);
     const tApply = performance.now() - t0;
     progress(0.7, 'rendering');
     state.xyz = { ...img, white };
@@ -145,5 +145,6 @@ export const handlers = {
   },
 
   exportIcc: (T, { profile }) => reply({ bytes: Uint8Array.from(need(T, 'exportIcc')(profile)) }),
+  exportPatchCsv: (T, { profile, rgb, xyz, ids }) => ({ result: { text: need(T, 'exportPatchCsv')(profile, Float64Array.from(rgb), Float64Array.from(xyz), ids) } }),
   exportCube: (T, { profile, size = 33 }) => ({ result: { text: need(T, 'exportCube')(profile, size) } }),
 };

@@ -1,8 +1,10 @@
 // Gathers what the plots need for one fitted result, per patch: reference and estimated XYZ and
-// Lab, CIEDE2000 with its ΔL/ΔC/ΔH terms, and display colours. Everything numeric comes from the
-// engine (fitModel / evaluateProfile); only display sRGB is computed here.
+// Lab, CIEDE2000 with its ΔL/ΔC/ΔH terms, and display colours. XYZ estimates and every ΔE come
+// from the engine (fitModel / evaluateProfile); CIELAB coordinates for the Lab planes and display
+// sRGB are computed here from those XYZ.
 import { XYZ_to_display_sRGB } from './display.js';
 import { cssColours } from '../plots/common.js';
+import { labOf } from './render.js';
 
 /// First defined value among candidate paths ('a.b.c') of obj.
 export function pick(obj, ...paths) {
@@ -17,30 +19,28 @@ export function pick(obj, ...paths) {
 export function perPatch(result, reference) {
   const ev = result.evaluation ?? {};
   const fit = result.fit ?? {};
-  const src = { ...fit, ...ev };
-  const ids = Array.from(pick(src, 'ids') ?? result.ids);
+  const ids = Array.from(result.ids);
   const n = ids.length;
-  const refXYZ = pick(src, 'referenceXYZ', 'reference.XYZ', 'XYZ_reference') ?? result.xyz;
-  const estXYZ = pick(src, 'estimatedXYZ', 'estimated.XYZ', 'XYZ_estimated', 'predictedXYZ', 'XYZ');
-  const refLab = pick(src, 'referenceLab', 'reference.Lab', 'Lab_reference');
-  const estLab = pick(src, 'estimatedLab', 'estimated.Lab', 'Lab_estimated', 'predictedLab');
-  const dE = pick(src, 'dE2000', 'perPatch.dE2000', 'CIE2000', 'deltaE2000', 'dE00');
-  const dL = pick(src, 'dL', 'dE2000_dL', 'perPatch.dL');
-  const dC = pick(src, 'dC', 'dE2000_dC', 'perPatch.dC');
-  const dH = pick(src, 'dH', 'dE2000_dH', 'perPatch.dH');
-  const white = reference?.white ?? [96.42, 100, 82.49];
+  const refXYZ = result.xyz;
+  const estXYZ = pick(ev, 'estimated') ?? pick(fit, 'fitted');
+  const patches = pick(ev, 'metrics.patches') ?? pick(fit, 'metrics.training.patches') ?? {};
+  const white = ev.white ?? result.options?.white ?? reference?.white ?? [96.42, 100, 82.49];
   const refIndex = new Map(reference?.ids.map((id, i) => [id, i]) ?? []);
   const refColour = reference ? cssColours(reference.sRGB) : [];
   const estColour = estXYZ ? cssColours(XYZ_to_display_sRGB(estXYZ, white)) : [];
+  const num = (a, i) => (a && a[i] != null ? a[i] : NaN);
   const rows = ids.map((id, i) => {
     const g = (a, k) => (a ? a[3 * i + k] : NaN);
+    const ref = [g(refXYZ, 0), g(refXYZ, 1), g(refXYZ, 2)];
+    const est = [g(estXYZ, 0), g(estXYZ, 1), g(estXYZ, 2)];
+    // CIELAB against the fit's white (CIE 15 formulae; the engine reports ΔE, not Lab).
+    const [L, a, b] = labOf(ref, white);
+    const [Le, ae, be] = estXYZ ? labOf(est, white) : [NaN, NaN, NaN];
     return {
       id, i,
-      X: g(refXYZ, 0), Y: g(refXYZ, 1), Z: g(refXYZ, 2),
-      Xe: g(estXYZ, 0), Ye: g(estXYZ, 1), Ze: g(estXYZ, 2),
-      L: g(refLab, 0), a: g(refLab, 1), b: g(refLab, 2),
-      Le: g(estLab, 0), ae: g(estLab, 1), be: g(estLab, 2),
-      dE: dE?.[i] ?? NaN, dL: dL?.[i] ?? NaN, dC: dC?.[i] ?? NaN, dH: dH?.[i] ?? NaN,
+      X: ref[0], Y: ref[1], Z: ref[2], Xe: est[0], Ye: est[1], Ze: est[2],
+      L, a, b, Le, ae, be,
+      dE: num(patches.dE00, i), dL: num(patches.dL, i), dC: num(patches.dC, i), dH: num(patches.dH, i),
       fill: refColour[refIndex.get(id)] ?? '#999', fillEst: estColour[i] ?? '#999',
     };
   });
@@ -50,8 +50,8 @@ export function perPatch(result, reference) {
     r.x = r.X / sx; r.y = r.Y / sx; r.xe = r.Xe / se; r.ye = r.Ye / se;
   }
   return {
-    rows, n,
-    has: { estXYZ: !!estXYZ, Lab: !!(refLab && estLab), dE: !!dE, parts: !!(dL && dC && dH) },
+    rows, n, white,
+    has: { estXYZ: !!estXYZ, Lab: !!estXYZ, dE: !!patches.dE00, parts: !!(patches.dL && patches.dC && patches.dH) },
   };
 }
 

@@ -50,8 +50,3 @@ export function fitOut(f) {
 
 export const evaluationOut = plain;
 
-/// applyProfile -> {width, height, XYZ: Float32Array(3 w h)}
-export function applyOut(a) {
-  const o = plain(a);
-  return { ...o, XYZ: o.XYZ instanceof Float32Array ? o.XYZ : Float32Array.from(o.XYZ) };
-}

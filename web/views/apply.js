@@ -30,7 +30,7 @@ export function mount(section, app) {
   applyBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'apply-error' });
   applyBtn.setAttribute('aria-describedby', 'apply-error');
   applyBtn.after(applyBtn._errorSlot);
-  if (!engine.has('applyProfile')) { section.insertBefore(unavailable('Applying a profile to an image', 'applyProfile'), which); applyBtn.disabled = true; }
+  if (!engine.has('applyProfileToImage')) { section.insertBefore(unavailable('Applying a profile to an image', 'applyProfileToImage'), which); applyBtn.disabled = true; }
 
   let sceneBytes = null;
   let sceneGen = -1;
@@ -101,7 +101,7 @@ export function mount(section, app) {
     const t0 = performance.now();
     try {
       const L = lut();
-      const white = app.derived.reference?.white ?? [96.42, 100, 82.49];
+      const white = r.options?.white ?? r.evaluation?.white ?? app.derived.reference?.white ?? [96.42, 100, 82.49];
       const out = await engine.call('applyRender', { profile: r.fit.profile, slot, white, lut: L.buffer, maxSide: 1400 }, { transfer: [L.buffer], onProgress: progress.update });
       draw(srgbCanvas, out, out.srgb);
       draw(yCanvas, out, out.ymap);
@@ -115,7 +115,7 @@ export function mount(section, app) {
     } catch (e) {
       if (e.code !== 'CANCELLED') showError(applyBtn, e, 'Apply');
       return null;
-    } finally { progress.done(); applyBtn.disabled = !engine.has('applyProfile'); }
+    } finally { progress.done(); applyBtn.disabled = !engine.has('applyProfileToImage'); }
   }
   applyBtn.addEventListener('click', run);
 

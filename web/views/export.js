@@ -24,7 +24,12 @@ export function mount(section, app) {
   const base = (r) => `tristim-${r.modelId}-${r.objective}`.replace(/[^\w.-]+/g, '_');
   const exports = h('div', { class: 'controls' },
     btn('Profile JSON', (r) => download(`${base(r)}.json`, r.fit.profile, 'application/json')),
-    btn('Per-patch CSV', (r) => download(`${base(r)}-patches.csv`, perPatchCsv(perPatch(r, app.derived.reference).rows, r), 'text/csv')),
+    btn('Per-patch CSV', async (r) => {
+      const text = engine.has('exportPatchCsv')
+        ? (await engine.call('exportPatchCsv', { profile: r.fit.profile, rgb: r.rgb, xyz: r.xyz, ids: r.ids })).text
+        : perPatchCsv(perPatch(r, app.derived.reference).rows, r);
+      download(`${base(r)}-patches.csv`, text, 'text/csv');
+    }),
     btn('ICC profile', async (r) => { const { bytes } = await engine.call('exportIcc', { profile: r.fit.profile }); download(`${base(r)}.icc`, bytes, 'application/vnd.iccprofile'); }, 'exportIcc'),
     btn('.cube LUT', async (r) => { const { text } = await engine.call('exportCube', { profile: r.fit.profile, size: 33 }); download(`${base(r)}.cube`, text, 'text/plain'); }, 'exportCube'));
 

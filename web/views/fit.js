@@ -52,7 +52,7 @@ export function mount(section, app) {
     h('div', { class: 'controls' },
       h('div', { class: 'check' }, excludeCb, h('label', { for: excludeCb.id = 'exclude-saturated' }, 'Leave out saturated patches')),
       h('div', { class: 'check' }, excludeAllCb, h('label', { for: excludeAllCb.id = 'exclude-flagged' }, 'Also leave out patches flagged too dark or non-uniform')),
-      h('div', { class: 'check' }, whiteCb, h('label', { for: whiteCb.id = 'preserve-white' }, 'Preserve the white (the fit maps the reference white exactly)'))),
+      h('div', { class: 'check' }, whiteCb, h('label', { for: whiteCb.id = 'preserve-white' }, 'Preserve the white: the fit maps the brightest patch (the chart\'s white) exactly'))),
     h('div', { class: 'controls' }, runBtn, cancelBtn), progress.el, log);
   runBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'fit-error' });
   runBtn.setAttribute('aria-describedby', 'fit-error');
@@ -101,13 +101,12 @@ export function mount(section, app) {
         const m = models.find((x) => x.id === mId) ?? describe(mId);
         const label = `${m.label} · ${objectives.find((o) => o.value === obj)?.label ?? obj}`;
         progress.update({ fraction: k / jobs.length, stage: `Fitting ${label} (${k + 1} of ${jobs.length})` });
-        const options = { model: mId, objective: obj, ...choice.options[mId], white: ref.white, illuminant: ref.settings.illuminant, observer: ref.settings.observer };
-        if (choice.preserveWhite) options.preserveWhite = true;
+        const options = { model: mId, objective: obj, ...choice.options[mId], white: ref.white, illuminant: ref.settings.illuminant };
+        if (choice.preserveWhite) options.whitePatch = brightestPatch(data);
         try {
           const t1 = performance.now();
           const fit = await engine.call('fit', { rgb: data.rgb, xyz: data.xyz, ids: data.ids, options });
-          let evaluation = null;
-          if (engine.has('evaluateProfile')) evaluation = await engine.call('evaluate', { profile: fit.profile, rgb: data.rgb, xyz: data.xyz, ids: data.ids });
+          const evaluation = null;   // fitModel already returns the training estimates and per-patch errors
           results.push({ key: `${mId}|${obj}|${JSON.stringify(choice.options[mId])}`, modelId: mId, objective: obj, label, options, ids: data.ids, rgb: data.rgb, xyz: data.xyz, fit, evaluation });
           log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${fit.status && fit.status !== 'ok' ? ` — ${fit.status}: ${fit.message ?? ''}` : ''}`));
         } catch (e) {
@@ -143,6 +142,13 @@ export function mount(section, app) {
   }
   describeData();
   return { run, runDefault, cancel: () => cancelBtn.click(), runBtn };
+}
+
+/// The patch with the highest reference Y (the chart's white), for white preservation.
+function brightestPatch(d) {
+  let best = 0;
+  for (let i = 1; i < d.ids.length; i++) if (d.xyz[3 * i + 1] > d.xyz[3 * best + 1]) best = i;
+  return d.ids[best];
 }
 
 function toggle(list, v, on) {
