@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { screenshot, repoRoot } from './harness.mjs';
-import { openPage, caps, step, upload, fileBuffer, DNG, marks, markCounts, noErrorNear } from './journey.mjs';
+import { openPage, caps, step, upload, fileBuffer, DNG, marks, markCounts, noErrorNear, setCorners } from './journey.mjs';
 
 const NEEDED = ['referenceChart', 'decodeRaw', 'sampleChart', 'fitModel', 'evaluateProfile'];
 const example = JSON.parse(fs.readFileSync(path.join(repoRoot, 'examples/web/passport.json'), 'utf8'));
@@ -28,8 +28,8 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await step(page, 'images');
     await upload(page, '#step-images input[data-slot="chart"]', 'passport.dng', fileBuffer(DNG));
     await page.waitForFunction(() => /passport\.dng/.test(document.querySelector('#step-images .file-state')?.textContent ?? ''), null, { timeout: 60000 });
-    await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, example.corners);
-    await page.waitForFunction(() => document.querySelectorAll('#step-images .patch-table tbody tr').length === 24, null, { timeout: 30000 });
+    await setCorners(page, example.corners);
+    assert.equal(await page.locator('#step-images .patch-table tbody tr').count(), 24);
     const table0 = await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]');
     // Keyboard: nudge corner 1 by 10 px right; the table is re-sampled.
     await page.focus('#step-images .handle[data-corner="0"]');
@@ -38,16 +38,17 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await page.keyboard.press('Shift+ArrowLeft');
     await page.waitForFunction((t0) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent === t0, table0);
     // Pointer: drag corner 3 a little and back.
-    const h = page.locator('#step-images .handle[data-corner="2"]');
+    const h = page.locator('#step-images .handle[data-corner="2"] circle.ring');
     const box = await h.boundingBox();
     await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
     await page.mouse.down();
     await page.mouse.move(box.x + box.width / 2 + 6, box.y + box.height / 2 + 4, { steps: 3 });
     await page.mouse.up();
+    await page.waitForFunction((cs) => window.tristim.session.corners?.some((v, i) => v !== cs[i]), example.corners, { timeout: 5000 });
     const moved = await page.evaluate(() => Array.from(window.tristim.session.corners));
-    assert.notDeepEqual(moved, example.corners);
-    await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, example.corners);
-    await page.waitForFunction((t0) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent === t0, table0);
+    assert.ok(moved[4] > example.corners[4] && moved[5] > example.corners[5], `corner 3 dragged right and down: ${moved}`);
+    await setCorners(page, example.corners);
+    assert.equal(await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]'), table0);
     assert.equal(await page.locator('#step-images .overlay .cell').count(), 24);
     await screenshot(page, 'journey-2-images');
 

@@ -50,21 +50,34 @@ export function noErrorNear(page, selector) {
   }, selector);
 }
 
-/// Number of drawn marks (circles, paths, rects, ...) inside a plot figure.
-export function marks(page, plotName) {
-  return page.evaluate((n) => {
-    const fig = document.querySelector(`figure[data-plot="${n}"]`);
-    return fig ? fig.querySelectorAll('svg g[aria-label] > :is(circle, path, line, rect, text, polygon)').length : -1;
-  }, plotName);
-}
+/// Drawn data marks (circles, paths, rects, ... of the plot's marks, not axes, grids, frames or
+/// tips) inside a plot figure, by mark: {dot: 24, arrow: 24, ...}. Facets nest groups, so
+/// shapes are counted as descendants of each top-level mark group.
 export function markCounts(page, plotName) {
   return page.evaluate((n) => {
     const fig = document.querySelector(`figure[data-plot="${n}"]`);
+    if (!fig) return null;
     const out = {};
-    for (const g of fig?.querySelectorAll('svg g[aria-label]') ?? []) {
+    for (const g of fig.querySelectorAll('svg > g[aria-label]')) {
       const k = g.getAttribute('aria-label');
-      out[k] = (out[k] ?? 0) + g.querySelectorAll(':scope > :is(circle, path, line, rect, text, polygon)').length;
+      if (/axis|grid|frame|tip/.test(k)) continue;
+      out[k] = (out[k] ?? 0) + g.querySelectorAll('circle, path, line, rect, text, polygon').length;
     }
     return out;
   }, plotName);
+}
+export async function marks(page, plotName) {
+  const c = await markCounts(page, plotName);
+  return c ? Object.values(c).reduce((a, b) => a + b, 0) : -1;
+}
+
+/// Places the four corners (as a drag would) and waits until the table is sampled with them.
+export async function setCorners(page, corners, { expectError = false } = {}) {
+  await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, corners);
+  if (!expectError) {
+    await page.waitForFunction((cs) => {
+      const s = window.tristim.derived.sample;
+      return s && s.corners.length === 8 && s.corners.every((v, i) => Math.abs(v - cs[i]) < 1e-9);
+    }, corners, { timeout: 30000 });
+  }
 }

@@ -53,8 +53,3 @@ export function figure(svg, { name, caption, className = '' }) {
   fig.append(cap);
   return fig;
 }
-
-/// Number of drawn marks (shapes) in a plot: what tests count.
-export function countMarks(el) {
-  return el.querySelectorAll('g[aria-label] > :is(circle, path, line, rect, text, polygon)').length;
-}

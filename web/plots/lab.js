@@ -6,9 +6,10 @@ import { patchTitle } from '../lib/perpatch.js';
 export function labPlanePlot(rows, plane = 'a', { width = 420, Plot = getPlot() } = {}) {
   const [h1, h2, name] = plane === 'a' ? ['a', 'ae', 'a*'] : ['C', 'Ce', 'C*ab'];
   const ok = rows.filter((r) => Number.isFinite(r[h1]) && Number.isFinite(r[h2]));
+  const hi = Math.max(10, ...ok.map((r) => Math.max(Math.abs(r[h1]), Math.abs(r[h2])))) * 1.08;
   return Plot.plot({
     width, height: 380, marginLeft: 44, marginBottom: 38, grid: true,
-    x: { label: `${name} (CIELAB, unitless) →`, ...(plane === 'a' ? {} : { domain: [0, undefined] }) },
+    x: { label: `${name} (CIELAB, unitless) →`, domain: plane === 'a' ? [-hi, hi] : [0, hi] },
     y: { label: '↑ L* (CIELAB lightness)', domain: [0, 100] },
     marks: [
       plane === 'a' ? Plot.ruleX([0], { stroke: '#999' }) : null,

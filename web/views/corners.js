@@ -41,11 +41,12 @@ export class CornerEditor {
   makeHandle(i, name) {
     const g = svgEl('g', { class: 'handle', tabindex: 0, role: 'slider', 'aria-label': `Corner ${i + 1}, ${name}` });
     g.dataset.corner = i;
+    const hit = svgEl('circle', { r: 16, class: 'hit' });   // a larger target for fingers and mice
     const ring = svgEl('circle', { r: 9, class: 'ring' });
     const dot = svgEl('circle', { r: 2, class: 'dot' });
     const label = svgEl('text', { dx: 11, dy: -9 });
     label.textContent = String(i + 1);
-    g.append(ring, dot, label);
+    g.append(hit, ring, dot, label);
     this.handleLayer.append(g);
     g.addEventListener('pointerdown', (e) => {
       e.preventDefault();
@@ -145,6 +146,9 @@ export class CornerEditor {
       poly.dataset.id = id;
       return poly;
     }));
-    for (const g of this.handles) g.querySelectorAll('circle.ring').forEach((r) => r.setAttribute('r', 9 * scale));
+    for (const g of this.handles) {
+      g.querySelector('circle.ring').setAttribute('r', 9 * scale);
+      g.querySelector('circle.hit').setAttribute('r', 16 * scale);
+    }
   }
 }

@@ -4,6 +4,7 @@ import { h, field, showError, clearError, unavailable, progressBar } from '../li
 import { options as listOptions } from '../lib/catalog.js';
 import { describe, FAMILIES, DEFAULT_MODELS } from '../methods/index.js';
 import { pairData } from '../lib/pairs.js';
+import { metric } from '../lib/metrics.js';
 
 export function mount(section, app) {
   const { engine } = app;
@@ -118,7 +119,7 @@ export function mount(section, app) {
       log.append(h('li', {}, `${results.length} of ${jobs.length} fits in ${((performance.now() - t0) / 1000).toFixed(2)} s.`));
       if (results.length) {
         await app.save('results', results);
-        await app.save('selected', results[0].key);
+        await app.save('selected', bestByLoo(results).key);
         app.mark('fit', 'done');
         app.emit('results', results);
       } else if (jobs.length) {
@@ -142,6 +143,12 @@ export function mount(section, app) {
   }
   describeData();
   return { run, runDefault, cancel: () => cancelBtn.click(), runBtn };
+}
+
+/// The result with the lowest leave-one-out mean CIEDE2000 (training mean when LOO is missing).
+function bestByLoo(results) {
+  const score = (r) => { const v = metric(r, 'loo', 'mean'); return Number.isFinite(v) ? v : 1e9 + (metric(r, 'training', 'mean') || 0); };
+  return results.reduce((a, b) => (score(b) < score(a) ? b : a));
 }
 
 /// The patch with the highest reference Y (the chart's white), for white preservation.

@@ -41,7 +41,7 @@ export function mount(section, app) {
       return h('th', { scope: 'col', 'aria-sort': sort.key === c.key ? (sort.dir > 0 ? 'ascending' : 'descending') : 'none', dataset: { col: c.key } }, b);
     };
     return h('table', { class: 'compare' },
-      h('caption', {}, 'CIEDE2000 errors of every fitted model (lower is better). Leave-one-out: each patch predicted by a fit without it. Click a heading to sort.'),
+      h('caption', {}, 'CIEDE2000 errors of every fitted model (lower is better). Leave-one-out: each patch predicted by a fit made without it — the honest estimate for colours the model was not trained on. Held-out chart: a second chart the fit never saw (– when none was given). Click a heading to sort.'),
       h('thead', {}, h('tr', {}, h('th', { scope: 'col' }, 'Model · objective'), COLUMNS.map(th), h('th', { scope: 'col' }, 'status'), h('th', { scope: 'col' }, 'show'))),
       h('tbody', {}, rows.map((r) => h('tr', { class: r === selected ? 'selected' : '', dataset: { key: r.key } },
         h('th', { scope: 'row' }, r.label),
