@@ -8,7 +8,7 @@ import path from 'node:path';
 import { screenshot, repoRoot } from './harness.mjs';
 import { openPage, caps, step, upload, fileBuffer, DNG, marks, markCounts, noErrorNear, setCorners } from './journey.mjs';
 
-const NEEDED = ['referenceChart', 'decodeRaw', 'sampleChart', 'fitModel', 'evaluateProfile'];
+const NEEDED = ['referenceChart', 'decodeRaw', 'sampleChart', 'fitModel', 'evaluateProfile', 'applyProfileToImage', 'exportIcc', 'exportCube'];
 const example = JSON.parse(fs.readFileSync(path.join(repoRoot, 'examples/web/passport.json'), 'utf8'));
 
 test('full journey: Passport DNG to fitted models, plots, applied image and re-imported profile', async (t) => {
@@ -85,7 +85,7 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
 
     // 5 Apply
     await step(page, 'apply');
-    if (c.applyProfile) {
+    if (c.applyProfileToImage) {
       await page.click('#step-apply button.primary');
       await page.waitForSelector('#step-apply .apply-images:not([hidden])', { timeout: 60000 });
       assert.match(await page.textContent('#step-apply .legend-box'), /viridis/);

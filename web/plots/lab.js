@@ -3,12 +3,12 @@ import { getPlot } from './common.js';
 import { patchTitle } from '../lib/perpatch.js';
 
 /// rows from perPatch(); plane 'a' (a*–L*) or 'C' (C*–L*).
-export function labPlanePlot(rows, plane = 'a', { width = 420, Plot = getPlot() } = {}) {
+export function labPlanePlot(rows, plane = 'a', { width = 410, Plot = getPlot() } = {}) {
   const [h1, h2, name] = plane === 'a' ? ['a', 'ae', 'a*'] : ['C', 'Ce', 'C*ab'];
   const ok = rows.filter((r) => Number.isFinite(r[h1]) && Number.isFinite(r[h2]));
   const hi = Math.max(10, ...ok.map((r) => Math.max(Math.abs(r[h1]), Math.abs(r[h2])))) * 1.08;
   return Plot.plot({
-    width, height: 380, marginLeft: 44, marginBottom: 38, grid: true,
+    width, height: 410, marginLeft: 44, marginBottom: 38, grid: true,
     x: { label: `${name} (CIELAB, unitless) →`, domain: plane === 'a' ? [-hi, hi] : [0, hi] },
     y: { label: '↑ L* (CIELAB lightness)', domain: [0, 100] },
     marks: [

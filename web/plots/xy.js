@@ -18,7 +18,18 @@ export function locusData(locus, labels = [460, 480, 490, 500, 520, 540, 560, 58
 }
 
 /// points: [{id, x, y, fill, title}], arrows: [{id, x1, y1, x2, y2, stroke, title}]
-export function xyPlot({ locus, points = [], arrows = [], white, width = 460, observer = '1931' }, { Plot = getPlot() } = {}) {
+/// Square domain around the points and arrow ends (with a margin), for a zoomed diagram.
+export function zoomDomain(points, arrows, pad = 0.03) {
+  const xs = [...points.map((p) => p.x), ...arrows.flatMap((a) => [a.x1, a.x2])].filter(Number.isFinite);
+  const ys = [...points.map((p) => p.y), ...arrows.flatMap((a) => [a.y1, a.y2])].filter(Number.isFinite);
+  if (!xs.length) return null;
+  const x0 = Math.min(...xs) - pad, x1 = Math.max(...xs) + pad, y0 = Math.min(...ys) - pad, y1 = Math.max(...ys) + pad;
+  const side = Math.max(x1 - x0, y1 - y0);
+  const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+  return { x: [cx - side / 2, cx + side / 2], y: [cy - side / 2, cy + side / 2] };
+}
+
+export function xyPlot({ locus, points = [], arrows = [], white, width = 460, observer = '1931', zoom = false }, { Plot = getPlot() } = {}) {
   const L = locus ? locusData(locus) : { line: [], ticks: [] };
   const marks = [
     Plot.line(L.line, { x: 'x', y: 'y', stroke: '#444', strokeWidth: 1.2 }),
@@ -33,10 +44,11 @@ export function xyPlot({ locus, points = [], arrows = [], white, width = 460, ob
     marks.push(Plot.arrow(arrows, { x1: 'x1', y1: 'y1', x2: 'x2', y2: 'y2', stroke: '#111', strokeWidth: 1, headLength: 5, title: 'title' }));
   }
   marks.push(Plot.dot(points, { x: 'x', y: 'y', r: 4.5, fill: 'fill', stroke: '#222', strokeWidth: 0.7, title: 'title', tip: true }));
+  const z = zoom ? zoomDomain(points, arrows) : null;
   return Plot.plot({
-    width, aspectRatio: 1, marginLeft: 44, marginBottom: 38,
-    x: { domain: [0, 0.8], label: `x (CIE ${observer} chromaticity, unitless) →`, grid: true },
-    y: { domain: [0, 0.9], label: `↑ y (CIE ${observer} chromaticity, unitless)`, grid: true },
+    width, aspectRatio: 1, marginLeft: 44, marginBottom: 38, clip: true,
+    x: { domain: z?.x ?? [0, 0.8], label: `x (CIE ${observer} chromaticity, unitless) →`, grid: true },
+    y: { domain: z?.y ?? [0, 0.9], label: `↑ y (CIE ${observer} chromaticity, unitless)`, grid: true },
     marks,
   });
 }

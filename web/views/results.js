@@ -66,8 +66,8 @@ export function mount(section, app) {
     const [Xw, Yw, Zw] = ref?.white ?? [0, 0, 0];
     const white = Xw + Yw + Zw > 0 ? { x: Xw / (Xw + Yw + Zw), y: Yw / (Xw + Yw + Zw) } : null;
     const figs = [
-      figure(xyPlot({ locus: app.derived.locus, points, arrows, white, observer: obs, width: 460 }),
-        { name: 'xy-arrows', caption: `CIE ${obs} xy: reference (dot) → estimate (arrow head)` }),
+      figure(xyPlot({ locus: app.derived.locus, points, arrows, white, observer: obs, width: 410, zoom: true }),
+        { name: 'xy-arrows', caption: `CIE ${obs} xy, zoomed to the patches: reference (dot) → estimate (arrow head); dashed: sRGB gamut` }),
     ];
     if (pp.has.Lab) {
       figs.push(figure(labPlanePlot(rows, 'a'), { name: 'lab-a-L', caption: 'CIELAB a*–L*: reference (dot) → estimate (small dot)' }));
