@@ -264,11 +264,11 @@ std::string normalise_patch_id(std::string_view raw) {
   for (char c : s) pattern = pattern && std::isalnum(static_cast<unsigned char>(c));
   if (!pattern) return trim(raw);
   bool any_digit = std::any_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
-  if (!any_digit) return s;
+  if (!any_digit) return trim(raw);
   // Only short letter groups (chart ids such as A1, AA12, R1C2) are upper-cased and stripped.
   size_t letters = 0;
   for (char c : s) letters += std::isalpha(static_cast<unsigned char>(c)) ? 1 : 0;
-  if (letters > 4) return s;
+  if (letters > 4) return trim(raw);
   std::string out;
   size_t i = 0;
   while (i < s.size()) {
@@ -364,7 +364,7 @@ PatchTable read_cgats(std::string_view text, std::string_view source) {
   PatchTable out;
   std::vector<std::string> fields;
   int format_line = 0;
-  long declared_fields = -1, declared_sets = -1;
+  long declared_fields = -1, declared_sets = -1;  // declared_fields: informative only
   std::vector<std::vector<std::string>> rows;
   std::vector<int> row_lines;
   bool in_format = false, in_data = false, done = false;
@@ -406,9 +406,8 @@ PatchTable read_cgats(std::string_view text, std::string_view source) {
     if (s.rfind("BEGIN_DATA", 0) == 0) {
       if (fields.empty())
         throw Error(ErrorCode::ParseError, where(source, ln) + ": BEGIN_DATA before any BEGIN_DATA_FORMAT");
-      if (declared_fields >= 0 && declared_fields != static_cast<long>(fields.size()))
-        throw Error(ErrorCode::RowLength, where(source, format_line) + ": NUMBER_OF_FIELDS " + std::to_string(declared_fields) +
-                                              " but the format lists " + std::to_string(fields.size()));
+      // NUMBER_OF_FIELDS is not checked against the format: real files (e.g. dcamprof's X-Rite
+      // .cie) get it wrong; every row is checked against the format instead.
       in_data = true;
       data_line = ln;
       continue;
@@ -424,6 +423,7 @@ PatchTable read_cgats(std::string_view text, std::string_view source) {
       if (value.empty() || *end != '\0' || v < 0)
         throw Error(ErrorCode::ParseError, where(source, ln) + ": " + toks[0] + " needs a count, got '" + value + "'");
       (toks[0] == "NUMBER_OF_FIELDS" ? declared_fields : declared_sets) = v;
+      (void)declared_fields;
       continue;
     }
     if (out.keywords.count(toks[0]) == 0) out.keywords[toks[0]] = value;

@@ -117,9 +117,9 @@ TEST_CASE("XYZ of colour-science's MSDS_TWO under D65 matches colour's integrati
 // colour-science: sd_to_XYZ(BabelColor average) with its defaults, which are illuminant E and the
 // *ASTM E308* method (tristimulus weighting factors for the 10 nm data) with the CMFs trimmed to 360-780 nm.
 // We integrate at 1 nm after Sprague interpolation instead (our one rule), so the two differ by the
-// method, not by a bug: ASTM E308 vs integration on smooth 10 nm reflectances differ by a few
-// 1e-3 in XYZ (0..100). Tolerance 0.02 (≈ 0.02 ΔE*ab near white), worst difference printed.
-TEST_CASE("ColorChecker BabelColor average under E matches colour's sd_to_XYZ within 0.02", "[spectra][colour]") {
+// method, not by a bug: on these smooth 10 nm reflectances the two differ by at most 3.7e-4 in
+// XYZ (0..100). Tolerance 2e-3 (far below any visible difference, well above rounding).
+TEST_CASE("ColorChecker BabelColor average under E matches colour's sd_to_XYZ within 2e-3", "[spectra][colour]") {
   const std::string json = test::read_shared(kExpect);
   const auto expected = json_numbers_after(json, "SDS_COLOURCHECKERS['babel_average']", "\"expected\"");
   REQUIRE(expected.size() == 72);
@@ -131,12 +131,13 @@ TEST_CASE("ColorChecker BabelColor average under E matches colour's sd_to_XYZ wi
   for (int s = 0; s < 24; ++s)
     for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(XYZ[s][k] - expected[3 * s + k]));
   INFO("worst |integration - colour ASTM E308| = " << worst);
-  CHECK(worst < 0.02);
+  CHECK(worst < 2e-3);
 }
 
 // CIE 15:2004 Table T.3 white points (Y = 100), tabulated from 5 nm summation; we integrate at
-// 1 nm after Sprague interpolation, which moves X and Z by up to ~0.01-0.02 -> tolerance 0.03.
-TEST_CASE("white points of the built-in illuminants match CIE 15:2004 Table T.3 within 0.03", "[spectra]") {
+// 1 nm after linear interpolation of the 5 nm SPD, which moves X and Z by up to 0.013 (D55 Z);
+// tolerance 0.02.
+TEST_CASE("white points of the built-in illuminants match CIE 15:2004 Table T.3 within 0.02", "[spectra]") {
   struct W {
     const char* id;
     Observer obs;
@@ -151,8 +152,8 @@ TEST_CASE("white points of the built-in illuminants match CIE 15:2004 Table T.3 
     const Vec3 white = illuminant_white_XYZ(illuminant_spd(w.id), w.obs);
     INFO(w.id << " " << observer_name(w.obs) << ": " << white.transpose());
     CHECK(white[1] == Approx(100).margin(1e-9));
-    CHECK(std::abs(white[0] - w.X) < 0.03);
-    CHECK(std::abs(white[2] - w.Z) < 0.03);
+    CHECK(std::abs(white[0] - w.X) < 0.02);
+    CHECK(std::abs(white[2] - w.Z) < 0.02);
   }
   // E: equal energy -> X = Y = Z to the CMF normalisation (CIE: 100, 100, 100 within 0.1).
   const Vec3 E = illuminant_white_XYZ(illuminant_spd("E"));
@@ -162,7 +163,7 @@ TEST_CASE("white points of the built-in illuminants match CIE 15:2004 Table T.3 
 
 // CIE 15:2004: the tabulated D65 was computed from S0, S1, S2 at the nominal CCT 6504 K with M1,
 // M2 rounded to 3 decimals. The table has 4-6 significant figures (e.g. 117.812), so the rebuilt
-// SPD must match to the table's last digit: tolerance 0.01 (on 100 at 560 nm).
+// SPD must match to the table's last digit (3 decimals): we see <= 0.00085; tolerance 1e-3.
 TEST_CASE("D65 (and D50, D55, D75) rebuilt from S0, S1, S2 match the tables", "[spectra]") {
   const double c2_ratio = 1.4388 / 1.4380;
   for (auto [id, T] : std::vector<std::pair<std::string, double>>{{"D65", 6500}, {"D50", 5000}, {"D55", 5500}, {"D75", 7500}}) {
@@ -179,7 +180,7 @@ TEST_CASE("D65 (and D50, D55, D75) rebuilt from S0, S1, S2 match the tables", "[
       }
     }
     INFO(id << ": worst |S0/S1/S2 - table| = " << worst << " at " << at << " nm");
-    CHECK(worst < 0.01 + 1e-9);
+    CHECK(worst < 1e-3);
   }
   // The id "D6504" reaches the same SPD through illuminant_spd.
   CHECK(illuminant_spd("D6504").values[0].size() == daylight_spd(6504).values[0].size());
