@@ -139,7 +139,7 @@ struct ColumnMap {
 int find_col(const std::vector<std::string>& header, std::initializer_list<const char*> names) {
   for (const char* n : names)
     for (size_t i = 0; i < header.size(); ++i)
-      if (lower(header[i]) == n) return static_cast<int>(i);
+      if (lower(header[i]) == lower(n)) return static_cast<int>(i);
   return -1;
 }
 int find_exact(const std::vector<std::string>& header, const char* name) {
