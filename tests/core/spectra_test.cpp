@@ -135,9 +135,9 @@ TEST_CASE("ColorChecker BabelColor average under E matches colour's sd_to_XYZ wi
 }
 
 // CIE 15:2004 Table T.3 white points (Y = 100), tabulated from 5 nm summation; we integrate at
-// 1 nm after linear interpolation of the 5 nm SPD, which moves X and Z by up to 0.013 (D55 Z);
-// tolerance 0.02.
-TEST_CASE("white points of the built-in illuminants match CIE 15:2004 Table T.3 within 0.02", "[spectra]") {
+// 1 nm after linear interpolation of the 5 nm SPD, which moves X and Z by up to 0.025 (D75 10° Z);
+// tolerance 0.03 (0.03 % of the white: invisible, but a wrong table or rule shows at > 0.1).
+TEST_CASE("white points of the built-in illuminants match CIE 15:2004 Table T.3 within 0.03", "[spectra]") {
   struct W {
     const char* id;
     Observer obs;
@@ -152,8 +152,8 @@ TEST_CASE("white points of the built-in illuminants match CIE 15:2004 Table T.3 
     const Vec3 white = illuminant_white_XYZ(illuminant_spd(w.id), w.obs);
     INFO(w.id << " " << observer_name(w.obs) << ": " << white.transpose());
     CHECK(white[1] == Approx(100).margin(1e-9));
-    CHECK(std::abs(white[0] - w.X) < 0.02);
-    CHECK(std::abs(white[2] - w.Z) < 0.02);
+    CHECK(std::abs(white[0] - w.X) < 0.03);
+    CHECK(std::abs(white[2] - w.Z) < 0.03);
   }
   // E: equal energy -> X = Y = Z to the CMF normalisation (CIE: 100, 100, 100 within 0.1).
   const Vec3 E = illuminant_white_XYZ(illuminant_spd("E"));
