@@ -111,6 +111,35 @@ ReferenceChart reference_from_table(const PatchTable& table, const SpectralData&
   return r;
 }
 
+PatchPairs pair_by_id(const std::vector<std::string>& reference_ids, const std::vector<Vec3>& reference,
+                      const std::vector<std::string>& measured_ids, const std::vector<Vec3>& measured) {
+  if (reference_ids.size() != reference.size() || measured_ids.size() != measured.size())
+    throw Error(ErrorCode::PatchMismatch, "ids and rows differ in number");
+  std::map<std::string, size_t> m;
+  for (size_t i = 0; i < measured_ids.size(); ++i) m.emplace(normalise_patch_id(measured_ids[i]), i);
+  PatchPairs p;
+  std::map<std::string, bool> in_ref;
+  for (size_t i = 0; i < reference_ids.size(); ++i) {
+    const std::string id = normalise_patch_id(reference_ids[i]);
+    in_ref[id] = true;
+    auto it = m.find(id);
+    if (it == m.end()) {
+      p.missing_in_measured.push_back(id);
+      continue;
+    }
+    p.ids.push_back(id);
+    p.reference.push_back(reference[i]);
+    p.measured.push_back(measured[it->second]);
+  }
+  for (const auto& id : measured_ids)
+    if (!in_ref.count(normalise_patch_id(id))) p.missing_in_reference.push_back(normalise_patch_id(id));
+  if (p.ids.empty())
+    throw Error(ErrorCode::PatchMismatch, "no patch id is shared by the measurement and the reference (e.g. reference '" +
+                                              (reference_ids.empty() ? std::string() : reference_ids[0]) + "', measured '" +
+                                              (measured_ids.empty() ? std::string() : measured_ids[0]) + "')");
+  return p;
+}
+
 PublishedReference published_reference_Lab(std::string_view chart_id) {
   const ChartFiles& c = find_chart(chart_id);
   const TextTable t = parse_delimited(builtin_file(c.lab), c.lab);

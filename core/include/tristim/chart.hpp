@@ -67,6 +67,17 @@ struct PublishedReference {
 };
 PublishedReference published_reference_Lab(std::string_view chart_id);
 
+/// Measured patches paired with reference patches by id (for fits and evaluation).
+/// Order: the reference's order, keeping ids present in both. Error(PatchMismatch) if no id is
+/// shared, or if the counts of ids and rows differ.
+struct PatchPairs {
+  std::vector<std::string> ids;
+  std::vector<Vec3> measured, reference;
+  std::vector<std::string> missing_in_measured, missing_in_reference;
+};
+PatchPairs pair_by_id(const std::vector<std::string>& reference_ids, const std::vector<Vec3>& reference,
+                      const std::vector<std::string>& measured_ids, const std::vector<Vec3>& measured);
+
 /// Display colour of XYZ (Y = 100 scale) seen under `white`: Bradford to D65, then sRGB encoded.
 Vec3 display_sRGB(const Vec3& XYZ, const Vec3& white);
 
