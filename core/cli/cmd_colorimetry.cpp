@@ -16,8 +16,14 @@ namespace tristim::cli {
 
 namespace {
 
+int g_significant = 0;  // --precision N: print N significant digits (%.Ng) instead of fixed decimals
+
 std::string num(double v, int decimals = 6) {
   char buf[64];
+  if (g_significant > 0) {
+    std::snprintf(buf, sizeof buf, "%.*g", g_significant, v);
+    return buf;
+  }
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
   std::string s(buf);
   if (s == "-0.000000") s = "0.000000";
@@ -45,8 +51,17 @@ SpectralData illuminant_arg(const std::string& value) {
   return illuminant_spd(value);
 }
 
+void set_precision(const Args& args) {
+  if (!args.has("precision")) return;
+  const double p = args.get_double("precision", 0);
+  if (!(p >= 1 && p <= 17) || p != static_cast<int>(p))
+    throw Error(ErrorCode::InvalidArgument, "--precision expects 1..17 significant digits");
+  g_significant = static_cast<int>(p);
+}
+
 int run_reference(const Args& args, std::ostream& out) {
-  args.allow_only({"chart", "illuminant", "observer"});
+  args.allow_only({"chart", "illuminant", "observer", "precision"});
+  set_precision(args);
   const std::string chart = args.get("chart");
   const Observer observer = parse_observer(args.get("observer", "1931"));
   const ReferenceChart r = reference_from_spectra(chart_reflectances(chart), illuminant_arg(args.get("illuminant", "D65")), observer);
@@ -110,7 +125,8 @@ void parse_oecf(const std::string& spec, SimulationOptions& o) {
 }
 
 int run_simulate(const Args& args, std::ostream& out) {
-  args.allow_only({"camera", "reflectances", "illuminant", "noise", "seed", "oecf", "white", "levels"});
+  args.allow_only({"camera", "reflectances", "illuminant", "noise", "seed", "oecf", "white", "levels", "precision"});
+  set_precision(args);
   const std::string cam = args.get("camera");
   const SpectralData ssf = file_exists(cam) ? read_ssf_csv(read_file(cam), cam) : camera_ssf(cam);
   const std::string refl = args.get("reflectances");
@@ -168,7 +184,8 @@ CommandRegistration reg_reference({"reference", "reference XYZ and Lab of a buil
                                    "tristim reference --chart <cc24|cc24-2005|sg140|sg140-2005|passport>\n"
                                    "                  [--illuminant D65|A|D50|D55|D75|E|F2|F11|D<CCT>|spd.csv] [--observer 1931|1964]\n"
                                    "Prints CSV patch,X,Y,Z,L,a,b: XYZ with the perfect diffuser at Y = 100, Lab relative to the\n"
-                                   "illuminant's white; computed from the chart's spectra (1 nm integration, CIE 15).",
+                                   "illuminant's white; computed from the chart's spectra (1 nm integration, CIE 15).\n"
+                                   "--precision 17 prints every number with 17 significant digits (round-trip exact).",
                                    run_reference});
 CommandRegistration reg_difference({"difference", "colour differences of Lab pairs (CSV)",
                                     "tristim difference [--method CIE2000|CIE1994|CIE1976] --in pairs.csv\n"

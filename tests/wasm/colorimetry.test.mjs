@@ -44,21 +44,43 @@ test('referenceChart: shapes and values', async () => {
   assert.equal(T.referenceChart('cc24', 'D50', 1931).ids.length, 24);
 });
 
-test('referenceChart agrees with the native CLI on every number (when the native build exists)', async (t) => {
+// Native and wasm: the same core, the same IEEE doubles; only libm differs (glibc natively, musl
+// in Emscripten), whose pow/cbrt/log/sin may differ in the last bit. The CLI prints 17 significant
+// digits (round-trip exact). Sums and products (XYZ, linear camera RGB) must be bit-identical;
+// results through libm (Lab via cube roots, noise via log/sin/cos) within 1e-12 relative.
+test('referenceChart and simulateCamera agree with the native CLI (when the native build exists)', async (t) => {
   const exe = path.join(repoRoot, 'build/native/core/tristim');
   if (!fs.existsSync(exe)) return t.skip('no native build');
   const T = await loadTristim();
-  for (const [chart, ill, obs] of [['cc24', 'D50', '1931'], ['sg140-2005', 'F11', '1964'], ['passport', 'A', '1931']]) {
-    const csv = execFileSync(exe, ['reference', '--chart', chart, '--illuminant', ill, '--observer', obs]).toString();
+  const worst = {};
+  const compare = (kind, got, want, what) => {
+    const d = Math.abs(got - want) / Math.max(1, Math.abs(want));
+    if (!worst[kind] || d > worst[kind].d) worst[kind] = { d, what: `${what}: wasm ${got} native ${want}` };
+  };
+  for (const [chart, ill, obs] of [['cc24', 'D50', '1931'], ['sg140-2005', 'F11', '1964'], ['passport', 'A', '1931'], ['sg140', 'D65', '1931']]) {
+    const csv = execFileSync(exe, ['reference', '--chart', chart, '--illuminant', ill, '--observer', obs, '--precision', '17']).toString();
     const rows = csv.trim().split('\n').slice(1).map((l) => l.split(','));
     const r = T.referenceChart(chart, ill, obs);
     assert.equal(rows.length, r.ids.length);
     rows.forEach((row, i) => {
       assert.equal(row[0], r.ids[i]);
-      for (let k = 0; k < 3; k++) close(r.XYZ[3 * i + k], Number(row[1 + k]), 5e-7, `${chart} ${row[0]} XYZ`);
-      for (let k = 0; k < 3; k++) close(r.Lab[3 * i + k], Number(row[4 + k]), 5e-7, `${chart} ${row[0]} Lab`);
+      for (let k = 0; k < 3; k++) compare('XYZ', r.XYZ[3 * i + k], Number(row[1 + k]), `${chart} ${row[0]} XYZ[${k}]`);
+      for (let k = 0; k < 3; k++) compare('Lab', r.Lab[3 * i + k], Number(row[4 + k]), `${chart} ${row[0]} Lab[${k}]`);
     });
   }
+  for (const noise of [0, 0.01]) {
+    const kind = noise ? 'RGB+noise' : 'RGB';
+    const csv = execFileSync(exe, ['simulate', '--camera', 'Canon_EOS_5D_Mark_II', '--reflectances', 'sg140', '--illuminant', 'D65',
+      '--noise', String(noise), '--seed', '9', '--precision', '17']).toString();
+    const rows = csv.trim().split('\n').slice(1).map((l) => l.split(','));
+    const sim = T.simulateCamera('Canon_EOS_5D_Mark_II', 'sg140', 'D65', { noise, seed: 9 });
+    rows.forEach((row, i) => { for (let k = 0; k < 3; k++) compare(kind, sim.RGB[3 * i + k], Number(row[1 + k]), `simulate ${row[0]}[${k}]`); });
+  }
+  for (const [kind, w] of Object.entries(worst)) t.diagnostic(`${kind}: worst relative difference ${w.d} (${w.what})`);
+  assert.equal(worst.XYZ.d, 0, `XYZ not bit-identical: ${worst.XYZ.what}`);
+  assert.equal(worst.RGB.d, 0, `linear RGB not bit-identical: ${worst.RGB.what}`);
+  assert.ok(worst.Lab.d <= 1e-12, `Lab: ${worst.Lab.what}`);
+  assert.ok(worst['RGB+noise'].d <= 1e-12, `noise: ${worst['RGB+noise'].what}`);
 });
 
 test('parseReferenceFile: spectral CSV, Lab CSV and CGATS', async () => {
