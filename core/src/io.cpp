@@ -131,6 +131,7 @@ double wavelength_from_name(const std::string& name) {
 /// Finds the value columns of a header; fills a PatchTable from cell rows.
 struct ColumnMap {
   int id = -1, index = -1;
+  std::vector<int> id_candidates;  // id-like columns in order of preference
   int XYZ[3] = {-1, -1, -1}, Lab[3] = {-1, -1, -1}, RGB[3] = {-1, -1, -1};
   std::vector<int> spectral;
   std::vector<double> wavelengths;
@@ -162,8 +163,13 @@ void require_triplet(const int (&c)[3], const char* what, const std::vector<std:
 
 ColumnMap map_columns(const std::vector<std::string>& header, std::string_view source, int line) {
   ColumnMap m;
-  m.id = find_col(header, {"patch", "id", "sample_id", "sampleid", "sample_name", "samplename", "name", "sample",
-                           "patch_id", "patch_name", "sample_loc"});
+  for (const char* n : {"patch", "id", "sample_id", "sampleid", "sample_name", "samplename", "sample_loc", "name", "sample",
+                        "patch_id", "patch_name", "location"}) {
+    const int c = find_col(header, {n});
+    if (c >= 0 && std::find(m.id_candidates.begin(), m.id_candidates.end(), c) == m.id_candidates.end())
+      m.id_candidates.push_back(c);
+  }
+  m.id = m.id_candidates.empty() ? -1 : m.id_candidates.front();
   m.index = find_col(header, {"index", "#", "idx", "no", "number"});
   m.XYZ[0] = find_col(header, {"xyz_x", "x", "cie_x"});
   m.XYZ[1] = find_col(header, {"xyz_y", "y", "cie_y"});
@@ -189,7 +195,7 @@ ColumnMap map_columns(const std::vector<std::string>& header, std::string_view s
   }
   for (size_t i = 0; i < header.size(); ++i) {
     const int ii = static_cast<int>(i);
-    if (ii == m.id || ii == m.index) continue;
+    if (ii == m.index || std::find(m.id_candidates.begin(), m.id_candidates.end(), ii) != m.id_candidates.end()) continue;
     const double wl = wavelength_from_name(header[i]);
     if (std::isfinite(wl)) {
       m.spectral.push_back(ii);
@@ -211,8 +217,22 @@ ColumnMap map_columns(const std::vector<std::string>& header, std::string_view s
 
 PatchTable fill_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,
                       const std::vector<int>& lines, std::string_view source, int header_line) {
-  const ColumnMap m = map_columns(header, source, header_line);
+  ColumnMap m = map_columns(header, source, header_line);
   if (rows.empty()) throw Error(ErrorCode::EmptyFile, std::string(source.empty() ? "input" : source) + ": no data rows");
+  // Several id columns (i1Profiler: SampleID 1..N and SAMPLE_NAME A1..; Argyll .ti2/.ti3: SAMPLE_ID
+  // 1..N and SAMPLE_LOC A01..): prefer the first whose values are not all plain numbers, so the ids
+  // pair with chart patch ids.
+  if (m.id_candidates.size() > 1) {
+    for (int c : m.id_candidates) {
+      const bool numeric = std::all_of(rows.begin(), rows.end(), [&](const std::vector<std::string>& r) {
+        return !r[c].empty() && std::all_of(r[c].begin(), r[c].end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); });
+      });
+      if (!numeric) {
+        m.id = c;
+        break;
+      }
+    }
+  }
   PatchTable t;
   t.has_XYZ = m.XYZ[0] >= 0;
   t.has_Lab = m.Lab[0] >= 0;

@@ -97,10 +97,21 @@ TEST_CASE("CGATS: i1Profiler-style export with SampleID, SAMPLE_NAME and nm colu
       "nm410\nEND_DATA_FORMAT\nNUMBER_OF_SETS\t2\nBEGIN_DATA\n1\tA01\t0.05\t0.06\t0.07\t0.08\n2\tA02\t0.1\t0.2\t0.3\t0.4\n"
       "END_DATA\n";
   const PatchTable t = read_patch_file(text, "export.txt");
-  CHECK(t.ids == std::vector<std::string>{"1", "2"});  // SampleID comes first in the alias list
+  CHECK(t.ids == std::vector<std::string>{"A1", "A2"});  // SAMPLE_NAME, not the numeric SampleID
   REQUIRE(t.has_spectra);
   CHECK(t.spectra.wavelengths == std::vector<double>{380, 390, 400, 410});
   CHECK(t.spectra.values[1][3] == 0.4);
+}
+
+TEST_CASE("Argyll .ti2-style SAMPLE_ID numbers next to SAMPLE_LOC patch names", "[io]") {
+  const PatchTable t = read_patch_file(
+      "CTI2\nBEGIN_DATA_FORMAT\nSAMPLE_ID SAMPLE_LOC XYZ_X XYZ_Y XYZ_Z\nEND_DATA_FORMAT\nBEGIN_DATA\n1 \"A01\" 1 2 3\n2 \"A02\" 4 5 6\n"
+      "END_DATA\n",
+      "chart.ti2");
+  CHECK(t.ids == std::vector<std::string>{"A1", "A2"});
+  // Only numeric ids: the first id column is used.
+  const PatchTable n = read_patch_file("SAMPLE_ID,X,Y,Z\n1,1,2,3\n2,1,2,3\n", "n.csv");
+  CHECK(n.ids == std::vector<std::string>{"1", "2"});
 }
 
 TEST_CASE("every malformed input gives its error code and line", "[io][errors]") {
