@@ -1,5 +1,7 @@
 // Built-in reference charts: spectra and X-Rite Lab (core/data/charts, origins in SOURCES.md).
+#include <algorithm>
 #include <map>
+#include <mutex>
 
 #include "tristim/chart.hpp"
 #include "tristim/data.hpp"
@@ -59,8 +61,13 @@ std::vector<ChartInfo> list_charts() {
 
 SpectralData chart_reflectances(std::string_view chart_id) {
   const ChartFiles& c = find_chart(chart_id);
-  const PatchTable t = read_patch_file(builtin_file(c.spectra), c.spectra);  // ids normalised: A01 -> A1
-  return t.spectra;
+  static std::mutex mutex;
+  static std::map<std::string, SpectralData> cache;  // parsed once per file
+  std::lock_guard<std::mutex> lock(mutex);
+  auto it = cache.find(c.spectra);
+  if (it == cache.end())
+    it = cache.emplace(c.spectra, read_patch_file(builtin_file(c.spectra), c.spectra).spectra).first;  // A01 -> A1
+  return it->second;
 }
 
 Vec3 display_sRGB(const Vec3& XYZ, const Vec3& white) {
@@ -102,8 +109,13 @@ ReferenceChart reference_from_table(const PatchTable& table, const SpectralData&
   r.observer = observer;
   r.ids = table.ids;
   r.white = illuminant_white_XYZ(illuminant, observer);
+  // XYZ tables on the 0..1 scale (every Y <= 1.5) are brought to the Y = 100 scale of the white.
+  double max_Y = 0;
+  if (table.has_XYZ)
+    for (const auto& v : table.XYZ) max_Y = std::max(max_Y, v[1]);
+  const double scale = table.has_XYZ && max_Y <= 1.5 ? 100.0 : 1.0;
   for (size_t i = 0; i < table.ids.size(); ++i) {
-    const Vec3 XYZ = table.has_XYZ ? table.XYZ[i] : Lab_to_XYZ(table.Lab[i], r.white);
+    const Vec3 XYZ = table.has_XYZ ? Vec3(table.XYZ[i] * scale) : Lab_to_XYZ(table.Lab[i], r.white);
     r.XYZ.push_back(XYZ);
     r.Lab.push_back(table.has_Lab ? table.Lab[i] : XYZ_to_Lab(XYZ, r.white));
     r.sRGB.push_back(display_sRGB(XYZ, r.white));

@@ -165,10 +165,17 @@ SpectralData illuminant_spd(std::string_view id_in) {
   if (id == "FL11") id = "F11";
   auto it = illuminant_files().find(id);
   if (it != illuminant_files().end()) {
-    SpectralData d = read_spectral_csv(builtin_file(it->second), it->second);
-    d.names = {id};
-    d.linear = true;
-    return d;
+    static std::mutex mutex;
+    static std::map<std::string, SpectralData> cache;  // parsed once
+    std::lock_guard<std::mutex> lock(mutex);
+    auto c = cache.find(id);
+    if (c == cache.end()) {
+      SpectralData d = read_spectral_csv(builtin_file(it->second), it->second);
+      d.names = {id};
+      d.linear = true;
+      c = cache.emplace(id, std::move(d)).first;
+    }
+    return c->second;
   }
   if (id.size() >= 5 && id[0] == 'D') {
     char* end = nullptr;

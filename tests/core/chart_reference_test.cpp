@@ -83,6 +83,9 @@ TEST_CASE("a Lab or XYZ table is used as given; spectra are integrated", "[chart
   const PatchTable xyz = read_patch_file("patch,X,Y,Z\nA1,20,21,22\n", "xyz.csv");
   const ReferenceChart rx = reference_from_table(xyz, D50, Observer::CIE1931_2);
   CHECK(rx.XYZ[0] == Vec3(20, 21, 22));
+  const ReferenceChart unit = reference_from_table(read_patch_file("patch,X,Y,Z\nA1,0.2,0.21,0.22\n", "u.csv"), D50,
+                                                   Observer::CIE1931_2);
+  CHECK((unit.XYZ[0] - Vec3(20, 21, 22)).norm() < 1e-12);
   const PatchTable sp = read_patch_file("wavelength,A1\n380,50\n780,50\n", "s.csv");  // percent
   const ReferenceChart rs = reference_from_table(sp, D50, Observer::CIE1931_2);
   CHECK(rs.XYZ[0][1] == Approx(50).epsilon(1e-12));

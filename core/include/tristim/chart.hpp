@@ -56,7 +56,8 @@ ReferenceChart reference_from_spectra(const SpectralData& reflectances, const Sp
                                       Observer observer);
 /// A measurement file as reference: spectra are integrated under the illuminant; an XYZ and/or Lab
 /// table is used as given (missing Lab = XYZ_to_Lab relative to the illuminant's white; missing
-/// XYZ = Lab_to_XYZ with that white). Error(MissingColumn) if the file has none of these.
+/// XYZ = Lab_to_XYZ with that white; an XYZ table whose Y never exceeds 1.5 is taken to be on the
+/// 0..1 scale and multiplied by 100). Error(MissingColumn) if the file has none of these.
 ReferenceChart reference_from_table(const PatchTable& table, const SpectralData& illuminant, Observer observer);
 
 /// X-Rite's published CIELAB (D50, 2°) of a built-in chart, as printed (2 decimals); ids as above.
