@@ -47,6 +47,9 @@ TEST_CASE("per-patch CSV: XYZ, Lab, RGB columns, case-insensitive, index column"
   CHECK(rgb.has_RGB);
   CHECK_FALSE(rgb.has_Lab);
   CHECK(rgb.RGB[0] == Vec3(1, 2, 3));
+  // Decimal commas in a ';'-separated file.
+  const PatchTable eu = read_patch_file("patch;L;a;b\nA1;50,5;-2,25;3\n", "eu.csv");
+  CHECK(eu.Lab[0] == Vec3(50.5, -2.25, 3));
   // Quoted cells may hold the delimiter.
   const PatchTable q = read_patch_file("name,X,Y,Z\n\"white, 9.5\",1,2,3\n", "x.csv");
   CHECK(q.ids[0] == "white, 9.5");

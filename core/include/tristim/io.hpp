@@ -39,7 +39,8 @@ struct TextTable {
 };
 TextTable parse_delimited(std::string_view text, std::string_view source);
 
-/// Number in a cell; Error(NonNumeric) / Error(NonFinite) naming source, line and column.
+/// Number in a cell (a decimal comma "0,5" is accepted); Error(NonNumeric) / Error(NonFinite)
+/// naming source, line and column.
 double parse_cell(const std::string& cell, std::string_view source, int line, std::string_view column);
 
 /// Spectral CSV: first column wavelength (nm, strictly increasing), one column per sample.
