@@ -166,31 +166,25 @@ FalloffFit fit_falloff_Guarnera2018(const RawImage& flat, const DarkFrame* dark)
     }
   const int m = static_cast<int>(rs.size());
   if (m < 3) throw Error(ErrorCode::InvalidArgument, "the flat field is too small to fit a radial fall-off");
-  // L(0): constant term of a weighted quadratic fit to the profile.
-  Eigen::MatrixXd A(m, 3);
-  Eigen::VectorXd bL(m);
-  for (int i = 0; i < m; ++i) {
-    A(i, 0) = ws[i];
-    A(i, 1) = ws[i] * rs[i];
-    A(i, 2) = ws[i] * rs[i] * rs[i];
-    bL(i) = ws[i] * Ls[i];
-  }
-  const Eigen::Vector3d q = A.colPivHouseholderQr().solve(bL);
-  const double L0 = q(0);
-  if (!(L0 > 0)) throw Error(ErrorCode::FlatFieldZero, "the flat field's centre has no positive signal");
   for (double L : Ls)
     if (!(L > 0)) throw Error(ErrorCode::FlatFieldZero, "the flat field has a ring without positive signal");
-  // f_i - 1 = p1 r_i² + p2 r_i (p3 = 1 so that f(centre) = 1).
-  Eigen::MatrixXd B(m, 2);
+  // f(r) = L(0) / L(r) = p1 r² + p2 r + 1  <=>  1 / L(r) = a + b r + c r² with L(0) = 1/a,
+  // p2 = b/a, p1 = c/a: one linear least-squares fit (rows weighted by L·sqrt(count), i.e.
+  // relative errors), and f(centre) = 1 by construction.
+  Eigen::MatrixXd A(m, 3);
   Eigen::VectorXd t(m);
   for (int i = 0; i < m; ++i) {
-    B(i, 0) = ws[i] * rs[i] * rs[i];
-    B(i, 1) = ws[i] * rs[i];
-    t(i) = ws[i] * (L0 / Ls[i] - 1.0);
+    const double w = ws[i] * Ls[i];
+    A(i, 0) = w;
+    A(i, 1) = w * rs[i];
+    A(i, 2) = w * rs[i] * rs[i];
+    t(i) = w / Ls[i];
   }
-  const Eigen::Vector2d p = B.colPivHouseholderQr().solve(t);
-  fit.p1 = p(0);
-  fit.p2 = p(1);
+  const Eigen::Vector3d q = A.colPivHouseholderQr().solve(t);
+  if (!(q(0) > 0)) throw Error(ErrorCode::FlatFieldZero, "the flat field's centre has no positive signal");
+  const double L0 = 1.0 / q(0);
+  fit.p1 = q(2) / q(0);
+  fit.p2 = q(1) / q(0);
   fit.p3 = 1.0;
   fit.bins = m;
   double ss = 0, wsum = 0;

@@ -71,8 +71,9 @@ struct FalloffFit {
 };
 
 /// Fits the fall-off from a uniformly lit flat-field image: radial profile L(r) of the
-/// per-channel-normalised mean of R, G, B in 64 bins (saturated pixels skipped); L(0) from a
-/// quadratic fit to the profile; f_i = L(0)/L_i fitted by least squares with p3 fixed at 1.
+/// per-channel-normalised mean of R, G, B in 64 bins (saturated pixels skipped), then
+/// 1/L(r) = (1 + p2 r + p1 r²)/L(0) fitted by linear least squares (relative errors), so
+/// f(r) = L(0)/L(r) has p3 = f(centre) = 1 exactly.
 /// FlatFieldZero if the flat has no positive signal; InvalidArgument if fewer than 3 bins.
 FalloffFit fit_falloff_Guarnera2018(const RawImage& flat, const DarkFrame* dark = nullptr);
 
