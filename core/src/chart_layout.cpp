@@ -170,6 +170,15 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout_opti
     const double du = (cell.u1 - cell.u0) * half, dv = (cell.v1 - cell.v0) * half;
     const double u0 = uc - du, u1 = uc + du, v0 = vc - dv, v1 = vc + dv;
     s.centre = fwd(uc, vc);
+    const double pu[4] = {cell.u0, cell.u1, cell.u1, cell.u0}, pv[4] = {cell.v0, cell.v0, cell.v1, cell.v1};
+    const double su[4] = {u0, u1, u1, u0}, sv[4] = {v0, v0, v1, v1};
+    for (int i = 0; i < 4; ++i) {
+      const auto a = fwd(pu[i], pv[i]), b = fwd(su[i], sv[i]);
+      s.quad[2 * i] = a[0];
+      s.quad[2 * i + 1] = a[1];
+      s.sample_quad[2 * i] = b[0];
+      s.sample_quad[2 * i + 1] = b[1];
+    }
     double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
     for (auto uv : {std::array<double, 2>{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}}) {
       const auto p = fwd(uv[0], uv[1]);

@@ -83,6 +83,8 @@ struct PatchSample {
   std::array<double, 3> saturated_fraction{};  ///< fraction of those pixels clipped per channel
   std::vector<std::string> flags;      ///< "saturated", "dark", "nonuniform"
   std::array<double, 2> centre{};      ///< patch centre in image coordinates
+  std::array<double, 8> quad{};        ///< the patch's corners in the image (TL, TR, BR, BL; x, y)
+  std::array<double, 8> sample_quad{}; ///< the sampled area's corners in the image
 };
 
 struct ChartSample {
