@@ -37,17 +37,19 @@ DarkFrame average_dark_frames(const std::vector<const RawImage*>& frames) {
   d.model = first.meta.model;
   d.frames = static_cast<int>(frames.size());
   const size_t n = first.rgb.size();
-  std::vector<double> acc(n, 0.0);
   for (size_t k = 0; k < frames.size(); ++k) {
     if (!frames[k]) throw Error(ErrorCode::InvalidArgument, "dark frame " + std::to_string(k + 1) + " is missing");
     require_same(d.width, d.height, d.make, d.model, *frames[k],
                  ("dark frame " + std::to_string(k + 1)).c_str());
-    for (size_t i = 0; i < n; ++i) acc[i] += frames[k]->rgb[i];
   }
+  // Sum each element over the frames in double (no second full-size buffer: memory matters in wasm).
   d.rgb.resize(n);
   std::array<double, 3> sum{};
+  const double inv = 1.0 / frames.size();
   for (size_t i = 0; i < n; ++i) {
-    d.rgb[i] = static_cast<float>(acc[i] / frames.size());
+    double acc = 0;
+    for (const RawImage* f : frames) acc += f->rgb[i];
+    d.rgb[i] = static_cast<float>(acc * inv);
     sum[i % 3] += d.rgb[i];
   }
   const double npix = static_cast<double>(n / 3);
@@ -83,26 +85,29 @@ FlatField make_flat_field(const RawImage& flat, const DarkFrame* dark, DarkMode 
       if (!(r > 0 && r <= 1.5))
         throw Error(ErrorCode::InvalidArgument, "white reflectance must be in (0, 1.5], got " + std::to_string(r));
   const size_t n = flat.rgb.size();
-  std::vector<float> v(n);
-  std::array<double, 3> sum{};
-  for (size_t i = 0; i < n; ++i) {
+  // Two passes over the flat (check + channel sums, then gains) instead of a second full-size buffer.
+  const auto signal = [&](size_t i) {
     float d = 0;
     if (dark) d = dark_mode == DarkMode::PerPixel ? dark->rgb[i] : static_cast<float>(dark->mean[i % 3]);
-    v[i] = flat.rgb[i] - d;
-    if (!(v[i] > 0)) {
+    return flat.rgb[i] - d;
+  };
+  std::array<double, 3> sum{};
+  for (size_t i = 0; i < n; ++i) {
+    const float v = signal(i);
+    if (!(v > 0)) {
       const size_t p = i / 3;
       throw Error(ErrorCode::FlatFieldZero,
                   "the flat field has a zero or negative value at pixel (" +
                       std::to_string(p % flat.width) + ", " + std::to_string(p / flat.width) +
                       ") channel " + "RGB"[i % 3] + ": expose the flat so every pixel has signal");
     }
-    sum[i % 3] += v[i];
+    sum[i % 3] += v;
   }
   const double npix = static_cast<double>(n / 3);
   f.reflectance_units = white_reflectance.has_value();
   for (int c = 0; c < 3; ++c) f.target[c] = white_reflectance ? (*white_reflectance)[c] : sum[c] / npix;
   f.gain.resize(n);
-  for (size_t i = 0; i < n; ++i) f.gain[i] = static_cast<float>(f.target[i % 3] / v[i]);  // App. C step 2
+  for (size_t i = 0; i < n; ++i) f.gain[i] = static_cast<float>(f.target[i % 3] / signal(i));  // App. C step 2
   return f;
 }
 
