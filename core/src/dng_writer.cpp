@@ -1,6 +1,7 @@
 // Minimal DNG writer: one IFD, one uncompressed 16-bit CFA strip, little-endian TIFF.
 #include "tristim/dng_writer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -64,13 +65,21 @@ std::vector<std::uint8_t> write_dng(const std::vector<std::uint16_t>& values, in
                                     const DngWriteOptions& o) {
   if (width < 2 || height < 2 || static_cast<size_t>(width) * height != values.size())
     throw Error(ErrorCode::InvalidArgument, "write_dng: width*height must equal the number of values");
-  if (o.cfa.size() != 4) throw Error(ErrorCode::InvalidArgument, "write_dng: CFA must have 4 letters");
-  std::vector<std::uint8_t> cfa;
+  const int cfa_dim = o.cfa.size() == 4 ? 2 : o.cfa.size() == 36 ? 6 : 0;
+  if (cfa_dim == 0)
+    throw Error(ErrorCode::InvalidArgument, "write_dng: CFA must have 4 (2x2) or 36 (6x6) letters");
+  // CFAPlaneColor lists the colours used (DNG codes: 0 R, 1 G, 2 B, 3 C, 4 M, 5 Y); CFAPattern
+  // indexes that list.
+  const std::string codes = "RGBCMY";
+  std::vector<std::uint8_t> planes, cfa;
+  for (char c : codes)
+    if (o.cfa.find(c) != std::string::npos) planes.push_back(static_cast<std::uint8_t>(codes.find(c)));
   for (char c : o.cfa) {
-    if (c == 'R') cfa.push_back(0);
-    else if (c == 'G') cfa.push_back(1);
-    else if (c == 'B') cfa.push_back(2);
-    else throw Error(ErrorCode::InvalidArgument, "write_dng: CFA letters must be R, G or B");
+    const auto k = codes.find(c);
+    if (k == std::string::npos)
+      throw Error(ErrorCode::InvalidArgument, "write_dng: CFA letters must be R, G, B, C, M or Y");
+    cfa.push_back(static_cast<std::uint8_t>(
+        std::find(planes.begin(), planes.end(), static_cast<std::uint8_t>(k)) - planes.begin()));
   }
   const std::uint32_t hw = o.header_width ? o.header_width : static_cast<std::uint32_t>(width);
   const std::uint32_t hh = o.header_height ? o.header_height : static_cast<std::uint32_t>(height);
@@ -93,11 +102,13 @@ std::vector<std::uint8_t> write_dng(const std::vector<std::uint16_t>& values, in
   e.push_back(longs(278, {hh}));
   e.push_back(longs(279, {strip_bytes}));
   e.push_back(shorts(284, {1}));
-  e.push_back(shorts(33421, {2, 2}));
+  e.push_back(shorts(33421, {static_cast<std::uint16_t>(cfa_dim), static_cast<std::uint16_t>(cfa_dim)}));
   e.push_back(bytes(33422, cfa));
   e.push_back(bytes(50706, {1, 4, 0, 0}));
   e.push_back(bytes(50707, {1, 1, 0, 0}));
   e.push_back(ascii(50708, o.make + " " + o.model));
+  e.push_back(bytes(50710, planes));  // CFAPlaneColor
+  e.push_back(shorts(50711, {1}));    // CFALayout: rectangular
   e.push_back(shorts(50714, {o.black}));
   e.push_back(longs(50717, {o.white}));
   e.push_back(rationals(50721, o.color_matrix.data(), 9, true));

@@ -199,3 +199,43 @@ TEST_CASE("bad RAW input gives a coded error, never a crash", "[raw][bad]") {
     CHECK(decode_code(write_dng(std::vector<std::uint16_t>(64 * 48, 100), 64, 48), small) == ErrorCode::RawTooLarge);
   }
 }
+
+TEST_CASE("X-Trans (6x6 CFA): each 3x3 block becomes one pixel with its R, G, B means", "[raw]") {
+  const std::string xt = "GGRGGB" "GGBGGR" "BRGRBG" "GGBGGR" "GGRGGB" "RBGBRG";
+  const int W = 60, H = 48;
+  std::vector<std::uint16_t> v(W * H);
+  std::mt19937 rng(3);
+  for (auto& x : v) x = static_cast<std::uint16_t>(200 + rng() % 9000);
+  DngWriteOptions o;
+  o.cfa = xt;
+  o.black = 200;
+  o.white = 16000;
+  const RawImage img = decode_raw(write_dng(v, W, H, o));
+  CHECK(img.meta.layout == "xtrans");
+  CHECK(img.meta.block == 3);
+  CHECK(img.meta.cfa_pattern == xt);
+  REQUIRE(img.width == W / 3);
+  REQUIRE(img.height == H / 3);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      double sum[3] = {0, 0, 0}, n[3] = {0, 0, 0};
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+          const int row = 3 * y + r, col = 3 * x + c;
+          const char letter = xt[(row % 6) * 6 + col % 6];
+          const int k = letter == 'R' ? 0 : letter == 'G' ? 1 : 2;
+          sum[k] += v[row * W + col] - 200.0;
+          n[k] += 1;
+        }
+      for (int k = 0; k < 3; ++k) REQUIRE(img.at(x, y, k) == Approx(sum[k] / n[k]).margin(1e-3));
+    }
+}
+
+TEST_CASE("4-colour CFAs are refused with RAW_UNSUPPORTED", "[raw][bad]") {
+  for (const std::string cfa : {"CYGM", "RGBC"}) {
+    DngWriteOptions o;
+    o.cfa = cfa;
+    INFO(cfa);
+    CHECK(decode_code(write_dng(std::vector<std::uint16_t>(60 * 48, 1000), 60, 48, o)) == ErrorCode::RawUnsupported);
+  }
+}

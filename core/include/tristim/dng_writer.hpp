@@ -1,4 +1,4 @@
-// tristim — a minimal DNG writer (uncompressed 16-bit Bayer CFA), for tests and benchmarks:
+// tristim — a minimal DNG writer (uncompressed 16-bit CFA, 2×2 or 6×6), for tests and benchmarks:
 // planted-value decode tests, synthetic 24/50 MP benchmark files, headers with absurd sizes.
 #pragma once
 #include <array>
@@ -10,7 +10,9 @@ namespace tristim {
 
 struct DngWriteOptions {
   std::string make = "tristim", model = "Synthetic CFA";
-  std::string cfa = "RGGB";          ///< 2×2 pattern, row-major, letters R, G, B
+  /// CFA, row-major: 4 letters (2×2) or 36 (6×6, e.g. X-Trans); R, G, B (C, M, Y for tests of
+  /// 4-colour sensors).
+  std::string cfa = "RGGB";
   std::uint16_t black = 0;           ///< BlackLevel (one value)
   std::uint16_t white = 65535;       ///< WhiteLevel
   /// ColorMatrix1 (XYZ -> camera, row-major); default: a plausible daylight matrix.
