@@ -3,7 +3,9 @@
 
 #include <lcms2.h>
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -336,6 +338,55 @@ std::vector<uint8_t> float_pfm(const float* pixels, int width, int height) {
     copy_floats_le(b.data() + header.size() + static_cast<size_t>(y) * row * 4,
                    pixels + static_cast<size_t>(height - 1 - y) * row, row);
   return b;
+}
+
+Image3f read_pfm(const std::string& bytes) {
+  size_t i = 0;
+  auto token = [&]() {
+    while (i < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
+    const size_t start = i;
+    while (i < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
+    return bytes.substr(start, i - start);
+  };
+  if (token() != "PF") throw Error(ErrorCode::ParseError, "PFM: not a colour PFM (expected 'PF' at byte 0)");
+  const std::string ws = token(), hs = token(), ss = token();
+  char* end = nullptr;
+  const long w = std::strtol(ws.c_str(), &end, 10);
+  const long h = std::strtol(hs.c_str(), &end, 10);
+  const double scale = std::strtod(ss.c_str(), &end);
+  if (w <= 0 || h <= 0 || w > 100000 || h > 100000 || scale == 0 || !std::isfinite(scale))
+    throw Error(ErrorCode::ParseError, "PFM: bad header (width, height or scale)");
+  ++i;  // the single whitespace after the scale
+  const size_t row = static_cast<size_t>(w) * 3;
+  const size_t need = row * static_cast<size_t>(h) * 4;
+  if (bytes.size() < i + need)
+    throw Error(ErrorCode::ParseError, "PFM: file ends after " + std::to_string(bytes.size()) + " bytes, " +
+                                           std::to_string(i + need) + " needed");
+  Image3f img;
+  img.width = static_cast<int>(w);
+  img.height = static_cast<int>(h);
+  img.pixels.resize(row * static_cast<size_t>(h));
+  const bool file_le = scale < 0;
+  for (long y = 0; y < h; ++y) {
+    const uint8_t* src = reinterpret_cast<const uint8_t*>(bytes.data()) + i + static_cast<size_t>(y) * row * 4;
+    float* dst = img.pixels.data() + static_cast<size_t>(h - 1 - y) * row;
+    for (size_t k = 0; k < row; ++k) {
+      uint32_t u = 0;
+      for (int b = 0; b < 4; ++b) u |= static_cast<uint32_t>(src[4 * k + (file_le ? b : 3 - b)]) << (8 * b);
+      std::memcpy(dst + k, &u, 4);
+    }
+  }
+  return img;
+}
+
+Image3f apply_profile(const Profile& profile, const float* rgb, int width, int height) {
+  if (width <= 0 || height <= 0 || !rgb) throw Error(ErrorCode::InvalidArgument, "apply: empty image");
+  Image3f out;
+  out.width = width;
+  out.height = height;
+  out.pixels.resize(static_cast<size_t>(width) * height * 3);
+  apply_to_image(profile.model, rgb, static_cast<size_t>(width) * height, out.pixels.data());
+  return out;
 }
 
 }  // namespace tristim

@@ -247,6 +247,7 @@ struct De2000Data {
   std::vector<double> w;
   double wsum;
   Vec3 white;
+  bool rms = false;
   int evaluations = 0;
   double best = INFINITY;
   std::vector<double> best_x;
@@ -265,9 +266,10 @@ double de2000_cost(const Problem& pr, const De2000Data& d, const double* x) {
     }
     const Vec3 Lab = XYZ_to_Lab(XYZ, d.white);
     const double dE = delta_E_CIE2000(d.Lab_ref.row(i).transpose(), Lab);
-    total += d.w[i] * (std::isfinite(dE) ? dE : 1e6);
+    const double e = std::isfinite(dE) ? dE : 1e6;
+    total += d.w[i] * (d.rms ? e * e : e);
   }
-  return total / d.wsum;
+  return d.rms ? std::sqrt(total / d.wsum) : total / d.wsum;
 }
 
 double nlopt_objective(unsigned n, const double* x, double* grad, void* data) {
@@ -294,6 +296,7 @@ De2000Outcome minimise_de2000(const Problem& pr, const FitOptions& options, Eige
   De2000Data d;
   d.pr = &pr;
   d.white = options.white;
+  d.rms = options.de2000.rms;
   if (!(d.white.minCoeff() > 0) || !d.white.allFinite())
     throw Error(ErrorCode::InvalidArgument, "CIEDE2000 objective: the white must be positive XYZ");
   d.Lab_ref.resize(pr.n, 3);

@@ -49,6 +49,18 @@ std::string patch_csv(const std::vector<std::string>& ids, const PatchMatrix& ca
 /// (SampleFormat 3, PlanarConfiguration 1, one strip), interleaved input of width × height × 3.
 std::vector<uint8_t> float_tiff(const float* pixels, int width, int height,
                                 const std::string& description = "CIE XYZ");
+/// An interleaved 3-channel float image (RGB in, XYZ out), row 0 at the top.
+struct Image3f {
+  int width = 0, height = 0;
+  std::vector<float> pixels;  ///< width × height × 3
+};
+
+/// Reads a colour PFM ("PF", either endianness); Error(ParseError) naming the problem.
+Image3f read_pfm(const std::string& bytes);
+
+/// Applies a profile's model to a linear camera-RGB image (same units as the training RGB).
+Image3f apply_profile(const Profile& profile, const float* rgb, int width, int height);
+
 /// Portable float map (PF, little-endian scale -1, bottom row first as the format requires).
 std::vector<uint8_t> float_pfm(const float* pixels, int width, int height);
 

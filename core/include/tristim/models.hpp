@@ -95,15 +95,17 @@ struct PatternSearchOptions {
   int max_iterations = 0;        ///< 0: 100 × number of variables
 };
 
-/// The perceptual objective: mean_i w_i·ΔE00_i / Σw_i with Lab relative to `white`.
+/// The perceptual objective: mean_i w_i·ΔE00_i / Σw_i with Lab relative to `white`
+/// (with `rms`: sqrt(Σ w_i·ΔE00_i² / Σw_i), the loss OpenCV's ccm minimises).
 /// Minimised by NLopt's bounded derivative-free BOBYQA (or "sbplx"), started from the
 /// least-squares solution; each coefficient is bounded to LS ± (|LS| + ‖XYZ_i‖) in the
 /// equilibrated coordinates.
 struct DeltaE2000Options {
   std::string algorithm = "bobyqa";  ///< "bobyqa" (NLOPT_LN_BOBYQA) or "sbplx" (NLOPT_LN_SBPLX)
-  double xtol_rel = 1e-7;
-  double ftol_rel = 1e-9;
+  double xtol_rel = 1e-5;
+  double ftol_rel = 1e-7;
   int max_evaluations = 0;           ///< 0: 400 × number of variables
+  bool rms = false;                  ///< minimise the (weighted) RMS instead of the mean
 };
 
 struct FitOptions {
