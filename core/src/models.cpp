@@ -2,6 +2,11 @@
 #include "tristim/models.hpp"
 
 #include <cmath>
+#include <Eigen/Core>
+#include <algorithm>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <cstring>
 
 #include "tristim/error.hpp"
@@ -263,30 +268,102 @@ namespace {
 // Block size of the image loops: deinterleave into planar float arrays the compiler vectorises.
 constexpr size_t kBlock = 512;
 
+// Interleaved RGB -> planar r, g, b (and planar x, y, z -> interleaved), 4 pixels per step
+// with SSE shuffles where available.
+inline void deinterleave(const float* __restrict in, float* __restrict r, float* __restrict g,
+                         float* __restrict b, size_t m) {
+  size_t i = 0;
+#if defined(__SSE2__)
+  for (; i + 4 <= m; i += 4) {
+    const __m128 a = _mm_loadu_ps(in + 3 * i), bb = _mm_loadu_ps(in + 3 * i + 4), c = _mm_loadu_ps(in + 3 * i + 8);
+    const __m128 t0 = _mm_shuffle_ps(a, bb, _MM_SHUFFLE(1, 0, 2, 1));  // g0 b0 g1 b1
+    const __m128 t1 = _mm_shuffle_ps(bb, c, _MM_SHUFFLE(2, 1, 3, 2));  // r2 g2 r3 g3
+    _mm_store_ps(r + i, _mm_shuffle_ps(a, t1, _MM_SHUFFLE(2, 0, 3, 0)));
+    _mm_store_ps(g + i, _mm_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 1, 2, 0)));
+    _mm_store_ps(b + i, _mm_shuffle_ps(t0, c, _MM_SHUFFLE(3, 0, 3, 1)));
+  }
+#endif
+  for (; i < m; ++i) {
+    r[i] = in[3 * i];
+    g[i] = in[3 * i + 1];
+    b[i] = in[3 * i + 2];
+  }
+}
+
+inline void interleave(const float* __restrict x, const float* __restrict y, const float* __restrict z,
+                       float* __restrict out, size_t m) {
+  size_t i = 0;
+#if defined(__SSE2__)
+  for (; i + 4 <= m; i += 4) {
+    const __m128 X = _mm_load_ps(x + i), Y = _mm_load_ps(y + i), Z = _mm_load_ps(z + i);
+    const __m128 lo = _mm_unpacklo_ps(X, Y), hi = _mm_unpackhi_ps(X, Y);  // x0 y0 x1 y1 | x2 y2 x3 y3
+    const __m128 a = _mm_shuffle_ps(Z, lo, _MM_SHUFFLE(2, 2, 0, 0));     // z0 z0 x1 x1
+    const __m128 b = _mm_shuffle_ps(lo, Z, _MM_SHUFFLE(1, 1, 3, 3));     // y1 y1 z1 z1
+    const __m128 c = _mm_shuffle_ps(Z, hi, _MM_SHUFFLE(2, 2, 2, 2));     // z2 z2 x3 x3
+    const __m128 d = _mm_shuffle_ps(hi, Z, _MM_SHUFFLE(3, 3, 3, 3));     // y3 y3 z3 z3
+    _mm_storeu_ps(out + 3 * i, _mm_shuffle_ps(lo, a, _MM_SHUFFLE(2, 0, 1, 0)));
+    _mm_storeu_ps(out + 3 * i + 4, _mm_shuffle_ps(b, hi, _MM_SHUFFLE(1, 0, 2, 0)));
+    _mm_storeu_ps(out + 3 * i + 8, _mm_shuffle_ps(c, d, _MM_SHUFFLE(2, 0, 2, 0)));
+  }
+#endif
+  for (; i < m; ++i) {
+    out[3 * i] = x[i];
+    out[3 * i + 1] = y[i];
+    out[3 * i + 2] = z[i];
+  }
+}
+
 template <class Kernel>
 void image_blocks(const float* rgb, size_t n, float* xyz, Kernel&& kernel) {
   alignas(64) float r[kBlock], g[kBlock], b[kBlock], x[kBlock], y[kBlock], z[kBlock];
   for (size_t start = 0; start < n; start += kBlock) {
     const size_t m = std::min(kBlock, n - start);
-    const float* in = rgb + 3 * start;
-    for (size_t i = 0; i < m; ++i) {
-      r[i] = in[3 * i];
-      g[i] = in[3 * i + 1];
-      b[i] = in[3 * i + 2];
-    }
+    deinterleave(rgb + 3 * start, r, g, b, m);
     kernel(r, g, b, x, y, z, m);
-    float* out = xyz + 3 * start;
-    for (size_t i = 0; i < m; ++i) {
-      out[3 * i] = x[i];
-      out[3 * i + 1] = y[i];
-      out[3 * i + 2] = z[i];
-    }
+    interleave(x, y, z, xyz + 3 * start, m);
   }
 }
 
-inline float signed_sqrt_f(float p) {
-  const float s = std::sqrt(std::fabs(p));
-  return p < 0 ? -s : s;
+void kernel_affine(const float* __restrict r, const float* __restrict g, const float* __restrict b,
+                   float* __restrict x, float* __restrict y, float* __restrict z, size_t m, const float (&a)[3][4]) {
+  const float a00 = a[0][0], a01 = a[0][1], a02 = a[0][2], a03 = a[0][3];
+  const float a10 = a[1][0], a11 = a[1][1], a12 = a[1][2], a13 = a[1][3];
+  const float a20 = a[2][0], a21 = a[2][1], a22 = a[2][2], a23 = a[2][3];
+  for (size_t i = 0; i < m; ++i) {
+    const float R = r[i], G = g[i], B = b[i];
+    x[i] = a00 * R + a01 * G + a02 * B + a03;
+    y[i] = a10 * R + a11 * G + a12 * B + a13;
+    z[i] = a20 * R + a21 * G + a22 * B + a23;
+  }
+}
+
+// Degree-2 root-polynomial, coefficient columns (R, G, B, √RG, √RB, √GB), signed roots.
+void kernel_root2(const float* __restrict r, const float* __restrict g, const float* __restrict b,
+                  float* __restrict x, float* __restrict y, float* __restrict z, size_t m, const float (&a)[3][6]) {
+  alignas(64) float s0[kBlock], s1[kBlock], s2[kBlock];
+  for (size_t i = 0; i < m; ++i) {
+    s0[i] = r[i] * g[i];
+    s1[i] = r[i] * b[i];
+    s2[i] = g[i] * b[i];
+  }
+  // Signed square root through Eigen's packet sqrt (std::sqrt keeps errno semantics and
+  // stays scalar).
+  alignas(64) float t[kBlock];
+  for (float* s : {s0, s1, s2}) {
+    Eigen::Map<Eigen::ArrayXf, Eigen::Aligned16> v(s, static_cast<Eigen::Index>(m));
+    Eigen::Map<Eigen::ArrayXf, Eigen::Aligned16> root(t, static_cast<Eigen::Index>(m));
+    root = v.abs().sqrt();
+    for (size_t i = 0; i < m; ++i) s[i] = s[i] < 0.f ? -t[i] : t[i];
+  }
+  const float a00 = a[0][0], a01 = a[0][1], a02 = a[0][2], a03 = a[0][3], a04 = a[0][4], a05 = a[0][5];
+  const float a10 = a[1][0], a11 = a[1][1], a12 = a[1][2], a13 = a[1][3], a14 = a[1][4], a15 = a[1][5];
+  const float a20 = a[2][0], a21 = a[2][1], a22 = a[2][2], a23 = a[2][3], a24 = a[2][4], a25 = a[2][5];
+  for (size_t i = 0; i < m; ++i) {
+    const float R = r[i], G = g[i], B = b[i], P = s0[i], Q = s1[i], S = s2[i];
+    x[i] = a00 * R + a01 * G + a02 * B + a03 * P + a04 * Q + a05 * S;
+    y[i] = a10 * R + a11 * G + a12 * B + a13 * P + a14 * Q + a15 * S;
+    z[i] = a20 * R + a21 * G + a22 * B + a23 * P + a24 * Q + a25 * S;
+  }
 }
 
 }  // namespace
@@ -308,45 +385,30 @@ void apply_to_image(const Model& model, const float* rgb, size_t n_pixels, float
   const bool is_root2 = info.root && info.n_terms == 6 && info.terms[0].r == 1 && info.terms[1].g == 1 &&
                         info.terms[2].b == 1;
   if (is_linear || is_affine) {
-    const float o0 = is_affine ? k[0][3] : 0.f, o1 = is_affine ? k[1][3] : 0.f,
-                o2 = is_affine ? k[2][3] : 0.f;
+    float a[3][4];
+    for (int c = 0; c < 3; ++c) {
+      for (int j = 0; j < 3; ++j) a[c][j] = k[c][j];
+      a[c][3] = is_affine ? k[c][3] : 0.f;
+    }
     image_blocks(rgb, n_pixels, xyz,
-                 [&](const float* r, const float* g, const float* b, float* x, float* y, float* z, size_t m) {
-                   for (size_t i = 0; i < m; ++i) {
-                     x[i] = k[0][0] * r[i] + k[0][1] * g[i] + k[0][2] * b[i] + o0;
-                     y[i] = k[1][0] * r[i] + k[1][1] * g[i] + k[1][2] * b[i] + o1;
-                     z[i] = k[2][0] * r[i] + k[2][1] * g[i] + k[2][2] * b[i] + o2;
-                   }
+                 [&a](const float* r, const float* g, const float* b, float* x, float* y, float* z, size_t m) {
+                   kernel_affine(r, g, b, x, y, z, m, a);
                  });
     return;
   }
   if (is_root2) {
-    // Term j = 3..5 is sqrt of the product of the two channels named by the table row.
-    int pa[3], pb[3];
+    // Terms 3..5 are sqrt of the product of two channels; reorder to (RG, RB, GB).
+    float a[3][6];
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < 3; ++j) a[c][j] = k[c][j];
     for (int j = 3; j < 6; ++j) {
       const Monomial& t = info.terms[j];
-      pa[j - 3] = t.r ? 0 : 1;
-      pb[j - 3] = t.b ? 2 : 1;
+      const int slot = t.r && t.g ? 3 : (t.r && t.b ? 4 : 5);
+      for (int c = 0; c < 3; ++c) a[c][slot] = k[c][j];
     }
     image_blocks(rgb, n_pixels, xyz,
-                 [&](const float* r, const float* g, const float* b, float* x, float* y, float* z, size_t m) {
-                   const float* ch[3] = {r, g, b};
-                   alignas(64) float s0[kBlock], s1[kBlock], s2[kBlock];
-                   const float *a0 = ch[pa[0]], *b0 = ch[pb[0]], *a1 = ch[pa[1]], *b1 = ch[pb[1]],
-                               *a2 = ch[pa[2]], *b2 = ch[pb[2]];
-                   for (size_t i = 0; i < m; ++i) {
-                     s0[i] = signed_sqrt_f(a0[i] * b0[i]);
-                     s1[i] = signed_sqrt_f(a1[i] * b1[i]);
-                     s2[i] = signed_sqrt_f(a2[i] * b2[i]);
-                   }
-                   for (size_t i = 0; i < m; ++i) {
-                     x[i] = k[0][0] * r[i] + k[0][1] * g[i] + k[0][2] * b[i] + k[0][3] * s0[i] +
-                            k[0][4] * s1[i] + k[0][5] * s2[i];
-                     y[i] = k[1][0] * r[i] + k[1][1] * g[i] + k[1][2] * b[i] + k[1][3] * s0[i] +
-                            k[1][4] * s1[i] + k[1][5] * s2[i];
-                     z[i] = k[2][0] * r[i] + k[2][1] * g[i] + k[2][2] * b[i] + k[2][3] * s0[i] +
-                            k[2][4] * s1[i] + k[2][5] * s2[i];
-                   }
+                 [&a](const float* r, const float* g, const float* b, float* x, float* y, float* z, size_t m) {
+                   kernel_root2(r, g, b, x, y, z, m, a);
                  });
     return;
   }
