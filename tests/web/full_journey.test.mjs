@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { screenshot, repoRoot } from './harness.mjs';
-import { openPage, caps, step, upload, fileBuffer, DNG, marks, markCounts, noErrorNear, setCorners } from './journey.mjs';
+import { openPage, caps, step, upload, fileBuffer, DNG, marks, markCounts, noErrorNear, setCorners, waitSampled } from './journey.mjs';
 
 const NEEDED = ['referenceChart', 'decodeRaw', 'sampleChart', 'fitModel', 'evaluateProfile', 'applyProfileToImage', 'exportIcc', 'exportCube'];
 const example = JSON.parse(fs.readFileSync(path.join(repoRoot, 'examples/web/passport.json'), 'utf8'));
@@ -34,9 +34,13 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     // Keyboard: nudge corner 1 by 10 px right; the table is re-sampled.
     await page.focus('#step-images .handle[data-corner="0"]');
     await page.keyboard.press('Shift+ArrowRight');
-    await page.waitForFunction((t0) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent !== t0, table0);
+    const right = [...example.corners];
+    right[0] += 10;
+    await waitSampled(page, right);
+    assert.notEqual(await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]'), table0);
     await page.keyboard.press('Shift+ArrowLeft');
-    await page.waitForFunction((t0) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent === t0, table0);
+    await waitSampled(page, example.corners);
+    assert.equal(await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]'), table0);
     // Pointer: drag corner 3 a little and back.
     const h = page.locator('#step-images .handle[data-corner="2"] circle.ring');
     const box = await h.boundingBox();

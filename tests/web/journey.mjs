@@ -72,12 +72,15 @@ export async function marks(page, plotName) {
 }
 
 /// Places the four corners (as a drag would) and waits until the table is sampled with them.
-export async function setCorners(page, corners, { expectError = false } = {}) {
+export async function setCorners(page, corners) {
   await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, corners);
-  if (!expectError) {
-    await page.waitForFunction((cs) => {
-      const s = window.tristim.derived.sample;
-      return s && s.corners.length === 8 && s.corners.every((v, i) => Math.abs(v - cs[i]) < 1e-9);
-    }, corners, { timeout: 30000 });
-  }
+  await waitSampled(page, corners);
+}
+
+/// Waits until the corners are stored and the patch table shows a sampling made with them.
+export function waitSampled(page, corners) {
+  return page.waitForFunction((cs) => {
+    const same = (a) => a && a.length === 8 && Array.from(a).every((v, i) => Math.abs(v - cs[i]) < 1e-9);
+    return same(window.tristim.session.corners) && same(window.tristim.derived.sample?.corners);
+  }, corners, { timeout: 30000 });
 }
