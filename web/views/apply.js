@@ -37,14 +37,17 @@ export function mount(section, app) {
   let shown = null;
   sourceSel.addEventListener('change', () => { sceneField.hidden = sourceSel.value !== 'scene'; });
   mapSel.addEventListener('change', () => { app.save('colourMap', mapSel.value); if (shown) run(); });
-  sceneInput.addEventListener('change', async () => {
+  let sceneLoading = null;   // reading + decoding a newly chosen scene file
+  sceneInput.addEventListener('change', () => {
     const f = sceneInput.files[0];
     if (!f) return;
     clearError(sceneInput);
-    await scenePromise;
-    sceneBytes = { name: f.name, bytes: await fileBytes(f) };
-    sceneGen = -1;
-    await decodeScene();
+    sceneLoading = (async () => {
+      await scenePromise;
+      sceneBytes = { name: f.name, bytes: await fileBytes(f) };
+      sceneGen = -1;
+      return decodeScene();
+    })();
   });
 
   let scenePromise = null;
@@ -91,6 +94,7 @@ export function mount(section, app) {
     if (!r) { showError(applyBtn, Object.assign(new Error('no profile to apply: fit or import one first'), { code: 'NO_PROFILE' }), 'Apply'); return null; }
     const slot = sourceSel.value;
     if (slot === 'scene') {
+      await sceneLoading;
       if (!sceneBytes) { showError(sceneInput, Object.assign(new Error('choose a RAW file first'), { code: 'NO_IMAGE' }), 'Apply'); return null; }
       if (!(await decodeScene())) return null;
     } else if (!(await app.views.images.ensureDecoded())) {
