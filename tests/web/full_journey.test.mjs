@@ -85,6 +85,21 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     const nums = cells.map(Number);
     assert.ok(nums.every(Number.isFinite), `training means are numbers: ${cells}`);
     assert.deepEqual(nums, [...nums].sort((a, b) => a - b));
+    // Hover: a patch's id and numbers.
+    const dot = page.locator('figure[data-plot="lab-a-L"] svg > g[aria-label="dot"] circle').first();
+    await dot.hover();
+    await page.waitForFunction(() => /ΔE00 \d/.test(document.querySelector('figure[data-plot="lab-a-L"] g[aria-label="tip"]')?.textContent ?? ''));
+    assert.match(await page.textContent('figure[data-plot="lab-a-L"] g[aria-label="tip"]'), /[A-D][1-6][\s\S]*L\*a\*b\*/);
+    // Every plot exports as SVG and PNG.
+    const [svgDl] = await Promise.all([page.waitForEvent('download'), page.click('figure[data-plot="de2000-bars"] button:has-text("SVG")')]);
+    const svgText = fs.readFileSync(await svgDl.path(), 'utf8');
+    assert.match(svgText, /^<svg[^>]*xmlns="http:\/\/www.w3.org\/2000\/svg"/);
+    assert.ok((svgText.match(/<rect/g) ?? []).length >= 72);
+    assert.match(svgText, /ΔL \(lightness\)/);
+    const [pngDl] = await Promise.all([page.waitForEvent('download'), page.click('figure[data-plot="xy-arrows"] button:has-text("PNG")')]);
+    const png = fs.readFileSync(await pngDl.path());
+    assert.equal(png.subarray(1, 4).toString('latin1'), 'PNG');
+    assert.ok(png.length > 5000, `PNG has content (${png.length} bytes)`);
     await screenshot(page, 'journey-4-results');
 
     // 5 Apply

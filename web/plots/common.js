@@ -32,7 +32,9 @@ export function xyFromXYZ(XYZ) {
 
 /// Wraps a plot in a figure with a caption and export buttons; `name` names the files.
 export function figure(svg, { name, caption, className = '' }) {
-  const root = svg.tagName.toLowerCase() === 'svg' ? svg : svg.querySelector('svg');
+  // Plot returns a <figure> when it adds legends: export the SVG that holds the marks.
+  const root = svg.tagName.toLowerCase() === 'svg' ? svg
+    : [...svg.querySelectorAll('svg')].find((s) => s.querySelector(':scope > g[aria-label]')) ?? svg.querySelector('svg');
   const fig = document.createElement('figure');
   fig.className = `plot ${className}`;
   fig.dataset.plot = name;
