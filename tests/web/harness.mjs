@@ -55,6 +55,8 @@ export async function openBrowser() {
 export async function screenshot(page, name) {
   fs.mkdirSync(artifacts, { recursive: true });
   const file = path.join(artifacts, `${name}.png`);
+  await page.evaluate(() => window.scrollTo(0, 0));   // the sticky header stays at the top
+  await page.mouse.move(0, 0);
   await page.screenshot({ path: file, fullPage: true });
   return file;
 }

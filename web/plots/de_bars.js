@@ -21,15 +21,15 @@ export function deBarsPlot(rows, { width = 900, Plot = getPlot() } = {}) {
   const maxDE = Math.max(1, ...rows.map((r) => (Number.isFinite(r.dE) ? r.dE : 0)));
   const chipH = maxDE * 0.07;
   return Plot.plot({
-    width, height: 300, marginLeft: 44, marginBottom: 40,
+    width, height: 340, marginLeft: 44, marginBottom: 40, marginTop: 60,
     x: { domain: ids, label: 'patch', tickRotate: ids.length > 30 ? -90 : 0 },
     y: { label: '↑ CIEDE2000 ΔE00', domain: [-chipH * 1.4, maxDE * 1.05], grid: true },
     color: { domain: Object.keys(TERM_COLOURS), range: Object.values(TERM_COLOURS) },
     marks: [
       // The legend is drawn inside the SVG so an exported plot keeps it.
       ...Object.entries(TERM_COLOURS).flatMap(([term, colour], k) => [
-        Plot.dot([term], { frameAnchor: 'top-right', dx: -110, dy: 8 + 16 * k, fill: colour, symbol: 'square', r: 5 }),
-        Plot.text([term], { frameAnchor: 'top-right', dx: -100, dy: 8 + 16 * k, text: (d) => d, textAnchor: 'start', fontSize: 11 }),
+        Plot.dot([term], { frameAnchor: 'top-right', dx: -110, dy: -46 + 16 * k, fill: colour, symbol: 'square', r: 5 }),
+        Plot.text([term], { frameAnchor: 'top-right', dx: -100, dy: -46 + 16 * k, text: (d) => d, textAnchor: 'start', fontSize: 11 }),
       ]),
       Plot.barY(deSegments(rows), { x: 'id', y: 'value', fill: 'term', title: (d) => `${d.term}: ${d.value.toFixed(2)} of ${patchTitle(d.row)}`, tip: true }),
       Plot.rect(rows, { x: 'id', y1: -chipH * 1.3, y2: -chipH * 0.2, fill: 'fill', stroke: '#444', strokeWidth: 0.5, title: patchTitle }),
