@@ -141,6 +141,10 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
       await upload(page, '#step-export input[type=file]', 'journey.cube', fs.readFileSync(await cube.path()));
       await page.waitForFunction(() => /3D LUT/.test(document.querySelector('#step-export .import-result')?.textContent ?? ''));
     }
+    // The per-patch CSV loads back as a reference (its X_ref, Y_ref, Z_ref columns).
+    await upload(page, '#step-export input[type=file]', 'journey-patches.csv', Buffer.from(csv.join('\n') + '\n'));
+    await page.waitForFunction(() => /loaded as the reference/.test(document.querySelector('#step-export .import-result')?.textContent ?? ''));
+    assert.match(await page.textContent('#step-reference .summary'), /journey-patches\.csv/);
     await screenshot(page, 'journey-6-export');
     assert.deepEqual(b.problems, []);
   } finally {

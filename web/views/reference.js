@@ -62,7 +62,7 @@ export function mount(section, app) {
         clearError(fileInput);
       } catch (e) {
         showError(fileInput, e, s.referenceFile.name);
-        return;
+        return e;
       }
     } else {
       if (!engine.has('referenceChart')) return;
@@ -72,7 +72,7 @@ export function mount(section, app) {
         clearError(chartSel); clearError(illumSel);
       } catch (e) {
         showError(illumSel, e, 'Reference');
-        return;
+        return e;
       }
     }
     ref.settings = { ...s, referenceFile: s.referenceFile ? { name: s.referenceFile.name } : null };
@@ -81,6 +81,7 @@ export function mount(section, app) {
     render(ref);
     app.mark('reference', 'done');
     app.emit('reference', ref);
+    return ref;
   }
 
   function render(ref) {
@@ -138,5 +139,17 @@ export function mount(section, app) {
   setOptions(chartSel, charts, settings.chart);
   setOptions(illumSel, illuminants, settings.illuminant);
 
-  return { ready: update(), update, controls: { chartSel, illumSel, obsSel, fileInput } };
+  /// Uses {name, text} as the reference (as the file input does); returns the reference, or the
+  /// Error (shown next to the file input) after going back to the previous reference.
+  async function useFile(file) {
+    const previous = settings.referenceFile;
+    settings.referenceFile = file;
+    const r = await update();
+    if (r instanceof Error) { settings.referenceFile = previous; syncFile(); await update(); showError(fileInput, r, file.name); return r; }
+    persist();
+    syncFile();
+    return r;
+  }
+
+  return { ready: update(), update, useFile, controls: { chartSel, illumSel, obsSel, fileInput } };
 }
