@@ -86,7 +86,7 @@ export const handlers = {
     const meta = typeof raw.metadata === 'function' ? raw.metadata() : {};
     const metadata = typeof meta === 'string' ? JSON.parse(meta) : plain(meta);
     const result = { width: raw.width(), height: raw.height(), metadata };
-    if ((slot === 'chart' || slot === 'scene') && typeof raw.preview === 'function') {
+    if (slot === 'chart' && typeof raw.preview === 'function') {
       const p = raw.preview(previewSide);
       result.preview = { width: p.width, height: p.height, scale: p.scale, rgba: new Uint8ClampedArray(p.rgba.slice().buffer) };
     }
