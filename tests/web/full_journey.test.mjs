@@ -129,6 +129,16 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await upload(page, '#step-export input[type=file]', 'journey-profile.json', Buffer.from(profileText));
     await page.waitForSelector('#step-export [data-imported]', { timeout: 30000 });
     assert.equal(await page.locator('#step-results table.compare tbody tr').count(), rows + 1);
+    // The imported profile predicts exactly what the fitted one did on the same data.
+    const same = await page.evaluate(() => {
+      const rs = window.tristim.session.results;
+      const imp = rs[rs.length - 1];
+      const orig = rs.find((r) => r.fit.profile === imp.fit.profile && r !== imp);
+      return { sameData: imp.evaluation.sameDataAsTraining, a: Array.from(orig.fit.fitted), b: Array.from(imp.evaluation.estimated), la: orig.fit.metrics.loo?.dE00?.mean, lb: imp.fit.metrics.loo?.dE00?.mean };
+    });
+    assert.equal(same.sameData, true);
+    assert.deepEqual(same.b, same.a);
+    assert.equal(same.lb, same.la);
     if (c.exportIcc) {
       const [icc] = await Promise.all([page.waitForEvent('download'), page.click('#step-export button[data-export="ICC profile"]')]);
       const bytes = fs.readFileSync(await icc.path());

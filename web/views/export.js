@@ -87,9 +87,19 @@ export function mount(section, app) {
     if (!data) throw Object.assign(new Error('fit once (step 3) so there is chart data to evaluate the profile on'), { code: 'NO_DATA' });
     if (!engine.has('evaluateProfile')) throw Object.assign(new Error('this build of the colour engine has no evaluateProfile()'), { code: 'NOT_AVAILABLE' });
     const evaluation = await engine.call('evaluate', { profile: text, rgb: data.rgb, xyz: data.xyz, ids: data.ids });
-    const modelId = json.model ?? json.modelId ?? 'imported';
-    const result = { key: `imported|${f.name}|${Date.now()}`, modelId, objective: json.objective ?? 'imported', label: `Imported ${f.name} (${modelId})`,
-      ids: data.ids, rgb: data.rgb, xyz: data.xyz, fit: { ...evaluation, profile: text, ...(json.metrics ?? {}), ...evaluation }, evaluation };
+    const modelId = evaluation.model ?? json.model?.id ?? String(json.model ?? 'imported');
+    const objective = evaluation.objective ?? json.objective ?? '';
+    const modelLabel = (app.catalog.models ?? []).find((m) => m.id === modelId)?.label ?? modelId;
+    // Training errors: the profile evaluated on the current chart; leave-one-out: as stored in the
+    // profile (from its own training data; the same data when sameDataAsTraining).
+    const fit = {
+      profile: text,
+      metrics: { training: evaluation.metrics, loo: evaluation.sameDataAsTraining ? json.metrics?.loo ?? null : null },
+      status: evaluation.sameDataAsTraining ? 'imported' : 'imported (other training data)',
+      message: '', conditionNumber: json.fit?.condition_number,
+    };
+    const result = { key: `imported|${f.name}|${Date.now()}`, modelId, objective, label: `${modelLabel} · ${objective} (imported ${f.name})`,
+      ids: data.ids, rgb: data.rgb, xyz: data.xyz, options: { white: evaluation.white }, fit, evaluation };
     const results = [...(app.session.results ?? []), result];
     await app.save('results', results);
     await app.save('selected', result.key);
