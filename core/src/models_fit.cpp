@@ -326,7 +326,7 @@ De2000Outcome minimise_de2000(const Problem& pr, const FitOptions& options, Eige
       const double half = std::fabs(x[v]) + sc;
       lb[v] = x[v] - half;
       ub[v] = x[v] + half;
-      step[v] = 0.01 * sc;
+      step[v] = options.de2000.initial_step * sc;
     }
   }
   out.f0 = de2000_cost(pr, d, x.data());

@@ -106,6 +106,7 @@ struct DeltaE2000Options {
   double ftol_rel = 1e-7;
   int max_evaluations = 0;           ///< 0: 400 × number of variables
   bool rms = false;                  ///< minimise the (weighted) RMS instead of the mean
+  double initial_step = 0.01;        ///< first step, relative to ‖XYZ_i‖ (equilibrated coordinates)
 };
 
 struct FitOptions {
