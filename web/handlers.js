@@ -30,7 +30,7 @@ function calibrate(state) {
   if (!chart || typeof chart.setDark !== 'function') return null;
   const out = {};
   if (state.raw.dark) out.dark = plain(chart.setDark(state.raw.dark)); else chart.clearDark();
-  if (state.raw.flat) out.flat = plain(chart.setFlat(state.raw.flat)); else chart.clearFlat();
+  if (state.raw.flat) out.flat = plain(chart.setFlat(state.raw.flat, state.flatOptions ?? {})); else chart.clearFlat();
   return out;
 }
 /// The profile applied to the decoded image's linear camera RGB (dark/flat applied) -> XYZ.
@@ -46,7 +46,7 @@ function calibrateQuietly(state) {
 
 function dropRaw(state, slot) {
   const old = state.raw?.[slot];
-  if (old) { old.delete(); delete state.raw[slot]; }
+  if (old) { for (const r of [old].flat()) r.delete(); delete state.raw[slot]; }
 }
 
 export const handlers = {
@@ -75,19 +75,32 @@ export const handlers = {
 
   /// Decodes RAW bytes into state.raw[slot] ('chart', 'dark', 'flat', 'scene'); returns metadata,
   /// the display preview (chart and scene) and, for dark/flat, the calibration it gave the chart.
-  decode: (T, { slot = 'chart', bytes, previewSide = 1200 }, { state, progress }) => {
+  /// `bytesList` (dark frames): several files, decoded and averaged by the engine (setDark).
+  decode: (T, { slot = 'chart', bytes, bytesList, flatOptions, previewSide = 1200 }, { state, progress }) => {
     const decodeRaw = need(T, 'decodeRaw');
     progress(NaN, 'decoding RAW');
     state.raw ??= {};
-    const raw = decodeRaw(new Uint8Array(bytes));
+    let raw;
+    if (bytesList) {
+      const list = [];
+      try {
+        bytesList.forEach((b, i) => {
+          progress(i / bytesList.length, `decoding frame ${i + 1} of ${bytesList.length}`);
+          list.push(decodeRaw(new Uint8Array(b)));
+        });
+      } catch (e) { for (const r of list) r.delete(); throw e; }
+      raw = list;
+    } else raw = decodeRaw(new Uint8Array(bytes));
     dropRaw(state, slot);
     state.raw[slot] = raw;
+    if (slot === 'flat') state.flatOptions = flatOptions;
+    const first = Array.isArray(raw) ? raw[0] : raw;
     progress(0.8, 'building preview');
-    const meta = typeof raw.metadata === 'function' ? raw.metadata() : {};
+    const meta = typeof first.metadata === 'function' ? first.metadata() : {};
     const metadata = typeof meta === 'string' ? JSON.parse(meta) : plain(meta);
-    const result = { width: raw.width(), height: raw.height(), metadata };
-    if (slot === 'chart' && typeof raw.preview === 'function') {
-      const p = raw.preview(previewSide);
+    const result = { width: first.width(), height: first.height(), metadata };
+    if (slot === 'chart' && typeof first.preview === 'function') {
+      const p = first.preview(previewSide);
       result.preview = { width: p.width, height: p.height, scale: p.scale, rgba: new Uint8ClampedArray(p.rgba.slice().buffer) };
     }
     if (slot !== 'scene') {

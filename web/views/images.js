@@ -8,8 +8,8 @@ import { patchTable } from './patch_table.js';
 
 const SLOTS = {
   chart: { label: 'Chart RAW', hint: 'A RAW photograph of the chart (DNG, CR2, NEF, ARW, …), evenly lit' },
-  dark: { label: 'Dark frame (optional)', hint: 'Same camera and settings, lens capped (Abed et al. 2013, App. C step 1)' },
-  flat: { label: 'Flat field (optional)', hint: 'A uniform grey surface filling the frame (App. C step 2)' },
+  dark: { label: 'Dark frame(s) (optional)', hint: 'Same camera and settings, lens capped; several files are averaged (Abed et al. 2013, App. C step 1)' },
+  flat: { label: 'Flat field (optional)', hint: 'A uniform white/grey surface filling the frame (App. C step 2)' },
 };
 
 export function mount(section, app) {
@@ -21,12 +21,22 @@ export function mount(section, app) {
   const drop = h('div', { class: 'drop-zone', tabindex: -1 }, 'Drop a RAW file here, or choose one below.');
   const fileRow = h('div', { class: 'controls' });
   for (const [slot, s] of Object.entries(SLOTS)) {
-    inputs[slot] = h('input', { type: 'file', dataset: { slot } });
+    inputs[slot] = h('input', { type: 'file', dataset: { slot }, multiple: slot === 'dark' });
     names[slot] = h('span', { class: 'file-state' });
     const clear = slot === 'chart' ? null : h('button', { type: 'button', onclick: () => forget(slot) }, 'Remove');
     fileRow.append(h('div', { class: 'field-group' }, field(s.label, inputs[slot], s.hint), names[slot], clear));
-    inputs[slot].addEventListener('change', () => { const f = inputs[slot].files[0]; if (f) setFile(slot, f); });
+    inputs[slot].addEventListener('change', () => {
+      const fs = [...inputs[slot].files];
+      if (slot === 'dark' && fs.length > 1) setFiles(slot, fs);
+      else if (fs[0]) setFile(slot, fs[0]);
+    });
   }
+  const flatMode = select([{ value: 'pixel', label: 'per pixel (Abed et al. 2013)' }, { value: 'radial', label: 'radial fall-off fit (Guarnera et al. 2018 eq 7)' }], app.session.flatMode ?? 'pixel');
+  flatMode.addEventListener('change', async () => {
+    await app.save('flatMode', flatMode.value);
+    const f = app.session['files.flat'];
+    if (f && await decode('flat', f)) await resample();
+  });
   const layoutSel = select(Object.entries(LAYOUTS).map(([value, l]) => ({ value, label: l.label })), app.session.layout?.chart ?? 'passport');
   const rowsIn = h('input', { type: 'number', min: 1, max: 30, value: app.session.layout?.rows ?? 4 });
   const colsIn = h('input', { type: 'number', min: 1, max: 30, value: app.session.layout?.columns ?? 6 });
@@ -41,6 +51,7 @@ export function mount(section, app) {
   const tableBox = h('div', { class: 'table-box' });
   const sampleSummary = h('p', { class: 'summary', 'aria-live': 'polite' });
 
+  fileRow.append(field('Flat-field correction', flatMode));
   section.append(
     fileRow, drop, progress.el, meta,
     h('div', { class: 'controls' }, field('Chart layout', layoutSel), customBox,
@@ -104,6 +115,17 @@ export function mount(section, app) {
     }
   }
 
+  /// Several dark frames: decoded together and averaged by the engine.
+  async function setFiles(slot, files) {
+    clearError(inputs[slot]);
+    const list = await Promise.all(files.map(async (f) => ({ name: f.name, bytes: (await fileBytes(f)).buffer })));
+    const entry = { name: list.map((f) => f.name).join(', '), list };
+    if (await decode(slot, entry)) {
+      await app.save(`files.${slot}`, entry);
+      await resample();
+    }
+  }
+
   async function forget(slot) {
     await app.save(`files.${slot}`, undefined);
     names[slot].textContent = '';
@@ -119,8 +141,11 @@ export function mount(section, app) {
     progress.start(`Decoding ${file.name}…`);
     const t0 = performance.now();
     try {
-      const copy = new Uint8Array(file.bytes).slice();   // the page keeps its own bytes
-      const r = await engine.call('decode', { slot, bytes: copy.buffer }, { transfer: [copy.buffer], onProgress: progress.update });
+      // The page keeps its own bytes: the worker gets copies (transferred).
+      const copies = (file.list ?? [file]).map((f) => new Uint8Array(f.bytes).slice().buffer);
+      const msg = file.list ? { slot, bytesList: copies } : { slot, bytes: copies[0] };
+      if (slot === 'flat') msg.flatOptions = { mode: flatMode.value };
+      const r = await engine.call('decode', msg, { transfer: copies, onProgress: progress.update });
       decodedGen[slot] = engine.generation;
       names[slot].textContent = `${file.name} — ${r.width}×${r.height} (decoded in ${((performance.now() - t0) / 1000).toFixed(2)} s)`
         + calibrationText(slot, r.calibration);
