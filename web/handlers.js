@@ -6,7 +6,7 @@ import { plain, referenceOut, sampleOut, fitOut, evaluationOut } from './lib/sha
 
 const ENGINE_FUNCTIONS = ['listCharts', 'listIlluminants', 'listCameras', 'referenceChart', 'parseReferenceFile',
   'spectralLocus', 'decodeRaw', 'sampleChart', 'listModels', 'listObjectives', 'fitModel', 'evaluateProfile',
-  'applyProfileToImage', 'exportIcc', 'exportCube', 'exportPatchCsv', 'listChartLayouts'];
+  'applyProfileToImage', 'exportIcc', 'exportCube', 'exportPatchCsv', 'listChartLayouts', 'parsePatchFile'];
 
 function need(T, fn) {
   if (typeof T[fn] !== 'function') {
@@ -114,6 +114,9 @@ export const handlers = {
     }
     return reply(result);
   },
+
+  /// A measured patch file (CSV/CGATS with R,G,B and maybe X,Y,Z) for a held-out test set.
+  parsePatchFile: (T, { text, fileName }) => reply(plain(need(T, 'parsePatchFile')(text, fileName))),
 
   sample: (T, { layout, corners, sampleOptions = {} }, { state }) => {
     const raw = state.raw?.chart;

@@ -56,6 +56,19 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     assert.equal(await page.locator('#step-images .overlay .cell').count(), 24);
     await screenshot(page, 'journey-2-images');
 
+    // A held-out set: the same photo sampled over a smaller central area (other pixels), as a CSV.
+    const area = page.locator('#step-images input[type=number]').last();
+    await area.fill('0.25');
+    await area.dispatchEvent('change');
+    await page.waitForFunction((t0) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent !== t0, table0);
+    const heldCsv = await page.evaluate(() => {
+      const s = window.tristim.derived.sample;
+      return 'patch,R,G,B\n' + s.ids.map((id, i) => `${id},${s.RGB[3 * i]},${s.RGB[3 * i + 1]},${s.RGB[3 * i + 2]}`).join('\n') + '\n';
+    });
+    await area.fill('0.5');
+    await area.dispatchEvent('change');
+    await page.waitForFunction((t0) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent === t0, table0);
+
     // 3 Fit three models with the first objective.
     await step(page, 'fit');
     const boxes = page.locator('#step-fit input[data-model]');
@@ -64,8 +77,16 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     for (let i = 0; i < nModels; i++) await boxes.nth(i).setChecked(i < 3);
     const objs = page.locator('#step-fit input[data-objective]');
     for (let i = 0; i < await objs.count(); i++) await objs.nth(i).setChecked(i === 0);
+    if (c.parsePatchFile) {
+      await upload(page, '#step-fit input[type=file]', 'held-out-area25.csv', Buffer.from(heldCsv));
+      await page.waitForFunction(() => /24 patches held out/.test(document.querySelector('#step-fit')?.textContent ?? ''));
+    }
     await page.click('#step-fit button.primary');
     await page.waitForSelector('#step-results:not([hidden]) table.compare', { timeout: 120000 });
+    if (c.parsePatchFile) {
+      const held = await page.locator('#step-results table.compare tbody td[data-col="held-mean"]').allTextContents();
+      assert.ok(held.every((v) => Number.isFinite(Number(v))), `held-out means are numbers: ${held}`);
+    }
     const rows = await page.locator('#step-results table.compare tbody tr').count();
     assert.ok(rows >= 3, `three fitted models in the comparison table, got ${rows}`);
     assert.ok(await noErrorNear(page, '#step-fit button.primary'));

@@ -43,6 +43,12 @@ export function mount(section, app) {
   const exclude = (f) => (excludeAllCb.checked ? f.length > 0 : excludeCb.checked && f.includes('saturated'));
   const whiteCb = h('input', { type: 'checkbox', checked: !!choice.preserveWhite });
   whiteCb.addEventListener('change', () => { choice.preserveWhite = whiteCb.checked; persist(); });
+  const heldInput = h('input', { type: 'file', accept: '.csv,.txt,.ti3,.cgats' });
+  const heldState = h('span', { class: 'file-state' });
+  const heldClear = h('button', { type: 'button', hidden: true }, 'Remove');
+  const heldField = field('Held-out chart (optional): camera RGB per patch, CSV or CGATS', heldInput,
+    'Another photograph or chart, e.g. the CSV of `tristim sample`. Its X, Y, Z columns are used when present, otherwise its ids are paired with the reference. Every fit is also evaluated on it.');
+  if (!engine.has('parsePatchFile')) heldInput.disabled = true;
   const runBtn = h('button', { type: 'button', class: 'primary' }, 'Fit selected');
   const cancelBtn = h('button', { type: 'button', disabled: true }, 'Cancel');
   const progress = progressBar('Fitting');
@@ -54,6 +60,7 @@ export function mount(section, app) {
       h('div', { class: 'check' }, excludeCb, h('label', { for: excludeCb.id = 'exclude-saturated' }, 'Leave out saturated patches')),
       h('div', { class: 'check' }, excludeAllCb, h('label', { for: excludeAllCb.id = 'exclude-flagged' }, 'Also leave out patches flagged too dark or non-uniform')),
       h('div', { class: 'check' }, whiteCb, h('label', { for: whiteCb.id = 'preserve-white' }, 'Preserve the white: the fit maps the brightest patch (the chart\'s white) exactly'))),
+    h('div', { class: 'controls' }, h('div', { class: 'field-group' }, heldField, heldState, heldClear)),
     h('div', { class: 'controls' }, runBtn, cancelBtn), progress.el, log);
   runBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'fit-error' });
   runBtn.setAttribute('aria-describedby', 'fit-error');
@@ -75,6 +82,35 @@ export function mount(section, app) {
   app.on('sample', describeData);
   app.on('reference', describeData);
   excludeCb.addEventListener('change', describeData);
+
+  /// The held-out set {name, ids, rgb, xyz} from a patch file, paired with the reference by id.
+  async function loadHeldOut(file) {
+    const p = await engine.call('parsePatchFile', { text: file.text, fileName: file.name });
+    if (!p.RGB) throw Object.assign(new Error(`${file.name} has no R, G, B columns`), { code: 'MISSING_COLUMN' });
+    let xyz = p.XYZ;
+    let ids = p.ids, rgb = p.RGB;
+    if (!xyz) {
+      const ref = app.derived.reference;
+      if (!ref) throw Object.assign(new Error('no reference to pair the held-out patches with (step 1)'), { code: 'NO_REFERENCE' });
+      const d = pairData({ ids, RGB: rgb, flagNames: [] }, ref);
+      if (!d.ids.length) throw Object.assign(new Error(`${file.name}: no patch id in common with the reference`), { code: 'PATCH_MISMATCH' });
+      ({ ids, rgb, xyz } = d);
+    }
+    return { name: file.name, ids, rgb: Float64Array.from(rgb), xyz: Float64Array.from(xyz) };
+  }
+  let heldOut = null;
+  async function setHeldOut(file) {
+    clearError(heldInput);
+    try {
+      heldOut = file ? await loadHeldOut(file) : null;
+      heldState.textContent = heldOut ? `${heldOut.name}: ${heldOut.ids.length} patches held out.` : '';
+      heldClear.hidden = !heldOut;
+      await app.save('heldOutFile', file ?? undefined);
+    } catch (e) { showError(heldInput, e, file.name); }
+  }
+  heldInput.addEventListener('change', async () => { const f = heldInput.files[0]; if (f) await setHeldOut({ name: f.name, text: await f.text() }); });
+  heldClear.addEventListener('click', () => { heldInput.value = ''; setHeldOut(null); });
+  if (app.session.heldOutFile && engine.has('parsePatchFile')) app.on('reference', function once() { if (!heldOut) setHeldOut(app.session.heldOutFile); });
 
   let running = false;
   cancelBtn.addEventListener('click', () => {
@@ -108,7 +144,12 @@ export function mount(section, app) {
           const t1 = performance.now();
           const fit = await engine.call('fit', { rgb: data.rgb, xyz: data.xyz, ids: data.ids, options });
           const evaluation = null;   // fitModel already returns the training estimates and per-patch errors
-          results.push({ key: `${mId}|${obj}|${JSON.stringify(choice.options[mId])}`, modelId: mId, objective: obj, label, options, ids: data.ids, rgb: data.rgb, xyz: data.xyz, fit, evaluation });
+          let held = null;
+          if (heldOut && engine.has('evaluateProfile')) {
+            const e = await engine.call('evaluate', { profile: fit.profile, rgb: heldOut.rgb, xyz: heldOut.xyz, ids: heldOut.ids });
+            held = { ...e.metrics, set: heldOut.name };
+          }
+          results.push({ key: `${mId}|${obj}|${JSON.stringify(choice.options[mId])}`, modelId: mId, objective: obj, label, options, ids: data.ids, rgb: data.rgb, xyz: data.xyz, fit, evaluation, heldOut: held });
           log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${fit.status && fit.status !== 'ok' ? ` — ${fit.status}: ${fit.message ?? ''}` : ''}`));
         } catch (e) {
           if (e.code === 'CANCELLED') throw e;
