@@ -9,6 +9,7 @@ import { labPlanePlot } from '../plots/lab.js';
 import { deBarsPlot } from '../plots/de_bars.js';
 import { xyzScatterPlot } from '../plots/xyz_scatter.js';
 import { swatchPairsPlot } from '../plots/swatch_pairs.js';
+import { referenceText } from './fit.js';
 
 export function mount(section, app) {
   const tableBox = h('div', { class: 'table-box' });
@@ -54,6 +55,12 @@ export function mount(section, app) {
     const ref = app.derived.reference;
     const pp = perPatch(result, ref);
     const parts = [h('h3', {}, `Selected: ${result.label}`)];
+    if (result.referenceText) {
+      parts.push(h('p', { class: 'summary' }, `Trained against the ${result.referenceText}.`));
+      if (ref && referenceText(ref) !== result.referenceText) {
+        parts.push(h('p', { class: 'unavailable', role: 'status' }, `The reference in step 1 has changed since this fit (now: ${referenceText(ref)}). Fit again in step 3 to use it.`));
+      }
+    }
     if (!pp.has.estXYZ) {
       parts.push(unavailable('Per-patch estimates', 'evaluateProfile'));
       detail.replaceChildren(...parts);
