@@ -89,6 +89,14 @@ export function mount(section, app) {
     parts.push(h('p', { class: 'summary' }, `${rows.length} training patches; mean ΔE00 ${fmt(mean)}; `
       + `condition number ${fmt(result.fit.conditionNumber ?? result.fit.condition, 1)}.`));
     parts.push(h('div', { class: 'plots' }, figs));
+    // The same numbers as a table, for keyboard and screen-reader users (and copying).
+    const f2 = (v) => fmt(v, 2);
+    parts.push(h('details', { class: 'per-patch' }, h('summary', {}, 'Per-patch numbers of the selected model'),
+      h('table', { class: 'patch-table' },
+        h('caption', {}, 'Reference and estimated XYZ (white Y = 100), CIELAB, and CIEDE2000 with its ΔL, ΔC, ΔH terms'),
+        h('thead', {}, h('tr', {}, ['Patch', 'X', 'Y', 'Z', 'X est', 'Y est', 'Z est', 'L*', 'a*', 'b*', 'L* est', 'a* est', 'b* est', 'ΔE00', 'ΔL', 'ΔC', 'ΔH'].map((t) => h('th', { scope: 'col' }, t)))),
+        h('tbody', {}, rows.map((r) => h('tr', { dataset: { id: r.id } }, h('th', { scope: 'row' }, r.id),
+          [r.X, r.Y, r.Z, r.Xe, r.Ye, r.Ze, r.L, r.a, r.b, r.Le, r.ae, r.be, r.dE, r.dL, r.dC, r.dH].map((v) => h('td', {}, f2(v)))))))));
     detail.replaceChildren(...parts);
   }
 
