@@ -133,6 +133,11 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
       const cb = await cv.boundingBox();
       await page.mouse.move(cb.x + cb.width * 0.55, cb.y + cb.height * 0.7);
       await page.waitForFunction(() => /X .* Y .* Z .* x .* y .* L\*/.test(document.querySelector('#step-apply .readout')?.textContent ?? ''));
+      // Keyboard: focus the Y map and move the read-out with the arrow keys.
+      const before = await page.textContent('#step-apply .readout');
+      await page.focus('#step-apply canvas.apply-img >> nth=1');
+      await page.keyboard.press('Shift+ArrowLeft');
+      await page.waitForFunction((b0) => document.querySelector('#step-apply .readout')?.textContent !== b0, before);
       await screenshot(page, 'journey-5-apply');
     }
 

@@ -21,7 +21,7 @@ export function mount(section, app) {
   const srgbCanvas = h('canvas', { class: 'apply-img', 'aria-label': 'The XYZ image rendered to sRGB' });
   const yCanvas = h('canvas', { class: 'apply-img', 'aria-label': 'Luminance Y false-colour map' });
   const legend = h('div', { class: 'legend' });
-  const readout = h('output', { class: 'readout', 'aria-live': 'off' }, 'Move the pointer over an image to read X, Y, Z, x, y and L*a*b*.');
+  const readout = h('output', { class: 'readout', 'aria-live': 'polite' }, 'Move the pointer over an image (or focus it and use the arrow keys) to read X, Y, Z, x, y and L*a*b*.');
   const images = h('div', { class: 'apply-images', hidden: true },
     h('figure', {}, srgbCanvas, h('figcaption', {}, 'XYZ → sRGB (display; D65-adapted, clipped)')),
     h('figure', {}, yCanvas, h('figcaption', {}, 'Luminance Y (relative, white = 100)'), legend));
@@ -136,18 +136,35 @@ export function mount(section, app) {
   }
 
   let pending = false;
+  const cursor = { x: 0, y: 0 };
+  async function read(x, y) {
+    if (!shown || pending) return;
+    pending = true;
+    try {
+      const p = await engine.call('pixel', { x, y });
+      if (p) readout.textContent = `pixel (${Math.floor(x)}, ${Math.floor(y)}): X ${fmt(p.XYZ[0])}  Y ${fmt(p.XYZ[1])}  Z ${fmt(p.XYZ[2])}  ·  x ${fmt(p.xy[0], 4)}  y ${fmt(p.xy[1], 4)}  ·  L* ${fmt(p.Lab[0], 1)}  a* ${fmt(p.Lab[1], 1)}  b* ${fmt(p.Lab[2], 1)}`;
+    } catch { /* worker restarted: ignore */ } finally { pending = false; }
+  }
   for (const c of [srgbCanvas, yCanvas]) {
-    c.addEventListener('pointermove', async (e) => {
-      if (!shown || pending) return;
+    c.tabIndex = 0;
+    c.title = 'Pointer, or arrow keys when focused (Shift: 10 pixels), to read X, Y, Z, x, y and L*a*b*';
+    c.addEventListener('pointermove', (e) => {
+      if (!shown) return;
       const rect = c.getBoundingClientRect();
-      const x = ((e.clientX - rect.left) / rect.width) * shown.width * shown.factor;
-      const y = ((e.clientY - rect.top) / rect.height) * shown.height * shown.factor;
-      pending = true;
-      try {
-        const p = await engine.call('pixel', { x, y });
-        if (p) readout.textContent = `pixel (${Math.floor(x)}, ${Math.floor(y)}): X ${fmt(p.XYZ[0])}  Y ${fmt(p.XYZ[1])}  Z ${fmt(p.XYZ[2])}  ·  x ${fmt(p.xy[0], 4)}  y ${fmt(p.xy[1], 4)}  ·  L* ${fmt(p.Lab[0], 1)}  a* ${fmt(p.Lab[1], 1)}  b* ${fmt(p.Lab[2], 1)}`;
-      } catch { /* worker restarted: ignore */ } finally { pending = false; }
+      cursor.x = ((e.clientX - rect.left) / rect.width) * shown.width * shown.factor;
+      cursor.y = ((e.clientY - rect.top) / rect.height) * shown.height * shown.factor;
+      read(cursor.x, cursor.y);
     });
+    c.addEventListener('keydown', (e) => {
+      const step = (e.shiftKey ? 10 : 1) * (shown?.factor ?? 1);
+      const d = { ArrowLeft: [-step, 0], ArrowRight: [step, 0], ArrowUp: [0, -step], ArrowDown: [0, step] }[e.key];
+      if (!d || !shown) return;
+      e.preventDefault();
+      cursor.x = Math.min(Math.max(0, cursor.x + d[0]), shown.fullWidth - 1);
+      cursor.y = Math.min(Math.max(0, cursor.y + d[1]), shown.fullHeight - 1);
+      read(cursor.x, cursor.y);
+    });
+    c.addEventListener('focus', () => { if (shown && !cursor.x && !cursor.y) { cursor.x = shown.fullWidth / 2; cursor.y = shown.fullHeight / 2; read(cursor.x, cursor.y); } });
   }
   describe();
   return { run, sourceSel, sceneInput, applyBtn };
