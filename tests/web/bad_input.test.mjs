@@ -51,9 +51,10 @@ test('bad inputs show coded errors next to their control and the page recovers',
       assert.notEqual(crossed.code, 'INTERNAL');
       await screenshot(page, 'bad-input-crossed-corners');
       // Corners outside the image.
-      await setCorners([-500, -500, x1, y1, x2, y2, x3, y3]);
+      await setCorners([x0 - 400, y0, x1 - 400, y1, x2 - 400, y2, x3 - 400, y3]);   // the chart shifted off the left edge
+      await page.waitForFunction(() => document.getElementById('corners-error')?.dataset.code !== 'CORNERS_CROSSED');
       const outside = await errorNear(page, '#step-images .corner-editor');
-      assert.notEqual(outside.code, 'INTERNAL');
+      assert.equal(outside.code, 'CORNERS_OUTSIDE');
       // Patches smaller than 4 pixels.
       await setCorners([x0, y0, x0 + 6, y0, x0 + 6, y0 + 4, x0, y0 + 4]);
       const tiny = await errorNear(page, '#step-images .corner-editor');
@@ -75,6 +76,35 @@ test('bad inputs show coded errors next to their control and the page recovers',
     await upload(page, CHART, 'passport.dng', fileBuffer(DNG));
     await page.waitForFunction(() => /passport\.dng — \d+×\d+/.test(document.querySelector('#step-images .file-state')?.textContent ?? ''), null, { timeout: 60000 });
     assert.ok(await noErrorNear(page, CHART));
+    if (c.fitModel && c.sampleChart) {
+      // Too few patches: leave out every flagged patch (most are noisy here) and fit a 35-term polynomial.
+      await step(page, 'fit');
+      await page.check('#exclude-flagged');
+      const models = page.locator('#step-fit input[data-model]');
+      for (let i = 0; i < await models.count(); i++) await models.nth(i).setChecked(await models.nth(i).getAttribute('data-model') === 'Cheung2004-35');
+      const objs = page.locator('#step-fit input[data-objective]');
+      for (let i = 0; i < await objs.count(); i++) await objs.nth(i).setChecked(i === 0);
+      await page.click('#step-fit button.primary');
+      const fitErr = await errorNear(page, '#step-fit button.primary');
+      assert.equal(fitErr.code, 'FIT_FAILED');
+      const line = await page.textContent('#step-fit .fit-log li.error');
+      codes.fit = await page.getAttribute('#step-fit .fit-log li.error', 'data-code');
+      assert.ok(codes.fit && codes.fit !== 'INTERNAL', line);
+      await page.uncheck('#exclude-flagged');
+      await screenshot(page, 'bad-input-fit');
+    }
+    if (c.evaluateProfile) {
+      // A profile JSON of an unknown version, and one that is not JSON at all.
+      await step(page, 'export');
+      const imp = '#step-export input[type=file]';
+      await upload(page, imp, 'future.json', Buffer.from(JSON.stringify({ format: 'tristim-profile', version: 99, model: { id: 'matrix-3x3' } })));
+      const e1 = await errorNear(page, imp);
+      await upload(page, imp, 'broken.json', Buffer.from('{"format": "tristim-profile", '));
+      const e2 = await page.waitForFunction(() => /broken\.json/.test(document.getElementById(document.querySelector('#step-export input[type=file]').getAttribute('aria-describedby'))?.textContent ?? '')).then(() => errorNear(page, imp));
+      assert.notEqual(e1.code, 'INTERNAL');
+      assert.equal(e2.code, 'PARSE_ERROR');
+      codes.profileVersion = e1.code; codes.profileJson = e2.code;
+    }
     console.log('bad-input codes', codes);
     assert.deepEqual(b.problems, []);
   } finally {

@@ -175,7 +175,7 @@ export function mount(section, app) {
       progress.done();
     }
   }
-  runBtn.addEventListener('click', async () => { if (await run()) app.goto('results'); });
+  runBtn.addEventListener('click', async () => { if ((await run())?.length) app.goto('results'); });
 
   /// First visit: fit the default models with the first objective, then show the results.
   async function runDefault() {
