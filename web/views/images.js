@@ -105,6 +105,7 @@ export function mount(section, app) {
     const ok = await decode(slot, { name: file.name, bytes });
     if (ok) {
       await app.save(`files.${slot}`, { name: file.name, bytes: bytes.buffer });
+      if (slot === 'chart') await app.save('example', undefined);
       // A new chart image of another size gets fresh corners; same size keeps them (same set-up).
       const img = app.derived.image;
       if (slot === 'chart' && !(before && img.width === before.width && img.height === before.height && app.session.corners)) {
@@ -256,6 +257,7 @@ export function mount(section, app) {
       await app.save('layout', layout);
       await app.save('corners', cfg.corners);
       await app.save('files.chart', { name: cfg.file, bytes });
+      await app.save('example', cfg.note ?? true);
     } catch (e) {
       showError(inputs.chart, e, 'Example chart');
     }

@@ -54,7 +54,13 @@ export function mount(section, app) {
   function renderDetail(result) {
     const ref = app.derived.reference;
     const pp = perPatch(result, ref);
-    const parts = [h('h3', {}, `Selected: ${result.label}`)];
+    const parts = [];
+    if (app.session.example) {
+      parts.push(h('p', { class: 'example-note' }, 'This is the built-in example: an X-Rite ColorChecker Passport photographed as a DNG '
+        + '(Canon EOS 550D with Magic Lantern, from the tinydng project, MIT licence), sampled and fitted in this page. '
+        + 'Load your own RAW in step 2, or change the reference in step 1.'));
+    }
+    parts.push(h('h3', {}, `Selected: ${result.label}`));
     if (result.referenceText) {
       parts.push(h('p', { class: 'summary' }, `Trained against the ${result.referenceText}.`));
       if (ref && referenceText(ref) !== result.referenceText) {
