@@ -182,6 +182,15 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await page.waitForFunction(() => /loaded as the reference/.test(document.querySelector('#step-export .import-result')?.textContent ?? ''));
     assert.match(await page.textContent('#step-reference .summary'), /journey-patches\.csv/);
     await screenshot(page, 'journey-6-export');
+
+    // Every control on every step has an accessible name and can take keyboard focus.
+    const unnamed = await page.evaluate(() => [...document.querySelectorAll('input, select, button, [role=slider], canvas[tabindex]')]
+      .filter((el) => !(el.labels?.length || el.getAttribute('aria-label') || el.getAttribute('aria-labelledby') || el.textContent.trim() || el.title))
+      .map((el) => el.outerHTML.slice(0, 80)));
+    assert.deepEqual(unnamed, []);
+    const unfocusable = await page.evaluate(() => [...document.querySelectorAll('input, select, button, [role=slider]')]
+      .filter((el) => el.tabIndex < 0 && !el.disabled).map((el) => el.outerHTML.slice(0, 80)));
+    assert.deepEqual(unfocusable, []);
     assert.deepEqual(b.problems, []);
   } finally {
     await b.close();
