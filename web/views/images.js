@@ -23,7 +23,7 @@ export function mount(section, app) {
   for (const [slot, s] of Object.entries(SLOTS)) {
     inputs[slot] = h('input', { type: 'file', dataset: { slot }, multiple: slot === 'dark' });
     names[slot] = h('span', { class: 'file-state' });
-    const clear = slot === 'chart' ? null : h('button', { type: 'button', onclick: () => forget(slot) }, 'Remove');
+    const clear = slot === 'chart' ? null : h('button', { type: 'button', 'aria-label': `Remove the ${s.label.replace(/ \(optional\)/, '').toLowerCase()}`, onclick: () => forget(slot) }, 'Remove');
     fileRow.append(h('div', { class: 'field-group' }, field(s.label, inputs[slot], s.hint), names[slot], clear));
     inputs[slot].addEventListener('change', () => {
       const fs = [...inputs[slot].files];
