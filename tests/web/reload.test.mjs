@@ -20,6 +20,12 @@ test('a reload restores the session; New session clears it', async (t) => {
       await illum.selectOption(pickIllum);
       await page.waitForFunction((v) => document.querySelector('#step-reference .summary')?.textContent.includes(`illuminant ${v}`), pickIllum);
     }
+    const applied = !!(c.applyProfileToImage && await page.evaluate(() => window.tristim.session.results?.length));
+    if (applied) {
+      await step(page, 'apply');
+      await page.click('#step-apply button.primary');
+      await page.waitForSelector('#step-apply .apply-images:not([hidden])', { timeout: 60000 });
+    }
     let corners = null;
     if (c.decodeRaw && c.sampleChart) {
       await step(page, 'images');
@@ -45,6 +51,12 @@ test('a reload restores the session; New session clears it', async (t) => {
       assert.equal(await page.locator('#step-images .patch-table tbody tr').count(), 24);
     }
     assert.equal(await page.evaluate(() => window.tristim.session.results?.length ?? 0), nResults);
+    if (applied) {
+      // The applied image comes back when the step is visited.
+      await step(page, 'apply');
+      await page.waitForSelector('#step-apply .apply-images:not([hidden])', { timeout: 60000 });
+      assert.match(await page.textContent('#step-apply .legend-box'), /viridis/);
+    }
     if (nResults) assert.equal(await page.locator('#step-results table.compare tbody tr').count(), nResults);
 
     // New session: confirm, reload, defaults again.

@@ -35,7 +35,16 @@ export function mount(section, app) {
   let sceneBytes = null;
   let sceneGen = -1;
   let shown = null;
-  sourceSel.addEventListener('change', () => { sceneField.hidden = sourceSel.value !== 'scene'; });
+  sourceSel.addEventListener('change', () => { sceneField.hidden = sourceSel.value !== 'scene'; app.save('applySource', sourceSel.value); });
+  // Restore: the scene file kept in the session, the source choice, and (when the step is
+  // visited) the last applied image.
+  const savedScene = app.session['files.scene'];
+  if (savedScene) {
+    sceneBytes = { name: savedScene.name, bytes: new Uint8Array(savedScene.bytes) };
+    sceneField.append(h('span', { class: 'file-state' }, `Kept from before: ${savedScene.name}`));
+  }
+  if (app.session.applySource === 'scene' && savedScene) { sourceSel.value = 'scene'; sceneField.hidden = false; }
+  let restoreApplied = !!app.session.applied;
   mapSel.addEventListener('change', () => { app.save('colourMap', mapSel.value); if (shown) run(); });
   let sceneLoading = null;   // reading + decoding a newly chosen scene file
   sceneInput.addEventListener('change', () => {
@@ -46,7 +55,9 @@ export function mount(section, app) {
       await scenePromise;
       sceneBytes = { name: f.name, bytes: await fileBytes(f) };
       sceneGen = -1;
-      return decodeScene();
+      const ok = await decodeScene();
+      if (ok) await app.save('files.scene', { name: sceneBytes.name, bytes: sceneBytes.bytes.buffer });
+      return ok;
     })();
   });
 
@@ -75,7 +86,11 @@ export function mount(section, app) {
     which.textContent = r ? `Profile: ${r.label}.` : 'No profile yet: fit one in step 3 or import one in step 6.';
   }
   app.on('results', describe);
-  app.on('step', (s) => { if (s === 'apply') describe(); });
+  app.on('step', (s) => {
+    if (s !== 'apply') return;
+    describe();
+    if (restoreApplied && selected()) { restoreApplied = false; run(); }
+  });
 
   function lut() {
     const f = MAPS[mapSel.value].interp();
@@ -113,6 +128,7 @@ export function mount(section, app) {
       shown = out;
       legend.replaceChildren(yLegend(out.yMax));
       app.mark('apply', 'done');
+      app.save('applied', true);
       const ms = performance.now() - t0;
       which.textContent = `Profile: ${r.label}. Applied to ${out.fullWidth}×${out.fullHeight} pixels in ${fmt(out.msApply, 0)} ms (render ${fmt(out.msRender, 0)} ms; total ${fmt(ms, 0)} ms).`;
       return { ms, ...out };

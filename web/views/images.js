@@ -178,12 +178,16 @@ export function mount(section, app) {
   const fmtShutter = (t) => (t > 0 && t < 1 ? `1/${Math.round(1 / t)}` : `${t}`);
 
   /// Re-sends stored bytes when the worker was restarted (cancelled fit) since their decode.
-  async function ensureDecoded() {
-    for (const slot of Object.keys(SLOTS)) {
-      const f = app.session[`files.${slot}`];
-      if (f && decodedGen[slot] !== engine.generation) await decode(slot, f);
-    }
-    return decodedGen.chart === engine.generation;
+  let ensuring = null;   // one re-decode at a time, shared by every caller
+  function ensureDecoded() {
+    ensuring ??= (async () => {
+      for (const slot of Object.keys(SLOTS)) {
+        const f = app.session[`files.${slot}`];
+        if (f && decodedGen[slot] !== engine.generation) await decode(slot, f);
+      }
+      return decodedGen.chart === engine.generation;
+    })().finally(() => { ensuring = null; });
+    return ensuring;
   }
 
   let sampleSeq = 0;
