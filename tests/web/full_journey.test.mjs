@@ -36,7 +36,10 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await page.keyboard.press('Shift+ArrowRight');
     const right = [...example.corners];
     right[0] += 10;
-    await waitSampled(page, right);
+    await waitSampled(page, right).catch(async (e) => {
+      console.log('state', await page.evaluate(() => [Array.from(window.tristim.session.corners ?? []), window.tristim.derived.sample?.corners, document.activeElement.outerHTML.slice(0, 60)]));
+      throw e;
+    });
     assert.notEqual(await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]'), table0);
     await page.keyboard.press('Shift+ArrowLeft');
     await waitSampled(page, example.corners);
