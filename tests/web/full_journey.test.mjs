@@ -31,13 +31,14 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await setCorners(page, example.corners);
     assert.equal(await page.locator('#step-images .patch-table tbody tr').count(), 24);
     const table0 = await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]');
+    await page.evaluate(() => { window.__warnings = []; const w = console.warn; console.warn = (...a) => { window.__warnings.push(a.join(' ')); w(...a); }; });
     // Keyboard: nudge corner 1 by 10 px right; the table is re-sampled.
     await page.focus('#step-images .handle[data-corner="0"]');
     await page.keyboard.press('Shift+ArrowRight');
     const right = [...example.corners];
     right[0] += 10;
     await waitSampled(page, right).catch(async (e) => {
-      console.log('state', await page.evaluate(() => [Array.from(window.tristim.session.corners ?? []), window.tristim.derived.sample?.corners, document.activeElement.outerHTML.slice(0, 60)]));
+      console.log('state', await page.evaluate(() => [Array.from(window.tristim.session.corners ?? []), window.tristim.derived.sample?.corners, document.getElementById('corners-error')?.textContent, window.__warnings]));
       throw e;
     });
     assert.notEqual(await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]'), table0);

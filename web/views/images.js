@@ -200,13 +200,18 @@ export function mount(section, app) {
   async function resample() {
     const seq = ++sampleSeq;
     if (!engine.has('sampleChart') || !app.session['files.chart']) return null;
-    if (!(await ensureDecoded())) return null;
-    const corners = editor.corners;
+    if (!(await ensureDecoded())) {
+      console.warn(`resample ${seq}: the chart image is not decoded in this worker`);
+      return null;
+    }
+    const corners = Array.from(editor.corners);   // a copy: handles move while the worker samples
     try {
       const s = await engine.call('sample', { layout: layoutOptions(), corners: Array.from(corners), sampleOptions: { area: Number(areaIn.value) } });
       if (seq !== sampleSeq) return null;
       clearError(editor.el);
       s.corners = Array.from(corners);
+      // Handles may have moved while the worker sampled: sample again until the table matches.
+      if (editor.corners.some((v, i) => v !== corners[i])) setTimeout(resample, 0);
       app.derived.sample = s;
       editor.setSample(s);
       renderTable(s);
