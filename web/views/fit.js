@@ -5,6 +5,7 @@ import { options as listOptions } from '../lib/catalog.js';
 import { describe, FAMILIES, DEFAULT_MODELS } from '../methods/index.js';
 import { pairData } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
+import { OBJECTIVE_OPTIONS } from '../methods/objectives.js';
 
 export function mount(section, app) {
   const { engine } = app;
@@ -34,7 +35,15 @@ export function mount(section, app) {
     const cb = h('input', { type: 'checkbox', value: o.value, checked: choice.objectives.includes(o.value), dataset: { objective: o.value } });
     cb.id = `objective-${o.value}`;
     cb.addEventListener('change', () => { toggle(choice.objectives, o.value, cb.checked); persist(); });
-    objBox.append(h('div', { class: 'check' }, cb, h('label', { for: cb.id }, o.label), o.description ? h('small', { class: 'hint' }, ` ${o.description}`) : null));
+    objBox.append(h('div', { class: 'check' }, cb, h('label', { for: cb.id }, o.label), o.reference ? h('small', { class: 'hint' }, ` ${o.reference}`) : null));
+    const spec = OBJECTIVE_OPTIONS[o.value];
+    if (spec) {
+      choice.objectiveOptions ??= {};
+      const opts = (choice.objectiveOptions[o.value] ??= { ...spec.defaults });
+      const set = (v) => { choice.objectiveOptions[o.value] = v; persist(); };
+      objBox.append(h('details', { class: 'objective-options' }, h('summary', {}, `${o.label}: options`),
+        h('div', { class: 'controls' }, spec.form(opts, (v) => { Object.assign(opts, v); set(opts); }))));
+    }
   }
   const excludeCb = h('input', { type: 'checkbox', checked: choice.excludeSaturated !== false });
   excludeCb.addEventListener('change', () => { choice.excludeSaturated = excludeCb.checked; persist(); });
@@ -140,6 +149,7 @@ export function mount(section, app) {
         progress.update({ fraction: k / jobs.length, stage: `Fitting ${label} (${k + 1} of ${jobs.length})` });
         const options = { model: mId, objective: obj, ...choice.options[mId], white: ref.white, illuminant: ref.settings.illuminant };
         if (choice.preserveWhite) options.whitePatch = brightestPatch(data);
+        if (choice.objectiveOptions?.[obj]) options[obj] = { ...choice.objectiveOptions[obj] };
         try {
           const t1 = performance.now();
           const fit = await engine.call('fit', { rgb: data.rgb, xyz: data.xyz, ids: data.ids, options });
