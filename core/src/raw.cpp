@@ -218,6 +218,7 @@ void fill_metadata(LibRaw& p, const LayoutInfo& L, RawMetadata& m) {
   m.width = S.width / L.block;
   m.height = S.height / L.block;
   m.bits = static_cast<int>(C.raw_bps);
+  m.flip = S.flip;
   m.white_level = C.maximum;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
@@ -430,7 +431,7 @@ std::string metadata_to_json(const RawMetadata& m) {
   o << ",\"block\":" << m.block << ",\"sensor_width\":" << m.sensor_width
     << ",\"sensor_height\":" << m.sensor_height << ",\"raw_width\":" << m.raw_width
     << ",\"raw_height\":" << m.raw_height << ",\"width\":" << m.width << ",\"height\":" << m.height
-    << ",\"bits\":" << m.bits;
+    << ",\"bits\":" << m.bits << ",\"flip\":" << m.flip;
   o << ",\"cfa_black\":"; json_array(o, m.cfa_black);
   o << ",\"black_level\":"; json_array(o, m.black_level);
   o << ",\"white_level\":" << m.white_level;
