@@ -76,8 +76,9 @@ std::unique_ptr<LibRaw> open_and_unpack(const std::uint8_t* data, std::size_t si
                 "the file is only " + std::to_string(size) + " bytes: not a RAW file");
   auto proc = std::make_unique<LibRaw>(LIBRAW_OPTIONS_NONE);
   // LibRaw's own allocation limit, aligned with ours (bytes of the raw raster, MB).
+  // (8 bytes per pixel covers 4-channel linear DNGs; Bayer rasters need 2.)
   proc->imgdata.params.max_raw_memory_mb =
-      static_cast<unsigned>(std::max(64.0, options.max_megapixels * 2.0 * 1.05));
+      static_cast<unsigned>(std::min(2048.0, std::max(64.0, options.max_megapixels * 8.0)));
   check_libraw(proc->open_buffer(const_cast<std::uint8_t*>(data), size), "open_buffer");
 
   const auto& S = proc->imgdata.sizes;
@@ -395,10 +396,19 @@ void json_string(std::ostream& o, const std::string& s) {
   o << '"';
 }
 
+/// A JSON number; NaN and infinities (never valid JSON) become null.
+void json_number(std::ostream& o, double v) {
+  if (std::isfinite(v)) o << v;
+  else o << "null";
+}
+
 template <size_t N>
 void json_array(std::ostream& o, const std::array<double, N>& a) {
   o << '[';
-  for (size_t i = 0; i < N; ++i) o << (i ? "," : "") << a[i];
+  for (size_t i = 0; i < N; ++i) {
+    if (i) o << ',';
+    json_number(o, a[i]);
+  }
   o << ']';
 }
 
@@ -423,7 +433,12 @@ std::string metadata_to_json(const RawMetadata& m) {
   o << "\"make\":"; json_string(o, m.make);
   o << ",\"model\":"; json_string(o, m.model);
   o << ",\"lens\":"; json_string(o, m.lens);
-  o << ",\"iso\":" << m.iso << ",\"shutter_s\":" << m.shutter_s << ",\"f_number\":" << m.f_number;
+  o << ",\"iso\":";
+  json_number(o, m.iso);
+  o << ",\"shutter_s\":";
+  json_number(o, m.shutter_s);
+  o << ",\"f_number\":";
+  json_number(o, m.f_number);
   o << ",\"timestamp\":" << m.timestamp << ",\"timestamp_iso\":"; json_string(o, m.timestamp_iso);
   o << ",\"layout\":"; json_string(o, m.layout);
   o << ",\"cfa_pattern\":"; json_string(o, m.cfa_pattern);
@@ -434,7 +449,8 @@ std::string metadata_to_json(const RawMetadata& m) {
     << ",\"bits\":" << m.bits << ",\"flip\":" << m.flip;
   o << ",\"cfa_black\":"; json_array(o, m.cfa_black);
   o << ",\"black_level\":"; json_array(o, m.black_level);
-  o << ",\"white_level\":" << m.white_level;
+  o << ",\"white_level\":";
+  json_number(o, m.white_level);
   o << ",\"saturation\":"; json_array(o, m.saturation);
   o << ",\"rgb_cam\":"; json_array(o, m.rgb_cam);
   o << ",\"cam_xyz\":"; json_array(o, m.cam_xyz);
