@@ -1,0 +1,519 @@
+// CLI: fit, evaluate, compare, apply, export (characterisation models and profiles).
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "cli.hpp"
+#include "tristim/error.hpp"
+#include "tristim/evaluation.hpp"
+#include "tristim/export.hpp"
+#include "tristim/json.hpp"
+#include "tristim/models.hpp"
+#include "tristim/profile.hpp"
+
+namespace tristim::cli {
+namespace {
+
+// ---- patch tables -----------------------------------------------------------------------
+// A minimal reader for per-patch CSV tables (header row; an id column "id"/"patch"/
+// "SAMPLE_ID"/"SAMPLE_LOC"/"name", else the row number; R,G,B or X,Y,Z or L,a,b columns).
+// Stop-gap until the shared readers (tristim/io.hpp) land on main; not a general reader.
+
+struct Table {
+  std::vector<std::string> ids;
+  PatchMatrix values;
+  bool lab = false;
+};
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool q = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (q) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        cur += '"';
+        ++i;
+      } else if (c == '"') {
+        q = false;
+      } else {
+        cur += c;
+      }
+    } else if (c == '"') {
+      q = true;
+    } else if (c == ',' || c == ';' || c == '\t') {
+      out.push_back(cur);
+      cur.clear();
+    } else if (c != '\r') {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  for (auto& s : out) {
+    const auto b = s.find_first_not_of(' '), e = s.find_last_not_of(' ');
+    s = b == std::string::npos ? "" : s.substr(b, e - b + 1);
+  }
+  return out;
+}
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string normalise_id(const std::string& id) {
+  // "A01" -> "A1" (team convention).
+  if (id.size() >= 2 && std::isalpha(static_cast<unsigned char>(id[0]))) {
+    size_t k = 1;
+    while (k + 1 < id.size() && id[k] == '0') ++k;
+    bool digits = true;
+    for (size_t j = k; j < id.size(); ++j) digits = digits && std::isdigit(static_cast<unsigned char>(id[j]));
+    if (digits && k > 1) return id.substr(0, 1) + id.substr(k);
+  }
+  return id;
+}
+
+Table read_table(const std::string& path, const char* kind /* "rgb" | "xyz" */) {
+  const std::string text = read_file(path);
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  std::vector<std::string> header;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
+    header = split_csv_line(line);
+    break;
+  }
+  if (header.empty()) throw Error(ErrorCode::EmptyFile, path + ": no header row");
+  auto find = [&](std::initializer_list<const char*> names) -> int {
+    for (const char* n : names)
+      for (size_t i = 0; i < header.size(); ++i)
+        if (lower(header[i]) == lower(n)) return static_cast<int>(i);
+    return -1;
+  };
+  int id_col = find({"id", "patch", "SAMPLE_ID", "SAMPLE_LOC", "name", "SAMPLE_NAME"});
+  int cols[3];
+  Table t;
+  if (std::string(kind) == "rgb") {
+    cols[0] = find({"R", "RGB_R", "camera_R"});
+    cols[1] = find({"G", "RGB_G", "camera_G"});
+    cols[2] = find({"B", "RGB_B", "camera_B"});
+    if (cols[0] < 0 || cols[1] < 0 || cols[2] < 0)
+      throw Error(ErrorCode::MissingColumn, path + " line " + std::to_string(line_no) + ": needs columns R, G, B");
+  } else {
+    cols[0] = find({"X", "XYZ_X"});
+    cols[1] = find({"Y", "XYZ_Y"});
+    cols[2] = find({"Z", "XYZ_Z"});
+    if (cols[0] < 0 || cols[1] < 0 || cols[2] < 0) {
+      cols[0] = find({"L", "LAB_L", "L*"});
+      cols[1] = find({"a", "LAB_A", "a*"});
+      cols[2] = find({"b", "LAB_B", "b*"});
+      t.lab = true;
+      if (cols[0] < 0 || cols[1] < 0 || cols[2] < 0)
+        throw Error(ErrorCode::MissingColumn,
+                    path + " line " + std::to_string(line_no) + ": needs columns X, Y, Z or L, a, b");
+    }
+  }
+  std::vector<std::array<double, 3>> rows;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
+    const auto cells = split_csv_line(line);
+    std::array<double, 3> v{};
+    for (int c = 0; c < 3; ++c) {
+      if (cols[c] >= static_cast<int>(cells.size()))
+        throw Error(ErrorCode::RowLength, path + " line " + std::to_string(line_no) + ": too few cells");
+      const std::string& s = cells[cols[c]];
+      char* end = nullptr;
+      v[c] = std::strtod(s.c_str(), &end);
+      if (s.empty() || *end != '\0')
+        throw Error(ErrorCode::NonNumeric, path + " line " + std::to_string(line_no) + ": '" + s + "' is not a number");
+      if (!std::isfinite(v[c]))
+        throw Error(ErrorCode::NonFinite, path + " line " + std::to_string(line_no) + ": non-finite value");
+    }
+    rows.push_back(v);
+    std::string id = id_col >= 0 && id_col < static_cast<int>(cells.size()) ? normalise_id(cells[id_col])
+                                                                             : std::to_string(rows.size());
+    for (const auto& other : t.ids)
+      if (other == id)
+        throw Error(ErrorCode::DuplicateId, path + " line " + std::to_string(line_no) + ": duplicate patch id '" + id + "'");
+    t.ids.push_back(id);
+  }
+  if (rows.empty()) throw Error(ErrorCode::EmptyFile, path + ": no data rows");
+  t.values.resize(rows.size(), 3);
+  for (size_t i = 0; i < rows.size(); ++i)
+    for (int c = 0; c < 3; ++c) t.values(i, c) = rows[i][c];
+  return t;
+}
+
+Vec3 parse_white(const Args& args, const std::string& key, const Vec3& fallback) {
+  if (!args.has(key)) return fallback;
+  const std::string s = args.get(key);
+  if (lower(s) == "d50") return whites::D50();
+  if (lower(s) == "d65") return whites::D65();
+  const auto parts = split_csv_line(s);
+  if (parts.size() != 3) throw Error(ErrorCode::InvalidArgument, "--" + key + " expects D50, D65 or X,Y,Z");
+  Vec3 w;
+  for (int c = 0; c < 3; ++c) {
+    char* end = nullptr;
+    w[c] = std::strtod(parts[c].c_str(), &end);
+    if (parts[c].empty() || *end != '\0' || !(w[c] > 0))
+      throw Error(ErrorCode::InvalidArgument, "--" + key + ": '" + parts[c] + "' is not a positive number");
+  }
+  return w;
+}
+
+struct PatchData {
+  std::vector<std::string> ids;
+  PatchMatrix rgb, xyz;
+};
+
+// Pairs an RGB table with a reference table by patch id (or by order when both use row numbers).
+PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, const Vec3& ref_white) {
+  const Table rgb = read_table(rgb_path, "rgb");
+  const Table ref = read_table(xyz_path, "xyz");
+  PatchData d;
+  d.ids = rgb.ids;
+  d.rgb = rgb.values;
+  d.xyz.resize(rgb.values.rows(), 3);
+  if (rgb.ids.size() != ref.ids.size())
+    throw Error(ErrorCode::PatchMismatch, rgb_path + " has " + std::to_string(rgb.ids.size()) + " patches but " +
+                                              xyz_path + " has " + std::to_string(ref.ids.size()));
+  for (size_t i = 0; i < rgb.ids.size(); ++i) {
+    size_t j = 0;
+    while (j < ref.ids.size() && ref.ids[j] != rgb.ids[i]) ++j;
+    if (j == ref.ids.size())
+      throw Error(ErrorCode::PatchMismatch, "patch '" + rgb.ids[i] + "' of " + rgb_path + " is not in " + xyz_path);
+    Vec3 v = ref.values.row(j).transpose();
+    if (ref.lab) v = Lab_to_XYZ(v, ref_white);
+    d.xyz.row(i) = v.transpose();
+  }
+  return d;
+}
+
+int patch_index(const std::vector<std::string>& ids, const std::string& id) {
+  const std::string n = normalise_id(id);
+  for (size_t i = 0; i < ids.size(); ++i)
+    if (ids[i] == n) return static_cast<int>(i);
+  throw Error(ErrorCode::UnknownId, "--white: no patch '" + id + "' in the RGB table");
+}
+
+FitOptions fit_options(const Args& args, const PatchData& d, int& white_index) {
+  FitOptions o;
+  o.objective = objective_from_id(args.get("objective", "ls"));
+  o.white = parse_white(args, "lab-white", whites::D50());
+  white_index = -1;
+  if (args.has("white")) {
+    white_index = patch_index(d.ids, args.get("white"));
+    o.preserve_white = true;
+    o.white_RGB = d.rgb.row(white_index).transpose();
+    o.white_XYZ = d.xyz.row(white_index).transpose();
+  }
+  if (args.has("psm-max-iterations")) o.psm.max_iterations = static_cast<int>(args.get_double("psm-max-iterations", 0));
+  if (args.has("psm-threshold")) o.psm.step_threshold = args.get_double("psm-threshold", 1e-6);
+  if (args.has("de-algorithm")) o.de2000.algorithm = args.get("de-algorithm");
+  o.de2000.rms = args.has("de-rms");
+  o.de2000.xtol_rel = args.get_double("de-xtol", o.de2000.xtol_rel);
+  o.de2000.ftol_rel = args.get_double("de-ftol", o.de2000.ftol_rel);
+  o.de2000.max_evaluations = static_cast<int>(args.get_double("de-max-evaluations", o.de2000.max_evaluations));
+  return o;
+}
+
+void write_bytes(const std::string& path, const void* data, size_t n) {
+  std::ofstream f(path, std::ios::binary);
+  if (!f) throw Error(ErrorCode::InvalidArgument, "cannot write '" + path + "'");
+  f.write(static_cast<const char*>(data), static_cast<std::streamsize>(n));
+  if (!f) throw Error(ErrorCode::ExportFailed, "writing '" + path + "' failed");
+}
+
+std::string ext_of(const std::string& path) {
+  const auto dot = path.rfind('.');
+  return dot == std::string::npos ? "" : lower(path.substr(dot + 1));
+}
+
+std::string fmt(double v, int prec = 3) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(prec) << v;
+  return s.str();
+}
+
+// ---- commands -----------------------------------------------------------------------------
+
+const char* kFitUsage =
+    "tristim fit --rgb patches.csv --xyz reference.csv --model <id> [--objective ls|psm|de2000]\n"
+    "            [--white <patch id>] [--lab-white D50|D65|X,Y,Z] [--ref-white D50|D65|X,Y,Z]\n"
+    "            [--out profile.json] [--csv patches_out.csv] [--no-loo]\n"
+    "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm bobyqa|sbplx]\n"
+    "            [--de-xtol X] [--de-ftol F] [--de-max-evaluations N]\n"
+    "  Fits camera RGB -> XYZ and prints (or writes) the profile JSON with training and\n"
+    "  leave-one-out metrics. --white preserves that patch exactly. Reference tables may be\n"
+    "  XYZ (Y = 100 for the perfect diffuser) or L*a*b* (converted with --ref-white, default D50).\n"
+    "  --lab-white is the white of the CIELAB errors and of the de2000 objective (default D50).\n"
+    "  --de-rms minimises the RMS instead of the mean CIEDE2000. Models: tristim models";
+
+int run_fit(const Args& args, std::ostream& out) {
+  args.allow_only({"rgb", "xyz", "model", "objective", "white", "lab-white", "ref-white", "out", "csv",
+                   "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol", "de-ftol", "de-max-evaluations", "de-rms", "no-loo"});
+  const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
+  int white_index = -1;
+  const FitOptions o = fit_options(args, d, white_index);
+  const std::string model = args.get("model");
+  const ModelEvaluation ev = evaluate_model(model, d.rgb, d.xyz, o, white_index, !args.has("no-loo"));
+  const Profile p = make_profile(ev, o, d.ids, d.rgb, d.xyz, white_index >= 0 ? d.ids[white_index] : "");
+  const std::string text = profile_to_json(p);
+  if (args.has("csv")) {
+    const std::string csv = patch_csv(d.ids, d.rgb, d.xyz, ev.fit.fitted, o.white, ev.has_loo ? ev.loo_XYZ : PatchMatrix());
+    write_bytes(args.get("csv"), csv.data(), csv.size());
+  }
+  if (args.has("out")) {
+    write_bytes(args.get("out"), text.data(), text.size());
+    std::cerr << "tristim fit: " << model << " (" << objective_id(o.objective) << ") training mean dE00 "
+              << fmt(ev.training.dE00.mean) << ", leave-one-out mean dE00 "
+              << (ev.has_loo ? fmt(ev.loo.dE00.mean) : std::string("-")) << ", status " << fit_status_name(ev.fit.status)
+              << (ev.fit.message.empty() ? "" : " (" + ev.fit.message + ")") << "\n";
+  } else {
+    out << text;
+  }
+  return 0;
+}
+
+const char* kEvaluateUsage =
+    "tristim evaluate --profile p.json --rgb test.csv --xyz ref.csv [--ref-white ...] [--csv out.csv]\n"
+    "  Applies the profile to the test patches and prints JSON metrics (per patch and summaries).";
+
+int run_evaluate(const Args& args, std::ostream& out) {
+  args.allow_only({"profile", "rgb", "xyz", "ref-white", "csv"});
+  const Profile p = profile_from_json(read_file(args.get("profile")));
+  const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
+  validate_patches(d.rgb, d.xyz);
+  const PatchMatrix est = predict(p.model, d.rgb);
+  const Metrics m = evaluate(est, d.xyz, p.white);
+  json::Value o = json::Value::object();
+  o.set("model", p.model.id);
+  o.set("objective", objective_id(p.objective));
+  o.set("white", json::Value(std::vector<double>{p.white[0], p.white[1], p.white[2]}));
+  o.set("patches", static_cast<int>(d.rgb.rows()));
+  o.set("same_data_as_training", training_digest(d.ids, d.rgb, d.xyz) == p.training_digest);
+  o.set("metrics", metrics_json(m, d.ids, true));
+  out << o.dump(2) << "\n";
+  if (args.has("csv")) {
+    const std::string csv = patch_csv(d.ids, d.rgb, d.xyz, est, p.white);
+    write_bytes(args.get("csv"), csv.data(), csv.size());
+  }
+  return 0;
+}
+
+const char* kCompareUsage =
+    "tristim compare --rgb patches.csv --xyz reference.csv [--objectives ls,psm,de2000]\n"
+    "                [--models id,id,...] [--white <patch>] [--lab-white ...] [--ref-white ...]\n"
+    "                [--test-rgb other.csv --test-xyz other_ref.csv] [--json]\n"
+    "  Every model × objective on the same patches: training and leave-one-out CIEDE2000,\n"
+    "  sorted by the held-out mean. With --test-rgb/--test-xyz also the train-on-one /\n"
+    "  test-on-another table (Abed 2013 Table IV layout).";
+
+json::Value compare_row_json(const CompareRow& r) {
+  json::Value o = json::Value::object();
+  o.set("model", r.model_id);
+  o.set("objective", objective_id(r.objective));
+  o.set("n_terms", r.n_terms);
+  o.set("ok", r.ok);
+  o.set("error_code", r.error_code);
+  o.set("status", r.ok ? fit_status_name(r.status) : "error");
+  o.set("message", r.message);
+  o.set("condition_number", r.condition_number);
+  o.set("seconds", r.seconds);
+  o.set("train_dE00", summary_json(r.train_dE00));
+  o.set("train_dE_xyz", summary_json(r.train_dE_xyz));
+  o.set("has_loo", r.has_loo);
+  if (r.has_loo) {
+    o.set("loo_dE00", summary_json(r.loo_dE00));
+    o.set("loo_dE_xyz", summary_json(r.loo_dE_xyz));
+  }
+  return o;
+}
+
+int run_compare(const Args& args, std::ostream& out) {
+  args.allow_only({"rgb", "xyz", "objectives", "models", "white", "lab-white", "ref-white", "test-rgb",
+                   "test-xyz", "json", "objective", "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol",
+                   "de-ftol", "de-max-evaluations", "de-rms"});
+  const Vec3 ref_white = parse_white(args, "ref-white", whites::D50());
+  const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), ref_white);
+  int white_index = -1;
+  const FitOptions o = fit_options(args, d, white_index);
+  std::vector<Objective> objectives;
+  for (const auto& s : split_csv_line(args.get("objectives", "ls,psm,de2000"))) objectives.push_back(objective_from_id(s));
+  std::vector<std::string> models;
+  if (args.has("models"))
+    for (const auto& s : split_csv_line(args.get("models"))) models.push_back(model_info(s).id);
+  const auto rows = compare_models(d.rgb, d.xyz, o, models, objectives, white_index);
+  std::vector<TransferCell> transfer;
+  if (args.has("test-rgb") || args.has("test-xyz")) {
+    const PatchData t = load_pairs(args.get("test-rgb"), args.get("test-xyz"), ref_white);
+    std::vector<std::string> ids = models;
+    if (ids.empty())
+      for (const auto& m : model_table())
+        if (m.duplicate_of.empty()) ids.push_back(m.id);
+    transfer = transfer_table({{args.get("rgb"), d.rgb, d.xyz}}, t.rgb, t.xyz, ids, objectives, o);
+  }
+  if (args.has("json")) {
+    json::Value j = json::Value::object();
+    j.set("patches", static_cast<int>(d.rgb.rows()));
+    json::Value a = json::Value::array();
+    for (const auto& r : rows) a.push(compare_row_json(r));
+    j.set("rows", a);
+    if (!transfer.empty()) {
+      json::Value tj = json::Value::array();
+      for (const auto& c : transfer) {
+        json::Value cj = json::Value::object();
+        cj.set("training_set", c.training_set);
+        cj.set("model", c.model_id);
+        cj.set("objective", objective_id(c.objective));
+        cj.set("ok", c.ok);
+        cj.set("error_code", c.error_code);
+        cj.set("dE_xyz", summary_json(c.dE_xyz));
+        cj.set("dE00", summary_json(c.dE00));
+        tj.push(cj);
+      }
+      j.set("transfer", tj);
+    }
+    out << j.dump(2) << "\n";
+    return 0;
+  }
+  out << "# " << d.rgb.rows() << " patches; CIEDE2000 relative to white " << fmt(o.white[0], 4) << ","
+      << fmt(o.white[1], 4) << "," << fmt(o.white[2], 4) << "; sorted by leave-one-out mean\n";
+  out << std::left << std::setw(18) << "model" << std::setw(8) << "obj" << std::right << std::setw(6) << "terms"
+      << std::setw(10) << "train" << std::setw(10) << "train" << std::setw(10) << "LOO" << std::setw(10) << "LOO"
+      << std::setw(10) << "LOO" << std::setw(11) << "cond" << "  status\n";
+  out << std::left << std::setw(18) << "" << std::setw(8) << "" << std::right << std::setw(6) << "" << std::setw(10)
+      << "mean" << std::setw(10) << "max" << std::setw(10) << "mean" << std::setw(10) << "p95" << std::setw(10) << "max"
+      << std::setw(11) << "" << "\n";
+  for (const auto& r : rows) {
+    out << std::left << std::setw(18) << r.model_id << std::setw(8) << objective_id(r.objective) << std::right
+        << std::setw(6) << r.n_terms;
+    if (!r.ok) {
+      out << "  refused: " << r.error_code << " (" << r.message << ")\n";
+      continue;
+    }
+    std::ostringstream cond;
+    cond << std::setprecision(2) << std::scientific << r.condition_number;
+    out << std::setw(10) << fmt(r.train_dE00.mean) << std::setw(10) << fmt(r.train_dE00.max) << std::setw(10)
+        << (r.has_loo ? fmt(r.loo_dE00.mean) : "-") << std::setw(10) << (r.has_loo ? fmt(r.loo_dE00.p95) : "-")
+        << std::setw(10) << (r.has_loo ? fmt(r.loo_dE00.max) : "-") << std::setw(11) << cond.str() << "  "
+        << fit_status_name(r.status) << "\n";
+  }
+  if (!transfer.empty()) {
+    out << "\n# train on " << args.get("rgb") << ", test on " << args.get("test-rgb")
+        << " (Abed 2013 Table IV layout): mean / max\n";
+    out << std::left << std::setw(18) << "model" << std::setw(8) << "obj" << std::right << std::setw(12) << "dE_xyz mean"
+        << std::setw(12) << "dE_xyz max" << std::setw(10) << "dE00 mean" << std::setw(10) << "dE00 max" << "\n";
+    for (const auto& c : transfer) {
+      out << std::left << std::setw(18) << c.model_id << std::setw(8) << objective_id(c.objective) << std::right;
+      if (!c.ok) {
+        out << "  refused: " << c.error_code << "\n";
+        continue;
+      }
+      out << std::setw(12) << fmt(c.dE_xyz.mean, 4) << std::setw(12) << fmt(c.dE_xyz.max, 4) << std::setw(10)
+          << fmt(c.dE00.mean) << std::setw(10) << fmt(c.dE00.max) << "\n";
+    }
+  }
+  return 0;
+}
+
+const char* kApplyUsage =
+    "tristim apply <profile.json> <image> --out xyz.tiff|xyz.pfm\n"
+    "  Applies the profile to a linear camera-RGB image and writes 32-bit float XYZ (TIFF,\n"
+    "  uncompressed, or PFM). Input: a colour PFM of linear camera RGB (RAW input arrives with\n"
+    "  the RAW pipeline).";
+
+int run_apply(const Args& args, std::ostream&) {
+  args.allow_only({"out"});
+  if (args.positional.size() != 2)
+    throw Error(ErrorCode::InvalidArgument, "usage: tristim apply <profile.json> <image> --out xyz.tiff|pfm");
+  const Profile p = profile_from_json(read_file(args.positional[0]));
+  const std::string in_path = args.positional[1];
+  Image3f rgb;
+  if (ext_of(in_path) == "pfm") rgb = read_pfm(read_file(in_path));
+  else
+    throw Error(ErrorCode::RawUnsupported,
+                in_path + ": this build applies profiles to PFM images (RAW input needs the RAW pipeline)");
+  const std::string out_path = args.get("out");
+  const auto t0 = std::chrono::steady_clock::now();
+  const Image3f xyz = apply_profile(p, rgb.pixels.data(), rgb.width, rgb.height);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  std::vector<uint8_t> bytes;
+  const std::string e = ext_of(out_path);
+  if (e == "tif" || e == "tiff") bytes = float_tiff(xyz.pixels.data(), xyz.width, xyz.height, "CIE XYZ (tristim " + p.model.id + ")");
+  else if (e == "pfm") bytes = float_pfm(xyz.pixels.data(), xyz.width, xyz.height);
+  else throw Error(ErrorCode::InvalidArgument, "--out must end in .tiff, .tif or .pfm");
+  write_bytes(out_path, bytes.data(), bytes.size());
+  std::cerr << "tristim apply: " << xyz.width << "x" << xyz.height << " in " << fmt(ms, 1) << " ms -> " << out_path << "\n";
+  return 0;
+}
+
+const char* kExportUsage =
+    "tristim export --profile p.json (--icc out.icc [--icc-version 4.3|2.4] [--grid 33] |\n"
+    "               --cube out.cube [--size 33]) [--rgb-scale S]\n"
+    "  ICC input profile (lcms2; matrix/shaper for 3×3 models, AToB0 LUT otherwise) or a .cube\n"
+    "  3D LUT. Device value 1.0 = camera RGB S (default: the profile's largest training value).";
+
+int run_export(const Args& args, std::ostream&) {
+  args.allow_only({"profile", "icc", "cube", "size", "grid", "rgb-scale", "icc-version"});
+  const Profile p = profile_from_json(read_file(args.get("profile")));
+  if (!args.has("icc") && !args.has("cube")) throw Error(ErrorCode::InvalidArgument, "export needs --icc or --cube");
+  const double scale = args.get_double("rgb-scale", 0);
+  if (args.has("icc")) {
+    IccOptions o;
+    o.rgb_scale = scale;
+    o.grid_points = static_cast<int>(args.get_double("grid", 33));
+    o.version = args.get_double("icc-version", 4.3);
+    const auto icc = export_icc(p, o);
+    write_bytes(args.get("icc"), icc.data(), icc.size());
+  }
+  if (args.has("cube")) {
+    const std::string cube = export_cube(p, static_cast<int>(args.get_double("size", 33)), scale);
+    write_bytes(args.get("cube"), cube.data(), cube.size());
+  }
+  return 0;
+}
+
+int run_models(const Args& args, std::ostream& out) {
+  args.allow_only({"json"});
+  if (args.has("json")) {
+    json::Value a = json::Value::array();
+    for (const auto& m : model_table()) {
+      json::Value o = json::Value::object();
+      o.set("id", m.id);
+      o.set("label", m.label);
+      o.set("reference", m.reference);
+      o.set("n_terms", m.n_terms);
+      o.set("duplicate_of", m.duplicate_of);
+      a.push(o);
+    }
+    out << a.dump(2) << "\n";
+    return 0;
+  }
+  for (const auto& m : model_table())
+    out << std::left << std::setw(18) << m.id << std::setw(4) << m.n_terms << m.label << " — " << m.reference
+        << (m.duplicate_of.empty() ? "" : " (same as " + m.duplicate_of + ")") << "\n";
+  return 0;
+}
+
+const CommandRegistration reg_fit({"fit", "fit a camera characterisation model -> profile JSON", kFitUsage, run_fit});
+const CommandRegistration reg_eval({"evaluate", "evaluate a profile on test patches (JSON)", kEvaluateUsage, run_evaluate});
+const CommandRegistration reg_cmp({"compare", "every model x objective, sorted by held-out error", kCompareUsage, run_compare});
+const CommandRegistration reg_apply({"apply", "apply a profile to a linear image -> float XYZ TIFF/PFM", kApplyUsage, run_apply});
+const CommandRegistration reg_export({"export", "export a profile as ICC or .cube", kExportUsage, run_export});
+const CommandRegistration reg_models({"models", "list the characterisation models", "tristim models [--json]", run_models});
+
+}  // namespace
+}  // namespace tristim::cli

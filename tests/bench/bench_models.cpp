@@ -1,0 +1,122 @@
+// Benchmark: model fits (LS of every model on 140 patches, pattern search, CIEDE2000 objective)
+// and applying a degree-2 root-polynomial to a 24 MP float RGB image next to a plain memcpy of
+// the same size. Prints figures; asserts nothing.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "tristim/evaluation.hpp"
+#include "tristim/models.hpp"
+
+using namespace tristim;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+template <class F>
+double best_ms(int reps, F&& f) {
+  double best = 1e300;
+  for (int i = 0; i < reps; ++i) {
+    const auto t0 = Clock::now();
+    f();
+    best = std::min(best, ms_since(t0));
+  }
+  return best;
+}
+
+// 140 synthetic patches (an SG-sized chart): camera RGB in raw counts, XYZ (Y = 100 white)
+// from a plausible root-polynomial camera plus 0.5 % noise.
+void make_patches(int n, PatchMatrix& rgb, PatchMatrix& xyz) {
+  std::mt19937 rng(140);
+  std::uniform_real_distribution<double> u(0.02, 0.95);
+  std::normal_distribution<double> noise(0.0, 0.005);
+  Model truth{"Finlayson2015-2", Eigen::MatrixXd(3, 6)};
+  truth.coefficients << 0.010, 0.0075, 0.0037, 0.002, 0.0012, 0.001, 0.005, 0.0175, 0.002, 0.001, 0.002, 0.0012,
+      0.0005, 0.0025, 0.0225, 0.0005, 0.001, 0.002;
+  rgb.resize(n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) rgb(i, c) = u(rng) * 4000.0;
+  xyz = predict(truth, rgb);
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) xyz(i, c) = std::max(0.0, xyz(i, c) * (1 + noise(rng)));
+}
+
+}  // namespace
+
+int main() {
+#ifdef __EMSCRIPTEN__
+  const char* where = "wasm";
+#else
+  const char* where = "native";
+#endif
+  std::printf("bench_models (%s)\n", where);
+  PatchMatrix rgb, xyz;
+  make_patches(140, rgb, xyz);
+
+  std::printf("\n== least-squares fit, 140 patches (best of 20) ==\n");
+  for (const ModelInfo& m : model_table()) {
+    if (!m.duplicate_of.empty()) continue;
+    FitOptions o;
+    const double t = best_ms(20, [&] { (void)fit(m.id, rgb, xyz, o); });
+    std::printf("  %-18s %2d terms  %8.3f ms\n", m.id.c_str(), m.n_terms, t);
+  }
+
+  std::printf("\n== pattern search (Guarnera 2018 Algorithm 2), 140 patches (best of 5) ==\n");
+  for (const char* id : {"Guarnera2018-T1", "Guarnera2018-To", "Guarnera2018-T2R"}) {
+    FitOptions o;
+    o.objective = Objective::PatternSearch;
+    FitResult r;
+    const double t = best_ms(5, [&] { r = fit(id, rgb, xyz, o); });
+    std::printf("  %-18s %8.3f ms  %5d iterations  %6d evaluations  cost %.4g -> %.4g\n", id, t, r.iterations,
+                r.evaluations, r.start_objective_value, r.objective_value);
+  }
+
+  std::printf("\n== CIEDE2000 objective (NLopt BOBYQA), best of 5 ==\n");
+  for (int n : {24, 140})
+    for (const char* id : {"matrix-3x3", "matrix-3x4", "Finlayson2015-2"}) {
+      FitOptions o;
+      o.objective = Objective::DeltaE2000;
+      FitResult r;
+      const PatchMatrix a = rgb.topRows(n), b = xyz.topRows(n);
+      const double t = best_ms(5, [&] { r = fit(id, a, b, o); });
+      std::printf("  %3d patches %-16s %8.3f ms  %5d evaluations  mean dE00 %.4f -> %.4f\n", n, id, t,
+                  r.evaluations, r.start_objective_value, r.objective_value);
+    }
+
+  std::printf("\n== leave-one-out, 140 patches, ls (best of 3) ==\n");
+  for (const char* id : {"matrix-3x3", "Finlayson2015-2", "Cheung2004-20"}) {
+    const double t = best_ms(3, [&] { (void)leave_one_out(id, rgb, xyz); });
+    std::printf("  %-18s %8.3f ms\n", id, t);
+  }
+
+  std::printf("\n== apply Finlayson2015-2 to a 24 MP float RGB image vs memcpy ==\n");
+  const size_t w = 6000, h = 4000, n = w * h;
+  const size_t bytes = n * 3 * sizeof(float);
+  std::vector<float> in(n * 3), out(n * 3);
+  for (size_t i = 0; i < n * 3; ++i) in[i] = static_cast<float>((i * 2654435761u) % 16384);
+  std::memset(out.data(), 0, bytes);
+  Model m = fit("Finlayson2015-2", rgb, xyz).model;
+  const double t_copy = best_ms(5, [&] { std::memcpy(out.data(), in.data(), bytes); });
+  volatile float sink = out[n];
+  const double t_apply = best_ms(5, [&] { apply_to_image(m, in.data(), n, out.data()); });
+  sink = out[n * 3 - 1];
+  (void)sink;
+  const double mb = bytes / 1048576.0;
+  std::printf("  image %zux%zu, %.1f MB in, %.1f MB out\n", w, h, mb, mb);
+  std::printf("  memcpy            %8.2f ms  (%.2f GB/s)\n", t_copy, bytes / t_copy / 1e6);
+  std::printf("  apply root-poly 2 %8.2f ms  (%.2f GB/s read)  = %.0f %% of memcpy speed\n", t_apply,
+              bytes / t_apply / 1e6, 100.0 * t_copy / t_apply);
+  Model lin = fit("matrix-3x3", rgb, xyz).model;
+  const double t_lin = best_ms(5, [&] { apply_to_image(lin, in.data(), n, out.data()); });
+  std::printf("  apply 3x3 matrix  %8.2f ms  = %.0f %% of memcpy speed\n", t_lin, 100.0 * t_copy / t_lin);
+  return 0;
+}

@@ -1,0 +1,138 @@
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import { loadTristim, readShared, throwsCode } from './load.mjs';
+
+// The Passport patches (camera RGB derived from the DNG) and X-Rite's CC24 reference (Lab D50).
+function csvRows(relative) {
+  const text = new TextDecoder().decode(readShared(relative));
+  const [head, ...lines] = text.trim().split('\n');
+  const cols = head.split(',');
+  return lines.map((l) => Object.fromEntries(l.split(',').map((v, i) => [cols[i], v])));
+}
+function labToXYZ([L, a, b], w = [96.4212, 100, 82.5188]) {
+  const fy = (L + 16) / 116, fx = fy + a / 500, fz = fy - b / 200;
+  const inv = (t) => (t > 6 / 29 ? t ** 3 : 3 * (6 / 29) ** 2 * (t - 4 / 29));
+  return [w[0] * inv(fx), w[1] * inv(fy), w[2] * inv(fz)];
+}
+function passport() {
+  const rgbRows = csvRows('raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv');
+  const refRows = csvRows('colour-science/colorchecker24_xrite_before_nov2014_Lab_D50.csv');
+  const rgb = new Float64Array(72), xyz = new Float64Array(72);
+  const ids = [];
+  rgbRows.forEach((r, i) => {
+    rgb.set([+r.R, +r.G, +r.B], 3 * i);
+    const ref = refRows.find((q) => q.patch === r.patch);
+    xyz.set(labToXYZ([+ref.L, +ref.a, +ref.b]), 3 * i);
+    ids.push('ABCD'[Math.floor(i / 6)] + ((i % 6) + 1));
+  });
+  return { rgb, xyz, ids };
+}
+
+test('listModels / listObjectives describe the method table', async () => {
+  const T = await loadTristim();
+  const models = T.listModels();
+  const ids = models.map((m) => m.id);
+  for (const id of ['matrix-3x3', 'matrix-3x4', 'Shen2008', 'Finlayson2015-2', 'Cheung2004-35', 'Guarnera2018-T2R'])
+    assert.ok(ids.includes(id), id);
+  const t2r = models.find((m) => m.id === 'Guarnera2018-T2R');
+  assert.equal(t2r.nTerms, 6);
+  assert.equal(t2r.duplicateOf, 'Finlayson2015-2');
+  assert.deepEqual(T.listObjectives().map((o) => o.id), ['ls', 'psm', 'de2000']);
+});
+
+test('fitModel: planted 3x3 recovered, profile round-trips through evaluateProfile', async () => {
+  const T = await loadTristim();
+  const M = [40, 30, 15, 20, 70, 8, 2, 10, 90];
+  const n = 20, rgb = new Float64Array(3 * n), xyz = new Float64Array(3 * n);
+  for (let i = 0; i < n; i++) {
+    const c = [0.1 + ((i * 37) % 17) / 20, 0.1 + ((i * 11) % 13) / 15, 0.1 + ((i * 7) % 19) / 22];
+    rgb.set(c, 3 * i);
+    for (let k = 0; k < 3; k++) xyz[3 * i + k] = M[3 * k] * c[0] + M[3 * k + 1] * c[1] + M[3 * k + 2] * c[2];
+  }
+  for (const objective of ['ls', 'psm', 'de2000']) {
+    const r = T.fitModel(rgb, xyz, [], { model: 'matrix-3x3', objective });
+    assert.ok(r.coefficients instanceof Float64Array);
+    r.coefficients.forEach((v, i) => assert.ok(Math.abs(v - M[i]) < 1e-9, `${objective} coef ${i}: ${v}`));
+    assert.ok(r.metrics.training.dE00.max < 1e-6);
+    assert.ok(r.metrics.loo.dE00.max < 1e-6);
+    const p = JSON.parse(r.profile);
+    assert.equal(p.format, 'tristim-profile');
+    assert.equal(p.version, 1);
+    const ev = T.evaluateProfile(r.profile, rgb, xyz, []);
+    assert.equal(ev.sameDataAsTraining, true);
+    assert.ok(ev.estimated instanceof Float64Array);
+    ev.estimated.forEach((v, i) => assert.equal(v, r.fitted[i]));
+  }
+});
+
+test('fitModel on the Passport patches: LOO reported, best model beats the 3x3', async () => {
+  const T = await loadTristim();
+  const { rgb, xyz, ids } = passport();
+  const a = T.fitModel(rgb, xyz, ids, { model: 'matrix-3x3', objective: 'ls' });
+  const b = T.fitModel(rgb, xyz, ids, { model: 'Finlayson2015-2', objective: 'ls' });
+  assert.equal(a.status, 'ok');
+  assert.equal(a.metrics.training.patches.ids.length, 24);
+  assert.equal(a.metrics.loo.patches.dE00.length, 24);
+  assert.ok(b.metrics.loo.dE00.mean < a.metrics.loo.dE00.mean);
+  assert.ok(a.conditionNumber > 1 && a.conditionNumber < 1e3);
+  const w = T.fitModel(rgb, xyz, ids, { model: 'matrix-3x4', objective: 'de2000', whitePatch: 'D1' });
+  const est = w.fitted.slice(18 * 3, 18 * 3 + 3);
+  for (let k = 0; k < 3; k++) assert.ok(Math.abs(est[k] - xyz[18 * 3 + k]) < 1e-9);
+});
+
+test('compareModels: rows sorted by held-out error, refusals last with a code', async () => {
+  const T = await loadTristim();
+  const { rgb, xyz, ids } = passport();
+  const rows = T.compareModels(rgb, xyz, ids, { objectives: ['ls'] });
+  assert.ok(rows.length > 10);
+  const okRows = rows.filter((r) => r.ok && r.loo);
+  for (let i = 1; i < okRows.length; i++) assert.ok(okRows[i].loo.dE00.mean >= okRows[i - 1].loo.dE00.mean);
+  const last = rows[rows.length - 1];
+  assert.equal(last.ok, false);
+  assert.equal(last.errorCode, 'TOO_FEW_PATCHES');
+});
+
+test('applyProfileToImage, exportIcc, exportCube, exportPatchCsv', async () => {
+  const T = await loadTristim();
+  const { rgb, xyz, ids } = passport();
+  const r = T.fitModel(rgb, xyz, ids, { model: 'Finlayson2015-2' });
+  const w = 4, h = 6;
+  const img = new Float32Array(w * h * 3);
+  for (let i = 0; i < 24; i++) img.set(rgb.subarray(3 * i, 3 * i + 3), 3 * i);
+  const out = T.applyProfileToImage(r.profile, img, w, h);
+  assert.ok(out instanceof Float32Array);
+  assert.equal(out.length, w * h * 3);
+  for (let i = 0; i < 72; i++) assert.ok(Math.abs(out[i] - r.fitted[i]) < 1e-3 * (1 + Math.abs(r.fitted[i])));
+  const icc = T.exportIcc(r.profile);
+  assert.ok(icc instanceof Uint8Array);
+  assert.equal(String.fromCharCode(...icc.slice(36, 40)), 'acsp');
+  assert.equal(icc[8], 4);
+  const icc2 = T.exportIcc(r.profile, { version: 2.4, gridPoints: 17 });
+  assert.equal(icc2[8], 2);
+  const cube = T.exportCube(r.profile, 9);
+  assert.match(cube, /LUT_3D_SIZE 9/);
+  assert.equal(cube.trim().split('\n').filter((l) => /^[-0-9]/.test(l)).length, 9 ** 3);
+  const csv = T.exportPatchCsv(r.profile, rgb, xyz, ids);
+  assert.equal(csv.trim().split('\n').length, 25);
+});
+
+test('bad input reaches JS as coded errors', async () => {
+  const T = await loadTristim();
+  const { rgb, xyz, ids } = passport();
+  throwsCode(assert, () => T.fitModel(rgb, xyz.subarray(0, 69), ids, { model: 'matrix-3x3' }), 'PATCH_MISMATCH');
+  throwsCode(assert, () => T.fitModel(rgb, xyz, ids.slice(1), { model: 'matrix-3x3' }), 'PATCH_MISMATCH');
+  throwsCode(assert, () => T.fitModel(rgb, xyz, ids, { model: 'nope' }), 'UNKNOWN_ID');
+  throwsCode(assert, () => T.fitModel(rgb, xyz, ids, { model: 'Cheung2004-35' }), 'TOO_FEW_PATCHES');
+  const nan = rgb.slice();
+  nan[4] = NaN;
+  throwsCode(assert, () => T.fitModel(nan, xyz, ids, { model: 'matrix-3x3' }), 'NON_FINITE');
+  const neg = xyz.slice();
+  neg[5] = -1;
+  throwsCode(assert, () => T.fitModel(rgb, neg, ids, { model: 'matrix-3x3' }), 'NEGATIVE_VALUE');
+  throwsCode(assert, () => T.fitModel(rgb, xyz, ids, { model: 'matrix-3x3', objective: 'magic' }), 'UNKNOWN_ID');
+  const good = T.fitModel(rgb, xyz, ids, { model: 'matrix-3x3', loo: false }).profile;
+  throwsCode(assert, () => T.evaluateProfile(good.replace('"version": 1', '"version": 7'), rgb, xyz, ids), 'PROFILE_VERSION');
+  throwsCode(assert, () => T.evaluateProfile('{"format": "tristim-profile", "version": 1}', rgb, xyz, ids), 'PROFILE_INVALID');
+  throwsCode(assert, () => T.exportIcc('not json'), 'PROFILE_INVALID');
+  throwsCode(assert, () => T.applyProfileToImage(good, new Float32Array(10), 2, 2), 'ROW_LENGTH');
+});
