@@ -222,6 +222,7 @@ FitOptions fit_options(const Args& args, const PatchData& d, int& white_index) {
   if (args.has("psm-threshold")) o.psm.step_threshold = args.get_double("psm-threshold", 1e-6);
   if (args.has("de-algorithm")) o.de2000.algorithm = args.get("de-algorithm");
   o.de2000.rms = args.has("de-rms");
+  o.de2000.initial_step = args.get_double("de-step", o.de2000.initial_step);
   o.de2000.xtol_rel = args.get_double("de-xtol", o.de2000.xtol_rel);
   o.de2000.ftol_rel = args.get_double("de-ftol", o.de2000.ftol_rel);
   o.de2000.max_evaluations = static_cast<int>(args.get_double("de-max-evaluations", o.de2000.max_evaluations));
@@ -254,7 +255,7 @@ const char* kFitUsage =
     "            [--white <patch id>] [--lab-white D50|D65|X,Y,Z] [--ref-white D50|D65|X,Y,Z]\n"
     "            [--out profile.json] [--csv patches_out.csv] [--no-loo]\n"
     "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm bobyqa|sbplx]\n"
-    "            [--de-xtol X] [--de-ftol F] [--de-max-evaluations N]\n"
+    "            [--de-xtol X] [--de-ftol F] [--de-max-evaluations N] [--de-step S]\n"
     "  Fits camera RGB -> XYZ and prints (or writes) the profile JSON with training and\n"
     "  leave-one-out metrics. --white preserves that patch exactly. Reference tables may be\n"
     "  XYZ (Y = 100 for the perfect diffuser) or L*a*b* (converted with --ref-white, default D50).\n"
@@ -263,7 +264,7 @@ const char* kFitUsage =
 
 int run_fit(const Args& args, std::ostream& out) {
   args.allow_only({"rgb", "xyz", "model", "objective", "white", "lab-white", "ref-white", "out", "csv",
-                   "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol", "de-ftol", "de-max-evaluations", "de-rms", "no-loo"});
+                   "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol", "de-ftol", "de-max-evaluations", "de-rms", "de-step", "no-loo"});
   const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
   int white_index = -1;
   const FitOptions o = fit_options(args, d, white_index);
@@ -345,7 +346,7 @@ json::Value compare_row_json(const CompareRow& r) {
 int run_compare(const Args& args, std::ostream& out) {
   args.allow_only({"rgb", "xyz", "objectives", "models", "white", "lab-white", "ref-white", "test-rgb",
                    "test-xyz", "json", "objective", "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol",
-                   "de-ftol", "de-max-evaluations", "de-rms"});
+                   "de-ftol", "de-max-evaluations", "de-rms", "de-step"});
   const Vec3 ref_white = parse_white(args, "ref-white", whites::D50());
   const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), ref_white);
   int white_index = -1;

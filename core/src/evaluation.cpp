@@ -116,7 +116,9 @@ PatchMatrix leave_one_out(const std::string& model_id, const PatchMatrix& rgb, c
 ModelEvaluation evaluate_model(const std::string& model_id, const PatchMatrix& rgb, const PatchMatrix& xyz,
                                const FitOptions& options, int white_patch_index, bool with_loo) {
   ModelEvaluation ev;
+  const auto t0 = std::chrono::steady_clock::now();
   ev.fit = fit(model_id, rgb, xyz, options);
+  ev.fit_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ev.training = evaluate(ev.fit.fitted, xyz, options.white);
   const ModelInfo& info = model_info(model_id);
   const int q = info.n_terms - (options.preserve_white ? 1 : 0);
@@ -157,9 +159,8 @@ std::vector<CompareRow> compare_models(const PatchMatrix& rgb, const PatchMatrix
       FitOptions o = options;
       o.objective = obj;
       try {
-        const auto t0 = std::chrono::steady_clock::now();
         const ModelEvaluation ev = evaluate_model(id, rgb, xyz, o, white_patch_index, true);
-        row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        row.seconds = ev.fit_seconds;
         row.ok = true;
         row.status = ev.fit.status;
         row.message = ev.fit.message;

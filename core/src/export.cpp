@@ -1,6 +1,8 @@
 // ICC (lcms2), .cube, patch CSV, float TIFF and PFM writers.
 #include "tristim/export.hpp"
 
+// C++17 has no `register`; lcms2.h uses it unless told not to.
+#define CMS_NO_REGISTER_KEYWORD 1
 #include <lcms2.h>
 
 #include <cctype>

@@ -326,7 +326,7 @@ De2000Outcome minimise_de2000(const Problem& pr, const FitOptions& options, Eige
       const double half = std::fabs(x[v]) + sc;
       lb[v] = x[v] - half;
       ub[v] = x[v] + half;
-      step[v] = 0.01 * sc;
+      step[v] = options.de2000.initial_step * sc;
     }
   }
   out.f0 = de2000_cost(pr, d, x.data());
@@ -349,7 +349,7 @@ De2000Outcome minimise_de2000(const Problem& pr, const FitOptions& options, Eige
   nlopt_set_initial_step(opt, step.data());
   nlopt_set_xtol_rel(opt, options.de2000.xtol_rel);
   nlopt_set_ftol_rel(opt, options.de2000.ftol_rel);
-  const int maxeval = options.de2000.max_evaluations > 0 ? options.de2000.max_evaluations : 400 * nvar;
+  const int maxeval = options.de2000.max_evaluations > 0 ? options.de2000.max_evaluations : 200 * nvar;
   nlopt_set_maxeval(opt, maxeval);
   double minf = 0;
   const nlopt_result res = nlopt_optimize(opt, x.data(), &minf);

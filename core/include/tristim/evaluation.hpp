@@ -52,6 +52,7 @@ PatchMatrix leave_one_out(const std::string& model_id, const PatchMatrix& camera
 /// A fit with its training and leave-one-out metrics.
 struct ModelEvaluation {
   FitResult fit;
+  double fit_seconds = 0;  ///< wall time of the training fit alone
   Metrics training;
   bool has_loo = false;  ///< false when N − 1 patches are too few for the model
   Metrics loo;
@@ -71,7 +72,7 @@ struct CompareRow {
   std::string message;      ///< the error, or the fit's warning
   FitStatus status = FitStatus::Ok;
   double condition_number = 0;
-  double seconds = 0;       ///< wall time of the training fit
+  double seconds = 0;       ///< wall time of the training fit (without leave-one-out)
   Summary train_dE00, loo_dE00, train_dE_xyz, loo_dE_xyz;
   bool has_loo = false;
 };

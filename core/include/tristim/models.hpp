@@ -104,8 +104,9 @@ struct DeltaE2000Options {
   std::string algorithm = "bobyqa";  ///< "bobyqa" (NLOPT_LN_BOBYQA) or "sbplx" (NLOPT_LN_SBPLX)
   double xtol_rel = 1e-5;
   double ftol_rel = 1e-7;
-  int max_evaluations = 0;           ///< 0: 400 × number of variables
+  int max_evaluations = 0;           ///< 0: 200 × number of variables
   bool rms = false;                  ///< minimise the (weighted) RMS instead of the mean
+  double initial_step = 0.01;        ///< first step, relative to ‖XYZ_i‖ (equilibrated coordinates)
 };
 
 struct FitOptions {

@@ -1,0 +1,221 @@
+#!/usr/bin/env python3
+"""tristim vs ArgyllCMS vs OpenCV ccm on the ColorChecker Passport DNG patches.
+
+Runs, on the same 24 patches (camera RGB derived from the tinydng Passport DNG, X-Rite
+ColorChecker Classic reference L*a*b* D50):
+  * tristim compare (every model x objective, training and leave-one-out CIEDE2000),
+  * ArgyllCMS colprof -am (matrix) and -as (shaper + matrix), checked with profcheck -k,
+  * OpenCV's ccm (3x3, CIEDE2000 loss, identity linearisation),
+and prints the figures side by side. Exit status 1 if a claim fails:
+  - tristim's best leave-one-out mean CIEDE2000 < Argyll's matrix-profile training mean,
+  - tristim's CIEDE2000-objective 3x3 (RMS loss) RMS CIEDE2000 <= OpenCV's, scored with the
+    same CIEDE2000 implementation (tristim evaluate) on both matrices,
+  - and it is >= 10x faster than OpenCV's fit (wall time of the fit alone).
+
+Usage: compare_passport.py [--tristim PATH] [--shared DIR] [--reference before|after] [--all] [--json]
+Needs: the tristim CLI, Debian's argyll (colprof, profcheck) and python3-opencv. A tool that is
+missing is reported and its claim skipped (exit status 0 unless --strict).
+"""
+import argparse
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.abspath(os.path.join(HERE, '..', '..'))
+RGB_FILE = 'raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv'
+REF_FILE = 'colour-science/colorchecker24_xrite_{}_nov2014_Lab_D50.csv'
+D50 = (96.4212, 100.0, 82.5188)
+
+
+def lab_to_xyz(lab, white=D50):
+    L, a, b = lab
+    fy = (L + 16) / 116
+    fx, fz = fy + a / 500, fy - b / 200
+    inv = lambda t: t ** 3 if t > 6 / 29 else 3 * (6 / 29) ** 2 * (t - 4 / 29)
+    return [white[0] * inv(fx), white[1] * inv(fy), white[2] * inv(fz)]
+
+
+def read_csv(path):
+    with open(path, newline='') as f:
+        return list(csv.DictReader(f))
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('--tristim', default=os.environ.get('TRISTIM_BIN', os.path.join(REPO, 'build/native/core/tristim')))
+    ap.add_argument('--shared', default=os.environ.get('TRISTIM_SHARED_DATA', os.path.join(REPO, '..', 'shared', 'data')))
+    ap.add_argument('--reference', choices=['before', 'after'], default='before',
+                    help="X-Rite CC24 reference edition (the Passport predates Nov 2014: 'before')")
+    ap.add_argument('--json', action='store_true')
+    ap.add_argument('--all', action='store_true', help='every model of the table (slow: minutes under load)')
+    ap.add_argument('--strict', action='store_true', help='fail when Argyll or OpenCV is missing')
+    args = ap.parse_args()
+
+    rgb_rows = read_csv(os.path.join(args.shared, RGB_FILE))
+    ref_rows = {r['patch']: r for r in read_csv(os.path.join(args.shared, REF_FILE.format(args.reference)))}
+    ids = ['ABCD'[i // 6] + str(i % 6 + 1) for i in range(24)]
+    rgb = [[float(r['R']), float(r['G']), float(r['B'])] for r in rgb_rows]
+    lab = [[float(ref_rows[r['patch']][k]) for k in ('L', 'a', 'b')] for r in rgb_rows]
+    xyz = [lab_to_xyz(v) for v in lab]
+
+    out = {'reference': f'X-Rite CC24 {args.reference} Nov 2014, Lab D50', 'patches': 24}
+    failures, skipped = [], []
+    tmp = tempfile.mkdtemp(prefix='tristim_compare_')
+    try:
+        rgb_csv, ref_csv = os.path.join(tmp, 'rgb.csv'), os.path.join(tmp, 'ref.csv')
+        with open(rgb_csv, 'w') as f:
+            f.write('id,R,G,B\n' + ''.join(f'{i},{r[0]!r},{r[1]!r},{r[2]!r}\n' for i, r in zip(ids, rgb)))
+        with open(ref_csv, 'w') as f:
+            f.write('id,L,a,b\n' + ''.join(f'{i},{v[0]!r},{v[1]!r},{v[2]!r}\n' for i, v in zip(ids, lab)))
+
+        # --- tristim: every model x objective.
+        t0 = time.perf_counter()
+        models = [] if args.all else ['--models', 'matrix-3x3,matrix-3x4,Shen2008,Finlayson2015-2,Finlayson2015-3,'
+                                                  'Cheung2004-5,Cheung2004-7']
+        ok = []
+        # Plain fits, and fits that preserve the chart's white patch D1 exactly (the leave-one-out
+        # fold that holds D1 out is fitted without the constraint).
+        for white in ([], ['--white', 'D1']):
+            rows = json.loads(run([args.tristim, 'compare', '--rgb', rgb_csv, '--xyz', ref_csv, '--json'] + models + white).stdout)['rows']
+            for r in rows:
+                if r['ok'] and r['has_loo']:
+                    r['white'] = 'D1' if white else ''
+                    ok.append(r)
+        out['tristim_compare_seconds'] = time.perf_counter() - t0
+        ok.sort(key=lambda r: r['loo_dE00']['mean'])
+        best = ok[0]
+        out['tristim_best'] = {'model': best['model'], 'objective': best['objective'], 'white_preserved': best['white'],
+                               'train_mean_dE00': best['train_dE00']['mean'], 'loo_mean_dE00': best['loo_dE00']['mean']}
+        out['tristim_rows'] = [{'model': r['model'], 'objective': r['objective'], 'white': r['white'],
+                                'train_mean': r['train_dE00']['mean'], 'loo_mean': r['loo_dE00']['mean']} for r in ok]
+        # The CIEDE2000-objective 3x3 (RMS loss, as OpenCV's), timed on the fit alone (best of 10).
+        de_rows = []
+        for _ in range(10):
+            de_rows.append(json.loads(run([args.tristim, 'compare', '--rgb', rgb_csv, '--xyz', ref_csv, '--models',
+                                           'matrix-3x3', '--objectives', 'de2000', '--de-rms', '--json']).stdout)['rows'][0])
+        de = min(de_rows, key=lambda r: r['seconds'])
+        out['tristim_3x3_de2000'] = {'train_rms_dE00': de['train_dE00']['rms'], 'train_mean_dE00': de['train_dE00']['mean'],
+                                     'loo_mean_dE00': de['loo_dE00']['mean'], 'fit_ms': de['seconds'] * 1e3}
+
+        # --- ArgyllCMS: colprof -am / -as on a .ti3 of the same patches, profcheck -k.
+        if shutil.which('colprof') and shutil.which('profcheck'):
+            scale = max(max(r) for r in rgb)
+            ti3 = os.path.join(tmp, 'passport.ti3')
+            with open(ti3, 'w') as f:
+                f.write('CTI3\n\nDESCRIPTOR "tristim Passport patches"\nORIGINATOR "tristim"\n'
+                        'DEVICE_CLASS "INPUT"\nCOLOR_REP "XYZ_RGB"\n\nNUMBER_OF_FIELDS 7\nBEGIN_DATA_FORMAT\n'
+                        'SAMPLE_ID RGB_R RGB_G RGB_B XYZ_X XYZ_Y XYZ_Z\nEND_DATA_FORMAT\n\n'
+                        'NUMBER_OF_SETS 24\nBEGIN_DATA\n')
+                for i, r, x in zip(ids, rgb, xyz):
+                    f.write(f'{i} {100 * r[0] / scale:.6f} {100 * r[1] / scale:.6f} {100 * r[2] / scale:.6f} '
+                            f'{x[0]:.6f} {x[1]:.6f} {x[2]:.6f}\n')
+                f.write('END_DATA\n')
+            for algo in ('m', 's'):
+                icc = os.path.join(tmp, f'passport_a{algo}.icc')
+                t0 = time.perf_counter()
+                run(['colprof', '-q', 'm', f'-a{algo}', '-O', icc, os.path.join(tmp, 'passport')], cwd=tmp)
+                secs = time.perf_counter() - t0
+                chk = run(['profcheck', '-k', ti3, icc], cwd=tmp).stdout
+                # "Profile check complete, errors(CIEDE2000): max. = X, avg. = Y, RMS = Z"
+                line = [l for l in chk.splitlines() if 'avg.' in l][-1]
+                peak = float(line.split('max. =')[1].split(',')[0])
+                avg = float(line.split('avg. =')[1].split(',')[0])
+                rms = float(line.split('RMS =')[1].split(',')[0])
+                out[f'argyll_{algo}'] = {'train_mean_dE00': avg, 'train_max_dE00': peak, 'train_rms_dE00': rms,
+                                         'seconds': secs}
+        else:
+            skipped.append('ArgyllCMS (colprof, profcheck) not installed')
+
+        # --- OpenCV ccm: 3x3, CIEDE2000 loss, identity linearisation.
+        try:
+            import numpy as np
+            import cv2
+        except ImportError:
+            np = cv2 = None
+            skipped.append('python3-opencv / numpy not importable')
+        if cv2 is not None:
+            src = (np.array(rgb, dtype=np.float64) / 65535.0).reshape(24, 1, 3)
+            dst = np.array(lab, dtype=np.float64).reshape(24, 1, 3)
+            times = []
+            for _ in range(5):
+                t0 = time.perf_counter()
+                model = cv2.ccm_ColorCorrectionModel(src, dst, cv2.ccm.COLOR_SPACE_Lab_D50_2)
+                model.setColorSpace(cv2.ccm.COLOR_SPACE_sRGB)
+                model.setCCM_TYPE(cv2.ccm.CCM_3x3)
+                model.setDistance(cv2.ccm.DISTANCE_CIE2000)
+                model.setLinear(cv2.ccm.LINEARIZATION_IDENTITY)
+                model.run()
+                times.append(time.perf_counter() - t0)
+            ccm = np.array(model.getCCM())  # dst_linear_sRGB_row = src_row @ ccm
+            # Effective camera RGB -> XYZ (D50, Y = 100): sRGB (D65) primaries, Bradford D65 -> D50.
+            M = np.array([[0.4124564, 0.3575761, 0.1804375], [0.2126729, 0.7151522, 0.0721750],
+                          [0.0193339, 0.1191920, 0.9503041]])
+            B = np.array([[1.0478112, 0.0228866, -0.0501270], [0.0295424, 0.9904844, -0.0170491],
+                          [-0.0092345, 0.0150436, 0.7521316]])
+            eff = (B @ M @ ccm.T) * (100.0 / 65535.0)
+            prof = {'format': 'tristim-profile', 'version': 1,
+                    'model': {'id': 'matrix-3x3', 'coefficients': eff.tolist()}, 'objective': 'de2000',
+                    'colorimetry': {'white': list(D50)}, 'training': {'patches': 24, 'digest': 'opencv'}}
+            pj = os.path.join(tmp, 'opencv_profile.json')
+            with open(pj, 'w') as f:
+                json.dump(prof, f)
+            ev = json.loads(run([args.tristim, 'evaluate', '--profile', pj, '--rgb', rgb_csv, '--xyz', ref_csv]).stdout)
+            out['opencv_3x3_de2000'] = {'loss': float(model.getLoss()), 'train_rms_dE00_tristim_metric': ev['metrics']['dE00']['rms'],
+                                        'train_mean_dE00_tristim_metric': ev['metrics']['dE00']['mean'],
+                                        'fit_ms': min(times) * 1e3}
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+    # --- claims
+    if 'argyll_m' in out:
+        if not out['tristim_best']['loo_mean_dE00'] < out['argyll_m']['train_mean_dE00']:
+            failures.append('best leave-one-out mean is not below Argyll -am training mean')
+    if 'opencv_3x3_de2000' in out:
+        ocv = out['opencv_3x3_de2000']
+        ours = out['tristim_3x3_de2000']
+        if not ours['train_rms_dE00'] <= ocv['train_rms_dE00_tristim_metric'] + 1e-9:
+            failures.append('3x3 CIEDE2000 RMS above OpenCV')
+        if not ours['fit_ms'] * 10 <= ocv['fit_ms']:
+            failures.append('3x3 CIEDE2000 fit not 10x faster than OpenCV')
+    out['failures'] = failures
+    out['skipped'] = skipped
+
+    if args.json:
+        print(json.dumps(out, indent=2))
+    else:
+        print(f"Passport DNG patches (24), reference: {out['reference']}")
+        print(f"{'method':46s} {'train mean':>10s} {'LOO mean':>9s} {'RMS':>7s} {'fit ms':>8s}")
+        for r in out['tristim_rows'][:8]:
+            label = 'tristim ' + r['model'] + ' (' + r['objective'] + (', white ' + r['white'] if r['white'] else '') + ')'
+            print(f"{label:46s} {r['train_mean']:10.3f} {r['loo_mean']:9.3f}")
+        t = out['tristim_3x3_de2000']
+        print(f"{'tristim matrix-3x3 (de2000, RMS loss)':46s} {t['train_mean_dE00']:10.3f} {t['loo_mean_dE00']:9.3f} "
+              f"{t['train_rms_dE00']:7.3f} {t['fit_ms']:8.2f}")
+        for algo, name in (('m', 'Argyll colprof -am (matrix), profcheck -k'), ('s', 'Argyll colprof -as (shaper+matrix)')):
+            if f'argyll_{algo}' in out:
+                a = out[f'argyll_{algo}']
+                print(f"{name:46s} {a['train_mean_dE00']:10.3f} {'-':>9s} {'-':>7s} {a['seconds'] * 1e3:8.0f}")
+        if 'opencv_3x3_de2000' in out:
+            o = out['opencv_3x3_de2000']
+            print(f"{'OpenCV ccm 3x3 (CIEDE2000 loss), tristim metric':46s} {o['train_mean_dE00_tristim_metric']:10.3f} "
+                  f"{'-':>9s} {o['train_rms_dE00_tristim_metric']:7.3f} {o['fit_ms']:8.2f}   (OpenCV's own loss {o['loss']:.3f})")
+        for s in skipped:
+            print('skipped:', s)
+        print('claims:', 'all hold' if not failures else '; '.join(failures))
+    if failures or (args.strict and skipped):
+        return 1
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
