@@ -316,6 +316,37 @@ RawImage build_image(LibRaw& p, const DecodeOptions& options) {
       }
     const size_t pitch = S.raw_pitch / 2;
     const ushort* raw = R.raw_image;
+    if (L.layout == "bayer" && !pattern_black) {
+      // Fast path: the 2×2 block's positions are fixed (blocks start at even rows and columns).
+      int chan[4];
+      float blk[4], thr[4];
+      for (int k = 0; k < 4; ++k) {
+        chan[k] = L.channel[k];
+        blk[k] = pos_black[k];
+        thr[k] = static_cast<float>(frac * (white - pos_black[k]));
+      }
+      const auto& ic = inv_count[0];
+      for (int y = 0; y < img.height; ++y) {
+        const ushort* l0 = raw + static_cast<size_t>(2 * y + S.top_margin) * pitch + S.left_margin;
+        const ushort* l1 = l0 + pitch;
+        float* out = &img.rgb[static_cast<size_t>(y) * img.width * 3];
+        std::uint8_t* sat = &img.saturated[static_cast<size_t>(y) * img.width];
+        for (int x = 0; x < img.width; ++x) {
+          const float v[4] = {l0[2 * x] - blk[0], l0[2 * x + 1] - blk[1], l1[2 * x] - blk[2],
+                              l1[2 * x + 1] - blk[3]};
+          float acc[3] = {0.f, 0.f, 0.f};
+          std::uint8_t s = 0;
+          for (int k = 0; k < 4; ++k) {
+            acc[chan[k]] += v[k];
+            if (v[k] >= thr[k]) s |= static_cast<std::uint8_t>(1u << chan[k]);
+          }
+          out[3 * x] = acc[0] * ic[0];
+          out[3 * x + 1] = acc[1] * ic[1];
+          out[3 * x + 2] = acc[2] * ic[2];
+          sat[x] = s;
+        }
+      }
+    } else {
     std::vector<float> sum(static_cast<size_t>(img.width) * 3);
     std::vector<std::uint8_t> sat(img.width);
     for (int y = 0; y < img.height; ++y) {
@@ -346,6 +377,7 @@ RawImage build_image(LibRaw& p, const DecodeOptions& options) {
         img.saturated[static_cast<size_t>(y) * img.width + x] = sat[x];
       }
     }
+    }  // generic CFA path
   } else {
     // linear (3 colours per pixel) or monochrome: one sensor pixel per measurement pixel.
     const bool mono = L.layout == "monochrome";
