@@ -7,6 +7,7 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#include <cstdint>
 #include <cstring>
 
 #include "tristim/error.hpp"
@@ -377,22 +378,29 @@ inline void load4(const float* in, __m128& R, __m128& G, __m128& B) {
   G = _mm_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 1, 2, 0));
   B = _mm_shuffle_ps(t0, c, _MM_SHUFFLE(3, 0, 3, 1));
 }
+template <bool kStream>
+inline void put(float* out, __m128 v) {
+  if (kStream) _mm_stream_ps(out, v);  // non-temporal: no read-for-ownership of the output
+  else _mm_storeu_ps(out, v);
+}
+template <bool kStream>
 inline void store4(float* out, __m128 X, __m128 Y, __m128 Z) {
   const __m128 lo = _mm_unpacklo_ps(X, Y), hi = _mm_unpackhi_ps(X, Y);
   const __m128 a = _mm_shuffle_ps(Z, lo, _MM_SHUFFLE(2, 2, 0, 0));
   const __m128 b = _mm_shuffle_ps(lo, Z, _MM_SHUFFLE(1, 1, 3, 3));
   const __m128 c = _mm_shuffle_ps(Z, hi, _MM_SHUFFLE(2, 2, 2, 2));
   const __m128 d = _mm_shuffle_ps(hi, Z, _MM_SHUFFLE(3, 3, 3, 3));
-  _mm_storeu_ps(out, _mm_shuffle_ps(lo, a, _MM_SHUFFLE(2, 0, 1, 0)));
-  _mm_storeu_ps(out + 4, _mm_shuffle_ps(b, hi, _MM_SHUFFLE(1, 0, 2, 0)));
-  _mm_storeu_ps(out + 8, _mm_shuffle_ps(c, d, _MM_SHUFFLE(2, 0, 2, 0)));
+  put<kStream>(out, _mm_shuffle_ps(lo, a, _MM_SHUFFLE(2, 0, 1, 0)));
+  put<kStream>(out + 4, _mm_shuffle_ps(b, hi, _MM_SHUFFLE(1, 0, 2, 0)));
+  put<kStream>(out + 8, _mm_shuffle_ps(c, d, _MM_SHUFFLE(2, 0, 2, 0)));
 }
 inline __m128 signed_sqrt4(__m128 p) {
   const __m128 sign = _mm_set1_ps(-0.0f);
   return _mm_or_ps(_mm_sqrt_ps(_mm_andnot_ps(sign, p)), _mm_and_ps(sign, p));
 }
 
-size_t sse_affine(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][4]) {
+template <bool kStream>
+size_t sse_affine_t(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][4]) {
   __m128 k[3][4];
   for (int c = 0; c < 3; ++c)
     for (int j = 0; j < 4; ++j) k[c][j] = _mm_set1_ps(a[c][j]);
@@ -404,12 +412,14 @@ size_t sse_affine(const float* __restrict in, size_t n, float* __restrict out, c
     for (int c = 0; c < 3; ++c)
       o[c] = _mm_add_ps(_mm_add_ps(_mm_mul_ps(k[c][0], R), _mm_mul_ps(k[c][1], G)),
                         _mm_add_ps(_mm_mul_ps(k[c][2], B), k[c][3]));
-    store4(out + 3 * i, o[0], o[1], o[2]);
+    store4<kStream>(out + 3 * i, o[0], o[1], o[2]);
   }
+  if (kStream) _mm_sfence();
   return m;
 }
 
-size_t sse_root2(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][6]) {
+template <bool kStream>
+size_t sse_root2_t(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][6]) {
   __m128 k[3][6];
   for (int c = 0; c < 3; ++c)
     for (int j = 0; j < 6; ++j) k[c][j] = _mm_set1_ps(a[c][j]);
@@ -424,9 +434,20 @@ size_t sse_root2(const float* __restrict in, size_t n, float* __restrict out, co
       o[c] = _mm_add_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(k[c][0], R), _mm_mul_ps(k[c][1], G)),
                                    _mm_add_ps(_mm_mul_ps(k[c][2], B), _mm_mul_ps(k[c][3], P))),
                         _mm_add_ps(_mm_mul_ps(k[c][4], Q), _mm_mul_ps(k[c][5], S)));
-    store4(out + 3 * i, o[0], o[1], o[2]);
+    store4<kStream>(out + 3 * i, o[0], o[1], o[2]);
   }
+  if (kStream) _mm_sfence();
   return m;
+}
+// Streaming stores for images larger than the caches (and a 16-byte aligned output).
+inline bool use_stream(const float* out, size_t n) {
+  return n >= (size_t(1) << 20) && reinterpret_cast<uintptr_t>(out) % 16 == 0;
+}
+size_t sse_affine(const float* in, size_t n, float* out, const float (&a)[3][4]) {
+  return use_stream(out, n) ? sse_affine_t<true>(in, n, out, a) : sse_affine_t<false>(in, n, out, a);
+}
+size_t sse_root2(const float* in, size_t n, float* out, const float (&a)[3][6]) {
+  return use_stream(out, n) ? sse_root2_t<true>(in, n, out, a) : sse_root2_t<false>(in, n, out, a);
 }
 #endif
 
