@@ -1,0 +1,142 @@
+// CLI: `tristim inspect <raw>` and `tristim sample <raw> --chart ... --corners ...`.
+#include <array>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <sstream>
+
+#include "cli.hpp"
+#include "tristim/calibration.hpp"
+#include "tristim/chart_layout.hpp"
+#include "tristim/error.hpp"
+#include "tristim/raw.hpp"
+
+namespace tristim::cli {
+namespace {
+
+RawImage load_raw(const std::string& path) {
+  const std::string bytes = read_file(path);
+  try {
+    return decode_raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+  } catch (const Error& e) {
+    throw Error(e.code(), "'" + path + "': " + e.what());
+  }
+}
+
+std::vector<double> numbers(const std::string& text, const std::string& option) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    const double d = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0')
+      throw Error(ErrorCode::InvalidArgument, "--" + option + " expects comma-separated numbers, got '" + text + "'");
+    v.push_back(d);
+  }
+  return v;
+}
+
+int run_inspect(const Args& args, std::ostream& out) {
+  args.allow_only({});
+  if (args.positional.size() != 1)
+    throw Error(ErrorCode::InvalidArgument, "inspect takes exactly one RAW file");
+  const RawImage img = load_raw(args.positional[0]);
+  std::string json = metadata_to_json(img.meta);
+  json.pop_back();  // add the hash of the linear data to the object
+  out << json << ",\"linear_hash\":\"" << hash_hex(linear_data_hash(img)) << "\"}\n";
+  return 0;
+}
+
+int run_sample(const Args& args, std::ostream& out) {
+  args.allow_only({"chart", "corners", "dark", "dark-mode", "flat", "flat-mode", "white-reflectance",
+                   "area", "rows", "columns", "margins"});
+  if (args.positional.size() != 1)
+    throw Error(ErrorCode::InvalidArgument, "sample takes exactly one RAW file");
+  LayoutOptions layout;
+  layout.chart = args.get("chart");
+  layout.rows = static_cast<int>(args.get_double("rows", 0));
+  layout.columns = static_cast<int>(args.get_double("columns", 0));
+  if (args.has("margins")) {
+    const auto m = numbers(args.get("margins"), "margins");
+    if (m.size() != 4) throw Error(ErrorCode::InvalidArgument, "--margins needs 4 numbers: left,top,right,bottom");
+    layout.margin_left = m[0];
+    layout.margin_top = m[1];
+    layout.margin_right = m[2];
+    layout.margin_bottom = m[3];
+  }
+  const auto c = numbers(args.get("corners"), "corners");
+  if (c.size() != 8) throw Error(ErrorCode::InvalidArgument, "--corners needs 8 numbers: x1,y1,...,x4,y4");
+  std::array<double, 8> corners;
+  std::copy(c.begin(), c.end(), corners.begin());
+  SampleOptions options;
+  options.area = args.get_double("area", 0.5);
+
+  const RawImage image = load_raw(args.positional[0]);
+  FrameCalibration cal;
+  const std::string dark_mode = args.get("dark-mode", "pixel");
+  if (dark_mode != "pixel" && dark_mode != "channel")
+    throw Error(ErrorCode::InvalidArgument, "--dark-mode is 'pixel' or 'channel'");
+  cal.dark_mode = dark_mode == "pixel" ? DarkMode::PerPixel : DarkMode::PerChannel;
+  if (args.has("dark")) {
+    std::vector<RawImage> darks;
+    for (const auto& f : args.all("dark")) darks.push_back(load_raw(f));
+    std::vector<const RawImage*> ptrs;
+    for (const auto& d : darks) ptrs.push_back(&d);
+    cal.dark = average_dark_frames(ptrs);
+  }
+  if (args.has("flat")) {
+    const RawImage flat = load_raw(args.get("flat"));
+    const std::string mode = args.get("flat-mode", "pixel");
+    if (mode == "pixel") {
+      std::optional<std::array<double, 3>> refl;
+      if (args.has("white-reflectance")) {
+        const auto r = numbers(args.get("white-reflectance"), "white-reflectance");
+        if (r.size() == 1) refl = std::array<double, 3>{r[0], r[0], r[0]};
+        else if (r.size() == 3) refl = std::array<double, 3>{r[0], r[1], r[2]};
+        else throw Error(ErrorCode::InvalidArgument, "--white-reflectance takes 1 or 3 numbers");
+      }
+      cal.flat = make_flat_field(flat, cal.dark ? &*cal.dark : nullptr, cal.dark_mode, refl);
+    } else if (mode == "radial") {
+      cal.falloff = fit_falloff_Guarnera2018(flat, cal.dark ? &*cal.dark : nullptr);
+      std::cerr << "fall-off fit (Guarnera 2018 eq 7): p1=" << cal.falloff->p1 << " p2=" << cal.falloff->p2
+                << " p3=" << cal.falloff->p3 << " rms_residual=" << cal.falloff->rms_residual << "\n";
+    } else {
+      throw Error(ErrorCode::InvalidArgument, "--flat-mode is 'pixel' or 'radial'");
+    }
+  }
+  const ChartSample s = sample_chart(image, layout, corners, options, &cal);
+  out << chart_sample_to_csv(s);
+  return 0;
+}
+
+const CommandRegistration inspect_cmd{Command{
+    "inspect", "RAW file metadata as JSON (LibRaw)",
+    "usage: tristim inspect <raw>\n"
+    "Prints one JSON object: make, model, lens, iso, shutter_s, f_number, timestamp, layout, cfa_pattern,\n"
+    "black and white levels, LibRaw's camera matrices (preview only), the measurement image size\n"
+    "(width, height: half resolution for Bayer sensors) and linear_hash (FNV-1a of the linear data).",
+    run_inspect}};
+
+const CommandRegistration sample_cmd{Command{
+    "sample", "per-patch linear camera RGB of a chart in a RAW file (CSV)",
+    "usage: tristim sample <raw> --chart <id> --corners x1,y1,x2,y2,x3,y3,x4,y4\n"
+    "                      [--dark f ...] [--dark-mode pixel|channel]\n"
+    "                      [--flat f] [--flat-mode pixel|radial] [--white-reflectance r | r,g,b]\n"
+    "                      [--area 0.5] [--rows N --columns M --margins l,t,r,b]\n"
+    "--chart: cc24, cc24-2005, passport, sg140, sg140-2005 or custom (with --rows/--columns,\n"
+    "  optional --margins as fractions of the chart width/height).\n"
+    "--corners: the four outer corners of the patch grid, clockwise from the top-left (the\n"
+    "  corner at patch A1), in HALF-RESOLUTION image coordinates for Bayer sensors (the\n"
+    "  measurement image of `tristim inspect`: width x height; pixel (x, y) covers [x, x+1)).\n"
+    "--dark: dark frames (repeat the option), averaged, subtracted per pixel or per channel.\n"
+    "--flat: flat-field frame: per-pixel gains (Abed 2013 App. C) or a radial fall-off fit\n"
+    "  (Guarnera 2018 eq 7; coefficients printed on stderr).\n"
+    "--area: sampled fraction of each patch's width and height (default 0.5: the central quarter).\n"
+    "Output CSV: patch,R,G,B,R_std,G_std,B_std,n,flags — linear, black-subtracted DN (no white\n"
+    "balance, no matrix); flags: saturated;dark;nonuniform.",
+    run_sample}};
+
+}  // namespace
+}  // namespace tristim::cli

@@ -1,0 +1,166 @@
+// RAW pipeline through the wasm module: real files (same linear data as the native build), the
+// JS shapes of decodeRaw / RawImage / sampleChart, calibration, and every bad input's code.
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { loadTristim, readShared, throwsCode, repoRoot } from './load.mjs';
+
+const PASSPORT = 'raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng';
+const CR2 = 'raw-images/debian-rawtran-doc/IMG_5952_canon_eos_30d.CR2';
+const KDC = 'raw-images/rawpy/RAW_KODAK_DC50.KDC';
+// FNV-1a hashes of the linear data recorded from the native build (tests/core/raw_test.cpp has
+// the same numbers; when build/native exists the CLI is asked as well).
+const FILES = [
+  { file: PASSPORT, width: 867, height: 578, cfa: 'RGGB', hash: '7509a785b9c2f349' },
+  { file: CR2, width: 1761, height: 1174, cfa: 'RGGB', hash: '2db01d705f5a94f5' },
+  { file: KDC, width: 384, height: 256, cfa: 'GRBG', hash: 'ede561aaf256d76e' },
+];
+const nativeCli = path.join(repoRoot, 'build/native/core/tristim');
+const passportJson = JSON.parse(fs.readFileSync(path.join(repoRoot, 'examples/web/passport.json'), 'utf8'));
+
+function withRaw(T, bytes, fn) {
+  const raw = T.decodeRaw(bytes);
+  try { return fn(raw); } finally { raw.delete(); }
+}
+
+test('the three real RAW files decode with the native build\'s linear data', async () => {
+  const T = await loadTristim();
+  for (const c of FILES) {
+    withRaw(T, readShared(c.file), (raw) => {
+      assert.equal(raw.width(), c.width, c.file);
+      assert.equal(raw.height(), c.height, c.file);
+      const m = raw.metadata();
+      assert.equal(m.cfa_pattern, c.cfa);
+      assert.equal(m.width, c.width);
+      assert.equal(raw.linearHash(), c.hash, `${c.file}: wasm linear data differ from native`);
+      if (fs.existsSync(nativeCli)) {
+        const native = JSON.parse(execFileSync(nativeCli, ['inspect', path.join(process.env.TRISTIM_SHARED_DATA || path.resolve(repoRoot, '../shared/data'), c.file)]).toString());
+        assert.equal(native.linear_hash, raw.linearHash(), `${c.file}: native CLI vs wasm`);
+        assert.equal(native.white_level, m.white_level);
+        assert.deepEqual(native.black_level, m.black_level);
+      }
+      const rgb = raw.linearRGB();
+      assert.ok(rgb instanceof Float32Array);
+      assert.equal(rgb.length, c.width * c.height * 3);
+      const mask = raw.saturationMask();
+      assert.ok(mask instanceof Uint8Array);
+      assert.equal(mask.length, c.width * c.height);
+    });
+  }
+});
+
+test('metadata is a plain object with exposure, levels and matrices', async () => {
+  const T = await loadTristim();
+  withRaw(T, readShared(CR2), (raw) => {
+    const m = raw.metadata();
+    assert.equal(m.make, 'Canon');
+    assert.equal(m.model, 'EOS 30D');
+    assert.equal(m.iso, 640);
+    assert.equal(m.f_number, 22);
+    assert.equal(m.timestamp_iso, '2009-07-21T13:03:20');
+    assert.equal(m.layout, 'bayer');
+    assert.equal(m.rgb_cam.length, 9);
+    assert.equal(m.black_level.length, 3);
+  });
+});
+
+test('preview: RGBA bytes at most maxSide wide, scale maps back to the measurement image', async () => {
+  const T = await loadTristim();
+  withRaw(T, readShared(PASSPORT), (raw) => {
+    const pv = raw.preview(400);
+    assert.equal(pv.scale, 3);
+    assert.ok(pv.width <= 400 && pv.height <= 400);
+    assert.ok(pv.rgba instanceof Uint8Array);
+    assert.equal(pv.rgba.length, pv.width * pv.height * 4);
+    assert.equal(pv.rgba[3], 255);
+  });
+});
+
+test('sampleChart on the example Passport: 24 patches with ids A1..D6 and typed arrays', async () => {
+  const T = await loadTristim();
+  assert.ok(T.listChartLayouts().includes('passport'));
+  withRaw(T, readShared(PASSPORT), (raw) => {
+    const s = T.sampleChart(raw, { chart: passportJson.chart }, new Float64Array(passportJson.corners), { area: 0.5 });
+    assert.equal(s.ids.length, 24);
+    assert.equal(s.ids[0], 'A1');
+    assert.equal(s.ids[23], 'D6');
+    for (const k of ['RGB', 'std', 'saturatedFraction']) {
+      assert.ok(s[k] instanceof Float64Array, k);
+      assert.equal(s[k].length, 72, k);
+    }
+    assert.ok(s.n instanceof Int32Array);
+    assert.equal(s.flags.length, 24);
+    assert.ok(Array.isArray(s.flags[0]));
+    assert.equal(s.patchQuads.length, 24 * 8);
+    assert.equal(s.homography.length, 9);
+    // D1 (white) is the brightest neutral; 3-argument form works too.
+    const s3 = T.sampleChart(raw, { chart: 'passport' }, passportJson.corners);
+    assert.deepEqual(Array.from(s3.RGB), Array.from(s.RGB));
+    const G = (id) => s.RGB[3 * s.ids.indexOf(id) + 1];
+    assert.ok(G('D1') > G('D2') && G('D2') > G('D3') && G('D3') > G('D6'));
+  });
+});
+
+test('a dark frame and a flat field change what sampleChart reports; mismatches are coded', async () => {
+  const T = await loadTristim();
+  const img = T.decodeRaw(readShared(PASSPORT));
+  const same = T.decodeRaw(readShared(PASSPORT));
+  const other = T.decodeRaw(readShared(KDC));
+  try {
+    const before = T.sampleChart(img, { chart: 'passport' }, passportJson.corners);
+    const d = img.setDark([same], { mode: 'channel' });
+    assert.equal(d.frames, 1);
+    assert.equal(d.mean.length, 3);
+    const after = T.sampleChart(img, { chart: 'passport' }, passportJson.corners);
+    assert.ok(Math.abs(after.RGB[1] - (before.RGB[1] - d.mean[1])) < 1e-3, `${after.RGB[1]} vs ${before.RGB[1] - d.mean[1]}`);
+    img.clearDark();
+    const r = img.setFlat(same, { mode: 'radial' });
+    assert.equal(r.p3, 1);
+    assert.ok(Number.isFinite(r.rmsResidual));
+    img.clearFlat();
+    throwsCode(assert, () => img.setDark(other), 'FRAME_MISMATCH');
+    throwsCode(assert, () => img.setFlat(other), 'FRAME_MISMATCH');
+    const back = T.sampleChart(img, { chart: 'passport' }, passportJson.corners);
+    assert.deepEqual(Array.from(back.RGB), Array.from(before.RGB));
+  } finally {
+    img.delete(); same.delete(); other.delete();
+  }
+});
+
+test('bad RAW input: every case has its code and the module stays usable', async () => {
+  const T = await loadTristim();
+  throwsCode(assert, () => T.decodeRaw(new Uint8Array(0)), 'EMPTY_FILE');
+  throwsCode(assert, () => T.decodeRaw(readShared(PASSPORT).slice(0, 1 << 20)), 'RAW_TRUNCATED');
+  throwsCode(assert, () => T.decodeRaw(readShared('raw-images/tinydng/colorchart_preview_dcraw_emu_srgb.jpg')), 'RAW_UNSUPPORTED');
+  const png = Uint8Array.from([137, 80, 78, 71, 13, 10, 26, 10, 0, 0, 0, 13, 73, 72, 68, 82, 0, 0, 0, 1, 0, 0, 0, 1, 8, 2, 0, 0, 0,
+    144, 119, 83, 222, 0, 0, 0, 12, 73, 68, 65, 84, 120, 156, 99, 248, 207, 192, 0, 0, 3, 1, 1, 0, 201, 254, 146, 239, 0,
+    0, 0, 0, 73, 69, 78, 68, 174, 66, 96, 130]);
+  throwsCode(assert, () => T.decodeRaw(png), 'RAW_UNSUPPORTED');
+  let seed = 42;
+  const random = new Uint8Array(1000003).map(() => { seed = (seed * 1103515245 + 12345) >>> 0; return seed >>> 24; });
+  throwsCode(assert, () => T.decodeRaw(random), 'RAW_UNSUPPORTED');
+  // A DNG header claiming 60000 x 60000 pixels: patch the Passport's width/height tags.
+  const absurd = readShared(PASSPORT).slice(0, 1 << 16);
+  const dv = new DataView(absurd.buffer);
+  const ifd = dv.getUint32(4, true);
+  const count = dv.getUint16(ifd, true);
+  for (let i = 0; i < count; i++) {
+    const e = ifd + 2 + 12 * i, tag = dv.getUint16(e, true), type = dv.getUint16(e + 2, true);
+    if (tag === 256 || tag === 257) {
+      if (type === 3) dv.setUint16(e + 8, 60000, true); else dv.setUint32(e + 8, 60000, true);
+    }
+  }
+  assert.throws(() => T.decodeRaw(absurd), (e) => ['RAW_TOO_LARGE', 'RAW_CORRUPT', 'RAW_TRUNCATED'].includes(e.code));
+  withRaw(T, readShared(PASSPORT), (raw) => {
+    const L = { chart: 'passport' };
+    throwsCode(assert, () => T.sampleChart(raw, L, [335, 291, 9649, 285, 649, 486, 328, 488]), 'CORNERS_OUTSIDE');
+    throwsCode(assert, () => T.sampleChart(raw, L, [335, 291, 649, 285, 328, 488, 649, 486]), 'CORNERS_CROSSED');
+    throwsCode(assert, () => T.sampleChart(raw, L, [10, 10, 20, 10, 20, 17, 10, 17]), 'PATCH_TOO_SMALL');
+    throwsCode(assert, () => T.sampleChart(raw, { chart: 'nope' }, passportJson.corners), 'UNKNOWN_ID');
+    throwsCode(assert, () => T.sampleChart(raw, L, [1, 2, 3]), 'INVALID_ARGUMENT');
+    throwsCode(assert, () => raw.setFlat(raw, { mode: 'pixel' }), 'FLAT_FIELD_ZERO');
+    assert.equal(T.sampleChart(raw, L, passportJson.corners).ids.length, 24);  // still usable
+  });
+});
