@@ -322,12 +322,16 @@ TextTable parse_delimited(std::string_view text, std::string_view source) {
   const char delim = (tabs > commas && tabs > semis) ? '\t' : (semis > commas ? ';' : ',');
   t.header = split_delimited(head, delim);
   t.header_line = static_cast<int>(i) + 1;
+  // A trailing delimiter on every line (spreadsheet exports) is an empty last column: dropped.
+  const bool trailing = t.header.size() > 1 && t.header.back().empty();
+  if (trailing) t.header.pop_back();
   for (size_t k = 0; k < t.header.size(); ++k)
-    if (t.header[k].empty() && t.header.size() > 1 && k + 1 == t.header.size())
-      throw Error(ErrorCode::ParseError, where(source, t.header_line) + ": empty column name (trailing delimiter?)");
+    if (t.header[k].empty() && t.header.size() > 1)
+      throw Error(ErrorCode::ParseError, where(source, t.header_line) + ": column " + std::to_string(k + 1) + " has no name");
   for (++i; i < lines.size(); ++i) {
     if (is_blank(lines[i]) || trim(lines[i])[0] == '#') continue;
     auto cells = split_delimited(lines[i], delim);
+    if (trailing && cells.size() == t.header.size() + 1 && cells.back().empty()) cells.pop_back();
     if (cells.size() != t.header.size())
       throw Error(ErrorCode::RowLength, where(source, static_cast<int>(i) + 1) + ": " + std::to_string(cells.size()) +
                                             " values, the header has " + std::to_string(t.header.size()));

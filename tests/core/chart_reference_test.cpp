@@ -73,7 +73,7 @@ TEST_CASE("the white under its own illuminant: Lab (100, 0, 0) and sRGB white", 
   }
 }
 
-TEST_CASE("a Lab or XYZ table is used as given; spectra are integrated", "[chart][reference]") {
+TEST_CASE("a Lab or XYZ table is used as given and spectra are integrated", "[chart][reference]") {
   const SpectralData D50 = illuminant_spd("D50");
   const PatchTable lab = read_patch_file("patch,L,a,b\nA01,50,10,-10\n", "lab.csv");
   const ReferenceChart r = reference_from_table(lab, D50, Observer::CIE1931_2);

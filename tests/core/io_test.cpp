@@ -47,6 +47,9 @@ TEST_CASE("per-patch CSV: XYZ, Lab, RGB columns, case-insensitive, index column"
   CHECK(rgb.has_RGB);
   CHECK_FALSE(rgb.has_Lab);
   CHECK(rgb.RGB[0] == Vec3(1, 2, 3));
+  // Trailing delimiters on every line (spreadsheet export).
+  const PatchTable tr = read_patch_file("patch,X,Y,Z,\nA1,1,2,3,\n", "t.csv");
+  CHECK(tr.XYZ[0] == Vec3(1, 2, 3));
   // Decimal commas in a ';'-separated file.
   const PatchTable eu = read_patch_file("patch;L;a;b\nA1;50,5;-2,25;3\n", "eu.csv");
   CHECK(eu.Lab[0] == Vec3(50.5, -2.25, 3));
@@ -178,5 +181,6 @@ TEST_CASE("every malformed input gives its error code and line", "[io][errors]")
     }, ErrorCode::ParseError, 5);
     expect_error([] { read_patch_file("CTI3\nBEGIN_DATA\nA1 1 2 3\nEND_DATA\n", "a.ti3"); }, ErrorCode::ParseError, 2);
     expect_error([] { read_patch_file("CTI3\nDESCRIPTOR \"x\"\n", "a.ti3"); }, ErrorCode::ParseError);
+    expect_error([] { read_patch_file("patch,,Y,Z\nA1,1,2,3\n", "a.csv"); }, ErrorCode::ParseError, 1);
   }
 }

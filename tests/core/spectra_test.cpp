@@ -63,7 +63,7 @@ TEST_CASE("Sprague interpolation is exact for a quartic and passes through the s
   for (size_t i = 0; i < w.size(); ++i) CHECK(got[static_cast<size_t>((w[i] - 380))] == v[i]);
 }
 
-TEST_CASE("non-uniform data are interpolated linearly; extrapolation holds the end values", "[spectra]") {
+TEST_CASE("non-uniform data are interpolated linearly and extrapolation holds the end values", "[spectra]") {
   const std::vector<double> w = {400, 410, 430, 460};
   const std::vector<double> v = {1, 2, 4, 1};
   const auto got = interpolate_spectrum(w, v, {350, 400, 405, 420, 445, 460, 800});
