@@ -439,6 +439,42 @@ size_t sse_root2_t(const float* __restrict in, size_t n, float* __restrict out, 
   if (kStream) _mm_sfence();
   return m;
 }
+#endif
+
+#if !defined(__SSE2__)
+// Without SSE (wasm): one fused pass over the interleaved buffers, no block copies.
+inline float signed_sqrt1(float p) {
+  const float r = std::sqrt(p < 0.f ? -p : p);
+  return p < 0.f ? -r : r;
+}
+size_t scalar_affine(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][4]) {
+  const float a00 = a[0][0], a01 = a[0][1], a02 = a[0][2], a03 = a[0][3];
+  const float a10 = a[1][0], a11 = a[1][1], a12 = a[1][2], a13 = a[1][3];
+  const float a20 = a[2][0], a21 = a[2][1], a22 = a[2][2], a23 = a[2][3];
+  for (size_t i = 0; i < n; ++i) {
+    const float R = in[3 * i], G = in[3 * i + 1], B = in[3 * i + 2];
+    out[3 * i] = a00 * R + a01 * G + a02 * B + a03;
+    out[3 * i + 1] = a10 * R + a11 * G + a12 * B + a13;
+    out[3 * i + 2] = a20 * R + a21 * G + a22 * B + a23;
+  }
+  return n;
+}
+size_t scalar_root2(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][6]) {
+  const float a00 = a[0][0], a01 = a[0][1], a02 = a[0][2], a03 = a[0][3], a04 = a[0][4], a05 = a[0][5];
+  const float a10 = a[1][0], a11 = a[1][1], a12 = a[1][2], a13 = a[1][3], a14 = a[1][4], a15 = a[1][5];
+  const float a20 = a[2][0], a21 = a[2][1], a22 = a[2][2], a23 = a[2][3], a24 = a[2][4], a25 = a[2][5];
+  for (size_t i = 0; i < n; ++i) {
+    const float R = in[3 * i], G = in[3 * i + 1], B = in[3 * i + 2];
+    const float P = signed_sqrt1(R * G), Q = signed_sqrt1(R * B), S = signed_sqrt1(G * B);
+    out[3 * i] = a00 * R + a01 * G + a02 * B + a03 * P + a04 * Q + a05 * S;
+    out[3 * i + 1] = a10 * R + a11 * G + a12 * B + a13 * P + a14 * Q + a15 * S;
+    out[3 * i + 2] = a20 * R + a21 * G + a22 * B + a23 * P + a24 * Q + a25 * S;
+  }
+  return n;
+}
+#endif
+
+#if defined(__SSE2__)
 // Streaming stores for images larger than the caches (and a 16-byte aligned output).
 inline bool use_stream(const float* out, size_t n) {
   return n >= (size_t(1) << 20) && reinterpret_cast<uintptr_t>(out) % 16 == 0;
@@ -478,7 +514,7 @@ void apply_to_image(const Model& model, const float* rgb, size_t n_pixels, float
 #if defined(__SSE2__)
     const size_t done = sse_affine(rgb, n_pixels, xyz, a);
 #else
-    const size_t done = 0;
+    const size_t done = scalar_affine(rgb, n_pixels, xyz, a);
 #endif
     image_blocks(rgb + 3 * done, n_pixels - done, xyz + 3 * done,
                  [&a](const float* r, const float* g, const float* b, float* x, float* y, float* z, size_t m) {
@@ -499,7 +535,7 @@ void apply_to_image(const Model& model, const float* rgb, size_t n_pixels, float
 #if defined(__SSE2__)
     const size_t done = sse_root2(rgb, n_pixels, xyz, a);
 #else
-    const size_t done = 0;
+    const size_t done = scalar_root2(rgb, n_pixels, xyz, a);
 #endif
     image_blocks(rgb + 3 * done, n_pixels - done, xyz + 3 * done,
                  [&a](const float* r, const float* g, const float* b, float* x, float* y, float* z, size_t m) {
