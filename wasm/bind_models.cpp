@@ -291,6 +291,31 @@ val apply_profile_to_image(std::string profile_json, val rgb, int width, int hei
   });
 }
 
+/// applyProfile(profileJson, raw: RawImage from decodeRaw) -> {width, height, XYZ: Float32Array
+/// (3·width·height)}: the profile applied to the RAW's linear camera RGB, with the dark/flat
+/// calibration set on it (via raw.linearRGB(), so the data cross the boundary once more than
+/// needed; the RawImage handle type is private to bind_raw.cpp).
+val apply_profile_raw(std::string profile_json, val raw) {
+  return guard([&] {
+    const Profile prof = profile_from_json(profile_json);
+    if (raw.isUndefined() || raw.isNull() || raw["linearRGB"].isUndefined())
+      throw Error(ErrorCode::InvalidArgument, "applyProfile needs a RawImage from decodeRaw");
+    const int width = raw.call<int>("width"), height = raw.call<int>("height");
+    const val rgb = raw.call<val>("linearRGB");
+    const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height) * 3;
+    if (rgb["length"].as<size_t>() != n) throw Error(ErrorCode::Internal, "RawImage size mismatch");
+    std::vector<float> in(n);
+    val(typed_memory_view(n, in.data())).call<void>("set", rgb);
+    std::vector<float> out(n);
+    apply_to_image(prof.model, in.data(), n / 3, out.data());
+    val res = val::object();
+    res.set("width", width);
+    res.set("height", height);
+    res.set("XYZ", tristim::wasm::float32_array(out.data(), n));
+    return res;
+  });
+}
+
 /// exportIcc(profileJson, options?) with options {rgbScale, gridPoints (33), version (4.3|2.4),
 /// description} -> Uint8Array (ICC input profile: matrix/shaper for 3×3 models, AToB0 LUT else).
 val export_icc_js(std::string profile_json, val options) {
@@ -332,6 +357,7 @@ EMSCRIPTEN_BINDINGS(tristim_models) {
   function("evaluateProfile", &evaluate_profile);
   function("compareModels", &compare_models_js);
   function("applyProfileToImage", &apply_profile_to_image);
+  function("applyProfile", &apply_profile_raw);
   function("exportIcc", &export_icc_js);
   function("exportIcc", &export_icc_1);
   function("exportCube", &export_cube_js);

@@ -11,156 +11,34 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "tristim/chart.hpp"
 #include "tristim/error.hpp"
 #include "tristim/evaluation.hpp"
 #include "tristim/export.hpp"
+#include "tristim/io.hpp"
 #include "tristim/json.hpp"
 #include "tristim/models.hpp"
 #include "tristim/profile.hpp"
+#include "tristim/raw.hpp"
 
 namespace tristim::cli {
 namespace {
 
 // ---- patch tables -----------------------------------------------------------------------
-// A minimal reader for per-patch CSV tables (header row; an id column "id"/"patch"/
-// "SAMPLE_ID"/"SAMPLE_LOC"/"name", else the row number; R,G,B or X,Y,Z or L,a,b columns).
-// Stop-gap until the shared readers (tristim/io.hpp) land on main; not a general reader.
-
-struct Table {
-  std::vector<std::string> ids;
-  PatchMatrix values;
-  bool lab = false;
-};
-
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cur;
-  bool q = false;
-  for (size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (q) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        cur += '"';
-        ++i;
-      } else if (c == '"') {
-        q = false;
-      } else {
-        cur += c;
-      }
-    } else if (c == '"') {
-      q = true;
-    } else if (c == ',' || c == ';' || c == '\t') {
-      out.push_back(cur);
-      cur.clear();
-    } else if (c != '\r') {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  for (auto& s : out) {
-    const auto b = s.find_first_not_of(' '), e = s.find_last_not_of(' ');
-    s = b == std::string::npos ? "" : s.substr(b, e - b + 1);
-  }
-  return out;
-}
-
-std::string lower(std::string s) {
-  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-std::string normalise_id(const std::string& id) {
-  // "A01" -> "A1" (team convention).
-  if (id.size() >= 2 && std::isalpha(static_cast<unsigned char>(id[0]))) {
-    size_t k = 1;
-    while (k + 1 < id.size() && id[k] == '0') ++k;
-    bool digits = true;
-    for (size_t j = k; j < id.size(); ++j) digits = digits && std::isdigit(static_cast<unsigned char>(id[j]));
-    if (digits && k > 1) return id.substr(0, 1) + id.substr(k);
-  }
-  return id;
-}
-
-Table read_table(const std::string& path, const char* kind /* "rgb" | "xyz" */) {
-  const std::string text = read_file(path);
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  std::vector<std::string> header;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
-    header = split_csv_line(line);
-    break;
-  }
-  if (header.empty()) throw Error(ErrorCode::EmptyFile, path + ": no header row");
-  auto find = [&](std::initializer_list<const char*> names) -> int {
-    for (const char* n : names)
-      for (size_t i = 0; i < header.size(); ++i)
-        if (lower(header[i]) == lower(n)) return static_cast<int>(i);
-    return -1;
-  };
-  int id_col = find({"id", "patch", "SAMPLE_ID", "SAMPLE_LOC", "name", "SAMPLE_NAME"});
-  int cols[3];
-  Table t;
-  if (std::string(kind) == "rgb") {
-    cols[0] = find({"R", "RGB_R", "camera_R"});
-    cols[1] = find({"G", "RGB_G", "camera_G"});
-    cols[2] = find({"B", "RGB_B", "camera_B"});
-    if (cols[0] < 0 || cols[1] < 0 || cols[2] < 0)
-      throw Error(ErrorCode::MissingColumn, path + " line " + std::to_string(line_no) + ": needs columns R, G, B");
-  } else {
-    cols[0] = find({"X", "XYZ_X"});
-    cols[1] = find({"Y", "XYZ_Y"});
-    cols[2] = find({"Z", "XYZ_Z"});
-    if (cols[0] < 0 || cols[1] < 0 || cols[2] < 0) {
-      cols[0] = find({"L", "LAB_L", "L*"});
-      cols[1] = find({"a", "LAB_A", "a*"});
-      cols[2] = find({"b", "LAB_B", "b*"});
-      t.lab = true;
-      if (cols[0] < 0 || cols[1] < 0 || cols[2] < 0)
-        throw Error(ErrorCode::MissingColumn,
-                    path + " line " + std::to_string(line_no) + ": needs columns X, Y, Z or L, a, b");
-    }
-  }
-  std::vector<std::array<double, 3>> rows;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
-    const auto cells = split_csv_line(line);
-    std::array<double, 3> v{};
-    for (int c = 0; c < 3; ++c) {
-      if (cols[c] >= static_cast<int>(cells.size()))
-        throw Error(ErrorCode::RowLength, path + " line " + std::to_string(line_no) + ": too few cells");
-      const std::string& s = cells[cols[c]];
-      char* end = nullptr;
-      v[c] = std::strtod(s.c_str(), &end);
-      if (s.empty() || *end != '\0')
-        throw Error(ErrorCode::NonNumeric, path + " line " + std::to_string(line_no) + ": '" + s + "' is not a number");
-      if (!std::isfinite(v[c]))
-        throw Error(ErrorCode::NonFinite, path + " line " + std::to_string(line_no) + ": non-finite value");
-    }
-    rows.push_back(v);
-    std::string id = id_col >= 0 && id_col < static_cast<int>(cells.size()) ? normalise_id(cells[id_col])
-                                                                             : std::to_string(rows.size());
-    for (const auto& other : t.ids)
-      if (other == id)
-        throw Error(ErrorCode::DuplicateId, path + " line " + std::to_string(line_no) + ": duplicate patch id '" + id + "'");
-    t.ids.push_back(id);
-  }
-  if (rows.empty()) throw Error(ErrorCode::EmptyFile, path + ": no data rows");
-  t.values.resize(rows.size(), 3);
-  for (size_t i = 0; i < rows.size(); ++i)
-    for (int c = 0; c < 3; ++c) t.values(i, c) = rows[i][c];
-  return t;
-}
+// Read with the shared readers (tristim/io.hpp: CSV or CGATS, ids normalised) and paired by id
+// strictly: every patch of one file must be in the other.
 
 Vec3 parse_white(const Args& args, const std::string& key, const Vec3& fallback) {
   if (!args.has(key)) return fallback;
   const std::string s = args.get(key);
-  if (lower(s) == "d50") return whites::D50();
-  if (lower(s) == "d65") return whites::D65();
-  const auto parts = split_csv_line(s);
+  std::string l = s;
+  for (auto& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (l == "d50") return whites::D50();
+  if (l == "d65") return whites::D65();
+  std::vector<std::string> parts;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) parts.push_back(item);
   if (parts.size() != 3) throw Error(ErrorCode::InvalidArgument, "--" + key + " expects D50, D65 or X,Y,Z");
   Vec3 w;
   for (int c = 0; c < 3; ++c) {
@@ -172,36 +50,65 @@ Vec3 parse_white(const Args& args, const std::string& key, const Vec3& fallback)
   return w;
 }
 
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const auto b = item.find_first_not_of(' '), e = item.find_last_not_of(' ');
+    if (b != std::string::npos) out.push_back(item.substr(b, e - b + 1));
+  }
+  return out;
+}
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
 struct PatchData {
   std::vector<std::string> ids;
   PatchMatrix rgb, xyz;
 };
 
-// Pairs an RGB table with a reference table by patch id (or by order when both use row numbers).
+PatchMatrix to_matrix(const std::vector<Vec3>& v) {
+  PatchMatrix m(v.size(), 3);
+  for (size_t i = 0; i < v.size(); ++i) m.row(i) = v[i].transpose();
+  return m;
+}
+
+// Pairs camera RGB with reference XYZ (or L*a*b*, converted with ref_white) by patch id.
 PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, const Vec3& ref_white) {
-  const Table rgb = read_table(rgb_path, "rgb");
-  const Table ref = read_table(xyz_path, "xyz");
-  PatchData d;
-  d.ids = rgb.ids;
-  d.rgb = rgb.values;
-  d.xyz.resize(rgb.values.rows(), 3);
+  const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
+  const PatchTable ref = read_patch_file(read_file(xyz_path), xyz_path);
+  if (!rgb.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
+  std::vector<Vec3> ref_xyz;
+  if (ref.has_XYZ) {
+    ref_xyz = ref.XYZ;
+  } else if (ref.has_Lab) {
+    for (const auto& lab : ref.Lab) ref_xyz.push_back(Lab_to_XYZ(lab, ref_white));
+  } else {
+    throw Error(ErrorCode::MissingColumn, xyz_path + ": needs X, Y, Z or L, a, b columns");
+  }
   if (rgb.ids.size() != ref.ids.size())
     throw Error(ErrorCode::PatchMismatch, rgb_path + " has " + std::to_string(rgb.ids.size()) + " patches but " +
                                               xyz_path + " has " + std::to_string(ref.ids.size()));
-  for (size_t i = 0; i < rgb.ids.size(); ++i) {
-    size_t j = 0;
-    while (j < ref.ids.size() && ref.ids[j] != rgb.ids[i]) ++j;
-    if (j == ref.ids.size())
-      throw Error(ErrorCode::PatchMismatch, "patch '" + rgb.ids[i] + "' of " + rgb_path + " is not in " + xyz_path);
-    Vec3 v = ref.values.row(j).transpose();
-    if (ref.lab) v = Lab_to_XYZ(v, ref_white);
-    d.xyz.row(i) = v.transpose();
-  }
+  const PatchPairs pairs = pair_by_id(ref.ids, ref_xyz, rgb.ids, rgb.RGB);
+  if (!pairs.missing_in_measured.empty())
+    throw Error(ErrorCode::PatchMismatch,
+                "patch '" + pairs.missing_in_measured.front() + "' of " + xyz_path + " is not in " + rgb_path);
+  if (!pairs.missing_in_reference.empty())
+    throw Error(ErrorCode::PatchMismatch,
+                "patch '" + pairs.missing_in_reference.front() + "' of " + rgb_path + " is not in " + xyz_path);
+  PatchData d;
+  d.ids = pairs.ids;
+  d.rgb = to_matrix(pairs.measured);
+  d.xyz = to_matrix(pairs.reference);
   return d;
 }
 
 int patch_index(const std::vector<std::string>& ids, const std::string& id) {
-  const std::string n = normalise_id(id);
+  const std::string n = normalise_patch_id(id);
   for (size_t i = 0; i < ids.size(); ++i)
     if (ids[i] == n) return static_cast<int>(i);
   throw Error(ErrorCode::UnknownId, "--white: no patch '" + id + "' in the RGB table");
@@ -352,10 +259,10 @@ int run_compare(const Args& args, std::ostream& out) {
   int white_index = -1;
   const FitOptions o = fit_options(args, d, white_index);
   std::vector<Objective> objectives;
-  for (const auto& s : split_csv_line(args.get("objectives", "ls,psm,de2000"))) objectives.push_back(objective_from_id(s));
+  for (const auto& s : split_list(args.get("objectives", "ls,psm,de2000"))) objectives.push_back(objective_from_id(s));
   std::vector<std::string> models;
   if (args.has("models"))
-    for (const auto& s : split_csv_line(args.get("models"))) models.push_back(model_info(s).id);
+    for (const auto& s : split_list(args.get("models"))) models.push_back(model_info(s).id);
   const auto rows = compare_models(d.rgb, d.xyz, o, models, objectives, white_index);
   std::vector<TransferCell> transfer;
   if (args.has("test-rgb") || args.has("test-xyz")) {
@@ -433,8 +340,8 @@ int run_compare(const Args& args, std::ostream& out) {
 const char* kApplyUsage =
     "tristim apply <profile.json> <image> --out xyz.tiff|xyz.pfm\n"
     "  Applies the profile to a linear camera-RGB image and writes 32-bit float XYZ (TIFF,\n"
-    "  uncompressed, or PFM). Input: a colour PFM of linear camera RGB (RAW input arrives with\n"
-    "  the RAW pipeline).";
+    "  uncompressed, or PFM). Input: a RAW file (decoded like the chart: linear, black subtracted,\n"
+    "  no white balance) or a colour PFM of linear camera RGB.";
 
 int run_apply(const Args& args, std::ostream&) {
   args.allow_only({"out"});
@@ -443,10 +350,17 @@ int run_apply(const Args& args, std::ostream&) {
   const Profile p = profile_from_json(read_file(args.positional[0]));
   const std::string in_path = args.positional[1];
   Image3f rgb;
-  if (ext_of(in_path) == "pfm") rgb = read_pfm(read_file(in_path));
-  else
-    throw Error(ErrorCode::RawUnsupported,
-                in_path + ": this build applies profiles to PFM images (RAW input needs the RAW pipeline)");
+  if (ext_of(in_path) == "pfm") {
+    rgb = read_pfm(read_file(in_path));
+  } else {
+    // A RAW file: LibRaw's linear camera RGB (black subtracted, no white balance, half size for
+    // Bayer sensors), the same data the chart patches are sampled from.
+    const std::string bytes = read_file(in_path);
+    RawImage raw = decode_raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+    rgb.width = raw.width;
+    rgb.height = raw.height;
+    rgb.pixels = std::move(raw.rgb);
+  }
   const std::string out_path = args.get("out");
   const auto t0 = std::chrono::steady_clock::now();
   const Image3f xyz = apply_profile(p, rgb.pixels.data(), rgb.width, rgb.height);

@@ -7,6 +7,7 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#include <cstdint>
 #include <cstring>
 
 #include "tristim/error.hpp"
@@ -366,6 +367,126 @@ void kernel_root2(const float* __restrict r, const float* __restrict g, const fl
   }
 }
 
+#if defined(__SSE2__)
+// Fused SSE loops, 4 pixels per step straight from and to the interleaved buffers; return how
+// many pixels they handled (a multiple of 4); the caller finishes the tail.
+inline void load4(const float* in, __m128& R, __m128& G, __m128& B) {
+  const __m128 a = _mm_loadu_ps(in), b = _mm_loadu_ps(in + 4), c = _mm_loadu_ps(in + 8);
+  const __m128 t0 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(1, 0, 2, 1));
+  const __m128 t1 = _mm_shuffle_ps(b, c, _MM_SHUFFLE(2, 1, 3, 2));
+  R = _mm_shuffle_ps(a, t1, _MM_SHUFFLE(2, 0, 3, 0));
+  G = _mm_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 1, 2, 0));
+  B = _mm_shuffle_ps(t0, c, _MM_SHUFFLE(3, 0, 3, 1));
+}
+template <bool kStream>
+inline void put(float* out, __m128 v) {
+  if (kStream) _mm_stream_ps(out, v);  // non-temporal: no read-for-ownership of the output
+  else _mm_storeu_ps(out, v);
+}
+template <bool kStream>
+inline void store4(float* out, __m128 X, __m128 Y, __m128 Z) {
+  const __m128 lo = _mm_unpacklo_ps(X, Y), hi = _mm_unpackhi_ps(X, Y);
+  const __m128 a = _mm_shuffle_ps(Z, lo, _MM_SHUFFLE(2, 2, 0, 0));
+  const __m128 b = _mm_shuffle_ps(lo, Z, _MM_SHUFFLE(1, 1, 3, 3));
+  const __m128 c = _mm_shuffle_ps(Z, hi, _MM_SHUFFLE(2, 2, 2, 2));
+  const __m128 d = _mm_shuffle_ps(hi, Z, _MM_SHUFFLE(3, 3, 3, 3));
+  put<kStream>(out, _mm_shuffle_ps(lo, a, _MM_SHUFFLE(2, 0, 1, 0)));
+  put<kStream>(out + 4, _mm_shuffle_ps(b, hi, _MM_SHUFFLE(1, 0, 2, 0)));
+  put<kStream>(out + 8, _mm_shuffle_ps(c, d, _MM_SHUFFLE(2, 0, 2, 0)));
+}
+inline __m128 signed_sqrt4(__m128 p) {
+  const __m128 sign = _mm_set1_ps(-0.0f);
+  return _mm_or_ps(_mm_sqrt_ps(_mm_andnot_ps(sign, p)), _mm_and_ps(sign, p));
+}
+
+template <bool kStream>
+size_t sse_affine_t(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][4]) {
+  __m128 k[3][4];
+  for (int c = 0; c < 3; ++c)
+    for (int j = 0; j < 4; ++j) k[c][j] = _mm_set1_ps(a[c][j]);
+  const size_t m = n & ~size_t(3);
+  for (size_t i = 0; i < m; i += 4) {
+    __m128 R, G, B;
+    load4(in + 3 * i, R, G, B);
+    __m128 o[3];
+    for (int c = 0; c < 3; ++c)
+      o[c] = _mm_add_ps(_mm_add_ps(_mm_mul_ps(k[c][0], R), _mm_mul_ps(k[c][1], G)),
+                        _mm_add_ps(_mm_mul_ps(k[c][2], B), k[c][3]));
+    store4<kStream>(out + 3 * i, o[0], o[1], o[2]);
+  }
+  if (kStream) _mm_sfence();
+  return m;
+}
+
+template <bool kStream>
+size_t sse_root2_t(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][6]) {
+  __m128 k[3][6];
+  for (int c = 0; c < 3; ++c)
+    for (int j = 0; j < 6; ++j) k[c][j] = _mm_set1_ps(a[c][j]);
+  const size_t m = n & ~size_t(3);
+  for (size_t i = 0; i < m; i += 4) {
+    __m128 R, G, B;
+    load4(in + 3 * i, R, G, B);
+    const __m128 P = signed_sqrt4(_mm_mul_ps(R, G)), Q = signed_sqrt4(_mm_mul_ps(R, B)),
+                 S = signed_sqrt4(_mm_mul_ps(G, B));
+    __m128 o[3];
+    for (int c = 0; c < 3; ++c)
+      o[c] = _mm_add_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(k[c][0], R), _mm_mul_ps(k[c][1], G)),
+                                   _mm_add_ps(_mm_mul_ps(k[c][2], B), _mm_mul_ps(k[c][3], P))),
+                        _mm_add_ps(_mm_mul_ps(k[c][4], Q), _mm_mul_ps(k[c][5], S)));
+    store4<kStream>(out + 3 * i, o[0], o[1], o[2]);
+  }
+  if (kStream) _mm_sfence();
+  return m;
+}
+#endif
+
+#if !defined(__SSE2__)
+// Without SSE (wasm): one fused pass over the interleaved buffers, no block copies.
+inline float signed_sqrt1(float p) {
+  const float r = std::sqrt(p < 0.f ? -p : p);
+  return p < 0.f ? -r : r;
+}
+size_t scalar_affine(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][4]) {
+  const float a00 = a[0][0], a01 = a[0][1], a02 = a[0][2], a03 = a[0][3];
+  const float a10 = a[1][0], a11 = a[1][1], a12 = a[1][2], a13 = a[1][3];
+  const float a20 = a[2][0], a21 = a[2][1], a22 = a[2][2], a23 = a[2][3];
+  for (size_t i = 0; i < n; ++i) {
+    const float R = in[3 * i], G = in[3 * i + 1], B = in[3 * i + 2];
+    out[3 * i] = a00 * R + a01 * G + a02 * B + a03;
+    out[3 * i + 1] = a10 * R + a11 * G + a12 * B + a13;
+    out[3 * i + 2] = a20 * R + a21 * G + a22 * B + a23;
+  }
+  return n;
+}
+size_t scalar_root2(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][6]) {
+  const float a00 = a[0][0], a01 = a[0][1], a02 = a[0][2], a03 = a[0][3], a04 = a[0][4], a05 = a[0][5];
+  const float a10 = a[1][0], a11 = a[1][1], a12 = a[1][2], a13 = a[1][3], a14 = a[1][4], a15 = a[1][5];
+  const float a20 = a[2][0], a21 = a[2][1], a22 = a[2][2], a23 = a[2][3], a24 = a[2][4], a25 = a[2][5];
+  for (size_t i = 0; i < n; ++i) {
+    const float R = in[3 * i], G = in[3 * i + 1], B = in[3 * i + 2];
+    const float P = signed_sqrt1(R * G), Q = signed_sqrt1(R * B), S = signed_sqrt1(G * B);
+    out[3 * i] = a00 * R + a01 * G + a02 * B + a03 * P + a04 * Q + a05 * S;
+    out[3 * i + 1] = a10 * R + a11 * G + a12 * B + a13 * P + a14 * Q + a15 * S;
+    out[3 * i + 2] = a20 * R + a21 * G + a22 * B + a23 * P + a24 * Q + a25 * S;
+  }
+  return n;
+}
+#endif
+
+#if defined(__SSE2__)
+// Streaming stores for images larger than the caches (and a 16-byte aligned output).
+inline bool use_stream(const float* out, size_t n) {
+  return n >= (size_t(1) << 20) && reinterpret_cast<uintptr_t>(out) % 16 == 0;
+}
+size_t sse_affine(const float* in, size_t n, float* out, const float (&a)[3][4]) {
+  return use_stream(out, n) ? sse_affine_t<true>(in, n, out, a) : sse_affine_t<false>(in, n, out, a);
+}
+size_t sse_root2(const float* in, size_t n, float* out, const float (&a)[3][6]) {
+  return use_stream(out, n) ? sse_root2_t<true>(in, n, out, a) : sse_root2_t<false>(in, n, out, a);
+}
+#endif
+
 }  // namespace
 
 void apply_to_image(const Model& model, const float* rgb, size_t n_pixels, float* xyz) {
@@ -390,7 +511,12 @@ void apply_to_image(const Model& model, const float* rgb, size_t n_pixels, float
       for (int j = 0; j < 3; ++j) a[c][j] = k[c][j];
       a[c][3] = is_affine ? k[c][3] : 0.f;
     }
-    image_blocks(rgb, n_pixels, xyz,
+#if defined(__SSE2__)
+    const size_t done = sse_affine(rgb, n_pixels, xyz, a);
+#else
+    const size_t done = scalar_affine(rgb, n_pixels, xyz, a);
+#endif
+    image_blocks(rgb + 3 * done, n_pixels - done, xyz + 3 * done,
                  [&a](const float* r, const float* g, const float* b, float* x, float* y, float* z, size_t m) {
                    kernel_affine(r, g, b, x, y, z, m, a);
                  });
@@ -406,7 +532,12 @@ void apply_to_image(const Model& model, const float* rgb, size_t n_pixels, float
       const int slot = t.r && t.g ? 3 : (t.r && t.b ? 4 : 5);
       for (int c = 0; c < 3; ++c) a[c][slot] = k[c][j];
     }
-    image_blocks(rgb, n_pixels, xyz,
+#if defined(__SSE2__)
+    const size_t done = sse_root2(rgb, n_pixels, xyz, a);
+#else
+    const size_t done = scalar_root2(rgb, n_pixels, xyz, a);
+#endif
+    image_blocks(rgb + 3 * done, n_pixels - done, xyz + 3 * done,
                  [&a](const float* r, const float* g, const float* b, float* x, float* y, float* z, size_t m) {
                    kernel_root2(r, g, b, x, y, z, m, a);
                  });

@@ -1,3 +1,5 @@
+// Output lines "BENCH <case> <step> <ms>" and "CASE <case> <text>" are read by scripts/bench.sh
+// (native and wasm side by side); the other lines are for a human running it directly.
 // Benchmark: model fits (LS of every model on 140 patches, pattern search, CIEDE2000 objective)
 // and applying a degree-2 root-polynomial to a 24 MP float RGB image next to a plain memcpy of
 // the same size. Prints figures; asserts nothing.
@@ -68,6 +70,7 @@ int main() {
     FitOptions o;
     const double t = best_ms(20, [&] { (void)fit(m.id, rgb, xyz, o); });
     std::printf("  %-18s %2d terms  %8.3f ms\n", m.id.c_str(), m.n_terms, t);
+    std::printf("BENCH ls_140 %s %.4f\n", m.id.c_str(), t);
   }
 
   std::printf("\n== pattern search (Guarnera 2018 Algorithm 2), 140 patches (best of 5) ==\n");
@@ -78,6 +81,7 @@ int main() {
     const double t = best_ms(5, [&] { r = fit(id, rgb, xyz, o); });
     std::printf("  %-18s %8.3f ms  %5d iterations  %6d evaluations  cost %.4g -> %.4g\n", id, t, r.iterations,
                 r.evaluations, r.start_objective_value, r.objective_value);
+    std::printf("BENCH psm_140 %s %.3f\n", id, t);
   }
 
   std::printf("\n== CIEDE2000 objective (NLopt BOBYQA), best of 5 ==\n");
@@ -90,12 +94,14 @@ int main() {
       const double t = best_ms(5, [&] { r = fit(id, a, b, o); });
       std::printf("  %3d patches %-16s %8.3f ms  %5d evaluations  mean dE00 %.4f -> %.4f\n", n, id, t,
                   r.evaluations, r.start_objective_value, r.objective_value);
+      std::printf("BENCH de2000_%d %s %.3f\n", n, id, t);
     }
 
   std::printf("\n== leave-one-out, 140 patches, ls (best of 3) ==\n");
   for (const char* id : {"matrix-3x3", "Finlayson2015-2", "Cheung2004-20"}) {
     const double t = best_ms(3, [&] { (void)leave_one_out(id, rgb, xyz); });
     std::printf("  %-18s %8.3f ms\n", id, t);
+    std::printf("BENCH loo_140 %s %.3f\n", id, t);
   }
 
   std::printf("\n== apply Finlayson2015-2 to a 24 MP float RGB image vs memcpy ==\n");
@@ -118,5 +124,10 @@ int main() {
   Model lin = fit("matrix-3x3", rgb, xyz).model;
   const double t_lin = best_ms(5, [&] { apply_to_image(lin, in.data(), n, out.data()); });
   std::printf("  apply 3x3 matrix  %8.2f ms  = %.0f %% of memcpy speed\n", t_lin, 100.0 * t_copy / t_lin);
+  std::printf("CASE apply_24MP %zux%zu float RGB -> XYZ (%.0f MB each way): root-poly 2 at %.0f %%, 3x3 at %.0f %% "
+              "of memcpy speed (%s)\n", w, h, mb, 100.0 * t_copy / t_apply, 100.0 * t_copy / t_lin, where);
+  std::printf("BENCH apply_24MP memcpy %.2f\n", t_copy);
+  std::printf("BENCH apply_24MP root-poly-2 %.2f\n", t_apply);
+  std::printf("BENCH apply_24MP matrix-3x3 %.2f\n", t_lin);
   return 0;
 }

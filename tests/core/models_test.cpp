@@ -326,3 +326,29 @@ TEST_CASE("apply_to_image agrees with predict for every model", "[models]") {
     CHECK(worst < 1e-5);
   }
 }
+
+TEST_CASE("apply_to_image on a large image (streaming stores) agrees with predict", "[models]") {
+  const size_t n = (size_t(1) << 20) + 7;  // above the streaming threshold, with a tail
+  std::vector<float> img(3 * n), out(3 * n);
+  for (size_t i = 0; i < 3 * n; ++i) img[i] = static_cast<float>((i * 2654435761u) % 4096) + 1.0f;
+  for (const char* id : {"matrix-3x3", "matrix-3x4", "Finlayson2015-2"}) {
+    const ModelInfo& info = model_info(id);
+    Model m{id, Eigen::MatrixXd(3, info.n_terms)};
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < info.n_terms; ++j) m.coefficients(c, j) = 0.01 * (1 + c + j) * (j % 2 ? -1 : 1);
+    apply_to_image(m, img.data(), n, out.data());
+    double worst = 0;
+    for (size_t i = 0; i < n; i += (i + 1 < n - 8 ? 997 : 1)) {
+      const Vec3 rgb(img[3 * i], img[3 * i + 1], img[3 * i + 2]);
+      const Vec3 want = predict(m, rgb);
+      const std::vector<double> phi = expansion(id, rgb);
+      for (int c = 0; c < 3; ++c) {
+        double mag = 0;  // float rounding scales with the terms, not with their (cancelling) sum
+        for (int j = 0; j < info.n_terms; ++j) mag += std::fabs(m.coefficients(c, j) * phi[j]);
+        worst = std::max(worst, std::fabs(out[3 * i + c] - want[c]) / mag);
+      }
+    }
+    INFO(id << " worst difference relative to the term magnitudes " << worst);
+    CHECK(worst < 1e-6);
+  }
+}

@@ -136,3 +136,27 @@ test('bad input reaches JS as coded errors', async () => {
   throwsCode(assert, () => T.exportIcc('not json'), 'PROFILE_INVALID');
   throwsCode(assert, () => T.applyProfileToImage(good, new Float32Array(10), 2, 2), 'ROW_LENGTH');
 });
+
+test('applyProfile on a decoded RAW gives an XYZ image of the RAW size', async () => {
+  const T = await loadTristim();
+  const { rgb, xyz, ids } = passport();
+  const r = T.fitModel(rgb, xyz, ids, { model: 'matrix-3x3', loo: false });
+  const raw = T.decodeRaw(readShared('raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng'));
+  try {
+    const out = T.applyProfile(r.profile, raw);
+    assert.equal(out.width, raw.width());
+    assert.equal(out.height, raw.height());
+    assert.ok(out.XYZ instanceof Float32Array);
+    assert.equal(out.XYZ.length, raw.width() * raw.height() * 3);
+    const lin = raw.linearRGB();
+    const M = r.coefficients;
+    const i = 3 * (Math.floor(raw.height() / 2) * raw.width() + Math.floor(raw.width() / 2));
+    for (let k = 0; k < 3; k++) {
+      const want = M[3 * k] * lin[i] + M[3 * k + 1] * lin[i + 1] + M[3 * k + 2] * lin[i + 2];
+      assert.ok(Math.abs(out.XYZ[i + k] - want) < 1e-4 * (1 + Math.abs(want)));
+    }
+  } finally {
+    raw.delete();
+  }
+  throwsCode(assert, () => T.applyProfile(r.profile, {}), 'INVALID_ARGUMENT');
+});
