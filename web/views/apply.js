@@ -2,6 +2,7 @@
 // the XYZ image rendered to sRGB, a false-colour map of Y with a named CVD-safe colour map and
 // its legend, and X, Y, Z, x, y, L*a*b* under the pointer.
 import { h, field, select, showError, clearError, unavailable, progressBar, fmt, fileBytes } from '../lib/ui.js';
+import { cameraOf } from './fit.js';
 
 const MAPS = {
   viridis: { label: 'viridis', interp: () => globalThis.d3.interpolateViridis },
@@ -17,6 +18,7 @@ export function mount(section, app) {
   const mapSel = select(Object.entries(MAPS).map(([value, m]) => ({ value, label: m.label })), app.session.colourMap ?? 'viridis');
   const applyBtn = h('button', { type: 'button', class: 'primary' }, 'Apply the selected profile');
   const which = h('p', { class: 'summary', 'aria-live': 'polite' });
+  const warning = h('p', { class: 'unavailable', role: 'status', hidden: true });
   const progress = progressBar('Applying');
   const srgbCanvas = h('canvas', { class: 'apply-img', 'aria-label': 'The XYZ image rendered to sRGB' });
   const yCanvas = h('canvas', { class: 'apply-img', 'aria-label': 'Luminance Y false-colour map' });
@@ -26,13 +28,14 @@ export function mount(section, app) {
     h('figure', {}, srgbCanvas, h('figcaption', {}, 'XYZ → sRGB (display; D65-adapted, clipped)')),
     h('figure', {}, yCanvas, h('figcaption', {}, 'Luminance Y (relative, white = 100)'), legend));
   section.append(h('div', { class: 'controls' }, field('Apply to', sourceSel), sceneField, field('Colour map for Y', mapSel, 'Perceptually uniform and readable with colour-vision deficiencies'), applyBtn),
-    which, progress.el, readout, images);
+    which, warning, progress.el, readout, images);
   applyBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'apply-error' });
   applyBtn.setAttribute('aria-describedby', 'apply-error');
   applyBtn.after(applyBtn._errorSlot);
   if (!engine.has('applyProfileToImage')) { section.insertBefore(unavailable('Applying a profile to an image', 'applyProfileToImage'), which); applyBtn.disabled = true; }
 
   let sceneBytes = null;
+  let sceneMeta = null;
   let sceneGen = -1;
   let shown = null;
   sourceSel.addEventListener('change', () => { sceneField.hidden = sourceSel.value !== 'scene'; app.save('applySource', sourceSel.value); });
@@ -69,7 +72,8 @@ export function mount(section, app) {
       progress.start(`Decoding ${sceneBytes.name}…`);
       try {
         const copy = sceneBytes.bytes.slice();
-        await engine.call('decode', { slot: 'scene', bytes: copy.buffer }, { transfer: [copy.buffer] });
+        const d = await engine.call('decode', { slot: 'scene', bytes: copy.buffer }, { transfer: [copy.buffer] });
+        sceneMeta = d.metadata;
         sceneGen = engine.generation;
         return true;
       } catch (e) { showError(sceneInput, e, sceneBytes.name); return false; } finally { progress.done(); scenePromise = null; }
@@ -130,6 +134,11 @@ export function mount(section, app) {
       app.mark('apply', 'done');
       app.save('applied', true);
       const ms = performance.now() - t0;
+      const imageCamera = cameraOf(slot === 'scene' ? sceneMeta : app.derived.image?.metadata);
+      warning.hidden = !(r.camera && imageCamera && r.camera !== imageCamera) && slot !== 'scene';
+      warning.textContent = r.camera && imageCamera && r.camera !== imageCamera
+        ? `This profile was fitted for a ${r.camera}; this image comes from a ${imageCamera}. A profile belongs to one camera: these colours are not measurements.`
+        : 'Y is relative to the chart photo: Y = 100 is a perfect white diffuser lit as the chart was, at the same exposure. Another exposure or light scales it.';
       which.textContent = `Profile: ${r.label}. Applied to ${out.fullWidth}×${out.fullHeight} pixels in ${fmt(out.msApply, 0)} ms (render ${fmt(out.msRender, 0)} ms; total ${fmt(ms, 0)} ms).`;
       return { ms, ...out };
     } catch (e) {

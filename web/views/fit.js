@@ -159,7 +159,7 @@ export function mount(section, app) {
             const e = await engine.call('evaluate', { profile: fit.profile, rgb: heldOut.rgb, xyz: heldOut.xyz, ids: heldOut.ids });
             held = { ...e.metrics, set: heldOut.name };
           }
-          results.push({ key: `${mId}|${obj}|${JSON.stringify(choice.options[mId])}`, modelId: mId, objective: obj, label, options, ids: data.ids, rgb: data.rgb, xyz: data.xyz, fit, evaluation, heldOut: held, referenceText: referenceText(ref) });
+          results.push({ key: `${mId}|${obj}|${JSON.stringify(choice.options[mId])}`, modelId: mId, objective: obj, label, options, ids: data.ids, rgb: data.rgb, xyz: data.xyz, fit, evaluation, heldOut: held, referenceText: referenceText(ref), camera: cameraOf(app.derived.image?.metadata) });
           log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${fit.status && fit.status !== 'ok' ? ` — ${fit.status}: ${fit.message ?? ''}` : ''}`));
         } catch (e) {
           if (e.code === 'CANCELLED') throw e;
@@ -195,6 +195,9 @@ export function mount(section, app) {
   describeData();
   return { run, runDefault, cancel: () => cancelBtn.click(), runBtn };
 }
+
+/// "Make Model" of RAW metadata ('' when unknown).
+export const cameraOf = (m) => [m?.make, m?.model].filter(Boolean).join(' ');
 
 /// What a fit was trained against (to tell when the current reference differs).
 export const referenceText = (ref) => `${ref.source}, illuminant ${ref.settings.illuminant}, CIE ${ref.settings.observer} observer`;
