@@ -41,7 +41,12 @@ export function mount(section, app) {
   const rowsIn = h('input', { type: 'number', min: 1, max: 30, value: app.session.layout?.rows ?? 4 });
   const colsIn = h('input', { type: 'number', min: 1, max: 30, value: app.session.layout?.columns ?? 6 });
   const areaIn = h('input', { type: 'number', min: 0.05, max: 1, step: 0.05, value: app.session.sampleOptions?.area ?? 0.5 });
-  const customBox = h('span', { class: 'custom-grid' }, field('Rows', rowsIn), field('Columns', colsIn));
+  const L0 = app.session.layout ?? {};
+  const gapIn = h('input', { type: 'number', min: 0, max: 2, step: 0.01, value: L0.gap ?? 0 });
+  const marginIns = ['left', 'top', 'right', 'bottom'].map((side, k) => h('input', { type: 'number', min: 0, max: 0.45, step: 0.01, value: L0.margins?.[k] ?? 0, 'aria-label': `Margin ${side}` }));
+  const customBox = h('span', { class: 'custom-grid' }, field('Rows', rowsIn), field('Columns', colsIn),
+    field('Gap (× patch size)', gapIn),
+    h('fieldset', { class: 'margins' }, h('legend', {}, 'Margins inside the corners (fraction of width / height: left, top, right, bottom)'), marginIns));
   const meta = h('p', { class: 'meta', 'aria-live': 'polite' });
   const editor = new CornerEditor({ onChange: (c, final) => cornersChanged(c, final) });
   const cornerErr = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'corners-error' });
@@ -77,18 +82,22 @@ export function mount(section, app) {
   function layoutOptions() {
     const chart = layoutSel.value;
     const o = { chart };
-    if (chart === 'custom') { o.rows = Number(rowsIn.value); o.columns = Number(colsIn.value); }
+    if (chart === 'custom') {
+      o.rows = Number(rowsIn.value); o.columns = Number(colsIn.value); o.gap = Number(gapIn.value);
+      const m = marginIns.map((i) => Number(i.value));
+      if (m.some((v) => v > 0)) o.margins = m;
+    }
     return o;
   }
   function gridShape() {
     const l = layoutOptions();
-    return l.chart === 'custom' ? { rows: l.rows, cols: l.columns } : LAYOUTS[l.chart] ?? LAYOUTS.passport;
+    return l.chart === 'custom' ? { rows: l.rows, cols: l.columns, gap: l.gap } : LAYOUTS[l.chart] ?? LAYOUTS.passport;
   }
   function syncLayout() {
     customBox.hidden = layoutSel.value !== 'custom';
     editor.setGrid({ ...gridShape(), area: Number(areaIn.value), layout: layoutSel.value });
   }
-  for (const el of [layoutSel, rowsIn, colsIn, areaIn]) {
+  for (const el of [layoutSel, rowsIn, colsIn, areaIn, gapIn, ...marginIns]) {
     el.addEventListener('change', () => {
       syncLayout();
       editor.setSample(null);
