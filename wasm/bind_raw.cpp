@@ -44,7 +44,7 @@
 //   layout: {chart: id, rows?, columns?, margins?: [left, top, right, bottom] (fractions), gap?}
 //   corners: Float64Array(8) x1,y1..x4,y4 clockwise from the top-left (A1) corner, measurement
 //   image coordinates (pixel (x, y) covers [x, x+1) × [y, y+1)); options: {area: 0.5,
-//   darkFraction: 0.002, nonuniformThreshold: 0.1}. RGB is linear camera RGB (no WB) with the
+//   darkFraction: 0.002, nonuniformThreshold: 0.05}. RGB is linear camera RGB (no WB) with the
 //   image's dark/flat applied. Codes: CORNERS_OUTSIDE, CORNERS_CROSSED, PATCH_TOO_SMALL,
 //   UNKNOWN_ID, INVALID_ARGUMENT, FRAME_MISMATCH.
 #include <optional>

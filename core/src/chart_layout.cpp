@@ -194,6 +194,9 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout_opti
     // Welford per channel, in double; raw (dark-subtracted, DN) means for the noise-floor test.
     std::array<double, 3> mean{}, m2{}, raw_mean{};
     std::array<int, 3> nsat{};
+    // Quadrant sums (2 x 2 in patch coordinates) for the spatial uniformity test.
+    std::array<std::array<double, 3>, 4> qsum{};
+    std::array<int, 4> qn{};
     int n = 0;
     float cal[3], dn[3];
     for (int y = y0; y <= y1; ++y)
@@ -208,6 +211,9 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout_opti
           for (int c = 0; c < 3; ++c) cal[c] = dn[c] = image.at(x, y, c);
         }
         ++n;
+        const int quadrant = (u >= uc ? 1 : 0) + (v >= vc ? 2 : 0);
+        ++qn[quadrant];
+        for (int c = 0; c < 3; ++c) qsum[quadrant][c] += cal[c];
         const std::uint8_t sat = image.saturated[static_cast<size_t>(y) * image.width + x];
         for (int c = 0; c < 3; ++c) {
           const double d = cal[c] - mean[c];
@@ -231,7 +237,20 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout_opti
       const double floor = std::max(options.dark_fraction * image.meta.saturation[c], 3.0 * noise[c]);
       const bool is_dark = raw_mean[c] < floor;
       dark = dark || is_dark;
-      if (!is_dark && mean[c] > 0 && s.std[c] / mean[c] > options.nonuniform_threshold) nonuniform = true;
+      // Non-uniform: the four quadrant means differ by more than the threshold (relative to the
+      // mean) AND by more than 4 standard errors — a gradient, glare, dust or a patch border
+      // inside the sample area. Pixel noise alone (large σ, flat patch) does not flag.
+      if (!is_dark && mean[c] > 0 && *std::min_element(qn.begin(), qn.end()) > 0) {
+        double qmin = 1e300, qmax = -1e300;
+        for (int q = 0; q < 4; ++q) {
+          const double m = qsum[q][c] / qn[q];
+          qmin = std::min(qmin, m);
+          qmax = std::max(qmax, m);
+        }
+        const double standard_error = s.std[c] / std::sqrt(n / 4.0);
+        if (qmax - qmin > options.nonuniform_threshold * mean[c] && qmax - qmin > 4.0 * standard_error)
+          nonuniform = true;
+      }
     }
     if (saturated) s.flags.push_back("saturated");
     if (dark) s.flags.push_back("dark");

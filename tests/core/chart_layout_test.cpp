@@ -158,14 +158,17 @@ TEST_CASE("the sampled area shrinks with --area and patch flags are set", "[char
   CHECK(n25 < n50 / 3);
   // Saturate one pixel in the centre of A1 (green), make B1 dark, make C1 noisy.
   const ChartSample base = sample_chart(img, lo, corners);
-  const auto cA1 = base.patches[0].centre, cB1 = base.patches[6].centre, cC1 = base.patches[12].centre;
+  const auto cA1 = base.patches[0].centre, cB1 = base.patches[6].centre, cC1 = base.patches[12].centre,
+             cD1 = base.patches[18].centre;
   img.saturated[size_t(cA1[1]) * img.width + size_t(cA1[0])] = 2;
   for (int y = -20; y <= 20; ++y)
     for (int x = -20; x <= 20; ++x) {
       const size_t iB = (size_t(cB1[1] + y) * img.width + size_t(cB1[0] + x)) * 3;
       for (int c = 0; c < 3; ++c) img.rgb[iB + c] = 5.f;
       const size_t iC = (size_t(cC1[1] + y) * img.width + size_t(cC1[0] + x)) * 3;
-      for (int c = 0; c < 3; ++c) img.rgb[iC + c] = ((x + y) & 1) ? 1000.f : 3000.f;
+      for (int c = 0; c < 3; ++c) img.rgb[iC + c] = x < 0 ? 1000.f : 3000.f;  // a step: left dark, right bright
+      const size_t iD = (size_t(cD1[1] + y) * img.width + size_t(cD1[0] + x)) * 3;  // flat but noisy
+      for (int c = 0; c < 3; ++c) img.rgb[iD + c] = ((x + y) & 1) ? 1000.f : 3000.f;
     }
   const ChartSample s = sample_chart(img, lo, corners);
   CHECK(s.patches[0].flags == std::vector<std::string>{"saturated"});
@@ -173,6 +176,9 @@ TEST_CASE("the sampled area shrinks with --area and patch flags are set", "[char
   CHECK(s.patches[0].saturated_fraction[0] == 0);
   CHECK(s.patches[6].flags == std::vector<std::string>{"dark"});
   CHECK(s.patches[12].flags == std::vector<std::string>{"nonuniform"});
+  // Pixel noise with σ/mean = 50 % on a flat patch is noise, not structure: no flag.
+  CHECK(s.patches[18].std[1] / s.patches[18].mean[1] > 0.4);
+  CHECK(s.patches[18].flags.empty());
   const std::string csv = chart_sample_to_csv(s);
   CHECK(csv.rfind("patch,R,G,B,R_std,G_std,B_std,n,flags\nA1,", 0) == 0);
 }

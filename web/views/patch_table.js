@@ -15,7 +15,7 @@ export function patchTable(s) {
       h('td', { class: 'flags' }, f.length ? f.join(', ') : 'ok')));
   }
   return h('table', { class: 'patch-table' },
-    h('caption', {}, 'Sampled camera RGB per patch (linear DN, black subtracted, no white balance; mean and σ over the central area). Flags: saturated (left out of fits), dark (near the noise floor), nonuniform (σ/mean > 10 %).'),
+    h('caption', {}, 'Sampled camera RGB per patch (linear DN, black subtracted, no white balance; mean and σ over the central area). Flags: saturated (left out of fits), dark (near the noise floor), nonuniform (quadrant means differ by > 5 % beyond noise).'),
     h('thead', {}, h('tr', {}, ['Patch', 'R', 'G', 'B', 'σR', 'σG', 'σB', 'pixels', 'saturated', 'flags'].map((t) => h('th', { scope: 'col' }, t)))),
     h('tbody', {}, rows));
 }

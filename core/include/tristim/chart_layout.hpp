@@ -71,8 +71,11 @@ struct SampleOptions {
   /// "dark" when a channel's mean is below dark_fraction × that channel's saturation level (or
   /// below 3 × the noise floor of an applied dark frame, whichever is larger).
   double dark_fraction = 0.002;
-  /// "nonuniform" when a channel's std / mean exceeds this (and the mean is not dark).
-  double nonuniform_threshold = 0.1;
+  /// "nonuniform" when, in a channel that is not dark, the means of the sample area's four
+  /// quadrants differ by more than this fraction of the patch mean and by more than 4 standard
+  /// errors (a gradient, glare, dust or a patch border in the sample area). Pixel noise alone —
+  /// a large σ on a flat patch, as in a dim photo — does not flag: its mean is still precise.
+  double nonuniform_threshold = 0.05;
 };
 
 struct PatchSample {
