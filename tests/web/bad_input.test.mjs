@@ -73,8 +73,8 @@ test('bad inputs show coded errors next to their control and the page recovers',
     codes.dark = dark.code;
     if (c.sampleChart && good) assert.equal(await rowCount(page), good);
     // A good file after the bad ones decodes.
-    await upload(page, CHART, 'passport.dng', fileBuffer(DNG));
-    await page.waitForFunction(() => /passport\.dng — \d+×\d+/.test(document.querySelector('#step-images .file-state')?.textContent ?? ''), null, { timeout: 60000 });
+    await upload(page, CHART, 'good-again.dng', fileBuffer(DNG));
+    await page.waitForFunction(() => /good-again\.dng — \d+×\d+/.test(document.querySelector('#step-images .file-state')?.textContent ?? ''), null, { timeout: 60000 });
     assert.ok(await noErrorNear(page, CHART));
     if (c.fitModel && c.sampleChart) {
       // Too few patches: leave out every flagged patch (most are noisy here) and fit a 35-term polynomial.

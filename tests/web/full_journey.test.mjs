@@ -26,8 +26,9 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
 
     // 2 Images: the real DNG from the shared data, corners placed, table with flags.
     await step(page, 'images');
-    await upload(page, '#step-images input[data-slot="chart"]', 'passport.dng', fileBuffer(DNG));
-    await page.waitForFunction(() => /passport\.dng/.test(document.querySelector('#step-images .file-state')?.textContent ?? ''), null, { timeout: 60000 });
+    // (A name of its own: the example is also called passport.dng.)
+    await upload(page, '#step-images input[data-slot="chart"]', 'passport-from-shared-data.dng', fileBuffer(DNG));
+    await page.waitForFunction(() => /passport-from-shared-data\.dng — \d+×\d+/.test(document.querySelector('#step-images .file-state')?.textContent ?? ''), null, { timeout: 60000 });
     await setCorners(page, example.corners);
     assert.equal(await page.locator('#step-images .patch-table tbody tr').count(), 24);
     const table0 = await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]');

@@ -166,8 +166,12 @@ export function mount(section, app) {
           m.f_number && `f/${m.f_number}`, m.cfa_pattern && `${m.layout ?? ''} ${m.cfa_pattern}`, m.bits && `${m.bits} bit`, m.timestamp_iso].filter(Boolean);
         meta.textContent = `${bits.join(' · ')} — measurement image ${r.width}×${r.height} (half resolution, linear, no white balance).`
           + ' The preview below uses the camera matrix and sRGB gamma for display only.';
+        // Same size as the image on screen: keep the handles where they are (they may have moved
+        // since the last save); otherwise take the session's corners, or reset.
+        const sameSize = editor.width === r.width && editor.height === r.height;
         editor.setImage(r);
-        if (!app.session.corners) editor.reset(); else editor.setCorners(app.session.corners);
+        if (!app.session.corners) editor.reset();
+        else if (!sameSize) editor.setCorners(app.session.corners);
       }
       return true;
     } catch (e) {
