@@ -1,14 +1,104 @@
-// Page entry: starts the engine in a worker and mounts the views.
-import { EngineClient } from './protocol.js';
+// Page entry: starts the engine in a worker, restores the session from IndexedDB (or loads the
+// example chart on a first visit), and mounts one view per step of the journey.
+import { Engine } from './lib/engine.js';
+import { store } from './store.js';
+import { h } from './lib/ui.js';
+import * as reference from './views/reference.js';
+import * as images from './views/images.js';
+import * as fit from './views/fit.js';
+import * as results from './views/results.js';
+import * as apply from './views/apply.js';
+import * as exporter from './views/export.js';
 
-const engine = new EngineClient();
+const STEPS = ['reference', 'images', 'fit', 'results', 'apply', 'export'];
 const status = document.getElementById('engine-status');
 
-try {
-  const { version } = await engine.call('hello');
-  status.textContent = `Colour engine tristim ${version} ready (WebAssembly, in a worker).`;
-  status.dataset.ready = 'true';
-} catch (e) {
-  status.textContent = `The colour engine failed to start: ${e.message} (${e.code}).`;
-  status.classList.add('error');
+const app = {
+  engine: new Engine(),
+  store,
+  session: {},        // persisted: settings, files.*, corners, fitChoice, results, selected, step
+  derived: {},        // recomputed: reference, locus, sample, preview
+  views: {},
+  bus: new EventTarget(),
+  on(topic, fn) { this.bus.addEventListener(topic, (e) => fn(e.detail)); },
+  emit(topic, detail) { this.bus.dispatchEvent(new CustomEvent(topic, { detail })); },
+  /// Keeps session[key] and writes it to IndexedDB (errors are reported, never thrown).
+  async save(key, value) {
+    this.session[key] = value;
+    try {
+      if (value === undefined) await store.delete(key); else await store.set(key, value);
+    } catch (e) { console.warn(`could not keep ${key} in this browser's storage: ${e.message}`); }
+  },
+  goto(step, { focus = false } = {}) {
+    if (!STEPS.includes(step)) step = 'reference';
+    for (const s of document.querySelectorAll('main > section')) s.hidden = s.dataset.step !== step;
+    for (const a of document.querySelectorAll('#steps a')) {
+      if (a.dataset.step === step) a.setAttribute('aria-current', 'step'); else a.removeAttribute('aria-current');
+    }
+    document.body.dataset.step = step;
+    if (this.session.step !== step) this.save('step', step);
+    this.emit('step', step);
+    if (focus) document.getElementById(`h-${step}`)?.focus();
+  },
+  /// Marks a step in the navigation as done/ready (a small tick, text for screen readers).
+  mark(step, state) {
+    const a = document.querySelector(`#steps a[data-step="${step}"]`);
+    if (a) a.dataset.state = state;
+  },
+};
+window.tristim = app;   // for tests and the curious
+
+for (const a of document.querySelectorAll('#steps a')) {
+  a.addEventListener('click', (e) => { e.preventDefault(); app.goto(a.dataset.step, { focus: true }); history.replaceState(null, '', `#${a.dataset.step}`); });
 }
+for (const s of STEPS) document.getElementById(`h-${s}`).tabIndex = -1;
+
+document.getElementById('new-session').addEventListener('click', async () => {
+  if (!confirm('Start a new session? Every file, corner, setting and result kept in this browser is forgotten.')) return;
+  await store.clear();
+  location.hash = '';
+  location.reload();
+});
+
+async function start() {
+  try {
+    const { version } = await app.engine.call('hello');
+    await app.engine.capabilities();
+    app.catalog = await app.engine.call('catalog');
+    status.textContent = `Colour engine tristim ${version} ready (WebAssembly, in a worker).`;
+    status.dataset.ready = 'true';
+  } catch (e) {
+    status.textContent = `The colour engine failed to start: ${e.message} (${e.code}).`;
+    status.classList.add('error');
+    return;
+  }
+  let saved = {};
+  try { saved = await store.all(); } catch (e) { console.warn(`session storage unavailable: ${e.message}`); }
+  const fresh = !saved.settings;
+  Object.assign(app.session, saved);
+
+  const mounts = { reference, images, fit, results, apply, export: exporter };
+  for (const [step, mod] of Object.entries(mounts)) {
+    app.views[step] = mod.mount(document.getElementById(`step-${step}`), app);
+  }
+  if (fresh) await app.save('settings', { ...app.session.settings });   // the session now exists
+  const hash = location.hash.slice(1);
+  app.goto(STEPS.includes(hash) ? hash : (app.session.step ?? (fresh ? 'results' : 'reference')));
+
+  // Restore (or, on a first visit, load the example), one step after the other.
+  await app.views.reference.ready;
+  if (fresh) app.views.results.setStatus('Loading the example: a ColorChecker Passport photographed as DNG, decoding and sampling it in the worker…');
+  await app.views.images.restore(fresh);
+  if (fresh) {
+    app.views.results.setStatus('Fitting the example with three models…');
+    const r = await app.views.fit.runDefault();
+    if (!r) app.views.results.setStatus('No fitted model yet: the example could not be fitted with this build of the colour engine (see steps 1–3).');
+  } else app.views.results.refresh();
+  document.body.dataset.ready = 'true';
+}
+
+start().catch((e) => {
+  status.textContent = `The page failed to start: ${e.message} (${e.code ?? 'INTERNAL'}).`;
+  status.classList.add('error');
+  document.body.append(h('pre', { class: 'error' }, String(e.stack ?? e)));
+});

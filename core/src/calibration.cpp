@@ -112,7 +112,8 @@ FlatField make_flat_field(const RawImage& flat, const DarkFrame* dark, DarkMode 
 }
 
 double FalloffFit::factor(double x, double y) const {
-  const double r = std::hypot(x - centre_x, y - centre_y) / r_scale;
+  const double dx = x - centre_x, dy = y - centre_y;  // sqrt, not hypot: per pixel, and slow in wasm
+  const double r = std::sqrt(dx * dx + dy * dy) / r_scale;
   return p1 * r * r + p2 * r + p3;  // eq (7): f(u_p, v_p)
 }
 
@@ -146,6 +147,7 @@ FalloffFit fit_falloff_Guarnera2018(const RawImage& flat, const DarkFrame* dark)
       throw Error(ErrorCode::FlatFieldZero, "the flat field has no positive signal in channel " +
                                                 std::string(1, "RGB"[c]));
   }
+  const double inv_mean[3] = {1.0 / (3 * mean[0]), 1.0 / (3 * mean[1]), 1.0 / (3 * mean[2])};
   constexpr int kBins = 64;
   std::vector<double> bsum(kBins, 0), bcount(kBins, 0), brsum(kBins, 0);
   for (int y = 0; y < flat.height; ++y)
@@ -153,10 +155,9 @@ FalloffFit fit_falloff_Guarnera2018(const RawImage& flat, const DarkFrame* dark)
       const size_t p = static_cast<size_t>(y) * flat.width + x;
       if (flat.saturated[p]) continue;
       double L = 0;
-      for (int c = 0; c < 3; ++c)
-        L += (flat.rgb[p * 3 + c] - (dark ? dark->rgb[p * 3 + c] : 0.0f)) / mean[c];
-      L /= 3;
-      const double r = std::hypot(x + 0.5 - fit.centre_x, y + 0.5 - fit.centre_y) / fit.r_scale;
+      for (int c = 0; c < 3; ++c) L += (flat.rgb[p * 3 + c] - (dark ? dark->rgb[p * 3 + c] : 0.0f)) * inv_mean[c];
+      const double dx = x + 0.5 - fit.centre_x, dy = y + 0.5 - fit.centre_y;
+      const double r = std::sqrt(dx * dx + dy * dy) / fit.r_scale;
       const int b = std::min(kBins - 1, static_cast<int>(r * kBins));
       bsum[b] += L;
       brsum[b] += r;

@@ -76,8 +76,9 @@ std::unique_ptr<LibRaw> open_and_unpack(const std::uint8_t* data, std::size_t si
                 "the file is only " + std::to_string(size) + " bytes: not a RAW file");
   auto proc = std::make_unique<LibRaw>(LIBRAW_OPTIONS_NONE);
   // LibRaw's own allocation limit, aligned with ours (bytes of the raw raster, MB).
+  // (8 bytes per pixel covers 4-channel linear DNGs; Bayer rasters need 2.)
   proc->imgdata.params.max_raw_memory_mb =
-      static_cast<unsigned>(std::max(64.0, options.max_megapixels * 2.0 * 1.05));
+      static_cast<unsigned>(std::min(2048.0, std::max(64.0, options.max_megapixels * 8.0)));
   check_libraw(proc->open_buffer(const_cast<std::uint8_t*>(data), size), "open_buffer");
 
   const auto& S = proc->imgdata.sizes;
@@ -218,6 +219,7 @@ void fill_metadata(LibRaw& p, const LayoutInfo& L, RawMetadata& m) {
   m.width = S.width / L.block;
   m.height = S.height / L.block;
   m.bits = static_cast<int>(C.raw_bps);
+  m.flip = S.flip;
   m.white_level = C.maximum;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
@@ -314,6 +316,37 @@ RawImage build_image(LibRaw& p, const DecodeOptions& options) {
       }
     const size_t pitch = S.raw_pitch / 2;
     const ushort* raw = R.raw_image;
+    if (L.layout == "bayer" && !pattern_black) {
+      // Fast path: the 2×2 block's positions are fixed (blocks start at even rows and columns).
+      int chan[4];
+      float blk[4], thr[4];
+      for (int k = 0; k < 4; ++k) {
+        chan[k] = L.channel[k];
+        blk[k] = pos_black[k];
+        thr[k] = static_cast<float>(frac * (white - pos_black[k]));
+      }
+      const auto& ic = inv_count[0];
+      for (int y = 0; y < img.height; ++y) {
+        const ushort* l0 = raw + static_cast<size_t>(2 * y + S.top_margin) * pitch + S.left_margin;
+        const ushort* l1 = l0 + pitch;
+        float* out = &img.rgb[static_cast<size_t>(y) * img.width * 3];
+        std::uint8_t* sat = &img.saturated[static_cast<size_t>(y) * img.width];
+        for (int x = 0; x < img.width; ++x) {
+          const float v[4] = {l0[2 * x] - blk[0], l0[2 * x + 1] - blk[1], l1[2 * x] - blk[2],
+                              l1[2 * x + 1] - blk[3]};
+          float acc[3] = {0.f, 0.f, 0.f};
+          std::uint8_t s = 0;
+          for (int k = 0; k < 4; ++k) {
+            acc[chan[k]] += v[k];
+            if (v[k] >= thr[k]) s |= static_cast<std::uint8_t>(1u << chan[k]);
+          }
+          out[3 * x] = acc[0] * ic[0];
+          out[3 * x + 1] = acc[1] * ic[1];
+          out[3 * x + 2] = acc[2] * ic[2];
+          sat[x] = s;
+        }
+      }
+    } else {
     std::vector<float> sum(static_cast<size_t>(img.width) * 3);
     std::vector<std::uint8_t> sat(img.width);
     for (int y = 0; y < img.height; ++y) {
@@ -344,6 +377,7 @@ RawImage build_image(LibRaw& p, const DecodeOptions& options) {
         img.saturated[static_cast<size_t>(y) * img.width + x] = sat[x];
       }
     }
+    }  // generic CFA path
   } else {
     // linear (3 colours per pixel) or monochrome: one sensor pixel per measurement pixel.
     const bool mono = L.layout == "monochrome";
@@ -394,10 +428,19 @@ void json_string(std::ostream& o, const std::string& s) {
   o << '"';
 }
 
+/// A JSON number; NaN and infinities (never valid JSON) become null.
+void json_number(std::ostream& o, double v) {
+  if (std::isfinite(v)) o << v;
+  else o << "null";
+}
+
 template <size_t N>
 void json_array(std::ostream& o, const std::array<double, N>& a) {
   o << '[';
-  for (size_t i = 0; i < N; ++i) o << (i ? "," : "") << a[i];
+  for (size_t i = 0; i < N; ++i) {
+    if (i) o << ',';
+    json_number(o, a[i]);
+  }
   o << ']';
 }
 
@@ -422,7 +465,12 @@ std::string metadata_to_json(const RawMetadata& m) {
   o << "\"make\":"; json_string(o, m.make);
   o << ",\"model\":"; json_string(o, m.model);
   o << ",\"lens\":"; json_string(o, m.lens);
-  o << ",\"iso\":" << m.iso << ",\"shutter_s\":" << m.shutter_s << ",\"f_number\":" << m.f_number;
+  o << ",\"iso\":";
+  json_number(o, m.iso);
+  o << ",\"shutter_s\":";
+  json_number(o, m.shutter_s);
+  o << ",\"f_number\":";
+  json_number(o, m.f_number);
   o << ",\"timestamp\":" << m.timestamp << ",\"timestamp_iso\":"; json_string(o, m.timestamp_iso);
   o << ",\"layout\":"; json_string(o, m.layout);
   o << ",\"cfa_pattern\":"; json_string(o, m.cfa_pattern);
@@ -430,10 +478,11 @@ std::string metadata_to_json(const RawMetadata& m) {
   o << ",\"block\":" << m.block << ",\"sensor_width\":" << m.sensor_width
     << ",\"sensor_height\":" << m.sensor_height << ",\"raw_width\":" << m.raw_width
     << ",\"raw_height\":" << m.raw_height << ",\"width\":" << m.width << ",\"height\":" << m.height
-    << ",\"bits\":" << m.bits;
+    << ",\"bits\":" << m.bits << ",\"flip\":" << m.flip;
   o << ",\"cfa_black\":"; json_array(o, m.cfa_black);
   o << ",\"black_level\":"; json_array(o, m.black_level);
-  o << ",\"white_level\":" << m.white_level;
+  o << ",\"white_level\":";
+  json_number(o, m.white_level);
   o << ",\"saturation\":"; json_array(o, m.saturation);
   o << ",\"rgb_cam\":"; json_array(o, m.rgb_cam);
   o << ",\"cam_xyz\":"; json_array(o, m.cam_xyz);

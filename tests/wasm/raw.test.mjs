@@ -96,6 +96,21 @@ test('sampleChart on the example Passport: 24 patches with ids A1..D6 and typed 
     assert.equal(s.patchQuads.length, 24 * 8);
     assert.equal(s.homography.length, 9);
     // D1 (white) is the brightest neutral; 3-argument form works too.
+    if (fs.existsSync(nativeCli)) {  // the native CLI samples the same numbers (CSV: 8 significant digits)
+      const csv = execFileSync(nativeCli, ['sample', path.join(process.env.TRISTIM_SHARED_DATA || path.resolve(repoRoot, '../shared/data'), PASSPORT),
+        '--chart', 'passport', '--corners', passportJson.corners.join(',')]).toString().trim().split('\n');
+      assert.equal(csv[0], 'patch,R,G,B,R_std,G_std,B_std,n,flags');
+      csv.slice(1).forEach((line, i) => {
+        const cells = line.split(',');
+        assert.equal(cells[0], s.ids[i]);
+        for (let c = 0; c < 3; c++) {
+          const a = Number(cells[1 + c]), b = s.RGB[3 * i + c];
+          assert.ok(Math.abs(a - b) <= 1e-6 * Math.abs(b), `${s.ids[i]} channel ${c}: native ${a} vs wasm ${b}`);
+        }
+        assert.equal(Number(cells[7]), s.n[i]);
+        assert.equal(cells[8], s.flags[i].join(';'));
+      });
+    }
     const s3 = T.sampleChart(raw, { chart: 'passport' }, passportJson.corners);
     assert.deepEqual(Array.from(s3.RGB), Array.from(s.RGB));
     const G = (id) => s.RGB[3 * s.ids.indexOf(id) + 1];
@@ -141,18 +156,20 @@ test('bad RAW input: every case has its code and the module stays usable', async
   let seed = 42;
   const random = new Uint8Array(1000003).map(() => { seed = (seed * 1103515245 + 12345) >>> 0; return seed >>> 24; });
   throwsCode(assert, () => T.decodeRaw(random), 'RAW_UNSUPPORTED');
-  // A DNG header claiming 60000 x 60000 pixels: patch the Passport's width/height tags.
-  const absurd = readShared(PASSPORT).slice(0, 1 << 16);
-  const dv = new DataView(absurd.buffer);
-  const ifd = dv.getUint32(4, true);
-  const count = dv.getUint16(ifd, true);
-  for (let i = 0; i < count; i++) {
-    const e = ifd + 2 + 12 * i, tag = dv.getUint16(e, true), type = dv.getUint16(e + 2, true);
-    if (tag === 256 || tag === 257) {
-      if (type === 3) dv.setUint16(e + 8, 60000, true); else dv.setUint32(e + 8, 60000, true);
+  // DNG headers claiming absurd / inconsistent sizes: patch the Passport's width and height tags.
+  const patched = (w, h) => {
+    const b = readShared(PASSPORT).slice(0, 1 << 16);
+    const dv = new DataView(b.buffer);
+    const ifd = dv.getUint32(4, true);
+    for (let i = 0; i < dv.getUint16(ifd, true); i++) {
+      const e = ifd + 2 + 12 * i, tag = dv.getUint16(e, true), type = dv.getUint16(e + 2, true);
+      const v = tag === 256 ? w : tag === 257 ? h : null;
+      if (v !== null) { if (type === 3) dv.setUint16(e + 8, v, true); else dv.setUint32(e + 8, v, true); }
     }
-  }
-  assert.throws(() => T.decodeRaw(absurd), (e) => ['RAW_TOO_LARGE', 'RAW_CORRUPT', 'RAW_TRUNCATED'].includes(e.code));
+    return b;
+  };
+  throwsCode(assert, () => T.decodeRaw(patched(60000, 60000)), 'RAW_TOO_LARGE');
+  throwsCode(assert, () => T.decodeRaw(patched(6000, 4000)), 'RAW_TRUNCATED');
   withRaw(T, readShared(PASSPORT), (raw) => {
     const L = { chart: 'passport' };
     throwsCode(assert, () => T.sampleChart(raw, L, [335, 291, 9649, 285, 649, 486, 328, 488]), 'CORNERS_OUTSIDE');

@@ -11,7 +11,11 @@ import { serve } from '../../scripts/serve.mjs';
 export const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 export const siteDir = process.env.TRISTIM_SITE_DIR || path.join(repoRoot, 'build/wasm/site');
 export const artifacts = path.join(repoRoot, 'test-artifacts');
-export const sharedData = process.env.TRISTIM_SHARED_DATA || path.resolve(repoRoot, '../shared/data');
+// The shared data folder: $TRISTIM_SHARED_DATA, or ../shared/data next to the checkout (or one
+// level further up, for a git worktree kept in a subfolder).
+export const sharedData = process.env.TRISTIM_SHARED_DATA
+  || ['../shared/data', '../../shared/data'].map((p) => path.resolve(repoRoot, p)).find((p) => fs.existsSync(p))
+  || path.resolve(repoRoot, '../shared/data');
 
 export async function openBrowser() {
   const server = await serve(siteDir, 0);
@@ -51,6 +55,8 @@ export async function openBrowser() {
 export async function screenshot(page, name) {
   fs.mkdirSync(artifacts, { recursive: true });
   const file = path.join(artifacts, `${name}.png`);
+  await page.evaluate(() => window.scrollTo(0, 0));   // the sticky header stays at the top
+  await page.mouse.move(0, 0);
   await page.screenshot({ path: file, fullPage: true });
   return file;
 }

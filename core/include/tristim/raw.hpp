@@ -36,6 +36,8 @@ struct RawMetadata {
   int raw_width = 0, raw_height = 0;        ///< full stored raster incl. masked borders
   int width = 0, height = 0;         ///< the measurement image (half resolution for Bayer)
   int bits = 0;                      ///< bits per sample LibRaw reports (0 if unknown)
+  int flip = 0;                      ///< LibRaw's orientation: 0 none, 3 180°, 5 90° CCW, 6 90° CW.
+                                     ///< The measurement image and preview stay in sensor orientation.
   std::array<double, 4> cfa_black{}; ///< black level per 2×2 CFA position (row-major), DN
   std::array<double, 3> black_level{};  ///< mean black level subtracted from R, G, B, DN
   double white_level = 0;            ///< raw saturation level (LibRaw `maximum`), DN incl. black

@@ -1,0 +1,86 @@
+// Helpers shared by the journey tests: open the page fresh, wait for it, move between steps,
+// upload files, read errors, count plot marks.
+import fs from 'node:fs';
+import path from 'node:path';
+import { openBrowser, sharedData, repoRoot } from './harness.mjs';
+
+export const DNG = path.join(sharedData, 'raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng');
+export const CR2 = path.join(sharedData, 'raw-images/debian-rawtran-doc/IMG_5952_canon_eos_30d.CR2');
+export const JPEG = path.join(sharedData, 'raw-images/tinydng/colorchart_preview_dcraw_emu_srgb.jpg');
+export const fixture = (name) => path.join(repoRoot, 'tests/web/fixtures', name);
+
+/// Opens the page and waits until it has restored (or built) its session.
+export async function openPage() {
+  const b = await openBrowser();
+  await b.page.goto(b.origin + '/');
+  await waitReady(b.page);
+  return b;
+}
+
+export async function waitReady(page, timeout = 60000) {
+  await page.waitForSelector('body[data-ready="true"]', { timeout });
+}
+
+export const caps = (page) => page.evaluate(() => window.tristim.engine.caps);
+
+export async function step(page, name) {
+  await page.click(`#steps a[data-step="${name}"]`);
+  await page.waitForSelector(`#step-${name}:not([hidden])`);
+}
+
+/// Sets a file input to an in-memory file {name, buffer}.
+export async function upload(page, selector, name, buffer) {
+  await page.setInputFiles(selector, { name, mimeType: 'application/octet-stream', buffer });
+}
+export const fileBuffer = (p, n) => (n ? fs.readFileSync(p).subarray(0, n) : fs.readFileSync(p));
+
+/// The coded error shown next to a control (its aria-describedby slot): {code, text} or null.
+export function errorNear(page, selector, timeout = 30000) {
+  return page.waitForFunction((sel) => {
+    const el = document.querySelector(sel);
+    const slot = el && document.getElementById(el.getAttribute('aria-describedby'));
+    return slot && !slot.hidden && slot.dataset.code ? { code: slot.dataset.code, text: slot.textContent } : null;
+  }, selector, { timeout }).then((h) => h.jsonValue());
+}
+export function noErrorNear(page, selector) {
+  return page.evaluate((sel) => {
+    const el = document.querySelector(sel);
+    const slot = el && document.getElementById(el.getAttribute('aria-describedby'));
+    return !slot || slot.hidden;
+  }, selector);
+}
+
+/// Drawn data marks (circles, paths, rects, ... of the plot's marks, not axes, grids, frames or
+/// tips) inside a plot figure, by mark: {dot: 24, arrow: 24, ...}. Facets nest groups, so
+/// shapes are counted as descendants of each top-level mark group.
+export function markCounts(page, plotName) {
+  return page.evaluate((n) => {
+    const fig = document.querySelector(`figure[data-plot="${n}"]`);
+    if (!fig) return null;
+    const out = {};
+    for (const g of fig.querySelectorAll('svg > g[aria-label]')) {
+      const k = g.getAttribute('aria-label');
+      if (/axis|grid|frame|tip/.test(k)) continue;
+      out[k] = (out[k] ?? 0) + g.querySelectorAll('circle, path, line, rect, text, polygon').length;
+    }
+    return out;
+  }, plotName);
+}
+export async function marks(page, plotName) {
+  const c = await markCounts(page, plotName);
+  return c ? Object.values(c).reduce((a, b) => a + b, 0) : -1;
+}
+
+/// Places the four corners (as a drag would) and waits until the table is sampled with them.
+export async function setCorners(page, corners) {
+  await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, corners);
+  await waitSampled(page, corners);
+}
+
+/// Waits until the corners are stored and the patch table shows a sampling made with them.
+export function waitSampled(page, corners) {
+  return page.waitForFunction((cs) => {
+    const same = (a) => a && a.length === 8 && Array.from(a).every((v, i) => Math.abs(v - cs[i]) < 1e-9);
+    return same(window.tristim.session.corners) && same(window.tristim.derived.sample?.corners);
+  }, corners, { timeout: 30000 });
+}

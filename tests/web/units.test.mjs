@@ -1,0 +1,100 @@
+// Node unit tests of the page's pure functions (geometry, pairing, plot data, formats, display).
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import { squareToQuad, gridCells, isCrossed } from '../../web/lib/geometry.js';
+import { pairData } from '../../web/lib/pairs.js';
+import { flagNames, sampleOut } from '../../web/lib/shapes.js';
+import { deSegments } from '../../web/plots/de_bars.js';
+import { xyFromXYZ, cssColours } from '../../web/plots/common.js';
+import { locusData } from '../../web/plots/xy.js';
+import { xyzScatterData } from '../../web/plots/xyz_scatter.js';
+import { readCube, readIccHeader } from '../../web/lib/formats.js';
+import { XYZ_to_display_sRGB } from '../../web/lib/display.js';
+import { labOf, renderXYZ } from '../../web/lib/render.js';
+import { cellId } from '../../web/lib/charts.js';
+import { describe as describeModel } from '../../web/methods/index.js';
+
+const close = (a, b, tol = 1e-9) => assert.ok(Math.abs(a - b) <= tol, `${a} vs ${b} (tol ${tol})`);
+
+test('squareToQuad maps the unit square onto the four corners (projective)', () => {
+  const c = [10, 20, 110, 25, 120, 90, 5, 80];
+  const m = squareToQuad(c);
+  [[0, 0], [1, 0], [1, 1], [0, 1]].forEach(([u, v], i) => { const [x, y] = m(u, v); close(x, c[2 * i], 1e-9); close(y, c[2 * i + 1], 1e-9); });
+});
+
+test('gridCells: the 6x4 grid with gaps fills the corners edge to edge', () => {
+  const cells = gridCells([0, 0, 600, 0, 600, 400, 0, 400], 4, 6, 1, 0.14);
+  assert.equal(cells.length, 24);
+  close(cells[0].quad[0][0], 0, 1e-9); close(cells[0].quad[0][1], 0, 1e-9);
+  close(cells[23].quad[2][0], 600, 1e-9); close(cells[23].quad[2][1], 400, 1e-9);
+  const half = gridCells([0, 0, 600, 0, 600, 400, 0, 400], 4, 6, 0.5, 0.14);
+  close(half[0].quad[1][0] - half[0].quad[0][0], (cells[0].quad[1][0] - cells[0].quad[0][0]) / 2, 1e-9);
+  assert.equal(cellId('passport', 3, 5), 'D6');
+  assert.equal(cellId('sg140', 9, 13), 'N10');
+});
+
+test('isCrossed finds self-intersecting corners', () => {
+  assert.equal(isCrossed([0, 0, 10, 0, 10, 10, 0, 10]), false);
+  assert.equal(isCrossed([0, 0, 10, 10, 10, 0, 0, 10]), true);
+});
+
+test('flags in any encoding become word lists; pairing leaves out saturated patches by id', () => {
+  assert.deepEqual(flagNames([['dark', 'nonuniform'], 'saturated', '', 5], 4), [['dark', 'nonuniform'], ['saturated'], [], ['saturated', 'non-uniform']]);
+  const s = sampleOut({ ids: ['A1', 'A2', 'X9'], RGB: [1, 2, 3, 4, 5, 6, 7, 8, 9], flags: [[], ['saturated'], []] });
+  const ref = { ids: ['A2', 'A1'], XYZ: Float64Array.from([20, 21, 22, 10, 11, 12]) };
+  const d = pairData(s, ref);
+  assert.deepEqual(d.ids, ['A1']);
+  assert.deepEqual(Array.from(d.xyz), [10, 11, 12]);
+  assert.deepEqual(d.missing, ['X9']);
+  assert.deepEqual(d.excluded.map((e) => e.id), ['A2']);
+});
+
+test('ΔE00 bar segments add up to ΔE00', () => {
+  const segs = deSegments([{ id: 'A1', dE: 3, dL: 1, dC: 2, dH: 2 }]);
+  close(segs.reduce((s, x) => s + x.value, 0), 3, 1e-12);
+  close(segs[0].value, 3 / 9, 1e-12);
+});
+
+test('chromaticities, locus closing, scatter data, colours', () => {
+  const xy = xyFromXYZ([95.047, 100, 108.883]);
+  close(xy[0].x, 0.3127, 1e-4); close(xy[0].y, 0.3290, 1e-4);
+  const l = locusData({ wavelengths: [460, 520, 620], x: [0.14, 0.07, 0.69], y: [0.03, 0.83, 0.31] });
+  assert.deepEqual(l.line[0], l.line[l.line.length - 1]);
+  assert.equal(l.ticks.length, 3);
+  assert.equal(xyzScatterData([{ X: 1, Y: 2, Z: 3, Xe: 1, Ye: 2, Ze: 3 }]).length, 3);
+  assert.deepEqual(cssColours([1, 0, 0.5]), ['rgb(255, 0, 128)']);
+  assert.deepEqual(cssColours([255, 0, 128]), ['rgb(255, 0, 128)']);
+});
+
+test('display sRGB: the white is white after adaptation; L*a*b* of the white is 100, 0, 0', () => {
+  const d50 = [96.422, 100, 82.521];
+  const rgb = XYZ_to_display_sRGB(d50, d50);
+  for (const v of rgb) close(v, 1, 1e-6);
+  const lab = labOf(d50, d50);
+  close(lab[0], 100, 1e-9); close(lab[1], 0, 1e-9); close(lab[2], 0, 1e-9);
+  const lut = new Uint8Array(768).map((_, i) => Math.floor(i / 3));
+  const r = renderXYZ(Float32Array.from([...d50, ...d50.map((v) => v / 2)]), 2, 1, { white: d50, lut, yMax: 100 });
+  assert.deepEqual(Array.from(r.ymap.slice(0, 4)), [255, 255, 255, 255]);
+  assert.ok(Math.abs(r.ymap[4] - 127.5) <= 0.5, `half white maps to the middle of the table (${r.ymap[4]})`);
+});
+
+test('readers of exports: .cube and ICC header', () => {
+  const cube = 'TITLE "t"\nLUT_3D_SIZE 2\n' + '0 0 0\n'.repeat(8);
+  assert.equal(readCube(cube).size, 2);
+  assert.throws(() => readCube('LUT_3D_SIZE 2\n0 0 0\n'), (e) => e.code === 'PARSE_ERROR');
+  const icc = new Uint8Array(144);
+  new DataView(icc.buffer).setUint32(0, 144);
+  icc.set([0x61, 0x63, 0x73, 0x70], 36);
+  icc.set([...'scnrRGB XYZ '].map((c) => c.charCodeAt(0)), 12);
+  icc[8] = 4; icc[9] = 0x30;
+  const hd = readIccHeader(icc);
+  assert.equal(hd.version, '4.3'); assert.equal(hd.deviceClass, 'scnr'); assert.equal(hd.pcs, 'XYZ');
+  assert.throws(() => readIccHeader(new Uint8Array(10)), (e) => e.code === 'PARSE_ERROR');
+});
+
+test('model descriptors group the engine ids by family', () => {
+  assert.equal(describeModel({ id: 'Finlayson2015-2', label: 'Root-polynomial, degree 2' }).family, 'Root-polynomials');
+  assert.equal(describeModel('matrix-3x4').family, 'Matrices');
+  assert.equal(describeModel('Cheung2004-35').family, 'Polynomials');
+  assert.equal(describeModel('Whatever').family, 'Other models');
+});

@@ -1,0 +1,47 @@
+// Export formats the page writes itself (per-patch CSV) and light readers used to load exports
+// back (.cube header and size, ICC header), so a user can check a file before trusting it.
+export function perPatchCsv(rows, result) {
+  const f = (v, d = 4) => (Number.isFinite(v) ? v.toFixed(d) : '');
+  const head = 'patch,R,G,B,X,Y,Z,X_est,Y_est,Z_est,L,a,b,L_est,a_est,b_est,dE2000,dL,dC,dH';
+  const lines = rows.map((r) => [r.id, f(result.rgb[3 * r.i], 3), f(result.rgb[3 * r.i + 1], 3), f(result.rgb[3 * r.i + 2], 3),
+    f(r.X), f(r.Y), f(r.Z), f(r.Xe), f(r.Ye), f(r.Ze), f(r.L), f(r.a), f(r.b), f(r.Le), f(r.ae), f(r.be), f(r.dE), f(r.dL), f(r.dC), f(r.dH)].join(','));
+  return `${head}\n${lines.join('\n')}\n`;
+}
+
+/// .cube (Adobe/Resolve 3D LUT): returns {size, title, entries, domainMin, domainMax} or throws.
+export function readCube(text) {
+  let size = 0, title = '', entries = 0, domainMin = [0, 0, 0], domainMax = [1, 1, 1];
+  const lines = text.split(/\r?\n/);
+  lines.forEach((line, k) => {
+    const t = line.trim();
+    if (!t || t.startsWith('#')) return;
+    const [key, ...rest] = t.split(/\s+/);
+    if (key === 'TITLE') title = t.slice(6).replace(/^"|"$/g, '');
+    else if (key === 'LUT_3D_SIZE') size = Number(rest[0]);
+    else if (key === 'DOMAIN_MIN') domainMin = rest.map(Number);
+    else if (key === 'DOMAIN_MAX') domainMax = rest.map(Number);
+    else if (/^[-+.\deE]/.test(key)) {
+      const v = [key, ...rest].map(Number);
+      if (v.length !== 3 || v.some((x) => !Number.isFinite(x))) throw Object.assign(new Error(`line ${k + 1}: expected three numbers`), { code: 'PARSE_ERROR' });
+      entries++;
+    }
+  });
+  if (!size) throw Object.assign(new Error('no LUT_3D_SIZE line'), { code: 'PARSE_ERROR' });
+  if (entries !== size ** 3) throw Object.assign(new Error(`${entries} table rows, expected ${size}³ = ${size ** 3}`), { code: 'PARSE_ERROR' });
+  return { size, title, entries, domainMin, domainMax };
+}
+
+/// ICC header (ICC.1:2022 §7.2): size, version, class, colour space, PCS, and the description.
+export function readIccHeader(bytes) {
+  const b = bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes);
+  if (b.length < 132) throw Object.assign(new Error(`${b.length} bytes: too short for an ICC profile`), { code: 'PARSE_ERROR' });
+  const dv = new DataView(b.buffer, b.byteOffset, b.byteLength);
+  const sig = (o) => String.fromCharCode(b[o], b[o + 1], b[o + 2], b[o + 3]);
+  if (sig(36) !== 'acsp') throw Object.assign(new Error('no ICC signature "acsp" at byte 36'), { code: 'PARSE_ERROR' });
+  const size = dv.getUint32(0);
+  if (size !== b.length) throw Object.assign(new Error(`header says ${size} bytes, file has ${b.length}`), { code: 'PARSE_ERROR' });
+  const tags = dv.getUint32(128);
+  const tagSigs = [];
+  for (let k = 0; k < tags && 132 + 12 * k + 12 <= b.length; k++) tagSigs.push(sig(132 + 12 * k));
+  return { size, version: `${b[8]}.${b[9] >> 4}`, deviceClass: sig(12), colourSpace: sig(16).trim(), pcs: sig(20).trim(), tags: tagSigs };
+}

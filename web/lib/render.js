@@ -1,0 +1,62 @@
+// Worker-side rendering of an XYZ image (display only): sRGB via display.js, and a false-colour
+// map of Y through a 256-entry colour table the page supplies (e.g. viridis). Downsamples by an
+// integer factor so the page receives at most ~maxSide pixels on the long side.
+import { displayMatrix, encode } from './display.js';
+
+const ENC = new Uint8ClampedArray(4096);
+for (let i = 0; i < 4096; i++) ENC[i] = Math.round(255 * encode(i / 4095));
+
+/// xyz: Float32Array(3 w h); white: [X, Y, Z] the profile's white (Y = 100 scale);
+/// lut: Uint8Array(256 * 3); yMax: Y mapped to the top of the map (default: 99th percentile).
+export function renderXYZ(xyz, width, height, { white, lut, maxSide = 1400, yMax } = {}) {
+  const f = Math.max(1, Math.ceil(Math.max(width, height) / maxSide));
+  const w = Math.floor(width / f), hgt = Math.floor(height / f);
+  const M = displayMatrix(white);
+  const srgb = new Uint8ClampedArray(w * hgt * 4);
+  const ymap = new Uint8ClampedArray(w * hgt * 4);
+  if (!yMax) yMax = percentileY(xyz, 0.99) || 1;
+  const yScale = 255 / yMax;
+  for (let j = 0; j < hgt; j++) {
+    for (let i = 0; i < w; i++) {
+      const s = 3 * ((j * f) * width + i * f);
+      const X = xyz[s], Y = xyz[s + 1], Z = xyz[s + 2];
+      const o = 4 * (j * w + i);
+      const r = M[0] * X + M[1] * Y + M[2] * Z, g = M[3] * X + M[4] * Y + M[5] * Z, b = M[6] * X + M[7] * Y + M[8] * Z;
+      srgb[o] = ENC[r <= 0 ? 0 : r >= 1 ? 4095 : (r * 4095 + 0.5) | 0];
+      srgb[o + 1] = ENC[g <= 0 ? 0 : g >= 1 ? 4095 : (g * 4095 + 0.5) | 0];
+      srgb[o + 2] = ENC[b <= 0 ? 0 : b >= 1 ? 4095 : (b * 4095 + 0.5) | 0];
+      srgb[o + 3] = 255;
+      const t = Y * yScale;
+      const k = t <= 0 ? 0 : t >= 255 ? 255 : (t + 0.5) | 0;
+      ymap[o] = lut[3 * k]; ymap[o + 1] = lut[3 * k + 1]; ymap[o + 2] = lut[3 * k + 2]; ymap[o + 3] = 255;
+    }
+  }
+  return { width: w, height: hgt, factor: f, srgb, ymap, yMax };
+}
+
+/// Approximate percentile of Y (a 4096-bin histogram of a strided subsample: fast, for the
+/// colour-map range only).
+export function percentileY(xyz, p) {
+  const n = xyz.length / 3;
+  const step = Math.max(1, Math.floor(n / 250000));
+  let max = 0;
+  for (let i = 0; i < n; i += step) { const y = xyz[3 * i + 1]; if (y > max) max = y; }
+  if (!(max > 0)) return 0;
+  const bins = new Uint32Array(4096);
+  let count = 0;
+  for (let i = 0; i < n; i += step) {
+    const y = xyz[3 * i + 1];
+    if (y >= 0) { bins[Math.min(4095, ((y / max) * 4096) | 0)]++; count++; } else if (y < 0) { bins[0]++; count++; }
+  }
+  const target = p * count;
+  let acc = 0;
+  for (let b = 0; b < 4096; b++) { acc += bins[b]; if (acc >= target) return ((b + 1) / 4096) * max; }
+  return max;
+}
+
+/// CIE 1976 L*a*b* of one XYZ against `white` (CIE 15:2004 eqs 8.1–8.3), for the read-out only.
+export function labOf([X, Y, Z], white) {
+  const f = (t) => (t > 216 / 24389 ? Math.cbrt(t) : (24389 / 27 * t + 16) / 116);
+  const fx = f(X / white[0]), fy = f(Y / white[1]), fz = f(Z / white[2]);
+  return [116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz)];
+}

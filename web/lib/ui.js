@@ -1,0 +1,115 @@
+// Small DOM helpers shared by the views. No framework: elements are built with h().
+
+/// h('div', {class: 'x', onclick: fn}, child, 'text', ...) -> HTMLElement
+export function h(tag, attrs = {}, ...children) {
+  const el = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs ?? {})) {
+    if (v == null || v === false) continue;
+    if (k.startsWith('on') && typeof v === 'function') el.addEventListener(k.slice(2), v);
+    else if (k === 'class') el.className = v;
+    else if (k === 'dataset') Object.assign(el.dataset, v);
+    else if (k === 'style' && typeof v === 'object') Object.assign(el.style, v);
+    else if (v === true) el.setAttribute(k, '');
+    else el.setAttribute(k, v);
+  }
+  append(el, children);
+  return el;
+}
+
+function append(el, children) {
+  for (const c of children.flat(Infinity)) {
+    if (c == null || c === false) continue;
+    el.append(c instanceof Node ? c : String(c));
+  }
+}
+
+let uid = 0;
+export const nextId = (prefix) => `${prefix}-${++uid}`;
+
+/// A labelled control: <label for=id>text</label> control, plus an error slot right after it.
+export function field(labelText, control, hint) {
+  control.id ||= nextId('f');
+  const err = errorSlot(control);
+  return h('div', { class: 'field' }, h('label', { for: control.id }, labelText), control,
+    hint ? h('small', { class: 'hint' }, hint) : null, err);
+}
+
+/// An element where errors about `control` appear (aria-describedby links them).
+export function errorSlot(control) {
+  const err = h('p', { class: 'field-error', role: 'alert', hidden: true });
+  err.id = `${control.id || nextId('c')}-error`;
+  control.setAttribute('aria-describedby', err.id);
+  control._errorSlot = err;
+  return err;
+}
+
+/// Shows `error` (with its code) next to `control`; the rest of the page keeps working.
+export function showError(control, error, context = '') {
+  const slot = control?._errorSlot;
+  const code = error?.code ?? 'ERROR';
+  const message = String(error?.message ?? error);
+  const text = `${context && !message.includes(context) ? context + ': ' : ''}${message} (${code})`;
+  if (!slot) { console.warn(text); return; }
+  slot.textContent = text;
+  slot.dataset.code = code;
+  slot.hidden = false;
+  control.setAttribute('aria-invalid', 'true');
+}
+
+export function clearError(control) {
+  const slot = control?._errorSlot;
+  if (slot) { slot.hidden = true; slot.textContent = ''; delete slot.dataset.code; }
+  control?.removeAttribute('aria-invalid');
+}
+
+/// A <select> from [{value, label}] (or strings).
+export function select(options, value) {
+  const s = h('select');
+  setOptions(s, options, value);
+  return s;
+}
+export function setOptions(s, options, value) {
+  s.replaceChildren(...options.map((o) => {
+    const v = typeof o === 'string' ? o : o.value;
+    const l = typeof o === 'string' ? o : o.label;
+    return h('option', { value: v, selected: v === value }, l);
+  }));
+  if (value != null && options.some((o) => (typeof o === 'string' ? o : o.value) === value)) s.value = value;
+}
+
+/// A notice that a feature's engine function is missing; never a fake result.
+export function unavailable(what, fn) {
+  return h('p', { class: 'unavailable', dataset: { unavailable: fn } },
+    `${what} is not available yet: this build of the colour engine has no ${fn}().`);
+}
+
+/// A progress bar with a label, updated by progress messages {fraction, stage}.
+export function progressBar(label) {
+  const bar = h('progress', { max: 1, value: 0, 'aria-label': label });
+  const text = h('span', { class: 'progress-text' }, '');
+  const el = h('div', { class: 'progress', hidden: true }, bar, text);
+  return {
+    el,
+    start(stage = label) { el.hidden = false; bar.removeAttribute('value'); text.textContent = stage; },
+    update({ fraction, stage }) {
+      if (Number.isFinite(fraction)) bar.value = fraction; else bar.removeAttribute('value');
+      if (stage) text.textContent = stage;
+    },
+    done() { el.hidden = true; },
+  };
+}
+
+export function download(name, data, type) {
+  const blob = data instanceof Blob ? data : new Blob([data], { type });
+  const url = URL.createObjectURL(blob);
+  const a = h('a', { href: url, download: name });
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 1000);
+}
+
+export const fmt = (x, d = 2) => (Number.isFinite(x) ? x.toFixed(d) : '–');
+
+/// Reads a File as bytes (Uint8Array) or text.
+export const fileBytes = async (file) => new Uint8Array(await file.arrayBuffer());

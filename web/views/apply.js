@@ -1,0 +1,187 @@
+// Step 5: apply the selected profile to the whole RAW (the chart, or another RAW of a scene):
+// the XYZ image rendered to sRGB, a false-colour map of Y with a named CVD-safe colour map and
+// its legend, and X, Y, Z, x, y, L*a*b* under the pointer.
+import { h, field, select, showError, clearError, unavailable, progressBar, fmt, fileBytes } from '../lib/ui.js';
+
+const MAPS = {
+  viridis: { label: 'viridis', interp: () => globalThis.d3.interpolateViridis },
+  cividis: { label: 'cividis', interp: () => globalThis.d3.interpolateCividis },
+};
+
+export function mount(section, app) {
+  const { engine } = app;
+  const sourceSel = select([{ value: 'chart', label: 'The chart RAW (step 2)' }, { value: 'scene', label: 'Another RAW file…' }], 'chart');
+  const sceneInput = h('input', { type: 'file' });
+  const sceneField = field('Scene RAW', sceneInput, 'Decoded in the worker; the profile is applied to its linear camera RGB');
+  sceneField.hidden = true;
+  const mapSel = select(Object.entries(MAPS).map(([value, m]) => ({ value, label: m.label })), app.session.colourMap ?? 'viridis');
+  const applyBtn = h('button', { type: 'button', class: 'primary' }, 'Apply the selected profile');
+  const which = h('p', { class: 'summary', 'aria-live': 'polite' });
+  const progress = progressBar('Applying');
+  const srgbCanvas = h('canvas', { class: 'apply-img', 'aria-label': 'The XYZ image rendered to sRGB' });
+  const yCanvas = h('canvas', { class: 'apply-img', 'aria-label': 'Luminance Y false-colour map' });
+  const legend = h('div', { class: 'legend' });
+  const readout = h('output', { class: 'readout', 'aria-live': 'polite' }, 'Move the pointer over an image (or focus it and use the arrow keys) to read X, Y, Z, x, y and L*a*b*.');
+  const images = h('div', { class: 'apply-images', hidden: true },
+    h('figure', {}, srgbCanvas, h('figcaption', {}, 'XYZ → sRGB (display; D65-adapted, clipped)')),
+    h('figure', {}, yCanvas, h('figcaption', {}, 'Luminance Y (relative, white = 100)'), legend));
+  section.append(h('div', { class: 'controls' }, field('Apply to', sourceSel), sceneField, field('Colour map for Y', mapSel, 'Perceptually uniform and readable with colour-vision deficiencies'), applyBtn),
+    which, progress.el, readout, images);
+  applyBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'apply-error' });
+  applyBtn.setAttribute('aria-describedby', 'apply-error');
+  applyBtn.after(applyBtn._errorSlot);
+  if (!engine.has('applyProfileToImage')) { section.insertBefore(unavailable('Applying a profile to an image', 'applyProfileToImage'), which); applyBtn.disabled = true; }
+
+  let sceneBytes = null;
+  let sceneGen = -1;
+  let shown = null;
+  sourceSel.addEventListener('change', () => { sceneField.hidden = sourceSel.value !== 'scene'; app.save('applySource', sourceSel.value); });
+  // Restore: the scene file kept in the session, the source choice, and (when the step is
+  // visited) the last applied image.
+  const savedScene = app.session['files.scene'];
+  if (savedScene) {
+    sceneBytes = { name: savedScene.name, bytes: new Uint8Array(savedScene.bytes) };
+    sceneField.append(h('span', { class: 'file-state' }, `Kept from before: ${savedScene.name}`));
+  }
+  if (app.session.applySource === 'scene' && savedScene) { sourceSel.value = 'scene'; sceneField.hidden = false; }
+  let restoreApplied = !!app.session.applied;
+  mapSel.addEventListener('change', () => { app.save('colourMap', mapSel.value); if (shown) run(); });
+  let sceneLoading = null;   // reading + decoding a newly chosen scene file
+  sceneInput.addEventListener('change', () => {
+    const f = sceneInput.files[0];
+    if (!f) return;
+    clearError(sceneInput);
+    sceneLoading = (async () => {
+      await scenePromise;
+      sceneBytes = { name: f.name, bytes: await fileBytes(f) };
+      sceneGen = -1;
+      const ok = await decodeScene();
+      if (ok) await app.save('files.scene', { name: sceneBytes.name, bytes: sceneBytes.bytes.buffer });
+      return ok;
+    })();
+  });
+
+  let scenePromise = null;
+  /// Decodes the scene RAW once per worker generation (a cancelled fit restarts the worker).
+  function decodeScene() {
+    if (sceneGen === engine.generation) return Promise.resolve(true);
+    scenePromise ??= (async () => {
+      progress.start(`Decoding ${sceneBytes.name}…`);
+      try {
+        const copy = sceneBytes.bytes.slice();
+        await engine.call('decode', { slot: 'scene', bytes: copy.buffer }, { transfer: [copy.buffer] });
+        sceneGen = engine.generation;
+        return true;
+      } catch (e) { showError(sceneInput, e, sceneBytes.name); return false; } finally { progress.done(); scenePromise = null; }
+    })();
+    return scenePromise;
+  }
+
+  function selected() {
+    const rs = app.session.results ?? [];
+    return rs.find((r) => r.key === app.session.selected) ?? rs[0];
+  }
+  function describe() {
+    const r = selected();
+    which.textContent = r ? `Profile: ${r.label}.` : 'No profile yet: fit one in step 3 or import one in step 6.';
+  }
+  app.on('results', describe);
+  app.on('step', (s) => {
+    if (s !== 'apply') return;
+    describe();
+    if (restoreApplied && selected()) { restoreApplied = false; run(); }
+  });
+
+  function lut() {
+    const f = MAPS[mapSel.value].interp();
+    const out = new Uint8Array(256 * 3);
+    for (let i = 0; i < 256; i++) {
+      const c = globalThis.d3.rgb(f(i / 255));
+      out[3 * i] = c.r; out[3 * i + 1] = c.g; out[3 * i + 2] = c.b;
+    }
+    return out;
+  }
+
+  /// Applies the selected profile; returns timing figures (for the bench script).
+  async function run() {
+    clearError(applyBtn);
+    const r = selected();
+    if (!r) { showError(applyBtn, Object.assign(new Error('no profile to apply: fit or import one first'), { code: 'NO_PROFILE' }), 'Apply'); return null; }
+    const slot = sourceSel.value;
+    if (slot === 'scene') {
+      await sceneLoading;
+      if (!sceneBytes) { showError(sceneInput, Object.assign(new Error('choose a RAW file first'), { code: 'NO_IMAGE' }), 'Apply'); return null; }
+      if (!(await decodeScene())) return null;
+    } else if (!(await app.views.images.ensureDecoded())) {
+      showError(applyBtn, Object.assign(new Error('no chart RAW decoded (step 2)'), { code: 'NO_IMAGE' }), 'Apply'); return null;
+    }
+    progress.start('Applying the profile…');
+    applyBtn.disabled = true;
+    const t0 = performance.now();
+    try {
+      const L = lut();
+      const white = r.options?.white ?? r.evaluation?.white ?? app.derived.reference?.white ?? [96.42, 100, 82.49];
+      const out = await engine.call('applyRender', { profile: r.fit.profile, slot, white, lut: L.buffer, maxSide: 1400 }, { transfer: [L.buffer], onProgress: progress.update });
+      draw(srgbCanvas, out, out.srgb);
+      draw(yCanvas, out, out.ymap);
+      images.hidden = false;
+      shown = out;
+      legend.replaceChildren(yLegend(out.yMax));
+      app.mark('apply', 'done');
+      app.save('applied', true);
+      const ms = performance.now() - t0;
+      which.textContent = `Profile: ${r.label}. Applied to ${out.fullWidth}×${out.fullHeight} pixels in ${fmt(out.msApply, 0)} ms (render ${fmt(out.msRender, 0)} ms; total ${fmt(ms, 0)} ms).`;
+      return { ms, ...out };
+    } catch (e) {
+      if (e.code !== 'CANCELLED') showError(applyBtn, e, 'Apply');
+      return null;
+    } finally { progress.done(); applyBtn.disabled = !engine.has('applyProfileToImage'); }
+  }
+  applyBtn.addEventListener('click', run);
+
+  function draw(canvas, out, rgba) {
+    canvas.width = out.width; canvas.height = out.height;
+    canvas.getContext('2d').putImageData(new ImageData(new Uint8ClampedArray(rgba.buffer), out.width, out.height), 0, 0);
+  }
+
+  function yLegend(yMax) {
+    const name = MAPS[mapSel.value].label;
+    const leg = globalThis.Plot.legend({ color: { type: 'linear', interpolate: MAPS[mapSel.value].interp(), domain: [0, yMax], label: `Y (relative, white = 100) — colour map: ${name}` }, width: 360 });
+    return h('div', { class: 'legend-box', dataset: { colourMap: name } }, leg,
+      h('small', { class: 'hint' }, `Colour map: ${name} (perceptually uniform, readable with colour-vision deficiencies). Values above ${fmt(yMax, 1)} (99th percentile) are shown at the top colour.`));
+  }
+
+  let pending = false;
+  const cursor = { x: 0, y: 0 };
+  async function read(x, y) {
+    if (!shown || pending) return;
+    pending = true;
+    try {
+      const p = await engine.call('pixel', { x, y });
+      if (p) readout.textContent = `pixel (${Math.floor(x)}, ${Math.floor(y)}): X ${fmt(p.XYZ[0])}  Y ${fmt(p.XYZ[1])}  Z ${fmt(p.XYZ[2])}  ·  x ${fmt(p.xy[0], 4)}  y ${fmt(p.xy[1], 4)}  ·  L* ${fmt(p.Lab[0], 1)}  a* ${fmt(p.Lab[1], 1)}  b* ${fmt(p.Lab[2], 1)}`;
+    } catch { /* worker restarted: ignore */ } finally { pending = false; }
+  }
+  for (const c of [srgbCanvas, yCanvas]) {
+    c.tabIndex = 0;
+    c.title = 'Pointer, or arrow keys when focused (Shift: 10 pixels), to read X, Y, Z, x, y and L*a*b*';
+    c.addEventListener('pointermove', (e) => {
+      if (!shown) return;
+      const rect = c.getBoundingClientRect();
+      cursor.x = ((e.clientX - rect.left) / rect.width) * shown.width * shown.factor;
+      cursor.y = ((e.clientY - rect.top) / rect.height) * shown.height * shown.factor;
+      read(cursor.x, cursor.y);
+    });
+    c.addEventListener('keydown', (e) => {
+      const step = (e.shiftKey ? 10 : 1) * (shown?.factor ?? 1);
+      const d = { ArrowLeft: [-step, 0], ArrowRight: [step, 0], ArrowUp: [0, -step], ArrowDown: [0, step] }[e.key];
+      if (!d || !shown) return;
+      e.preventDefault();
+      cursor.x = Math.min(Math.max(0, cursor.x + d[0]), shown.fullWidth - 1);
+      cursor.y = Math.min(Math.max(0, cursor.y + d[1]), shown.fullHeight - 1);
+      read(cursor.x, cursor.y);
+    });
+    c.addEventListener('focus', () => { if (shown && !cursor.x && !cursor.y) { cursor.x = shown.fullWidth / 2; cursor.y = shown.fullHeight / 2; read(cursor.x, cursor.y); } });
+  }
+  describe();
+  return { run, sourceSel, sceneInput, applyBtn };
+}

@@ -1,0 +1,154 @@
+// The preview with four draggable corner handles (pointer and keyboard) and the patch grid drawn
+// over it. Coordinates are those of the measurement image (half resolution), as sampleChart wants.
+import { gridCells, isCrossed } from '../lib/geometry.js';
+import { cellId } from '../lib/charts.js';
+
+const NS = 'http://www.w3.org/2000/svg';
+const svgEl = (tag, attrs = {}) => {
+  const e = document.createElementNS(NS, tag);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+  return e;
+};
+const CORNER_NAMES = ['top-left (first patch)', 'top-right', 'bottom-right (last patch)', 'bottom-left'];
+
+export class CornerEditor {
+  constructor({ onChange }) {
+    this.onChange = onChange;
+    this.width = 0; this.height = 0;
+    this.corners = new Float64Array(8);
+    this.grid = { rows: 4, cols: 6, area: 0.5, layout: 'passport', gap: 0.14 };
+    this.sample = null;
+    this.el = document.createElement('div');
+    this.el.className = 'corner-editor';
+    this.el.tabIndex = -1;
+    this.canvas = document.createElement('canvas');
+    this.canvas.setAttribute('aria-hidden', 'true');
+    this.svg = svgEl('svg', { class: 'overlay', role: 'group', 'aria-label': 'Chart corners on the preview' });
+    this.gridLayer = svgEl('g', { class: 'grid', 'clip-path': 'url(#image-clip)' });
+    const clip = svgEl('clipPath', { id: 'image-clip' });
+    this.clipRect = svgEl('rect', { x: 0, y: 0, width: 1, height: 1 });
+    clip.append(this.clipRect);
+    const defs = svgEl('defs');
+    defs.append(clip);
+    this.outline = svgEl('polygon', { class: 'outline' });
+    this.handleLayer = svgEl('g', { class: 'handles' });
+    this.svg.append(defs, this.outline, this.gridLayer, this.handleLayer);
+    this.el.append(this.canvas, this.svg);
+    this.el.hidden = true;
+    this.handles = CORNER_NAMES.map((name, i) => this.makeHandle(i, name));
+  }
+
+  makeHandle(i, name) {
+    const g = svgEl('g', { class: 'handle', tabindex: 0, role: 'slider', 'aria-label': `Corner ${i + 1}, ${name}` });
+    g.dataset.corner = i;
+    const hit = svgEl('circle', { r: 16, class: 'hit' });   // a larger target for fingers and mice
+    const ring = svgEl('circle', { r: 9, class: 'ring' });
+    const dot = svgEl('circle', { r: 2, class: 'dot' });
+    const label = svgEl('text', { dx: 11, dy: -9 });
+    label.textContent = String(i + 1);
+    g.append(hit, ring, dot, label);
+    this.handleLayer.append(g);
+    g.addEventListener('pointerdown', (e) => {
+      e.preventDefault();
+      g.setPointerCapture(e.pointerId);
+      g.focus();
+      const move = (ev) => { const [x, y] = this.toImage(ev); this.moveCorner(i, x, y, false); };
+      const up = (ev) => {
+        g.releasePointerCapture(ev.pointerId);
+        g.removeEventListener('pointermove', move);
+        g.removeEventListener('pointerup', up);
+        this.onChange(this.corners, true);
+      };
+      g.addEventListener('pointermove', move);
+      g.addEventListener('pointerup', up);
+    });
+    g.addEventListener('keydown', (e) => {
+      const step = e.shiftKey ? 10 : 1;
+      const d = { ArrowLeft: [-step, 0], ArrowRight: [step, 0], ArrowUp: [0, -step], ArrowDown: [0, step] }[e.key];
+      if (!d) return;
+      e.preventDefault();
+      this.moveCorner(i, this.corners[2 * i] + d[0], this.corners[2 * i + 1] + d[1], false);
+      this.onChange(this.corners, false);
+    });
+    return g;
+  }
+
+  toImage(ev) {
+    const pt = this.svg.createSVGPoint();
+    pt.x = ev.clientX; pt.y = ev.clientY;
+    const p = pt.matrixTransform(this.svg.getScreenCTM().inverse());
+    return [p.x, p.y];
+  }
+
+  moveCorner(i, x, y, notify = true) {
+    this.corners[2 * i] = Math.round(x * 10) / 10;
+    this.corners[2 * i + 1] = Math.round(y * 10) / 10;
+    this.draw();
+    if (notify) this.onChange(this.corners, true);
+  }
+
+  /// r: {width, height, preview: {width, height, rgba}} from the worker's decode.
+  setImage(r) {
+    this.width = r.width; this.height = r.height;
+    this.el.hidden = false;
+    this.svg.setAttribute('viewBox', `0 0 ${r.width} ${r.height}`);
+    const p = r.preview;
+    if (p) {
+      this.canvas.width = p.width; this.canvas.height = p.height;
+      this.canvas.getContext('2d').putImageData(new ImageData(new Uint8ClampedArray(p.rgba), p.width, p.height), 0, 0);
+    } else {
+      this.canvas.width = r.width; this.canvas.height = r.height;
+    }
+    this.el.style.aspectRatio = `${r.width} / ${r.height}`;
+    this.draw();
+  }
+
+  setCorners(c) { this.corners = Float64Array.from(c); this.draw(); }
+
+  /// Default corners: a centred rectangle over 60 % of the image.
+  reset() {
+    const w = this.width, hh = this.height;
+    this.setCorners([0.2 * w, 0.2 * hh, 0.8 * w, 0.2 * hh, 0.8 * w, 0.8 * hh, 0.2 * w, 0.8 * hh]);
+    if (w) this.onChange(this.corners, true);
+  }
+
+  setGrid(g) { this.grid = g; this.draw(); }
+  setSample(s) { this.sample = s; this.draw(); }
+
+  draw() {
+    const c = this.corners;
+    this.outline.setAttribute('points', [0, 1, 2, 3].map((i) => `${c[2 * i]},${c[2 * i + 1]}`).join(' '));
+    this.outline.classList.toggle('crossed', isCrossed(c));
+    this.clipRect.setAttribute('width', this.width);
+    this.clipRect.setAttribute('height', this.height);
+    this.handles.forEach((g, i) => {
+      g.setAttribute('transform', `translate(${c[2 * i]},${c[2 * i + 1]})`);
+      g.setAttribute('aria-valuetext', `x ${c[2 * i].toFixed(1)}, y ${c[2 * i + 1].toFixed(1)}`);
+    });
+    const { rows, cols, area, layout, gap = 0 } = this.grid;
+    const flagsById = new Map();
+    const s = this.sample && this.sample.corners?.every((v, i) => v === c[i]) ? this.sample : null;
+    if (s) s.ids.forEach((id, i) => flagsById.set(id, s.flagNames[i]));
+    const scale = Math.max(1, this.width / 900);
+    this.svg.style.setProperty('--stroke', `${1.2 * scale}px`);
+    // The engine's own sample areas when they belong to these corners; the JS grid while dragging.
+    const crossed = isCrossed(c);
+    const cells = crossed ? [] : s?.sampleQuads
+      ? s.ids.map((id, i) => ({ id, quad: [0, 1, 2, 3].map((k) => [s.sampleQuads[8 * i + 2 * k], s.sampleQuads[8 * i + 2 * k + 1]]) }))
+      : gridCells(c, rows, cols, area, gap).map((cell) => ({ ...cell, id: cellId(layout, cell.row, cell.col) }));
+    this.gridLayer.replaceChildren(...cells.map((cell) => {
+      const id = cell.id;
+      const flags = flagsById.get(id);
+      const poly = svgEl('polygon', { points: cell.quad.map((p) => p.join(',')).join(' '), class: `cell${flags?.includes('saturated') ? ' saturated' : flags?.length ? ' warn' : ''}` });
+      const t = svgEl('title');
+      t.textContent = `${id}${flags?.length ? ': ' + flags.join(', ') : ''}`;
+      poly.append(t);
+      poly.dataset.id = id;
+      return poly;
+    }));
+    for (const g of this.handles) {
+      g.querySelector('circle.ring').setAttribute('r', 9 * scale);
+      g.querySelector('circle.hit').setAttribute('r', 16 * scale);
+    }
+  }
+}

@@ -1,0 +1,111 @@
+// Step 6: download the selected profile as JSON, the per-patch CSV, an ICC profile and a .cube
+// LUT; load any of them back (a profile JSON becomes a result again, evaluated on this chart).
+import { h, field, showError, clearError, unavailable, download } from '../lib/ui.js';
+import { perPatch } from '../lib/perpatch.js';
+import { perPatchCsv, readCube, readIccHeader } from '../lib/formats.js';
+
+export function mount(section, app) {
+  const { engine } = app;
+  const which = h('p', { class: 'summary' });
+  const btn = (label, fn, needs) => {
+    const b = h('button', { type: 'button', dataset: { export: label } }, label);
+    b._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: `export-${label.replace(/\W+/g, '-')}-error` });
+    b.setAttribute('aria-describedby', b._errorSlot.id);
+    b.addEventListener('click', async () => {
+      clearError(b);
+      const r = selected();
+      if (!r) { showError(b, Object.assign(new Error('no profile yet'), { code: 'NO_PROFILE' }), label); return; }
+      try { await fn(r); } catch (e) { showError(b, e, label); }
+    });
+    const wrap = h('div', { class: 'field' }, b, b._errorSlot);
+    if (needs && !engine.has(needs)) { b.disabled = true; wrap.append(unavailable(label, needs)); }
+    return wrap;
+  };
+  const base = (r) => `tristim-${r.modelId}-${r.objective}`.replace(/[^\w.-]+/g, '_');
+  const exports = h('div', { class: 'controls' },
+    btn('Profile JSON', (r) => download(`${base(r)}.json`, r.fit.profile, 'application/json')),
+    btn('Per-patch CSV', async (r) => {
+      const text = engine.has('exportPatchCsv')
+        ? (await engine.call('exportPatchCsv', { profile: r.fit.profile, rgb: r.rgb, xyz: r.xyz, ids: r.ids })).text
+        : perPatchCsv(perPatch(r, app.derived.reference).rows, r);
+      download(`${base(r)}-patches.csv`, text, 'text/csv');
+    }),
+    btn('ICC profile', async (r) => { const { bytes } = await engine.call('exportIcc', { profile: r.fit.profile }); download(`${base(r)}.icc`, bytes, 'application/vnd.iccprofile'); }, 'exportIcc'),
+    btn('.cube LUT', async (r) => { const { text } = await engine.call('exportCube', { profile: r.fit.profile, size: 33 }); download(`${base(r)}.cube`, text, 'text/plain'); }, 'exportCube'));
+
+  const importInput = h('input', { type: 'file', accept: '.json,.csv,.icc,.icm,.cube' });
+  const imported = h('div', { class: 'import-result', 'aria-live': 'polite' });
+  section.append(which, h('h3', {}, 'Download'), exports,
+    h('h3', {}, 'Load an export back'),
+    field('Profile JSON, per-patch CSV, ICC or .cube', importInput,
+      'A profile JSON is evaluated on the current chart and added to the results; a per-patch CSV can be used as a reference in step 1; ICC and .cube files are checked and summarised.'),
+    imported);
+
+  function selected() {
+    const rs = app.session.results ?? [];
+    return rs.find((r) => r.key === app.session.selected) ?? rs[0];
+  }
+  const describe = () => { const r = selected(); which.textContent = r ? `Selected profile: ${r.label}.` : 'No profile yet: fit one in step 3, or load a profile JSON below.'; };
+  app.on('results', describe);
+  app.on('step', (s) => { if (s === 'export') describe(); });
+
+  importInput.addEventListener('change', async () => {
+    const f = importInput.files[0];
+    if (!f) return;
+    clearError(importInput);
+    imported.replaceChildren();
+    try {
+      const ext = f.name.toLowerCase().split('.').pop();
+      if (ext === 'json') await importProfile(f);
+      else if (ext === 'cube') {
+        const c = readCube(await f.text());
+        imported.append(h('p', {}, `${f.name}: a ${c.size}×${c.size}×${c.size} 3D LUT${c.title ? ` “${c.title}”` : ''}, domain ${c.domainMin.join(' ')} … ${c.domainMax.join(' ')}.`));
+      } else if (ext === 'icc' || ext === 'icm') {
+        const hd = readIccHeader(new Uint8Array(await f.arrayBuffer()));
+        imported.append(h('p', {}, `${f.name}: ICC v${hd.version} ${hd.deviceClass} profile, ${hd.colourSpace} → ${hd.pcs}, ${hd.size} bytes, tags ${hd.tags.join(' ')}.`));
+      } else if (ext === 'csv') {
+        // tristim's per-patch CSV names the reference columns X_ref, Y_ref, Z_ref: read those.
+        const raw = await f.text();
+        const nl = raw.indexOf('\n');
+        const head = raw.slice(0, nl < 0 ? raw.length : nl);
+        const text = /(^|,)X_ref(,|$)/.test(head)
+          ? head.replace(/(^|,)([XYZ])_ref(?=,|\r?$)/g, '$1$2').replace(/(^|,)([XYZ])_est(?=,|\r?$)/g, '$1$2_estimate') + raw.slice(head.length)
+          : raw;
+        const r = await app.views.reference.useFile({ name: f.name, text });
+        if (r instanceof Error) throw r;
+        imported.append(h('p', {}, `${f.name}: loaded as the reference in step 1 (its X, Y, Z columns).`));
+      } else throw Object.assign(new Error(`unknown file type .${ext}`), { code: 'UNSUPPORTED_FORMAT' });
+    } catch (e) { showError(importInput, e, f.name); }
+  });
+
+  async function importProfile(f) {
+    const text = await f.text();
+    let json;
+    try { json = JSON.parse(text); } catch (e) { throw Object.assign(new Error(`not JSON: ${e.message}`), { code: 'PARSE_ERROR' }); }
+    const any = (app.session.results ?? [])[0];
+    const data = any ?? null;
+    if (!data) throw Object.assign(new Error('fit once (step 3) so there is chart data to evaluate the profile on'), { code: 'NO_DATA' });
+    if (!engine.has('evaluateProfile')) throw Object.assign(new Error('this build of the colour engine has no evaluateProfile()'), { code: 'NOT_AVAILABLE' });
+    const evaluation = await engine.call('evaluate', { profile: text, rgb: data.rgb, xyz: data.xyz, ids: data.ids });
+    const modelId = evaluation.model ?? json.model?.id ?? String(json.model ?? 'imported');
+    const objective = evaluation.objective ?? json.objective ?? '';
+    const modelLabel = (app.catalog.models ?? []).find((m) => m.id === modelId)?.label ?? modelId;
+    // Training errors: the profile evaluated on the current chart; leave-one-out: as stored in the
+    // profile (from its own training data; the same data when sameDataAsTraining).
+    const fit = {
+      profile: text,
+      metrics: { training: evaluation.metrics, loo: evaluation.sameDataAsTraining ? json.metrics?.loo ?? null : null },
+      status: evaluation.sameDataAsTraining ? 'imported' : 'imported (other training data)',
+      message: '', conditionNumber: json.fit?.condition_number,
+    };
+    const result = { key: `imported|${f.name}|${Date.now()}`, modelId, objective, label: `${modelLabel} · ${objective} (imported ${f.name})`,
+      ids: data.ids, rgb: data.rgb, xyz: data.xyz, options: { white: evaluation.white }, fit, evaluation };
+    const results = [...(app.session.results ?? []), result];
+    await app.save('results', results);
+    await app.save('selected', result.key);
+    app.emit('results', results);
+    imported.append(h('p', { dataset: { imported: result.key } }, `${f.name}: profile loaded and evaluated on the current chart; it is now selected in Results.`));
+  }
+  describe();
+  return { importInput };
+}

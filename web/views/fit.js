@@ -1,0 +1,216 @@
+// Step 3: pick any number of models x objectives and fit them in the worker, with progress and a
+// cancel button (which terminates the worker; the page re-sends the RAW bytes it keeps).
+import { h, field, showError, clearError, unavailable, progressBar } from '../lib/ui.js';
+import { options as listOptions } from '../lib/catalog.js';
+import { describe, FAMILIES, DEFAULT_MODELS } from '../methods/index.js';
+import { pairData } from '../lib/pairs.js';
+import { metric } from '../lib/metrics.js';
+
+export function mount(section, app) {
+  const { engine } = app;
+  const models = (app.catalog.models ?? []).map(describe);
+  const objectives = listOptions(app.catalog.objectives);
+  const choice = (app.session.fitChoice ??= defaultChoice(models, objectives));
+
+  const modelBox = h('fieldset', { class: 'checklist' }, h('legend', {}, 'Models'));
+  const families = [...new Set(models.map((m) => m.family))];
+  for (const fam of families) {
+    const group = h('div', { class: 'family' }, h('h4', {}, fam));
+    const about = FAMILIES.find((f) => f.family === fam)?.about;
+    if (about) group.append(h('small', { class: 'hint' }, about));
+    for (const m of models.filter((x) => x.family === fam)) {
+      const opts = (choice.options[m.id] ??= { ...m.defaults });
+      const cb = h('input', { type: 'checkbox', value: m.id, checked: choice.models.includes(m.id), dataset: { model: m.id } });
+      cb.id = `model-${m.id}`;
+      cb.addEventListener('change', () => { toggle(choice.models, m.id, cb.checked); persist(); });
+      const form = m.form(opts, (o) => { choice.options[m.id] = o; persist(); });
+      group.append(h('div', { class: 'check', title: m.about }, cb, h('label', { for: cb.id }, m.label),
+        h('code', { class: 'model-id' }, m.id), m.duplicateOf ? h('small', { class: 'hint' }, `same span as ${m.duplicateOf}`) : null, form));
+    }
+    modelBox.append(group);
+  }
+  const objBox = h('fieldset', { class: 'checklist' }, h('legend', {}, 'Objectives'));
+  for (const o of objectives) {
+    const cb = h('input', { type: 'checkbox', value: o.value, checked: choice.objectives.includes(o.value), dataset: { objective: o.value } });
+    cb.id = `objective-${o.value}`;
+    cb.addEventListener('change', () => { toggle(choice.objectives, o.value, cb.checked); persist(); });
+    objBox.append(h('div', { class: 'check' }, cb, h('label', { for: cb.id }, o.label), o.description ? h('small', { class: 'hint' }, ` ${o.description}`) : null));
+  }
+  const excludeCb = h('input', { type: 'checkbox', checked: choice.excludeSaturated !== false });
+  excludeCb.addEventListener('change', () => { choice.excludeSaturated = excludeCb.checked; persist(); });
+  const excludeAllCb = h('input', { type: 'checkbox', checked: !!choice.excludeAllFlagged });
+  excludeAllCb.addEventListener('change', () => { choice.excludeAllFlagged = excludeAllCb.checked; persist(); describeData(); });
+  const exclude = (f) => (excludeAllCb.checked ? f.length > 0 : excludeCb.checked && f.includes('saturated'));
+  const whiteCb = h('input', { type: 'checkbox', checked: !!choice.preserveWhite });
+  whiteCb.addEventListener('change', () => { choice.preserveWhite = whiteCb.checked; persist(); });
+  const heldInput = h('input', { type: 'file', accept: '.csv,.txt,.ti3,.cgats' });
+  const heldState = h('span', { class: 'file-state' });
+  const heldClear = h('button', { type: 'button', hidden: true }, 'Remove');
+  const heldField = field('Held-out chart (optional): camera RGB per patch, CSV or CGATS', heldInput,
+    'Another photograph or chart, e.g. the CSV of `tristim sample`. Its X, Y, Z columns are used when present, otherwise its ids are paired with the reference. Every fit is also evaluated on it.');
+  if (!engine.has('parsePatchFile')) heldInput.disabled = true;
+  const runBtn = h('button', { type: 'button', class: 'primary' }, 'Fit selected');
+  const cancelBtn = h('button', { type: 'button', disabled: true }, 'Cancel');
+  const progress = progressBar('Fitting');
+  const log = h('ul', { class: 'fit-log', 'aria-live': 'polite' });
+  const dataNote = h('p', { class: 'summary' });
+
+  section.append(dataNote, h('div', { class: 'fit-choice' }, modelBox, objBox),
+    h('div', { class: 'controls' },
+      h('div', { class: 'check' }, excludeCb, h('label', { for: excludeCb.id = 'exclude-saturated' }, 'Leave out saturated patches')),
+      h('div', { class: 'check' }, excludeAllCb, h('label', { for: excludeAllCb.id = 'exclude-flagged' }, 'Also leave out patches flagged too dark or non-uniform')),
+      h('div', { class: 'check' }, whiteCb, h('label', { for: whiteCb.id = 'preserve-white' }, 'Preserve the white: the fit maps the brightest patch (the chart\'s white) exactly'))),
+    h('div', { class: 'controls' }, h('div', { class: 'field-group' }, heldField, heldState, heldClear)),
+    h('div', { class: 'controls' }, runBtn, cancelBtn), progress.el, log);
+  runBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'fit-error' });
+  runBtn.setAttribute('aria-describedby', 'fit-error');
+  runBtn.after(cancelBtn, runBtn._errorSlot);
+  if (!engine.has('fitModel')) { section.insertBefore(unavailable('Fitting models', 'fitModel'), dataNote); runBtn.disabled = true; }
+  if (!models.length && engine.has('listModels')) modelBox.append(h('p', {}, 'The engine lists no models.'));
+
+  const persist = () => app.save('fitChoice', JSON.parse(JSON.stringify(choice)));
+
+  function describeData() {
+    const s = app.derived.sample, r = app.derived.reference;
+    if (!s || !r) { dataNote.textContent = 'Fitting needs a reference (step 1) and a sampled chart (step 2).'; return null; }
+    const d = pairData(s, r, { exclude });
+    dataNote.textContent = `${d.ids.length} patches pair sampled RGB with reference XYZ`
+      + (d.excluded.length ? `; left out as flagged: ${d.excluded.map((e) => e.id).join(', ')}` : '')
+      + (d.missing.length ? `; not in the reference: ${d.missing.join(', ')}` : '') + '.';
+    return d;
+  }
+  app.on('sample', describeData);
+  app.on('reference', describeData);
+  excludeCb.addEventListener('change', describeData);
+
+  /// The held-out set {name, ids, rgb, xyz} from a patch file, paired with the reference by id.
+  async function loadHeldOut(file) {
+    const p = await engine.call('parsePatchFile', { text: file.text, fileName: file.name });
+    if (!p.RGB) throw Object.assign(new Error(`${file.name} has no R, G, B columns`), { code: 'MISSING_COLUMN' });
+    let xyz = p.XYZ;
+    let ids = p.ids, rgb = p.RGB;
+    if (!xyz) {
+      const ref = app.derived.reference;
+      if (!ref) throw Object.assign(new Error('no reference to pair the held-out patches with (step 1)'), { code: 'NO_REFERENCE' });
+      const d = pairData({ ids, RGB: rgb, flagNames: [] }, ref);
+      if (!d.ids.length) throw Object.assign(new Error(`${file.name}: no patch id in common with the reference`), { code: 'PATCH_MISMATCH' });
+      ({ ids, rgb, xyz } = d);
+    }
+    return { name: file.name, ids, rgb: Float64Array.from(rgb), xyz: Float64Array.from(xyz) };
+  }
+  let heldOut = null;
+  async function setHeldOut(file) {
+    clearError(heldInput);
+    try {
+      heldOut = file ? await loadHeldOut(file) : null;
+      heldState.textContent = heldOut ? `${heldOut.name}: ${heldOut.ids.length} patches held out.` : '';
+      heldClear.hidden = !heldOut;
+      await app.save('heldOutFile', file ?? undefined);
+    } catch (e) { showError(heldInput, e, file.name); }
+  }
+  heldInput.addEventListener('change', async () => { const f = heldInput.files[0]; if (f) await setHeldOut({ name: f.name, text: await f.text() }); });
+  heldClear.addEventListener('click', () => { heldInput.value = ''; setHeldOut(null); });
+  if (app.session.heldOutFile && engine.has('parsePatchFile')) app.on('reference', function once() { if (!heldOut) setHeldOut(app.session.heldOutFile); });
+
+  let running = false;
+  cancelBtn.addEventListener('click', () => {
+    if (!running) return;
+    engine.restart();    // pending calls reject with CANCELLED; images are re-sent on demand
+    log.append(h('li', {}, 'Cancelled; the colour engine was restarted.'));
+  });
+
+  /// Fits every selected model x objective; returns the results (also kept in the session).
+  async function run() {
+    clearError(runBtn);
+    const data = describeData();
+    if (!data) { showError(runBtn, new Error('no paired data yet: set the reference and sample the chart first'), 'Fit'); return null; }
+    const jobs = [];
+    for (const mId of choice.models) for (const obj of choice.objectives) jobs.push({ mId, obj });
+    if (!jobs.length) { showError(runBtn, Object.assign(new Error('choose at least one model and one objective'), { code: 'NOTHING_SELECTED' }), 'Fit'); return null; }
+    running = true; runBtn.disabled = true; cancelBtn.disabled = false;
+    progress.start('Fitting…');
+    log.replaceChildren();
+    const results = [];
+    const ref = app.derived.reference;
+    const t0 = performance.now();
+    try {
+      for (const [k, { mId, obj }] of jobs.entries()) {
+        const m = models.find((x) => x.id === mId) ?? describe(mId);
+        const label = `${m.label} · ${objectives.find((o) => o.value === obj)?.label ?? obj}`;
+        progress.update({ fraction: k / jobs.length, stage: `Fitting ${label} (${k + 1} of ${jobs.length})` });
+        const options = { model: mId, objective: obj, ...choice.options[mId], white: ref.white, illuminant: ref.settings.illuminant };
+        if (choice.preserveWhite) options.whitePatch = brightestPatch(data);
+        try {
+          const t1 = performance.now();
+          const fit = await engine.call('fit', { rgb: data.rgb, xyz: data.xyz, ids: data.ids, options });
+          const evaluation = null;   // fitModel already returns the training estimates and per-patch errors
+          let held = null;
+          if (heldOut && engine.has('evaluateProfile')) {
+            const e = await engine.call('evaluate', { profile: fit.profile, rgb: heldOut.rgb, xyz: heldOut.xyz, ids: heldOut.ids });
+            held = { ...e.metrics, set: heldOut.name };
+          }
+          results.push({ key: `${mId}|${obj}|${JSON.stringify(choice.options[mId])}`, modelId: mId, objective: obj, label, options, ids: data.ids, rgb: data.rgb, xyz: data.xyz, fit, evaluation, heldOut: held, referenceText: referenceText(ref) });
+          log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${fit.status && fit.status !== 'ok' ? ` — ${fit.status}: ${fit.message ?? ''}` : ''}`));
+        } catch (e) {
+          if (e.code === 'CANCELLED') throw e;
+          log.append(h('li', { class: 'error', dataset: { code: e.code } }, `${label}: ${e.message} (${e.code})`));
+        }
+      }
+      progress.update({ fraction: 1, stage: 'done' });
+      log.append(h('li', {}, `${results.length} of ${jobs.length} fits in ${((performance.now() - t0) / 1000).toFixed(2)} s.`));
+      if (results.length) {
+        await app.save('results', results);
+        await app.save('selected', bestByLoo(results).key);
+        app.mark('fit', 'done');
+        app.emit('results', results);
+      } else if (jobs.length) {
+        showError(runBtn, Object.assign(new Error('no fit succeeded; see the list below'), { code: 'FIT_FAILED' }), 'Fit');
+      }
+      return results;
+    } catch (e) {
+      if (e.code !== 'CANCELLED') showError(runBtn, e, 'Fit');
+      return null;
+    } finally {
+      running = false; runBtn.disabled = !engine.has('fitModel'); cancelBtn.disabled = true;
+      progress.done();
+    }
+  }
+  runBtn.addEventListener('click', async () => { if ((await run())?.length) app.goto('results'); });
+
+  /// First visit: fit the default models with the first objective, then show the results.
+  async function runDefault() {
+    if (!engine.has('fitModel') || !app.derived.sample || !app.derived.reference) return null;
+    return run();
+  }
+  describeData();
+  return { run, runDefault, cancel: () => cancelBtn.click(), runBtn };
+}
+
+/// What a fit was trained against (to tell when the current reference differs).
+export const referenceText = (ref) => `${ref.source}, illuminant ${ref.settings.illuminant}, CIE ${ref.settings.observer} observer`;
+
+/// The result with the lowest leave-one-out mean CIEDE2000 (training mean when LOO is missing).
+function bestByLoo(results) {
+  const score = (r) => { const v = metric(r, 'loo', 'mean'); return Number.isFinite(v) ? v : 1e9 + (metric(r, 'training', 'mean') || 0); };
+  return results.reduce((a, b) => (score(b) < score(a) ? b : a));
+}
+
+/// The patch with the highest reference Y (the chart's white), for white preservation.
+function brightestPatch(d) {
+  let best = 0;
+  for (let i = 1; i < d.ids.length; i++) if (d.xyz[3 * i + 1] > d.xyz[3 * best + 1]) best = i;
+  return d.ids[best];
+}
+
+function toggle(list, v, on) {
+  const i = list.indexOf(v);
+  if (on && i < 0) list.push(v);
+  if (!on && i >= 0) list.splice(i, 1);
+}
+
+function defaultChoice(models, objectives) {
+  const picked = DEFAULT_MODELS.filter((id) => models.some((m) => m.id === id));
+  for (const m of models) if (picked.length < 3 && !picked.includes(m.id)) picked.push(m.id);
+  const ls = objectives.find((o) => /^(ls|least)/i.test(o.value)) ?? objectives[0];
+  return { models: picked, objectives: ls ? [ls.value] : [], options: {}, excludeSaturated: true, excludeAllFlagged: false, preserveWhite: false };
+}

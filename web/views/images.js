@@ -1,0 +1,274 @@
+// Step 2: the chart RAW (plus optional dark frame and flat field), decoded in the worker; the
+// preview with four draggable corner handles and the patch grid; the per-patch table with flags,
+// re-sampled as the corners move. Emits 'sample'.
+import { h, field, select, showError, clearError, unavailable, progressBar, fmt, fileBytes } from '../lib/ui.js';
+import { LAYOUTS } from '../lib/charts.js';
+import { CornerEditor } from './corners.js';
+import { patchTable } from './patch_table.js';
+
+const SLOTS = {
+  chart: { label: 'Chart RAW', hint: 'A RAW photograph of the chart (DNG, CR2, NEF, ARW, …), evenly lit' },
+  dark: { label: 'Dark frame(s) (optional)', hint: 'Same camera and settings, lens capped; several files are averaged (Abed et al. 2013, App. C step 1)' },
+  flat: { label: 'Flat field (optional)', hint: 'A uniform white/grey surface filling the frame (App. C step 2)' },
+};
+
+export function mount(section, app) {
+  const { engine } = app;
+  const inputs = {};
+  const names = {};
+  const decodedGen = {};     // slot -> engine generation in which it was decoded
+  const progress = progressBar('Decoding');
+  const drop = h('div', { class: 'drop-zone', tabindex: -1 }, 'Drop a RAW file here, or choose one below.');
+  const fileRow = h('div', { class: 'controls' });
+  for (const [slot, s] of Object.entries(SLOTS)) {
+    inputs[slot] = h('input', { type: 'file', dataset: { slot }, multiple: slot === 'dark' });
+    names[slot] = h('span', { class: 'file-state' });
+    const clear = slot === 'chart' ? null : h('button', { type: 'button', 'aria-label': `Remove the ${s.label.replace(/ \(optional\)/, '').toLowerCase()}`, onclick: () => forget(slot) }, 'Remove');
+    fileRow.append(h('div', { class: 'field-group' }, field(s.label, inputs[slot], s.hint), names[slot], clear));
+    inputs[slot].addEventListener('change', () => {
+      const fs = [...inputs[slot].files];
+      if (slot === 'dark' && fs.length > 1) setFiles(slot, fs);
+      else if (fs[0]) setFile(slot, fs[0]);
+    });
+  }
+  const flatMode = select([{ value: 'pixel', label: 'per pixel (Abed et al. 2013)' }, { value: 'radial', label: 'radial fall-off fit (Guarnera et al. 2018 eq 7)' }], app.session.flatMode ?? 'pixel');
+  flatMode.addEventListener('change', async () => {
+    await app.save('flatMode', flatMode.value);
+    const f = app.session['files.flat'];
+    if (f && await decode('flat', f)) await resample();
+  });
+  const layoutSel = select(Object.entries(LAYOUTS).map(([value, l]) => ({ value, label: l.label })), app.session.layout?.chart ?? 'passport');
+  const rowsIn = h('input', { type: 'number', min: 1, max: 30, value: app.session.layout?.rows ?? 4 });
+  const colsIn = h('input', { type: 'number', min: 1, max: 30, value: app.session.layout?.columns ?? 6 });
+  const areaIn = h('input', { type: 'number', min: 0.05, max: 1, step: 0.05, value: app.session.sampleOptions?.area ?? 0.5 });
+  const customBox = h('span', { class: 'custom-grid' }, field('Rows', rowsIn), field('Columns', colsIn));
+  const meta = h('p', { class: 'meta', 'aria-live': 'polite' });
+  const editor = new CornerEditor({ onChange: (c, final) => cornersChanged(c, final) });
+  const cornerErr = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'corners-error' });
+  editor.el.setAttribute('aria-describedby', 'corners-error');
+  editor.el._errorSlot = cornerErr;
+  const resetCorners = h('button', { type: 'button', onclick: () => { editor.reset(); } }, 'Reset corners');
+  const tableBox = h('div', { class: 'table-box' });
+  const sampleSummary = h('p', { class: 'summary', 'aria-live': 'polite' });
+
+  fileRow.append(field('Flat-field correction', flatMode));
+  section.append(
+    fileRow, drop, progress.el, meta,
+    h('div', { class: 'controls' }, field('Chart layout', layoutSel), customBox,
+      field('Sampled area per patch', areaIn, 'Fraction of each patch averaged (Abed et al.: central 50 %)'), resetCorners),
+    h('p', { class: 'hint' }, 'Drag the four corner handles onto the chart\'s outer patch corners (A1 top-left). '
+      + 'With the keyboard: Tab to a handle, arrow keys move it 1 pixel (Shift: 10).'),
+    h('div', { class: 'images-layout' }, h('div', {}, editor.el, cornerErr), h('div', {}, sampleSummary, tableBox)));
+  if (!engine.has('decodeRaw')) {
+    fileRow.after(unavailable('Decoding RAW files', 'decodeRaw'));
+    for (const i of Object.values(inputs)) i.disabled = true;
+  }
+  if (!engine.has('sampleChart')) tableBox.append(unavailable('Sampling the chart patches', 'sampleChart'));
+
+  // Drag and drop onto the zone (or anywhere on this step) sets the chart RAW.
+  for (const ev of ['dragover', 'dragenter']) section.addEventListener(ev, (e) => { e.preventDefault(); drop.classList.add('over'); });
+  section.addEventListener('dragleave', () => drop.classList.remove('over'));
+  section.addEventListener('drop', (e) => {
+    e.preventDefault(); drop.classList.remove('over');
+    const f = e.dataTransfer?.files?.[0];
+    if (f) setFile('chart', f);
+  });
+
+  function layoutOptions() {
+    const chart = layoutSel.value;
+    const o = { chart };
+    if (chart === 'custom') { o.rows = Number(rowsIn.value); o.columns = Number(colsIn.value); }
+    return o;
+  }
+  function gridShape() {
+    const l = layoutOptions();
+    return l.chart === 'custom' ? { rows: l.rows, cols: l.columns } : LAYOUTS[l.chart] ?? LAYOUTS.passport;
+  }
+  function syncLayout() {
+    customBox.hidden = layoutSel.value !== 'custom';
+    editor.setGrid({ ...gridShape(), area: Number(areaIn.value), layout: layoutSel.value });
+  }
+  for (const el of [layoutSel, rowsIn, colsIn, areaIn]) {
+    el.addEventListener('change', () => {
+      syncLayout();
+      editor.setSample(null);
+      app.save('layout', layoutOptions());
+      app.save('sampleOptions', { area: Number(areaIn.value) });
+      resample();
+    });
+  }
+
+  async function setFile(slot, file) {
+    clearError(inputs[slot]);
+    const bytes = await fileBytes(file);
+    const before = app.derived.image;
+    const ok = await decode(slot, { name: file.name, bytes });
+    if (ok) {
+      await app.save(`files.${slot}`, { name: file.name, bytes: bytes.buffer });
+      if (slot === 'chart') await app.save('example', undefined);
+      // A new chart image of another size gets fresh corners; same size keeps them (same set-up).
+      const img = app.derived.image;
+      if (slot === 'chart' && !(before && img.width === before.width && img.height === before.height && app.session.corners)) {
+        await app.save('corners', undefined);
+        editor.reset();
+      }
+      await resample();
+    }
+  }
+
+  /// Several dark frames: decoded together and averaged by the engine.
+  async function setFiles(slot, files) {
+    clearError(inputs[slot]);
+    const list = await Promise.all(files.map(async (f) => ({ name: f.name, bytes: (await fileBytes(f)).buffer })));
+    const entry = { name: list.map((f) => f.name).join(', '), list };
+    if (await decode(slot, entry)) {
+      await app.save(`files.${slot}`, entry);
+      await resample();
+    }
+  }
+
+  async function forget(slot) {
+    await app.save(`files.${slot}`, undefined);
+    names[slot].textContent = '';
+    inputs[slot].value = '';
+    clearError(inputs[slot]);
+    try { await engine.call('forget', { slot }); } catch { /* the worker may have been restarted */ }
+    await resample();
+  }
+
+  /// Decodes {name, bytes} into the worker's slot; shows progress and errors next to the input.
+  async function decode(slot, file) {
+    if (!engine.has('decodeRaw')) return false;
+    progress.start(`Decoding ${file.name}…`);
+    const t0 = performance.now();
+    try {
+      // The page keeps its own bytes: the worker gets copies (transferred).
+      const copies = (file.list ?? [file]).map((f) => new Uint8Array(f.bytes).slice().buffer);
+      const msg = file.list ? { slot, bytesList: copies } : { slot, bytes: copies[0] };
+      if (slot === 'flat') msg.flatOptions = { mode: flatMode.value };
+      const r = await engine.call('decode', msg, { transfer: copies, onProgress: progress.update });
+      decodedGen[slot] = engine.generation;
+      names[slot].textContent = `${file.name} — ${r.width}×${r.height} (decoded in ${((performance.now() - t0) / 1000).toFixed(2)} s)`
+        + calibrationText(slot, r.calibration);
+      if (slot === 'chart') {
+        app.derived.image = r;
+        const m = r.metadata ?? {};
+        const bits = [m.make, m.model, m.lens, m.iso && `ISO ${m.iso}`, m.shutter_s && `${fmtShutter(m.shutter_s)} s`,
+          m.f_number && `f/${m.f_number}`, m.cfa_pattern && `${m.layout ?? ''} ${m.cfa_pattern}`, m.bits && `${m.bits} bit`, m.timestamp_iso].filter(Boolean);
+        meta.textContent = `${bits.join(' · ')} — measurement image ${r.width}×${r.height} (half resolution, linear, no white balance).`
+          + ' The preview below uses the camera matrix and sRGB gamma for display only.';
+        editor.setImage(r);
+        if (!app.session.corners) editor.reset(); else editor.setCorners(app.session.corners);
+      }
+      return true;
+    } catch (e) {
+      if (e.code !== 'CANCELLED') showError(inputs[slot], e, file.name);
+      if (slot === 'chart' && !app.derived.image) meta.textContent = '';
+      return false;
+    } finally {
+      progress.done();
+    }
+  }
+  function calibrationText(slot, c) {
+    const d = c?.dark, f = c?.flat;
+    if (slot === 'dark' && d) return `; dark: ${d.frames} frame(s), mean ${d.mean.map((v) => fmt(v, 1)).join(' / ')} DN, noise ${d.noise.map((v) => fmt(v, 1)).join(' / ')} DN`;
+    if (slot === 'flat' && f) return f.mode === 'radial' ? `; radial fall-off p1 ${fmt(f.p1, 4)}, p2 ${fmt(f.p2, 4)}, p3 ${fmt(f.p3, 4)}, rms residual ${fmt(f.rmsResidual, 4)}` : `; flat field (${f.mode}) applied`;
+    return '';
+  }
+  const fmtShutter = (t) => (t > 0 && t < 1 ? `1/${Math.round(1 / t)}` : `${t}`);
+
+  /// Re-sends stored bytes when the worker was restarted (cancelled fit) since their decode.
+  let ensuring = null;   // one re-decode at a time, shared by every caller
+  function ensureDecoded() {
+    ensuring ??= (async () => {
+      for (const slot of Object.keys(SLOTS)) {
+        const f = app.session[`files.${slot}`];
+        if (f && decodedGen[slot] !== engine.generation) await decode(slot, f);
+      }
+      return decodedGen.chart === engine.generation;
+    })().finally(() => { ensuring = null; });
+    return ensuring;
+  }
+
+  let sampleSeq = 0;
+  let timer = null;
+  function cornersChanged(c, final) {
+    clearTimeout(timer);
+    timer = setTimeout(() => { app.save('corners', Array.from(c)); resample(); }, final ? 0 : 120);
+  }
+
+  async function resample() {
+    const seq = ++sampleSeq;
+    if (!engine.has('sampleChart') || !app.session['files.chart']) return null;
+    if (!(await ensureDecoded())) return null;
+    const corners = editor.corners;
+    try {
+      const s = await engine.call('sample', { layout: layoutOptions(), corners: Array.from(corners), sampleOptions: { area: Number(areaIn.value) } });
+      if (seq !== sampleSeq) return null;
+      clearError(editor.el);
+      s.corners = Array.from(corners);
+      app.derived.sample = s;
+      editor.setSample(s);
+      renderTable(s);
+      app.mark('images', 'done');
+      app.emit('sample', s);
+      return s;
+    } catch (e) {
+      if (seq !== sampleSeq || e.code === 'CANCELLED') return null;
+      showError(editor.el, e, 'Corners');
+      editor.setSample(null);
+      if (app.derived.sample) {
+        tableBox.classList.add('stale');
+        sampleSummary.textContent = 'These corners were refused; the table shows the last good sampling.';
+      }
+      return null;
+    }
+  }
+
+  function renderTable(s) {
+    tableBox.classList.remove('stale');
+    const flagged = s.flagNames.filter((f) => f.length).length;
+    sampleSummary.textContent = `${s.ids.length} patches sampled; ${flagged} flagged.`;
+    tableBox.replaceChildren(patchTable(s));
+  }
+
+  /// Restores the session's files and corners (or the example on a first visit).
+  async function restore(fresh) {
+    const L = app.session.layout;
+    if (L) { layoutSel.value = L.chart; if (L.rows) rowsIn.value = L.rows; if (L.columns) colsIn.value = L.columns; }
+    syncLayout();
+    if (fresh) await loadExample();
+    for (const slot of Object.keys(SLOTS)) {
+      const f = app.session[`files.${slot}`];
+      if (f && slot !== 'chart') names[slot].textContent = `${f.name}`;
+    }
+    if (app.session['files.chart']) {
+      if (await ensureDecoded()) await resample();
+    }
+  }
+
+  async function loadExample() {
+    if (!engine.has('decodeRaw')) return;
+    try {
+      const cfg = await (await fetch('examples/passport.json')).json();
+      const res = await fetch(`examples/${cfg.file}`);
+      if (!res.ok) throw Object.assign(new Error(`examples/${cfg.file}: HTTP ${res.status}`), { code: 'EXAMPLE_MISSING' });
+      const bytes = await res.arrayBuffer();
+      const layout = cfg.layout ?? { chart: cfg.chart ?? 'passport' };
+      layoutSel.value = layout.chart;
+      if (cfg.area) areaIn.value = cfg.area;
+      syncLayout();
+      await app.save('layout', layout);
+      await app.save('corners', cfg.corners);
+      await app.save('files.chart', { name: cfg.file, bytes });
+      await app.save('example', cfg.note ?? true);
+    } catch (e) {
+      showError(inputs.chart, e, 'Example chart');
+    }
+  }
+
+  engine.addEventListener('restart', () => { /* decodedGen is now stale; ensureDecoded() re-sends */ });
+  syncLayout();
+
+  return { restore, resample, ensureDecoded, setFile, editor, inputs };
+}

@@ -1,0 +1,27 @@
+// The per-patch table of a sampling: id, mean camera RGB, std, pixel count, saturation, flags.
+import { h, fmt } from '../lib/ui.js';
+
+export function patchTable(s) {
+  const n = s.ids.length;
+  const rows = [];
+  for (let i = 0; i < n; i++) {
+    const f = s.flagNames[i];
+    rows.push(h('tr', { class: f.includes('saturated') ? 'flagged saturated' : f.length ? 'flagged' : '', dataset: { id: s.ids[i] } },
+      h('th', { scope: 'row' }, s.ids[i]),
+      [0, 1, 2].map((k) => h('td', {}, fmt(s.RGB[3 * i + k], 1))),
+      [0, 1, 2].map((k) => h('td', {}, s.std ? fmt(s.std[3 * i + k], 1) : '–')),
+      h('td', {}, s.n ? String(s.n[i]) : '–'),
+      h('td', {}, s.saturatedFraction ? `${fmt(100 * maxOf(s.saturatedFraction, i, s.saturatedFraction.length / n), 1)} %` : '–'),
+      h('td', { class: 'flags' }, f.length ? f.join(', ') : 'ok')));
+  }
+  return h('table', { class: 'patch-table' },
+    h('caption', {}, 'Sampled camera RGB per patch (linear DN, black subtracted, no white balance; mean and σ over the central area). Flags: saturated (left out of fits), dark (near the noise floor), nonuniform (σ/mean > 10 %).'),
+    h('thead', {}, h('tr', {}, ['Patch', 'R', 'G', 'B', 'σR', 'σG', 'σB', 'pixels', 'saturated', 'flags'].map((t) => h('th', { scope: 'col' }, t)))),
+    h('tbody', {}, rows));
+}
+
+function maxOf(a, i, stride) {
+  let m = 0;
+  for (let k = 0; k < stride; k++) m = Math.max(m, a[i * stride + k]);
+  return m;
+}
