@@ -224,7 +224,7 @@ val evaluate_profile(std::string profile_json, val rgb, val xyz, val ids) {
 /// compareModels(rgb, xyz, ids, options) with options {objectives: ['ls','psm','de2000'],
 /// models: [ids] (default: every non-duplicate model), white, whitePatch, psm, de2000}
 /// -> rows sorted by leave-one-out mean CIEDE2000: [{model, objective, nTerms, ok, errorCode,
-/// status, message, conditionNumber, seconds, train: {dE00, dE_xyz}, loo: {dE00, dE_xyz} | null}].
+/// status, message, conditionNumber, seconds, cpuSeconds, train: {dE00, dE_xyz}, loo: {dE00, dE_xyz} | null}].
 val compare_models_js(val rgb, val xyz, val ids, val options) {
   return guard([&] {
     Parsed p = parse_inputs(rgb, xyz, ids, options);
@@ -251,6 +251,7 @@ val compare_models_js(val rgb, val xyz, val ids, val options) {
       o.set("message", r.message);
       o.set("conditionNumber", r.condition_number);
       o.set("seconds", r.seconds);
+      o.set("cpuSeconds", r.cpu_seconds);
       if (r.ok) {
         val t = val::object();
         t.set("dE00", from_json(summary_json(r.train_dE00)));

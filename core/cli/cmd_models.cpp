@@ -240,6 +240,7 @@ json::Value compare_row_json(const CompareRow& r) {
   o.set("message", r.message);
   o.set("condition_number", r.condition_number);
   o.set("seconds", r.seconds);
+  o.set("cpu_seconds", r.cpu_seconds);
   o.set("train_dE00", summary_json(r.train_dE00));
   o.set("train_dE_xyz", summary_json(r.train_dE_xyz));
   o.set("has_loo", r.has_loo);

@@ -13,6 +13,12 @@ constexpr double kKappa = 24389.0 / 27.0;     // (29/3)^3
 double deg(double rad) { return rad * 180.0 / kPi; }
 double rad(double deg) { return deg * kPi / 180.0; }
 double f_Lab(double t) { return t > kEpsilon ? std::cbrt(t) : (kKappa * t + 16.0) / 116.0; }
+double pow7(double x) {
+  const double x2 = x * x, x3 = x2 * x;
+  return x3 * x3 * x;
+}
+constexpr double k25pow7 = 6103515625.0;  // 25^7
+double norm2(double a, double b) { return std::sqrt(a * a + b * b); }  // no overflow risk at Lab scale
 double f_Lab_inv(double f) { return f * f * f > kEpsilon ? f * f * f : (116.0 * f - 16.0) / kKappa; }
 }  // namespace
 
@@ -74,12 +80,12 @@ DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double
   // Sharma, Wu & Dalal (2005), "The CIEDE2000 color-difference formula", eqs (1)-(22).
   const double L1 = Lab1[0], a1 = Lab1[1], b1 = Lab1[2];
   const double L2 = Lab2[0], a2 = Lab2[1], b2 = Lab2[2];
-  const double C1 = std::hypot(a1, b1), C2 = std::hypot(a2, b2);           // eq (2)
+  const double C1 = norm2(a1, b1), C2 = norm2(a2, b2);                     // eq (2)
   const double Cbar = 0.5 * (C1 + C2);                                     // eq (3)
-  const double Cbar7 = std::pow(Cbar, 7.0);
-  const double G = 0.5 * (1.0 - std::sqrt(Cbar7 / (Cbar7 + std::pow(25.0, 7.0))));  // eq (4)
+  const double Cbar7 = pow7(Cbar);
+  const double G = 0.5 * (1.0 - std::sqrt(Cbar7 / (Cbar7 + k25pow7)));    // eq (4)
   const double a1p = (1.0 + G) * a1, a2p = (1.0 + G) * a2;                 // eq (5)
-  const double C1p = std::hypot(a1p, b1), C2p = std::hypot(a2p, b2);       // eq (6)
+  const double C1p = norm2(a1p, b1), C2p = norm2(a2p, b2);                 // eq (6)
   auto hue = [](double b, double ap) {                                     // eq (7)
     if (b == 0.0 && ap == 0.0) return 0.0;
     double h = deg(std::atan2(b, ap));
@@ -105,9 +111,10 @@ DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double
   }
   const double T = 1.0 - 0.17 * std::cos(rad(hbarp - 30.0)) + 0.24 * std::cos(rad(2.0 * hbarp)) +
                    0.32 * std::cos(rad(3.0 * hbarp + 6.0)) - 0.20 * std::cos(rad(4.0 * hbarp - 63.0));  // eq (15)
-  const double dtheta = 30.0 * std::exp(-std::pow((hbarp - 275.0) / 25.0, 2.0));  // eq (16)
-  const double Cbarp7 = std::pow(Cbarp, 7.0);
-  const double RC = 2.0 * std::sqrt(Cbarp7 / (Cbarp7 + std::pow(25.0, 7.0)));      // eq (17)
+  const double t = (hbarp - 275.0) / 25.0;
+  const double dtheta = 30.0 * std::exp(-t * t);                           // eq (16)
+  const double Cbarp7 = pow7(Cbarp);
+  const double RC = 2.0 * std::sqrt(Cbarp7 / (Cbarp7 + k25pow7));          // eq (17)
   const double Lm50 = (Lbarp - 50.0) * (Lbarp - 50.0);
   const double SL = 1.0 + 0.015 * Lm50 / std::sqrt(20.0 + Lm50);          // eq (18)
   const double SC = 1.0 + 0.045 * Cbarp;                                   // eq (19)

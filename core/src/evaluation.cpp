@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 
 #include "tristim/error.hpp"
 
@@ -117,7 +118,9 @@ ModelEvaluation evaluate_model(const std::string& model_id, const PatchMatrix& r
                                const FitOptions& options, int white_patch_index, bool with_loo) {
   ModelEvaluation ev;
   const auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t c0 = std::clock();
   ev.fit = fit(model_id, rgb, xyz, options);
+  ev.fit_cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   ev.fit_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ev.training = evaluate(ev.fit.fitted, xyz, options.white);
   const ModelInfo& info = model_info(model_id);
@@ -161,6 +164,7 @@ std::vector<CompareRow> compare_models(const PatchMatrix& rgb, const PatchMatrix
       try {
         const ModelEvaluation ev = evaluate_model(id, rgb, xyz, o, white_patch_index, true);
         row.seconds = ev.fit_seconds;
+        row.cpu_seconds = ev.fit_cpu_seconds;
         row.ok = true;
         row.status = ev.fit.status;
         row.message = ev.fit.message;

@@ -341,9 +341,10 @@ De2000Outcome minimise_de2000(const Problem& pr, const FitOptions& options, Eige
   if (alg == "bobyqa") a = NLOPT_LN_BOBYQA;
   else if (alg == "sbplx") a = NLOPT_LN_SBPLX;
   else if (alg == "newuoa") a = NLOPT_LN_NEWUOA_BOUND;
+  else if (alg == "praxis") a = NLOPT_LN_PRAXIS;
   else if (alg == "cobyla") a = NLOPT_LN_COBYLA;
   else if (alg == "neldermead") a = NLOPT_LN_NELDERMEAD;
-  else throw Error(ErrorCode::UnknownId, "CIEDE2000 objective: unknown algorithm '" + alg + "' (bobyqa, sbplx, newuoa, cobyla, neldermead)");
+  else throw Error(ErrorCode::UnknownId, "CIEDE2000 objective: unknown algorithm '" + alg + "' (bobyqa, sbplx, newuoa, praxis, cobyla, neldermead)");
   nlopt_opt opt = nlopt_create(a, static_cast<unsigned>(nvar));
   if (!opt) throw Error(ErrorCode::FitFailed, "NLopt could not create the optimiser");
   nlopt_set_min_objective(opt, nlopt_objective, &d);

@@ -52,7 +52,8 @@ PatchMatrix leave_one_out(const std::string& model_id, const PatchMatrix& camera
 /// A fit with its training and leave-one-out metrics.
 struct ModelEvaluation {
   FitResult fit;
-  double fit_seconds = 0;  ///< wall time of the training fit alone
+  double fit_seconds = 0;      ///< wall time of the training fit alone
+  double fit_cpu_seconds = 0;  ///< process CPU time of the training fit (robust on a busy machine)
   Metrics training;
   bool has_loo = false;  ///< false when N − 1 patches are too few for the model
   Metrics loo;
@@ -73,6 +74,7 @@ struct CompareRow {
   FitStatus status = FitStatus::Ok;
   double condition_number = 0;
   double seconds = 0;       ///< wall time of the training fit (without leave-one-out)
+  double cpu_seconds = 0;   ///< process CPU time of the same
   Summary train_dE00, loo_dE00, train_dE_xyz, loo_dE_xyz;
   bool has_loo = false;
 };
