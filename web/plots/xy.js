@@ -46,7 +46,7 @@ export function xyPlot({ locus, points = [], arrows = [], white, width = 460, ob
   marks.push(Plot.dot(points, { x: 'x', y: 'y', r: 4.5, fill: 'fill', stroke: '#222', strokeWidth: 0.7, title: 'title', tip: true }));
   const z = zoom ? zoomDomain(points, arrows) : null;
   return Plot.plot({
-    width, aspectRatio: 1, marginLeft: 44, marginBottom: 38, clip: true,
+    width, aspectRatio: 1, marginLeft: 44, marginBottom: 38, clip: zoom,
     x: { domain: z?.x ?? [0, 0.8], label: `x (CIE ${observer} chromaticity, unitless) →`, grid: true },
     y: { domain: z?.y ?? [0, 0.9], label: `↑ y (CIE ${observer} chromaticity, unitless)`, grid: true },
     marks,

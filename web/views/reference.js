@@ -84,18 +84,32 @@ export function mount(section, app) {
     return ref;
   }
 
+  const s0 = () => settings;
   function render(ref) {
     const n = ref.ids.length;
     const colours = cssColours(ref.sRGB);
     const xy = xyFromXYZ(ref.XYZ);
     summary.textContent = `${n} patches from the ${ref.source}, illuminant ${settings.illuminant}, `
       + `CIE ${settings.observer} observer; white X=${fmt(ref.white[0])} Y=${fmt(ref.white[1])} Z=${fmt(ref.white[2])}.`;
-    swatches.replaceChildren(...ref.ids.map((id, i) => h('div', { class: 'swatch', dataset: { id } },
-      h('div', { class: 'chip', style: { background: colours[i] }, 'aria-hidden': 'true' }),
-      h('div', { class: 'swatch-text' },
-        h('strong', {}, id), h('br'),
-        `XYZ ${fmt(ref.XYZ[3 * i])}, ${fmt(ref.XYZ[3 * i + 1])}, ${fmt(ref.XYZ[3 * i + 2])}`, h('br'),
-        `L*a*b* ${fmt(ref.Lab[3 * i], 1)}, ${fmt(ref.Lab[3 * i + 1], 1)}, ${fmt(ref.Lab[3 * i + 2], 1)}`))));
+    // Laid out as on the chart when the ids say where (cc24/passport: row letter; SG: column letter).
+    const sg = !s0().referenceFile && String(settings.chart).startsWith('sg140');
+    const compact = n > 30;
+    const pos = (id) => {
+      const m = /^([A-Z])(\d+)$/.exec(id);
+      if (!m || s0().referenceFile) return null;
+      const letter = m[1].charCodeAt(0) - 65, number = Number(m[2]);
+      return sg ? { row: number, col: letter + 1 } : { row: letter + 1, col: number };
+    };
+    swatches.className = `swatches${compact ? ' compact' : ''}`;
+    swatches.style.gridTemplateColumns = `repeat(${sg ? 14 : 6}, minmax(0, 1fr))`;
+    swatches.replaceChildren(...ref.ids.map((id, i) => {
+      const xyz = `XYZ ${fmt(ref.XYZ[3 * i])}, ${fmt(ref.XYZ[3 * i + 1])}, ${fmt(ref.XYZ[3 * i + 2])}`;
+      const lab = `L*a*b* ${fmt(ref.Lab[3 * i], 1)}, ${fmt(ref.Lab[3 * i + 1], 1)}, ${fmt(ref.Lab[3 * i + 2], 1)}`;
+      const p = pos(id);
+      return h('div', { class: 'swatch', dataset: { id }, title: `${id}: ${xyz}; ${lab}`, style: p ? { gridRow: p.row, gridColumn: p.col } : {} },
+        h('div', { class: 'chip', style: { background: colours[i] }, 'aria-hidden': 'true' }),
+        h('div', { class: 'swatch-text' }, h('strong', {}, id), compact ? null : [h('br'), xyz, h('br'), lab]));
+    }));
     const points = ref.ids.map((id, i) => ({
       id, ...xy[i], fill: colours[i],
       title: `${id}\nx ${fmt(xy[i].x, 4)}  y ${fmt(xy[i].y, 4)}\nXYZ ${fmt(ref.XYZ[3 * i])} ${fmt(ref.XYZ[3 * i + 1])} ${fmt(ref.XYZ[3 * i + 2])}`,
