@@ -1,5 +1,5 @@
-// Fitting: least squares (QR), Guarnera's pattern search (Algorithm 2), mean CIEDE2000 (NLopt),
-// optional white-point preservation (equality constraint, null-space parametrisation).
+// Fitting: least squares (QR), Guarnera's pattern search (Algorithm 2), mean CIEDE2000 (NLopt), RMS
+// CIEDE2000 (Levenberg–Marquardt), optional white-point preservation (equality constraint, null-space parametrisation).
 #include <nlopt.h>
 
 #include <Eigen/Dense>
