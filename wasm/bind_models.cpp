@@ -160,7 +160,8 @@ val list_objectives() {
 /// fitModel(rgb, xyz, ids, options) with options {model (required), objective ('ls'), white
 /// ([X,Y,Z], default D50 Y=100), illuminant (name for the profile), whitePatch (id to map
 /// exactly), weights (N, de2000), loo (true), psm: {initialStep, expansion, contraction,
-/// stepThreshold, maxIterations}, de2000: {algorithm, xtolRel, ftolRel, maxEvaluations, rms}}
+/// stepThreshold, maxIterations}, de2000: {algorithm ('auto': Levenberg-Marquardt for rms,
+/// BOBYQA for the mean; 'lm', 'bobyqa', 'sbplx', ...), xtolRel, ftolRel, maxEvaluations, rms}}
 /// -> {profile: JSON string, metrics: {training, loo (or null)}, status, message,
 ///     conditionNumber, iterations, evaluations, objectiveValue, startObjectiveValue,
 ///     model, objective, coefficients: Float64Array(3P) row-major, fitted: Float64Array(3N),

@@ -161,7 +161,7 @@ const char* kFitUsage =
     "tristim fit --rgb patches.csv --xyz reference.csv --model <id> [--objective ls|psm|de2000]\n"
     "            [--white <patch id>] [--lab-white D50|D65|X,Y,Z] [--ref-white D50|D65|X,Y,Z]\n"
     "            [--out profile.json] [--csv patches_out.csv] [--no-loo]\n"
-    "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm bobyqa|sbplx]\n"
+    "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm auto|lm|bobyqa|sbplx]\n"
     "            [--de-xtol X] [--de-ftol F] [--de-max-evaluations N] [--de-step S]\n"
     "  Fits camera RGB -> XYZ and prints (or writes) the profile JSON with training and\n"
     "  leave-one-out metrics. --white preserves that patch exactly. Reference tables may be\n"

@@ -124,6 +124,7 @@ DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double
   r.dL = dLp / (kL * SL);
   r.dC = dCp / (kC * SC);
   r.dH = dHp / (kH * SH);
+  r.RT = RT;
   r.dE = std::sqrt(std::max(0.0, r.dL * r.dL + r.dC * r.dC + r.dH * r.dH + RT * r.dC * r.dH));  // eq (22)
   return r;
 }

@@ -1,5 +1,5 @@
-// Fitting: least squares (QR), Guarnera's pattern search (Algorithm 2), mean CIEDE2000 (NLopt),
-// optional white-point preservation (equality constraint, null-space parametrisation).
+// Fitting: least squares (QR), Guarnera's pattern search (Algorithm 2), mean CIEDE2000 (NLopt), RMS
+// CIEDE2000 (Levenberg–Marquardt), optional white-point preservation (equality constraint, null-space parametrisation).
 #include <nlopt.h>
 
 #include <Eigen/Dense>
@@ -285,10 +285,127 @@ double nlopt_objective(unsigned n, const double* x, double* grad, void* data) {
 }
 
 struct De2000Outcome {
-  int evaluations = 0;
+  int iterations = 0, evaluations = 0;
   double f0 = 0, f = 0;
   bool hit_limit = false;
 };
+
+// ΔE00² as a sum of three squares: with the components of eq (22) (ρ = RT/2, |ρ| ≤ 1),
+// dL² + dC² + dH² + RT·dC·dH = dL² + (dC + ρ·dH)² + (1 - ρ²)·dH². Unlike ΔE itself (a norm, whose
+// curvature Gauss–Newton would ignore), these are nearly linear in Lab, so Gauss–Newton converges fast.
+Vec3 de2000_squares(const Vec3& Lab_ref, const Vec3& Lab) {
+  const DeltaE2000 e = delta_E_CIE2000_components(Lab_ref, Lab);
+  const double rho = 0.5 * e.RT;
+  return Vec3(e.dL, e.dC + rho * e.dH, std::sqrt(std::max(0.0, 1.0 - rho * rho)) * e.dH);
+}
+
+// Residuals of patch i at x (channel-major z), weighted by sqrt(w_i): rows 3i..3i+2 of r. With J,
+// also their Jacobian rows: ∂/∂Lab by forward differences of de2000_squares (step 1e-6 in Lab
+// units, where ΔE ~ 1: truncation and rounding errors both ~1e-6 relative), chained through the
+// analytic ∂Lab/∂XYZ of CIE 15:2004 eqs (8.1)-(8.3) (f = t^(1/3), f' = f/(3t) above ε = (6/29)³,
+// else κ/116) and ∂XYZ_c/∂z(j,c) = B(i,j), since XYZ_c = base(i,c) + B(i,:)·z(:,c).
+// Non-finite values: residuals (1e6, 0, 0) as in de2000_cost, zero Jacobian rows.
+void de2000_residuals(const Problem& pr, const De2000Data& d, const double* x, Eigen::VectorXd& r,
+                      Eigen::MatrixXd* J) {
+  constexpr double h = 1e-6, eps = 216.0 / 24389.0, kappa = 24389.0 / 27.0;
+  for (Eigen::Index i = 0; i < pr.n; ++i) {
+    Vec3 XYZ;
+    for (int c = 0; c < 3; ++c) {
+      double s = pr.base(i, c);
+      const double* zc = x + c * pr.q;
+      for (int j = 0; j < pr.q; ++j) s += pr.B(i, j) * zc[j];
+      XYZ[c] = s;
+    }
+    const Vec3 Lab = XYZ_to_Lab(XYZ, d.white);
+    const Vec3 ref = d.Lab_ref.row(i).transpose();
+    const Vec3 q = de2000_squares(ref, Lab);
+    const double sw = std::sqrt(d.w[i]);
+    const bool finite = q.allFinite();
+    r.segment<3>(3 * i) = finite ? Vec3(sw * q) : Vec3(sw * 1e6, 0, 0);
+    if (!J) continue;
+    Mat3 dq_dLab;  // column k: ∂q/∂Lab_k
+    for (int k = 0; k < 3; ++k) {
+      Vec3 Lab_h = Lab;
+      Lab_h[k] += h;
+      dq_dLab.col(k) = (de2000_squares(ref, Lab_h) - q) / h;
+    }
+    double fp[3];  // d f(XYZ_c / white_c) / d XYZ_c
+    for (int c = 0; c < 3; ++c) {
+      const double t = XYZ[c] / d.white[c];
+      fp[c] = (t > eps ? std::cbrt(t) / (3.0 * t) : kappa / 116.0) / d.white[c];
+    }
+    Mat3 dLab_dXYZ;  // L = 116 fy - 16, a = 500 (fx - fy), b = 200 (fy - fz)
+    dLab_dXYZ << 0, 116.0 * fp[1], 0, 500.0 * fp[0], -500.0 * fp[1], 0, 0, 200.0 * fp[1], -200.0 * fp[2];
+    Mat3 G = sw * dq_dLab * dLab_dXYZ;  // G(m, c) = ∂r_m/∂XYZ_c
+    if (!finite || !G.allFinite()) G.setZero();
+    for (int m = 0; m < 3; ++m)
+      for (int c = 0; c < 3; ++c)
+        for (int j = 0; j < pr.q; ++j) (*J)(3 * i + m, c * pr.q + j) = G(m, c) * pr.B(i, j);
+  }
+}
+
+// The RMS loss is a sum of squares, sqrt(Σ w_i ΔE_i² / Σ w_i): minimised by Levenberg–Marquardt on
+// the 3N residuals of de2000_residuals, started from least squares, unbounded (the box of the
+// derivative-free path is only its trust region). Damping update and stopping tests: Madsen,
+// Nielsen & Tingleff (2004), "Methods for non-linear least squares problems", Algorithm 3.16
+// (μ0 = τ·max diag JᵀJ, τ = 1e-3; gain ratio ρ; μ ← μ·max(1/3, 1-(2ρ-1)³) or μ·ν, ν ← 2ν), with
+// tests ‖Jᵀr‖∞ ≤ 1e-12·(1 + F), ‖h‖ ≤ xtol_rel·(‖x‖ + xtol_rel) and a relative decrease of the
+// RMS below ftol_rel. evaluations counts residual vectors (a linearisation counts 4: the residuals
+// and one difference per Lab axis).
+void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOptions& options, std::vector<double>& x,
+                         De2000Outcome& out) {
+  const int nvar = static_cast<int>(x.size());
+  const Eigen::Index m = 3 * pr.n;
+  const int max_iter = options.de2000.max_evaluations > 0 ? std::max(1, options.de2000.max_evaluations / 4) : 100;
+  const double xtol = options.de2000.xtol_rel, ftol = options.de2000.ftol_rel;
+  Eigen::VectorXd r(m), r_new(m), h(nvar), g(nvar), x_new(nvar);
+  Eigen::MatrixXd J(m, nvar), A(nvar, nvar), Am(nvar, nvar);
+  Eigen::Map<Eigen::VectorXd> xv(x.data(), nvar);
+  auto linearise = [&]() {
+    de2000_residuals(pr, d, x.data(), r, &J);
+    out.evaluations += 4;
+    A.noalias() = J.transpose() * J;
+    g.noalias() = J.transpose() * r;
+  };
+  linearise();
+  double F = r.squaredNorm();
+  double mu = 1e-3 * A.diagonal().maxCoeff(), nu = 2.0;
+  int k = 0;
+  bool converged = !(mu > 0) || g.lpNorm<Eigen::Infinity>() <= 1e-12 * (1.0 + F);
+  while (!converged && k < max_iter) {
+    ++k;
+    Am = A;
+    Am.diagonal().array() += mu;
+    h = Am.ldlt().solve(-g);
+    if (!h.allFinite()) break;
+    if (h.norm() <= xtol * (xv.norm() + xtol)) {
+      converged = true;
+      break;
+    }
+    x_new = xv + h;
+    de2000_residuals(pr, d, x_new.data(), r_new, nullptr);
+    ++out.evaluations;
+    const double F_new = r_new.squaredNorm();
+    const double predicted = h.dot(mu * h - g);  // 2·(L(0) - L(h)) > 0
+    const double rho = predicted > 0 ? (F - F_new) / predicted : -1.0;
+    if (rho > 0 && F_new < F) {
+      const bool small_decrease = std::sqrt(F) - std::sqrt(F_new) <= ftol * std::sqrt(F);
+      xv = x_new;
+      F = F_new;
+      linearise();
+      mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
+      nu = 2.0;
+      converged = small_decrease || g.lpNorm<Eigen::Infinity>() <= 1e-12 * (1.0 + F);
+    } else {
+      mu *= nu;
+      nu *= 2.0;
+    }
+  }
+  out.iterations = k;
+  out.hit_limit = !converged && k >= max_iter;
+  out.f = de2000_cost(pr, d, x.data());  // the reported RMS, from delta_E_CIE2000 as every path
+  ++out.evaluations;
+}
 
 De2000Outcome minimise_de2000(const Problem& pr, const FitOptions& options, Eigen::MatrixXd& z) {
   De2000Outcome out;
@@ -337,14 +454,23 @@ De2000Outcome minimise_de2000(const Problem& pr, const FitOptions& options, Eige
     return out;
   }
   const std::string& alg = options.de2000.algorithm;
+  if (alg == "lm" || (alg == "auto" && d.rms)) {
+    if (!d.rms)
+      throw Error(ErrorCode::InvalidArgument,
+                  "CIEDE2000 objective: algorithm 'lm' minimises a sum of squares and needs the RMS loss");
+    levenberg_marquardt(pr, d, options, x, out);
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < pr.q; ++j) z(j, c) = x[c * pr.q + j];
+    return out;
+  }
   nlopt_algorithm a;
-  if (alg == "bobyqa") a = NLOPT_LN_BOBYQA;
+  if (alg == "bobyqa" || alg == "auto") a = NLOPT_LN_BOBYQA;
   else if (alg == "sbplx") a = NLOPT_LN_SBPLX;
   else if (alg == "newuoa") a = NLOPT_LN_NEWUOA_BOUND;
   else if (alg == "praxis") a = NLOPT_LN_PRAXIS;
   else if (alg == "cobyla") a = NLOPT_LN_COBYLA;
   else if (alg == "neldermead") a = NLOPT_LN_NELDERMEAD;
-  else throw Error(ErrorCode::UnknownId, "CIEDE2000 objective: unknown algorithm '" + alg + "' (bobyqa, sbplx, newuoa, praxis, cobyla, neldermead)");
+  else throw Error(ErrorCode::UnknownId, "CIEDE2000 objective: unknown algorithm '" + alg + "' (auto, lm, bobyqa, sbplx, newuoa, praxis, cobyla, neldermead)");
   nlopt_opt opt = nlopt_create(a, static_cast<unsigned>(nvar));
   if (!opt) throw Error(ErrorCode::FitFailed, "NLopt could not create the optimiser");
   nlopt_set_min_objective(opt, nlopt_objective, &d);
@@ -364,6 +490,7 @@ De2000Outcome minimise_de2000(const Problem& pr, const FitOptions& options, Eige
     for (int j = 0; j < pr.q; ++j) z(j, c) = d.best_x[c * pr.q + j];
   out.f = d.best;
   out.evaluations = d.evaluations;
+  out.iterations = d.evaluations;
   out.hit_limit = res == NLOPT_MAXEVAL_REACHED;
   return out;
 }
@@ -395,13 +522,14 @@ FitResult fit_info(const ModelInfo& info, const PatchMatrix& rgb, const PatchMat
     }
   } else if (options.objective == Objective::DeltaE2000) {
     const De2000Outcome o = minimise_de2000(pr, options, z);
-    r.iterations = o.evaluations;
+    r.iterations = o.iterations;
     r.evaluations = o.evaluations;
     r.start_objective_value = o.f0;
     r.objective_value = o.f;
     if (o.hit_limit) {
       r.status = FitStatus::IterationLimit;
-      add_message(r, "CIEDE2000 optimiser stopped at its evaluation limit (" + std::to_string(o.evaluations) + ")");
+      add_message(r, "CIEDE2000 optimiser stopped at its limit (" + std::to_string(o.iterations) + " iterations, " +
+                         std::to_string(o.evaluations) + " evaluations)");
     }
   }
   r.model.coefficients = pr.coefficients(z);

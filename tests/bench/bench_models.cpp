@@ -8,10 +8,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "tristim/colorimetry.hpp"
 #include "tristim/evaluation.hpp"
 #include "tristim/models.hpp"
 
@@ -52,6 +55,37 @@ void make_patches(int n, PatchMatrix& rgb, PatchMatrix& xyz) {
     for (int c = 0; c < 3; ++c) xyz(i, c) = std::max(0.0, xyz(i, c) * (1 + noise(rng)));
 }
 
+// The Passport DNG's 24 patches (camera RGB derived by dcraw_emu) and the X-Rite after-Nov-2014
+// L*a*b* D50 reference, as examples/compare/compare_passport.py uses them. False if missing.
+bool read_passport(PatchMatrix& rgb, PatchMatrix& xyz) {
+  auto rows = [](const std::string& path) {
+    std::ifstream in(path);
+    std::vector<std::vector<std::string>> out;
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+      std::istringstream ls(line);
+      std::string cell;
+      std::vector<std::string> cells;
+      while (std::getline(ls, cell, ',')) cells.push_back(cell);
+      if (cells.size() >= 5) out.push_back(cells);
+    }
+    return out;
+  };
+  const std::string data = TRISTIM_SHARED_DATA_DIR;
+  const auto r = rows(data + "/raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv");
+  const auto l = rows(data + "/colour-science/colorchecker24_xrite_after_nov2014_Lab_D50.csv");
+  if (r.size() != 24 || l.size() != 24) return false;
+  rgb.resize(24, 3);
+  xyz.resize(24, 3);
+  for (int i = 0; i < 24; ++i) {
+    for (int c = 0; c < 3; ++c) rgb(i, c) = std::stod(r[i][2 + c]);
+    const Vec3 Lab(std::stod(l[i][2]), std::stod(l[i][3]), std::stod(l[i][4]));
+    xyz.row(i) = Lab_to_XYZ(Lab, whites::D50()).transpose();
+  }
+  return true;
+}
+
 }  // namespace
 
 int main() {
@@ -84,7 +118,7 @@ int main() {
     std::printf("BENCH psm_140 %s %.3f\n", id, t);
   }
 
-  std::printf("\n== CIEDE2000 objective (NLopt BOBYQA), best of 5 ==\n");
+  std::printf("\n== CIEDE2000 objective, mean loss (NLopt BOBYQA), best of 5 ==\n");
   for (int n : {24, 140})
     for (const char* id : {"matrix-3x3", "matrix-3x4", "Finlayson2015-2"}) {
       FitOptions o;
@@ -96,6 +130,42 @@ int main() {
                   r.evaluations, r.start_objective_value, r.objective_value);
       std::printf("BENCH de2000_%d %s %.3f\n", n, id, t);
     }
+
+  std::printf("\n== CIEDE2000 objective, RMS loss: Levenberg-Marquardt (auto) vs NLopt BOBYQA, best of 5 ==\n");
+  for (int n : {24, 140})
+    for (const char* id : {"matrix-3x3", "matrix-3x4", "Finlayson2015-2"})
+      for (const char* alg : {"auto", "bobyqa"}) {
+        FitOptions o;
+        o.objective = Objective::DeltaE2000;
+        o.de2000.rms = true;
+        o.de2000.algorithm = alg;
+        FitResult r;
+        const PatchMatrix a = rgb.topRows(n), b = xyz.topRows(n);
+        const double t = best_ms(5, [&] { r = fit(id, a, b, o); });
+        std::printf("  %3d patches %-16s %-6s %8.3f ms  %4d iterations %5d evaluations  RMS dE00 %.4f -> %.10f\n",
+                    n, id, alg, t, r.iterations, r.evaluations, r.start_objective_value, r.objective_value);
+        std::printf("BENCH de2000_rms_%s_%d %s %.3f\n", alg, n, id, t);
+      }
+
+  {
+    PatchMatrix prgb, pxyz;
+    std::printf("\n== Passport DNG patches, matrix-3x3, RMS CIEDE2000 (OpenCV ccm: 3.331), best of 20 ==\n");
+    if (!read_passport(prgb, pxyz)) std::printf("  shared data missing: skipped\n");
+    else
+      for (const char* alg : {"auto", "bobyqa"}) {
+        FitOptions o;
+        o.objective = Objective::DeltaE2000;
+        o.de2000.rms = true;
+        o.de2000.algorithm = alg;
+        FitResult r;
+        const double t = best_ms(20, [&] { r = fit("matrix-3x3", prgb, pxyz, o); });
+        const auto& m = r.model.coefficients;
+        std::printf("  %-6s %8.3f ms  %4d iterations %5d evaluations  RMS %.4f -> %.12f  M row 1 %.12g %.12g %.12g\n",
+                    alg, t, r.iterations, r.evaluations, r.start_objective_value, r.objective_value, m(0, 0), m(0, 1),
+                    m(0, 2));
+        std::printf("BENCH de2000_rms_passport matrix-3x3_%s %.3f\n", alg, t);
+      }
+  }
 
   std::printf("\n== leave-one-out, 140 patches, ls (best of 3) ==\n");
   for (const char* id : {"matrix-3x3", "Finlayson2015-2", "Cheung2004-20"}) {

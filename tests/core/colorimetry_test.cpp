@@ -23,6 +23,10 @@ TEST_CASE("CIEDE2000 reproduces the Sharma, Wu & Dalal (2005) test pairs to 1e-4
     const double got = delta_E_CIE2000(Vec3(L1, a1, b1), Vec3(L2, a2, b2));
     const double sym = delta_E_CIE2000(Vec3(L2, a2, b2), Vec3(L1, a1, b1));
     INFO("pair " << id << ": expected " << expected << ", got " << got);
+    // The components and rotation term rebuild eq (22): dE² = dL² + dC² + dH² + RT·dC·dH.
+    const DeltaE2000 c = delta_E_CIE2000_components(Vec3(L1, a1, b1), Vec3(L2, a2, b2));
+    CHECK(std::abs(c.RT) <= 2.0);
+    CHECK(c.dE * c.dE == Approx(c.dL * c.dL + c.dC * c.dC + c.dH * c.dH + c.RT * c.dC * c.dH).margin(1e-12));
     CHECK(std::abs(got - expected) <= 1e-4 + 1e-12);
     CHECK(std::abs(sym - expected) <= 1e-4 + 1e-12);
     worst = std::max(worst, std::abs(got - expected));

@@ -45,6 +45,7 @@ double delta_E_CIE1994(const Vec3& Lab1, const Vec3& Lab2, bool textiles = false
 /// dH = ΔH'/(kH·SH). Signs follow Lab2 - Lab1 (estimate minus reference).
 struct DeltaE2000 {
   double dE, dL, dC, dH;
+  double RT;  ///< rotation term, eq (21): dE² = dL² + dC² + dH² + RT·dC·dH, |RT| ≤ 2
 };
 /// CIEDE2000 (Sharma, Wu & Dalal 2005, eqs 1-22), reproducing their test pairs to 1e-4.
 DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double kL = 1, double kC = 1,

@@ -97,11 +97,14 @@ struct PatternSearchOptions {
 
 /// The perceptual objective: mean_i w_i·ΔE00_i / Σw_i with Lab relative to `white`
 /// (with `rms`: sqrt(Σ w_i·ΔE00_i² / Σw_i), the loss OpenCV's ccm minimises).
-/// Minimised by NLopt's bounded derivative-free BOBYQA (or "sbplx"), started from the
-/// least-squares solution; each coefficient is bounded to LS ± (|LS| + ‖XYZ_i‖) in the
-/// equilibrated coordinates.
+/// Started from the least-squares solution. The mean is minimised by NLopt's bounded
+/// derivative-free BOBYQA (or "sbplx"), each coefficient bounded to LS ± (|LS| + ‖XYZ_i‖) in the
+/// equilibrated coordinates; the RMS (a sum of squares) by default by an unbounded
+/// Levenberg–Marquardt on the per-patch ΔE00 ("lm"; "bobyqa" still selects NLopt).
 struct DeltaE2000Options {
-  std::string algorithm = "bobyqa";  ///< "bobyqa" (NLOPT_LN_BOBYQA) or "sbplx" (NLOPT_LN_SBPLX)
+  /// "auto" (lm for the RMS loss, bobyqa for the mean), "lm" (RMS only), "bobyqa"
+  /// (NLOPT_LN_BOBYQA), "sbplx" (NLOPT_LN_SBPLX), "newuoa", "praxis", "cobyla", "neldermead".
+  std::string algorithm = "auto";
   double xtol_rel = 1e-5;
   double ftol_rel = 1e-7;
   int max_evaluations = 0;           ///< 0: 200 × number of variables
