@@ -44,9 +44,12 @@ function calibrateQuietly(state) {
   try { return calibrate(state); } catch { state.raw?.chart?.clearDark?.(); state.raw?.chart?.clearFlat?.(); return null; }
 }
 
+function freeRaw(raw) {
+  if (raw) for (const r of [raw].flat()) r.delete();
+}
 function dropRaw(state, slot) {
-  const old = state.raw?.[slot];
-  if (old) { for (const r of [old].flat()) r.delete(); delete state.raw[slot]; }
+  freeRaw(state.raw?.[slot]);
+  delete state.raw?.[slot];
 }
 
 export const handlers = {
@@ -91,27 +94,36 @@ export const handlers = {
       } catch (e) { for (const r of list) r.delete(); throw e; }
       raw = list;
     } else raw = decodeRaw(new Uint8Array(bytes));
-    dropRaw(state, slot);
-    state.raw[slot] = raw;
-    if (slot === 'flat') state.flatOptions = flatOptions;
     const first = Array.isArray(raw) ? raw[0] : raw;
     progress(0.8, 'building preview');
-    const meta = typeof first.metadata === 'function' ? first.metadata() : {};
-    const metadata = typeof meta === 'string' ? JSON.parse(meta) : plain(meta);
-    const result = { width: first.width(), height: first.height(), metadata };
-    if (slot === 'chart' && typeof first.preview === 'function') {
-      const p = first.preview(previewSide);
-      result.preview = { width: p.width, height: p.height, scale: p.scale, rgba: new Uint8ClampedArray(p.rgba.slice().buffer) };
-    }
+    let result;
+    try {
+      const meta = typeof first.metadata === 'function' ? first.metadata() : {};
+      const metadata = typeof meta === 'string' ? JSON.parse(meta) : plain(meta);
+      result = { width: first.width(), height: first.height(), metadata };
+      if (slot === 'chart' && typeof first.preview === 'function') {
+        const p = first.preview(previewSide);
+        result.preview = { width: p.width, height: p.height, scale: p.scale, rgba: new Uint8ClampedArray(p.rgba.slice().buffer) };
+      }
+    } catch (e) { freeRaw(raw); throw e; }
+    // The new image replaces the slot's previous one only once it fits (calibrate below).
+    const previous = { raw: state.raw[slot], flatOptions: state.flatOptions };
+    state.raw[slot] = raw;
+    if (slot === 'flat') state.flatOptions = flatOptions;
     if (slot !== 'scene') {
       try {
         result.calibration = calibrate(state);
       } catch (e) {
-        if (slot !== 'chart') dropRaw(state, slot);   // a dark/flat that does not fit is refused
+        // A frame that does not fit (FRAME_MISMATCH, FLAT_FIELD_ZERO, ...) is refused: the slot
+        // keeps its previous image, and the calibration that went with it.
+        freeRaw(raw);
+        if (previous.raw) state.raw[slot] = previous.raw; else delete state.raw[slot];
+        state.flatOptions = previous.flatOptions;
         calibrateQuietly(state);
         throw e;
       }
     }
+    freeRaw(previous.raw);
     return reply(result);
   },
 

@@ -7,6 +7,11 @@ let modulePromise = null;
 const engine = () => (modulePromise ??= createTristim());
 const state = {};  // per-worker state shared by handlers (e.g. the decoded image)
 
+// Anything that escapes the request handlers is a bug: say so on the console (the browser tests
+// fail on any console error). The page's onerror only rejects the pending calls.
+self.addEventListener('unhandledrejection', (e) => console.error(`worker: unhandled rejection: ${e.reason?.stack ?? e.reason?.message ?? e.reason}`));
+self.addEventListener('error', (e) => console.error(`worker: uncaught error: ${e.error?.stack ?? e.message}`));
+
 self.onmessage = async (ev) => {
   const msg = ev.data;
   const handler = handlers[msg.type];

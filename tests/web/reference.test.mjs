@@ -4,14 +4,12 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import { screenshot } from './harness.mjs';
-import { openPage, caps, step, upload, errorNear, noErrorNear, marks, fixture } from './journey.mjs';
+import { openPage, step, upload, errorNear, noErrorNear, marks, fixture } from './journey.mjs';
 
-test('reference: swatches and xy diagram follow the illuminant; uploads show values or a coded error', async (t) => {
+test('reference: swatches and xy diagram follow the illuminant; uploads show values or a coded error', async () => {
   const b = await openPage();
   try {
     const { page } = b;
-    const c = await caps(page);
-    if (!c.referenceChart) { t.skip('engine has no referenceChart() yet'); return; }
     await step(page, 'reference');
     await page.waitForSelector('#step-reference .swatch');
     const n = await page.locator('#step-reference .swatch').count();
@@ -31,22 +29,20 @@ test('reference: swatches and xy diagram follow the illuminant; uploads show val
     assert.match(await page.textContent('#step-reference .summary'), new RegExp(`illuminant ${other}`));
     await screenshot(page, 'reference-switched');
 
-    if (c.parseReferenceFile) {
-      const input = '#step-reference input[type=file]';
-      await upload(page, input, 'cc24_Lab_D50.csv', fs.readFileSync(fixture('cc24_Lab_D50.csv')));
-      await page.waitForFunction(() => /cc24_Lab_D50\.csv/.test(document.querySelector('#step-reference .summary')?.textContent ?? ''));
-      assert.ok(await noErrorNear(page, input));
-      assert.equal(await page.locator('#step-reference .swatch').count(), 24);
-      const good = await page.textContent('#step-reference .summary');
+    const input = '#step-reference input[type=file]';
+    await upload(page, input, 'cc24_Lab_D50.csv', fs.readFileSync(fixture('cc24_Lab_D50.csv')));
+    await page.waitForFunction(() => /cc24_Lab_D50\.csv/.test(document.querySelector('#step-reference .summary')?.textContent ?? ''));
+    assert.ok(await noErrorNear(page, input));
+    assert.equal(await page.locator('#step-reference .swatch').count(), 24);
+    const good = await page.textContent('#step-reference .summary');
 
-      await upload(page, input, 'malformed_Lab.csv', fs.readFileSync(fixture('malformed_Lab.csv')));
-      const err = await errorNear(page, input);
-      assert.ok(err.code && err.code !== 'INTERNAL', `coded error expected, got ${JSON.stringify(err)}`);
-      assert.match(err.text, /malformed_Lab\.csv/);
-      // The last good reference is still shown.
-      assert.equal(await page.textContent('#step-reference .summary'), good);
-      await screenshot(page, 'reference-upload-error');
-    }
+    await upload(page, input, 'malformed_Lab.csv', fs.readFileSync(fixture('malformed_Lab.csv')));
+    const err = await errorNear(page, input);
+    assert.ok(err.code && err.code !== 'INTERNAL', `coded error expected, got ${JSON.stringify(err)}`);
+    assert.match(err.text, /malformed_Lab\.csv/);
+    // The last good reference is still shown.
+    assert.equal(await page.textContent('#step-reference .summary'), good);
+    await screenshot(page, 'reference-upload-error');
     assert.deepEqual(b.problems, []);
   } finally {
     await b.close();

@@ -1,17 +1,62 @@
+// The first visit (fresh browser profile, nothing stored): the engine starts in a worker with every
+// function the page calls, and the first screen is the example chart already sampled and fitted
+// (issue 5: "the README's serve command opens with the example chart already sampled and fitted").
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { openBrowser, screenshot } from './harness.mjs';
+import { waitReady, marks, markCounts } from './journey.mjs';
 
-test('the page starts the engine in a worker, with no console error and no off-origin request', async () => {
+test('first screen: the example is sampled and fitted, engine in a worker, no console error or off-origin request', async () => {
   const b = await openBrowser();
   try {
-    await b.page.goto(b.origin + '/');
-    await b.page.waitForSelector('#engine-status[data-ready="true"]', { timeout: 30000 });
-    assert.match(await b.page.textContent('#engine-status'), /tristim \d+\.\d+\.\d+ ready/);
-    const csp = await b.page.evaluate(() => document.querySelector('meta[http-equiv="Content-Security-Policy"]')?.content);
+    const { page } = b;
+    await page.goto(b.origin + '/');
+    await page.waitForSelector('#engine-status[data-ready="true"]', { timeout: 30000 });
+    assert.match(await page.textContent('#engine-status'), /tristim \d+\.\d+\.\d+ ready/);
+    const csp = await page.evaluate(() => document.querySelector('meta[http-equiv="Content-Security-Policy"]')?.content);
     assert.match(csp, /default-src 'self'/);
-    await screenshot(b.page, 'startup');
+    // Every engine function the page calls exists in this build (none is reported "not available").
+    const caps = await page.evaluate(() => window.tristim.engine.caps);
+    assert.deepEqual(Object.keys(caps).filter((f) => !caps[f]), []);
+
+    await waitReady(page);
+    // Nothing was stored before: this is the example, shown on the Results step.
+    assert.equal(await page.evaluate(() => document.body.dataset.step), 'results');
+    assert.equal(await page.isVisible('#step-results'), true);
+    assert.equal(await page.isHidden('#step-images'), true);
+    assert.equal(await page.evaluate(() => window.tristim.session['files.chart']?.name), 'passport.dng');
+    assert.match(await page.textContent('#step-results .example-note'), /built-in example/);
+    // Sampled: 24 patches of the Passport, with the example's preset corners.
+    assert.equal(await page.evaluate(() => window.tristim.derived.sample?.ids.length), 24);
+    assert.equal(await page.locator('#step-images .patch-table tbody tr').count(), 24);
+    // Fitted: one comparison row per default model, each with finite training and LOO errors.
+    const rows = page.locator('#step-results table.compare tbody tr');
+    assert.equal(await rows.count(), 3);
+    for (const col of ['train-mean', 'loo-mean']) {
+      const v = (await page.locator(`#step-results table.compare tbody td[data-col="${col}"]`).allTextContents()).map(Number);
+      assert.ok(v.length === 3 && v.every((x) => Number.isFinite(x) && x >= 0), `${col}: ${v}`);
+    }
+    // Every plot of the selected model has its data marks (24 patches).
+    const need = { 'xy-arrows': 24, 'lab-a-L': 48, 'lab-C-L': 48, 'de2000-bars': 72, 'xyz-scatter': 72, 'swatch-pairs': 48 };
+    for (const [name, min] of Object.entries(need)) {
+      const m = await marks(page, name);
+      assert.ok(m >= min, `${name}: ${m} marks, expected ≥ ${min} (${JSON.stringify(await markCounts(page, name))})`);
+    }
+    assert.equal(await page.locator('[data-unavailable]').count(), 0);
+    await screenshot(page, 'first-screen');
     assert.deepEqual(b.problems, []);
+
+    // The net the other tests rely on: an unhandled rejection or uncaught error inside the worker
+    // reaches the console, so the harness records it.
+    const [worker] = page.workers();
+    assert.ok(worker, 'the engine runs in a worker');
+    await worker.evaluate(() => { Promise.reject(new Error('probe: rejection in the worker')); });
+    await worker.evaluate(() => { setTimeout(() => { throw new Error('probe: error in the worker'); }); });
+    for (const probe of [/unhandled rejection: .*probe: rejection in the worker/, /uncaught error: .*probe: error in the worker/]) {
+      const t0 = Date.now();
+      while (!b.problems.some((p) => probe.test(p)) && Date.now() - t0 < 10000) await new Promise((r) => setTimeout(r, 50));
+      assert.ok(b.problems.some((p) => probe.test(p)), `${probe} recorded: ${JSON.stringify(b.problems)}`);
+    }
   } finally {
     await b.close();
   }

@@ -133,6 +133,13 @@ export function mount(section, app) {
     clearError(runBtn);
     const data = describeData();
     if (!data) { showError(runBtn, new Error('no paired data yet: set the reference and sample the chart first'), 'Fit'); return null; }
+    if (!data.ids.length && !data.excluded.length) {
+      log.replaceChildren();
+      const s = app.derived.sample, r = app.derived.reference;
+      const some = (ids) => `${ids.slice(0, 3).join(', ')}${ids.length > 3 ? ', …' : ''}`;
+      showError(runBtn, Object.assign(new Error(`no sampled patch id (${some(s.ids)}) is in the reference (${some(r.ids)}): choose the chart layout or reference that belong together`), { code: 'PATCH_MISMATCH' }), 'Fit');
+      return null;
+    }
     const jobs = [];
     for (const mId of choice.models) for (const obj of choice.objectives) jobs.push({ mId, obj });
     if (!jobs.length) { showError(runBtn, Object.assign(new Error('choose at least one model and one objective'), { code: 'NOTHING_SELECTED' }), 'Fit'); return null; }
