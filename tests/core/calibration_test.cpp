@@ -6,6 +6,8 @@
 #include "tristim/calibration.hpp"
 #include "tristim/error.hpp"
 
+using tristim::test::code_of;
+
 using namespace tristim;
 
 namespace {
@@ -24,15 +26,6 @@ RawImage synthetic(int w, int h, const std::string& model = "Synthetic") {
   return img;
 }
 
-ErrorCode code_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.code();
-  }
-  FAIL("expected a coded error");
-  return ErrorCode::Internal;
-}
 
 }  // namespace
 

@@ -9,6 +9,8 @@
 #include "tristim/error.hpp"
 #include "tristim/raw.hpp"
 
+using tristim::test::code_of;
+
 using namespace tristim;
 
 namespace {
@@ -17,15 +19,6 @@ namespace {
 // found by eye on the preview: outer corners of A1, A6, D6, D1. Also in examples/web/passport.json.
 const std::array<double, 8> kPassportCorners = {335, 291, 649, 285, 649, 486, 328, 488};
 
-ErrorCode code_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.code();
-  }
-  FAIL("expected a coded error");
-  return ErrorCode::Internal;
-}
 
 RawImage blank(int w, int h) {
   RawImage img;

@@ -10,6 +10,8 @@
 #include "tristim/json.hpp"
 #include "tristim/models.hpp"
 
+using tristim::test::require_code;
+
 using namespace tristim;
 
 namespace {
@@ -325,16 +327,6 @@ TEST_CASE("white-point preservation maps the white exactly for every objective",
 }
 
 namespace {
-template <class F>
-void require_code(F&& f, ErrorCode code) {
-  try {
-    f();
-    FAIL("expected error " << error_code_name(code));
-  } catch (const Error& e) {
-    INFO(e.what());
-    CHECK(std::string(e.code_name()) == error_code_name(code));
-  }
-}
 }  // namespace
 
 TEST_CASE("bad and degenerate fit input gives coded errors or a warning status", "[models]") {

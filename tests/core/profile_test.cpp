@@ -11,6 +11,8 @@
 #include "tristim/export.hpp"
 #include "tristim/profile.hpp"
 
+using tristim::test::require_code;
+
 using namespace tristim;
 
 namespace {
@@ -34,16 +36,6 @@ Profile fitted_profile(const std::string& id, Objective obj = Objective::LeastSq
   std::vector<std::string> ids;
   for (int i = 0; i < 30; ++i) ids.push_back("P" + std::to_string(i + 1));
   return make_profile(ev, o, ids, rgb, xyz);
-}
-template <class F>
-void require_code(F&& f, ErrorCode code) {
-  try {
-    f();
-    FAIL("expected error " << error_code_name(code));
-  } catch (const Error& e) {
-    INFO(e.what());
-    CHECK(std::string(e.code_name()) == error_code_name(code));
-  }
 }
 }  // namespace
 

@@ -3,9 +3,12 @@
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include "tristim/error.hpp"
 
 namespace tristim::test {
 
@@ -36,6 +39,23 @@ inline std::string read_repo(const std::string& relative) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+/// The ErrorCode that f() throws; fails the test if it throws none.
+inline ErrorCode code_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    INFO(e.what());
+    return e.code();
+  }
+  FAIL("expected a coded error");
+  return ErrorCode::Internal;
+}
+
+/// Checks that f() throws tristim::Error with `code` (compared by name, so a failure prints both).
+inline void require_code(const std::function<void()>& f, ErrorCode code) {
+  CHECK(std::string(error_code_name(code_of(f))) == error_code_name(code));
 }
 
 }  // namespace tristim::test
