@@ -11,17 +11,26 @@ namespace tristim {
 
 namespace {
 
-void require_same(int w, int h, const std::string& make, const std::string& model,
-                  const RawImage& other, const char* what) {
-  if (other.width != w || other.height != h)
+// Size and camera of a frame: enough to tell whether two frames can be combined.
+struct FrameId {
+  int width, height;
+  const std::string& make;
+  const std::string& model;
+};
+FrameId frame_id(const RawImage& r) { return {r.width, r.height, r.meta.make, r.meta.model}; }
+FrameId frame_id(const DarkFrame& d) { return {d.width, d.height, d.make, d.model}; }
+FrameId frame_id(const FlatField& f) { return {f.width, f.height, f.make, f.model}; }
+
+// FrameMismatch unless `other` (named `what`) has the image's size and camera.
+void require_same(const FrameId& image, const FrameId& other, const std::string& what) {
+  if (other.width != image.width || other.height != image.height)
     throw Error(ErrorCode::FrameMismatch,
-                std::string(what) + " is " + std::to_string(other.width) + " x " +
-                    std::to_string(other.height) + " but the image is " + std::to_string(w) +
-                    " x " + std::to_string(h) + " (measurement pixels)");
-  if (other.meta.make != make || other.meta.model != model)
-    throw Error(ErrorCode::FrameMismatch, std::string(what) + " comes from " + other.meta.make +
-                                              " " + other.meta.model + " but the image from " +
-                                              make + " " + model);
+                what + " is " + std::to_string(other.width) + " x " + std::to_string(other.height) +
+                    " but the image is " + std::to_string(image.width) + " x " +
+                    std::to_string(image.height) + " (measurement pixels)");
+  if (other.make != image.make || other.model != image.model)
+    throw Error(ErrorCode::FrameMismatch, what + " comes from " + other.make + " " + other.model +
+                                              " but the image from " + image.make + " " + image.model);
 }
 
 }  // namespace
@@ -39,8 +48,7 @@ DarkFrame average_dark_frames(const std::vector<const RawImage*>& frames) {
   const size_t n = first.rgb.size();
   for (size_t k = 0; k < frames.size(); ++k) {
     if (!frames[k]) throw Error(ErrorCode::InvalidArgument, "dark frame " + std::to_string(k + 1) + " is missing");
-    require_same(d.width, d.height, d.make, d.model, *frames[k],
-                 ("dark frame " + std::to_string(k + 1)).c_str());
+    require_same(frame_id(d), frame_id(*frames[k]), "dark frame " + std::to_string(k + 1));
   }
   // Sum each element over the frames in double (no second full-size buffer: memory matters in wasm).
   d.rgb.resize(n);
@@ -72,14 +80,7 @@ FlatField make_flat_field(const RawImage& flat, const DarkFrame* dark, DarkMode 
   f.height = flat.height;
   f.make = flat.meta.make;
   f.model = flat.meta.model;
-  if (dark) {
-    RawImage probe;
-    probe.width = dark->width;
-    probe.height = dark->height;
-    probe.meta.make = dark->make;
-    probe.meta.model = dark->model;
-    require_same(flat.width, flat.height, flat.meta.make, flat.meta.model, probe, "the dark frame");
-  }
+  if (dark) require_same(frame_id(flat), frame_id(*dark), "the dark frame");
   if (white_reflectance)
     for (double r : *white_reflectance)
       if (!(r > 0 && r <= 1.5))
@@ -118,14 +119,7 @@ double FalloffFit::factor(double x, double y) const {
 }
 
 FalloffFit fit_falloff_Guarnera2018(const RawImage& flat, const DarkFrame* dark) {
-  if (dark) {
-    RawImage probe;
-    probe.width = dark->width;
-    probe.height = dark->height;
-    probe.meta.make = dark->make;
-    probe.meta.model = dark->model;
-    require_same(flat.width, flat.height, flat.meta.make, flat.meta.model, probe, "the dark frame");
-  }
+  if (dark) require_same(frame_id(flat), frame_id(*dark), "the dark frame");
   FalloffFit fit;
   fit.width = flat.width;
   fit.height = flat.height;
@@ -206,16 +200,8 @@ FalloffFit fit_falloff_Guarnera2018(const RawImage& flat, const DarkFrame* dark)
 }
 
 void FrameCalibration::check_compatible(const RawImage& image) const {
-  const auto check = [&](int w, int h, const std::string& make, const std::string& model, const char* what) {
-    RawImage probe;
-    probe.width = w;
-    probe.height = h;
-    probe.meta.make = make;
-    probe.meta.model = model;
-    require_same(image.width, image.height, image.meta.make, image.meta.model, probe, what);
-  };
-  if (dark) check(dark->width, dark->height, dark->make, dark->model, "the dark frame");
-  if (flat) check(flat->width, flat->height, flat->make, flat->model, "the flat field");
+  if (dark) require_same(frame_id(image), frame_id(*dark), "the dark frame");
+  if (flat) require_same(frame_id(image), frame_id(*flat), "the flat field");
   if (falloff && (falloff->width != image.width || falloff->height != image.height))
     throw Error(ErrorCode::FrameMismatch, "the fall-off fit was made on an image of another size");
 }

@@ -253,17 +253,23 @@ struct De2000Data {
   std::vector<double> best_x;
 };
 
+// Patch i's predicted XYZ for the free coefficients x (z stored channel-major).
+Vec3 predicted_XYZ(const Problem& pr, const double* x, Eigen::Index i) {
+  Vec3 XYZ;
+  for (int c = 0; c < 3; ++c) {
+    double s = pr.base(i, c);
+    const double* zc = x + c * pr.q;
+    for (int j = 0; j < pr.q; ++j) s += pr.B(i, j) * zc[j];
+    XYZ[c] = s;
+  }
+  return XYZ;
+}
+
 double de2000_cost(const Problem& pr, const De2000Data& d, const double* x) {
   // x: z stored channel-major (z(:,0), z(:,1), z(:,2)).
   double total = 0;
   for (Eigen::Index i = 0; i < pr.n; ++i) {
-    Vec3 XYZ;
-    for (int c = 0; c < 3; ++c) {
-      double s = pr.base(i, c);
-      const double* zc = x + c * pr.q;
-      for (int j = 0; j < pr.q; ++j) s += pr.B(i, j) * zc[j];
-      XYZ[c] = s;
-    }
+    const Vec3 XYZ = predicted_XYZ(pr, x, i);
     const Vec3 Lab = XYZ_to_Lab(XYZ, d.white);
     const double dE = delta_E_CIE2000(d.Lab_ref.row(i).transpose(), Lab);
     const double e = std::isfinite(dE) ? dE : 1e6;
@@ -309,13 +315,7 @@ void de2000_residuals(const Problem& pr, const De2000Data& d, const double* x, E
                       Eigen::MatrixXd* J) {
   constexpr double h = 1e-6, eps = 216.0 / 24389.0, kappa = 24389.0 / 27.0;
   for (Eigen::Index i = 0; i < pr.n; ++i) {
-    Vec3 XYZ;
-    for (int c = 0; c < 3; ++c) {
-      double s = pr.base(i, c);
-      const double* zc = x + c * pr.q;
-      for (int j = 0; j < pr.q; ++j) s += pr.B(i, j) * zc[j];
-      XYZ[c] = s;
-    }
+    const Vec3 XYZ = predicted_XYZ(pr, x, i);
     const Vec3 Lab = XYZ_to_Lab(XYZ, d.white);
     const Vec3 ref = d.Lab_ref.row(i).transpose();
     const Vec3 q = de2000_squares(ref, Lab);
