@@ -226,6 +226,44 @@ val delta_E(const std::string& method, const val& lab1, const val& lab2) {
   });
 }
 
+/// XYZToLab(xyz Float64Array(3N), white [X,Y,Z]) -> Float64Array(3N) L*a*b* (CIE 15) relative
+/// to white (same scale as xyz).
+val XYZ_to_Lab_js(const val& xyz, const val& white) {
+  return guard([&] {
+    const auto w = triplets_from(white, "white");
+    if (w.size() != 1) throw tristim::Error(tristim::ErrorCode::InvalidArgument, "white must be [X, Y, Z]");
+    std::vector<Vec3> out;
+    for (const auto& v : triplets_from(xyz, "XYZ")) out.push_back(tristim::XYZ_to_Lab(v, w[0]));
+    return triplets(out);
+  });
+}
+
+/// XYZToDisplaySRGB(xyz Float64Array(3N), white [X,Y,Z]) -> Float64Array(3N) sRGB 0..1 for
+/// display: Bradford from white to D65, sRGB encoded and clipped (never used for measurement).
+val XYZ_to_display_sRGB_js(const val& xyz, const val& white) {
+  return guard([&] {
+    const auto w = triplets_from(white, "white");
+    if (w.size() != 1) throw tristim::Error(tristim::ErrorCode::InvalidArgument, "white must be [X, Y, Z]");
+    std::vector<Vec3> out;
+    for (const auto& v : triplets_from(xyz, "XYZ")) out.push_back(tristim::display_sRGB(v, w[0]));
+    return triplets(out);
+  });
+}
+
+/// displayMatrix(white [X,Y,Z]) -> Float64Array(9), row-major: XYZ -> linear sRGB with white ->
+/// (1,1,1) (Bradford to D65); for rendering whole images in the worker.
+val display_matrix_js(const val& white) {
+  return guard([&] {
+    const auto w = triplets_from(white, "white");
+    if (w.size() != 1) throw tristim::Error(tristim::ErrorCode::InvalidArgument, "white must be [X, Y, Z]");
+    const tristim::Mat3 M = tristim::display_matrix(w[0]);
+    double m[9];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) m[3 * r + c] = M(r, c);
+    return tristim::wasm::float64_array(m, 9);
+  });
+}
+
 /// simulateCamera(cameraId, chartId, illuminantId = "D65", options = {}) -> {ids, RGB: Float64Array(3N)}
 /// options: {whiteLevel = 1, noise = 0, seed = 1, oecfGamma, oecfScale (both set -> Shen & Xin 2008
 /// eq 29), clipMax = 0, quantise = false}. Same numbers as `tristim simulate`.
@@ -271,4 +309,7 @@ EMSCRIPTEN_BINDINGS(tristim_colorimetry) {
   function("spectralLocus", &spectral_locus);
   function("deltaE", &delta_E);
   function("simulateCamera", &simulate_camera);
+  function("XYZToLab", &XYZ_to_Lab_js);
+  function("XYZToDisplaySRGB", &XYZ_to_display_sRGB_js);
+  function("displayMatrix", &display_matrix_js);
 }

@@ -1,7 +1,7 @@
 // Worker request handlers, by request type: (T, msg, {state, progress}) -> {result, transfer}.
 // T is the wasm module; handlers stay thin: they call the engine, copy arrays out of the wasm
 // heap and list them for transfer. Decoded images stay here (state.raw[slot]).
-import { renderXYZ, labOf } from './lib/render.js';
+import { renderXYZ, encodingTable } from './lib/render.js';
 import { plain, referenceOut, sampleOut, fitOut, evaluationOut } from './lib/shapes.js';
 
 const ENGINE_FUNCTIONS = ['listCharts', 'listIlluminants', 'listCameras', 'referenceChart', 'parseReferenceFile',
@@ -50,6 +50,14 @@ function freeRaw(raw) {
 function dropRaw(state, slot) {
   freeRaw(state.raw?.[slot]);
   delete state.raw?.[slot];
+}
+
+/// L*a*b* of reference and estimate and display sRGB of the estimate, from the engine (CIE 15
+/// Lab; Bradford to D65 + sRGB for display), for the Lab planes and swatches of the results.
+function displayOf(T, refXYZ, estXYZ, white) {
+  if (!white || !estXYZ) return null;
+  const ref = Float64Array.from(refXYZ), est = Float64Array.from(estXYZ);
+  return { white: Array.from(white), refLab: T.XYZToLab(ref, white), estLab: T.XYZToLab(est, white), estSRGB: T.XYZToDisplaySRGB(est, white) };
 }
 
 export const handlers = {
@@ -141,11 +149,16 @@ export const handlers = {
 
   fit: (T, { rgb, xyz, ids, options }, { progress }) => {
     progress(NaN, `fitting ${options.model}`);
-    return reply(fitOut(need(T, 'fitModel')(Float64Array.from(rgb), Float64Array.from(xyz), ids, options)));
+    const out = fitOut(need(T, 'fitModel')(Float64Array.from(rgb), Float64Array.from(xyz), ids, options));
+    out.display = displayOf(T, xyz, out.fitted, options.white);
+    return reply(out);
   },
 
-  evaluate: (T, { profile, rgb, xyz, ids }) =>
-    reply(evaluationOut(need(T, 'evaluateProfile')(profile, Float64Array.from(rgb), Float64Array.from(xyz), ids))),
+  evaluate: (T, { profile, rgb, xyz, ids }) => {
+    const out = evaluationOut(need(T, 'evaluateProfile')(profile, Float64Array.from(rgb), Float64Array.from(xyz), ids));
+    out.display = displayOf(T, xyz, out.estimated, out.white);
+    return reply(out);
+  },
 
   /// Applies a profile to a decoded RAW, keeps the XYZ image here and returns display renders.
   applyRender: (T, { profile, slot = 'chart', white, lut, maxSide }, { state, progress }) => {
@@ -157,7 +170,8 @@ export const handlers = {
     const tApply = performance.now() - t0;
     progress(0.7, 'rendering');
     state.xyz = { ...img, white };
-    const r = renderXYZ(img.XYZ, img.width, img.height, { white, lut: new Uint8Array(lut), maxSide });
+    const r = renderXYZ(img.XYZ, img.width, img.height,
+      { matrix: T.displayMatrix(white), enc: encodingTable(T, white), lut: new Uint8Array(lut), maxSide });
     return reply({ ...r, fullWidth: img.width, fullHeight: img.height, msApply: tApply, msRender: performance.now() - t0 - tApply });
   },
 
@@ -169,7 +183,7 @@ export const handlers = {
     if (x < 0 || y < 0 || x >= img.width || y >= img.height) return { result: null };
     const XYZ = [img.XYZ[3 * i], img.XYZ[3 * i + 1], img.XYZ[3 * i + 2]];
     const s = XYZ[0] + XYZ[1] + XYZ[2];
-    return { result: { XYZ, xy: s > 0 ? [XYZ[0] / s, XYZ[1] / s] : [NaN, NaN], Lab: labOf(XYZ, img.white) } };
+    return { result: { XYZ, xy: s > 0 ? [XYZ[0] / s, XYZ[1] / s] : [NaN, NaN], Lab: Array.from(T.XYZToLab(Float64Array.from(XYZ), img.white)) } };
   },
 
   exportIcc: (T, { profile }) => reply({ bytes: Uint8Array.from(need(T, 'exportIcc')(profile)) }),

@@ -3,6 +3,8 @@
 #include <map>
 #include <mutex>
 
+#include <Eigen/LU>
+
 #include "tristim/chart.hpp"
 #include "tristim/data.hpp"
 #include "tristim/error.hpp"
@@ -70,9 +72,17 @@ SpectralData chart_reflectances(std::string_view chart_id) {
   return it->second;
 }
 
+Mat3 display_matrix(const Vec3& white) {
+  // Bradford maps `white` onto the sRGB white (D65 from its xy, Y = 100); /100 brings it to
+  // linear sRGB (1, 1, 1) exactly.
+  static const Mat3 to_XYZ = sRGB_to_XYZ_matrix();
+  static const Mat3 from_XYZ = to_XYZ.inverse();
+  const Mat3 M = chromatic_adaptation_matrix(white, to_XYZ * Vec3(100, 100, 100), ChromaticAdaptation::Bradford);
+  return from_XYZ * M / 100.0;
+}
+
 Vec3 display_sRGB(const Vec3& XYZ, const Vec3& white) {
-  const Mat3 M = chromatic_adaptation_matrix(white, whites::D65(), ChromaticAdaptation::Bradford);
-  return XYZ_to_sRGB(M * XYZ / 100.0, true);
+  return sRGB_encode(display_matrix(white) * XYZ);
 }
 
 ReferenceChart reference_from_spectra(const SpectralData& reflectances, const SpectralData& illuminant,

@@ -161,15 +161,19 @@ Mat3 sRGB_to_XYZ_matrix() {
   return P * S.asDiagonal();
 }
 
-Vec3 XYZ_to_sRGB(const Vec3& XYZ, bool encode) {
-  static const Mat3 inv = sRGB_to_XYZ_matrix().inverse();
-  Vec3 rgb = inv * XYZ;
-  if (!encode) return rgb;
+Vec3 sRGB_encode(const Vec3& linear_RGB) {
+  Vec3 rgb;
   for (int i = 0; i < 3; ++i) {
-    const double c = std::clamp(rgb[i], 0.0, 1.0);
+    const double c = std::clamp(linear_RGB[i], 0.0, 1.0);
     rgb[i] = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
   }
   return rgb;
+}
+
+Vec3 XYZ_to_sRGB(const Vec3& XYZ, bool encode) {
+  static const Mat3 inv = sRGB_to_XYZ_matrix().inverse();
+  const Vec3 rgb = inv * XYZ;
+  return encode ? sRGB_encode(rgb) : rgb;
 }
 
 }  // namespace tristim

@@ -119,3 +119,13 @@ TEST_CASE("pair_by_id pairs measured and reference rows by normalised id", "[cha
     CHECK(e.code() == ErrorCode::PatchMismatch);
   }
 }
+
+TEST_CASE("display_matrix is the linear part of display_sRGB and maps any white to (1,1,1)", "[chart]") {
+  for (const Vec3& white : {whites::D50(), whites::D65(), Vec3(109.85, 100.0, 35.58), Vec3(482.1, 500.0, 412.6)}) {
+    const Mat3 M = display_matrix(white);
+    CHECK((M * white - Vec3(1, 1, 1)).cwiseAbs().maxCoeff() < 1e-12);
+    const Vec3 grey = 0.18 * white;
+    const Vec3 lin = M * grey;
+    CHECK((display_sRGB(grey, white) - XYZ_to_sRGB(sRGB_to_XYZ_matrix() * lin, true)).cwiseAbs().maxCoeff() < 1e-12);
+  }
+}

@@ -156,3 +156,20 @@ test('pairById and simulateCamera (the fit will pair simulated RGB with the refe
   for (const v of noisy.RGB) assert.equal(v, Math.round(v));
   throwsCode(assert, () => T.simulateCamera('Leica M3', 'cc24', 'D65', {}), 'UNKNOWN_ID');
 });
+
+test('display helpers: the white is white after adaptation, L*a*b* of the white is 100, 0, 0', async () => {
+  const T = await loadTristim();
+  const d50 = [96.422, 100, 82.521];
+  for (const v of T.XYZToDisplaySRGB(Float64Array.from(d50), d50)) assert.ok(Math.abs(v - 1) < 1e-6, `white -> ${v}`);
+  const lab = T.XYZToLab(Float64Array.from([...d50, ...d50.map((v) => v / 2)]), d50);
+  assert.ok(Math.abs(lab[0] - 100) < 1e-9 && Math.abs(lab[1]) < 1e-9 && Math.abs(lab[2]) < 1e-9);
+  assert.ok(Math.abs(lab[3] - 76.0693) < 1e-3, `half the white has L* ${lab[3]}`);
+  // displayMatrix is the linear part of XYZToDisplaySRGB: the white maps to (1, 1, 1).
+  const M = T.displayMatrix(d50);
+  for (let r = 0; r < 3; r++) {
+    const v = M[3 * r] * d50[0] + M[3 * r + 1] * d50[1] + M[3 * r + 2] * d50[2];
+    assert.ok(Math.abs(v - 1) < 1e-9, `row ${r}: ${v}`);
+  }
+  throwsCode(assert, () => T.XYZToLab(new Float64Array(4), d50), 'INVALID_ARGUMENT');
+  throwsCode(assert, () => T.displayMatrix([1, 2]), 'INVALID_ARGUMENT');
+});

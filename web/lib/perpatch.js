@@ -1,10 +1,8 @@
 // Gathers what the plots need for one fitted result, per patch: reference and estimated XYZ and
 // Lab, CIEDE2000 with its ΔL/ΔC/ΔH terms, and display colours. XYZ estimates and every ΔE come
-// from the engine (fitModel / evaluateProfile); CIELAB coordinates for the Lab planes and display
-// sRGB are computed here from those XYZ.
-import { XYZ_to_display_sRGB } from './display.js';
+// from the engine (fitModel / evaluateProfile), and so do CIELAB coordinates and display sRGB
+// (`display`, added by the worker's fit/evaluate handlers from XYZToLab / XYZToDisplaySRGB).
 import { cssColours } from '../plots/common.js';
-import { labOf } from './render.js';
 
 /// First defined value among candidate paths ('a.b.c') of obj.
 export function pick(obj, ...paths) {
@@ -24,18 +22,19 @@ export function perPatch(result, reference) {
   const refXYZ = result.xyz;
   const estXYZ = pick(ev, 'estimated') ?? pick(fit, 'fitted');
   const patches = pick(ev, 'metrics.patches') ?? pick(fit, 'metrics.training.patches') ?? {};
-  const white = ev.white ?? result.options?.white ?? reference?.white ?? [96.42, 100, 82.49];
+  const disp = (pick(ev, 'estimated') ? ev.display : fit.display) ?? null;
+  const white = disp?.white ?? ev.white ?? result.options?.white ?? reference?.white;
   const refIndex = new Map(reference?.ids.map((id, i) => [id, i]) ?? []);
   const refColour = reference ? cssColours(reference.sRGB) : [];
-  const estColour = estXYZ ? cssColours(XYZ_to_display_sRGB(estXYZ, white)) : [];
+  const estColour = disp ? cssColours(disp.estSRGB) : [];
   const num = (a, i) => (a && a[i] != null ? a[i] : NaN);
   const rows = ids.map((id, i) => {
     const g = (a, k) => (a ? a[3 * i + k] : NaN);
     const ref = [g(refXYZ, 0), g(refXYZ, 1), g(refXYZ, 2)];
     const est = [g(estXYZ, 0), g(estXYZ, 1), g(estXYZ, 2)];
-    // CIELAB against the fit's white (CIE 15 formulae; the engine reports ΔE, not Lab).
-    const [L, a, b] = labOf(ref, white);
-    const [Le, ae, be] = estXYZ ? labOf(est, white) : [NaN, NaN, NaN];
+    // CIELAB against the fit's white, computed by the engine.
+    const [L, a, b] = disp ? [g(disp.refLab, 0), g(disp.refLab, 1), g(disp.refLab, 2)] : [NaN, NaN, NaN];
+    const [Le, ae, be] = disp ? [g(disp.estLab, 0), g(disp.estLab, 1), g(disp.estLab, 2)] : [NaN, NaN, NaN];
     return {
       id, i,
       X: ref[0], Y: ref[1], Z: ref[2], Xe: est[0], Ye: est[1], Ze: est[2],
@@ -51,7 +50,7 @@ export function perPatch(result, reference) {
   }
   return {
     rows, n, white,
-    has: { estXYZ: !!estXYZ, Lab: !!estXYZ, dE: !!patches.dE00, parts: !!(patches.dL && patches.dC && patches.dH) },
+    has: { estXYZ: !!estXYZ, Lab: !!disp, dE: !!patches.dE00, parts: !!(patches.dL && patches.dC && patches.dH) },
   };
 }
 

@@ -1,17 +1,25 @@
-// Worker-side rendering of an XYZ image (display only): sRGB via display.js, and a false-colour
+// Worker-side rendering of an XYZ image (display only): sRGB through the engine's display matrix
+// and sRGB encoding (displayMatrix, XYZToDisplaySRGB), and a false-colour
 // map of Y through a 256-entry colour table the page supplies (e.g. viridis). Downsamples by an
 // integer factor so the page receives at most ~maxSide pixels on the long side.
-import { displayMatrix, encode } from './display.js';
 
-const ENC = new Uint8ClampedArray(4096);
-for (let i = 0; i < 4096; i++) ENC[i] = Math.round(255 * encode(i / 4095));
+/// 4096-entry table of the sRGB encoding (linear 0..1 -> 0..255), taken from the engine: greys
+/// t·white through XYZToDisplaySRGB give encode(t) in every channel.
+export function encodingTable(T, white) {
+  const xyz = new Float64Array(3 * 4096);
+  for (let i = 0; i < 4096; i++) for (let k = 0; k < 3; k++) xyz[3 * i + k] = (i / 4095) * white[k];
+  const rgb = T.XYZToDisplaySRGB(xyz, white);
+  const enc = new Uint8ClampedArray(4096);
+  for (let i = 0; i < 4096; i++) enc[i] = Math.round(255 * rgb[3 * i]);
+  return enc;
+}
 
-/// xyz: Float32Array(3 w h); white: [X, Y, Z] the profile's white (Y = 100 scale);
-/// lut: Uint8Array(256 * 3); yMax: Y mapped to the top of the map (default: 99th percentile).
-export function renderXYZ(xyz, width, height, { white, lut, maxSide = 1400, yMax } = {}) {
+/// xyz: Float32Array(3 w h); matrix: row-major XYZ -> linear sRGB (the engine's displayMatrix of
+/// the profile's white); enc: encodingTable(); lut: Uint8Array(256 * 3) colour map;
+/// yMax: Y mapped to the top of the map (default: 99th percentile).
+export function renderXYZ(xyz, width, height, { matrix: M, enc: ENC, lut, maxSide = 1400, yMax } = {}) {
   const f = Math.max(1, Math.ceil(Math.max(width, height) / maxSide));
   const w = Math.floor(width / f), hgt = Math.floor(height / f);
-  const M = displayMatrix(white);
   const srgb = new Uint8ClampedArray(w * hgt * 4);
   const ymap = new Uint8ClampedArray(w * hgt * 4);
   if (!yMax) yMax = percentileY(xyz, 0.99) || 1;
@@ -52,11 +60,4 @@ export function percentileY(xyz, p) {
   let acc = 0;
   for (let b = 0; b < 4096; b++) { acc += bins[b]; if (acc >= target) return ((b + 1) / 4096) * max; }
   return max;
-}
-
-/// CIE 1976 L*a*b* of one XYZ against `white` (CIE 15:2004 eqs 8.1–8.3), for the read-out only.
-export function labOf([X, Y, Z], white) {
-  const f = (t) => (t > 216 / 24389 ? Math.cbrt(t) : (24389 / 27 * t + 16) / 116);
-  const fx = f(X / white[0]), fy = f(Y / white[1]), fz = f(Z / white[2]);
-  return [116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz)];
 }

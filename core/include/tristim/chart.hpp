@@ -79,7 +79,11 @@ struct PatchPairs {
 PatchPairs pair_by_id(const std::vector<std::string>& reference_ids, const std::vector<Vec3>& reference,
                       const std::vector<std::string>& measured_ids, const std::vector<Vec3>& measured);
 
-/// Display colour of XYZ (Y = 100 scale) seen under `white`: Bradford to D65, then sRGB encoded.
+/// Display colour of XYZ seen under `white` (same scale as XYZ): Bradford to D65, then sRGB
+/// encoded (0..1, clipped). For display only, never for measurement.
 Vec3 display_sRGB(const Vec3& XYZ, const Vec3& white);
+/// The linear part of display_sRGB: XYZ -> linear sRGB with `white` -> (1, 1, 1), whatever
+/// white's scale (relative Y = 100 or absolute cd/m²).
+Mat3 display_matrix(const Vec3& white);
 
 }  // namespace tristim
