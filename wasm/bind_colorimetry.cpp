@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "boundary.hpp"
-#include "tristim/chart.hpp"
-#include "tristim/colorimetry.hpp"
-#include "tristim/io.hpp"
-#include "tristim/simulate.hpp"
-#include "tristim/spectra.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/colorimetry/colorimetry.hpp"
+#include "tristim/io/patch_files.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+#include "tristim/colorimetry/spectra.hpp"
 
 using namespace emscripten;
 using tristim::wasm::guard;

@@ -10,11 +10,11 @@
 
 #include "boundary.hpp"
 #include "tristim/error.hpp"
-#include "tristim/evaluation.hpp"
-#include "tristim/export.hpp"
-#include "tristim/json.hpp"
-#include "tristim/models.hpp"
-#include "tristim/profile.hpp"
+#include "tristim/evaluation/evaluation.hpp"
+#include "tristim/profile/export.hpp"
+#include "tristim/io/json.hpp"
+#include "tristim/characterisation/models.hpp"
+#include "tristim/profile/profile.hpp"
 
 using namespace emscripten;
 using namespace tristim;

@@ -50,9 +50,9 @@
 #include <optional>
 
 #include "boundary.hpp"
-#include "tristim/calibration.hpp"
-#include "tristim/chart_layout.hpp"
-#include "tristim/raw.hpp"
+#include "tristim/capture/calibration.hpp"
+#include "tristim/chart/layout.hpp"
+#include "tristim/capture/raw.hpp"
 
 using namespace emscripten;
 using tristim::wasm::guard;

@@ -5,12 +5,12 @@
 #include <string>
 
 #include "cli.hpp"
-#include "tristim/chart.hpp"
-#include "tristim/colorimetry.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
-#include "tristim/io.hpp"
-#include "tristim/simulate.hpp"
-#include "tristim/spectra.hpp"
+#include "tristim/io/patch_files.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+#include "tristim/colorimetry/spectra.hpp"
 
 namespace tristim::cli {
 

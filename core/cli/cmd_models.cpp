@@ -11,15 +11,15 @@
 #include <sstream>
 
 #include "cli.hpp"
-#include "tristim/chart.hpp"
+#include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
-#include "tristim/evaluation.hpp"
-#include "tristim/export.hpp"
-#include "tristim/io.hpp"
-#include "tristim/json.hpp"
-#include "tristim/models.hpp"
-#include "tristim/profile.hpp"
-#include "tristim/raw.hpp"
+#include "tristim/evaluation/evaluation.hpp"
+#include "tristim/profile/export.hpp"
+#include "tristim/io/patch_files.hpp"
+#include "tristim/io/json.hpp"
+#include "tristim/characterisation/models.hpp"
+#include "tristim/profile/profile.hpp"
+#include "tristim/capture/raw.hpp"
 
 namespace tristim::cli {
 namespace {

@@ -7,10 +7,10 @@
 #include <sstream>
 
 #include "cli.hpp"
-#include "tristim/calibration.hpp"
-#include "tristim/chart_layout.hpp"
+#include "tristim/capture/calibration.hpp"
+#include "tristim/chart/layout.hpp"
 #include "tristim/error.hpp"
-#include "tristim/raw.hpp"
+#include "tristim/capture/raw.hpp"
 
 namespace tristim::cli {
 namespace {

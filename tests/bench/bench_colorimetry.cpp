@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <string>
 
-#include "tristim/chart.hpp"
+#include "tristim/chart/reference.hpp"
 #include "tristim/data.hpp"
-#include "tristim/io.hpp"
-#include "tristim/simulate.hpp"
+#include "tristim/io/patch_files.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
 
 namespace {
 template <class F>

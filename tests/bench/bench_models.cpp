@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "tristim/colorimetry.hpp"
-#include "tristim/evaluation.hpp"
-#include "tristim/models.hpp"
+#include "tristim/colorimetry/colorimetry.hpp"
+#include "tristim/evaluation/evaluation.hpp"
+#include "tristim/characterisation/models.hpp"
 
 using namespace tristim;
 using Clock = std::chrono::steady_clock;

@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "tristim/calibration.hpp"
-#include "tristim/chart_layout.hpp"
-#include "tristim/dng_writer.hpp"
+#include "tristim/capture/calibration.hpp"
+#include "tristim/chart/layout.hpp"
+#include "dng_writer.hpp"
 #include "tristim/error.hpp"
-#include "tristim/raw.hpp"
+#include "tristim/capture/raw.hpp"
 
 #ifdef __EMSCRIPTEN__
 #include <emscripten/heap.h>

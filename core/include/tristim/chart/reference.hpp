@@ -1,0 +1,89 @@
+// Colour charts. This header's first part is the reference data of the built-in charts (what a
+// patch should measure); chart geometry for sampling images lives in its own section/files.
+//
+// Chart ids (TEAM.md): "cc24" ColorChecker Classic, X-Rite data for charts made after Nov 2014;
+// "cc24-2005" the same before Nov 2014; "sg140" ColorChecker (Digital) SG after Nov 2014,
+// "sg140-2005" before; "passport" the classic 24-patch side of the ColorChecker Passport (same
+// ids and data as cc24, see core/data/SOURCES.md). Patch ids: cc24/passport "A1".."D6" (row A-D
+// top to bottom, column 1-6; A1 = dark skin, D6 = black); SG "A1".."N10" (letter = column A-N,
+// number = row 1-10).
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tristim/colorimetry/colorimetry.hpp"
+#include "tristim/io/patch_files.hpp"
+#include "tristim/colorimetry/spectra.hpp"
+
+namespace tristim {
+
+// ================================================================ reference data
+
+struct ChartInfo {
+  std::string id;           // "cc24"
+  std::string name;         // "ColorChecker Classic (X-Rite, after Nov 2014)"
+  int patches = 0;          // 24
+  int rows = 0, columns = 0;
+  std::string source;       // where the spectra and Lab come from (short)
+};
+/// The built-in reference charts, in a stable order.
+std::vector<ChartInfo> list_charts();
+
+/// Measured spectral reflectances (fractions) of a built-in chart; names = patch ids in the
+/// chart's order. Error(UnknownId) for an unknown chart.
+SpectralData chart_reflectances(std::string_view chart_id);
+
+/// Reference colorimetry of a set of patches under one illuminant and observer.
+/// XYZ: perfect diffuser Y = 100. Lab: relative to `white` (the illuminant's white for that
+/// observer). sRGB: display-encoded 0..1 after Bradford adaptation from `white` to D65
+/// (clipped to the gamut), for swatches only.
+struct ReferenceChart {
+  std::string chart_id;      // "cc24", or the file name for parsed files
+  std::string illuminant_id; // "D65", or "" when the data came as XYZ/Lab
+  Observer observer = Observer::CIE1931_2;
+  std::vector<std::string> ids;
+  std::vector<Vec3> XYZ, Lab, sRGB;
+  Vec3 white = Vec3(0, 0, 0);
+};
+
+/// Reference XYZ/Lab of a built-in chart computed from its spectra (spectra.hpp integration rule)
+/// under `illuminant_id` (any id illuminant_spd accepts). Error(UnknownId) for unknown ids.
+ReferenceChart reference_chart(std::string_view chart_id, std::string_view illuminant_id = "D65",
+                               Observer observer = Observer::CIE1931_2);
+/// The same from explicit spectra and SPD (e.g. a user's file).
+ReferenceChart reference_from_spectra(const SpectralData& reflectances, const SpectralData& illuminant,
+                                      Observer observer);
+/// A measurement file as reference: spectra are integrated under the illuminant; an XYZ and/or Lab
+/// table is used as given (missing Lab = XYZ_to_Lab relative to the illuminant's white; missing
+/// XYZ = Lab_to_XYZ with that white; an XYZ table whose Y never exceeds 1.5 is taken to be on the
+/// 0..1 scale and multiplied by 100). Error(MissingColumn) if the file has none of these.
+ReferenceChart reference_from_table(const PatchTable& table, const SpectralData& illuminant, Observer observer);
+
+/// X-Rite's published CIELAB (D50, 2°) of a built-in chart, as printed (2 decimals); ids as above.
+struct PublishedReference {
+  std::string chart_id, source;
+  std::vector<std::string> ids;
+  std::vector<Vec3> Lab;
+};
+PublishedReference published_reference_Lab(std::string_view chart_id);
+
+/// Measured patches paired with reference patches by id (for fits and evaluation).
+/// Order: the reference's order, keeping ids present in both. Error(PatchMismatch) if no id is
+/// shared, or if the counts of ids and rows differ.
+struct PatchPairs {
+  std::vector<std::string> ids;
+  std::vector<Vec3> measured, reference;
+  std::vector<std::string> missing_in_measured, missing_in_reference;
+};
+PatchPairs pair_by_id(const std::vector<std::string>& reference_ids, const std::vector<Vec3>& reference,
+                      const std::vector<std::string>& measured_ids, const std::vector<Vec3>& measured);
+
+/// Display colour of XYZ seen under `white` (same scale as XYZ): Bradford to D65, then sRGB
+/// encoded (0..1, clipped). For display only, never for measurement.
+Vec3 display_sRGB(const Vec3& XYZ, const Vec3& white);
+/// The linear part of display_sRGB: XYZ -> linear sRGB with `white` -> (1, 1, 1), whatever
+/// white's scale (relative Y = 100 or absolute cd/m²).
+Mat3 display_matrix(const Vec3& white);
+
+}  // namespace tristim

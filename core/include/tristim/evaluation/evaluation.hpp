@@ -1,0 +1,111 @@
+// Evaluation of characterisation models: per-patch colour differences, summaries, training
+// vs leave-one-out error, train-on-one-chart / test-on-another, and a model × objective table.
+//
+// All errors compare an estimate with a reference in the same XYZ units; CIELAB differences
+// use a stated white in those units.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "tristim/colorimetry/colorimetry.hpp"
+#include "tristim/characterisation/models.hpp"
+
+namespace tristim {
+
+/// min, median, mean, 95th percentile (linear interpolation between order statistics, as
+/// numpy's default), max, RMS (sqrt of mean square) and population standard deviation.
+struct Summary {
+  double min = 0, median = 0, mean = 0, p95 = 0, max = 0, rms = 0, std = 0;
+};
+Summary summarize(const std::vector<double>& values);
+
+/// Per-patch errors of an estimate against a reference (vectors of N).
+struct PatchErrors {
+  std::vector<double> dE76, dE94, dE00;  ///< CIE 1976, CIE 1994 (graphic arts), CIEDE2000
+  std::vector<double> dL, dC, dH;        ///< CIEDE2000 weighted components (estimate − reference)
+  std::vector<double> dE_xyz;            ///< Euclidean XYZ distance, data units
+  std::vector<double> rel_Y;             ///< (Y_est − Y_ref) / Y_ref (NaN where Y_ref = 0)
+};
+
+struct Metrics {
+  PatchErrors patches;
+  Summary dE76, dE94, dE00, dE_xyz;
+  Summary abs_rel_Y;  ///< summary of |rel_Y| over patches with Y_ref > 0
+  /// NRMSE per X, Y, Z. Guarnera 2018 (Tables 4-5) reports it without a formula; we use
+  /// NRMSE_c = sqrt(mean_i (c_est,i − c_ref,i)²) / (max_i c_ref,i − min_i c_ref,i),
+  /// the RMS error normalised by the range of the reference channel.
+  Vec3 NRMSE = Vec3::Zero();
+};
+
+/// Errors of estimated_XYZ against reference_XYZ (N × 3 each), CIELAB relative to `white`.
+Metrics evaluate(const PatchMatrix& estimated_XYZ, const PatchMatrix& reference_XYZ,
+                 const Vec3& white = whites::D50());
+
+/// Leave-one-out predictions: row i is predicted by the model fitted (same id and options)
+/// to every patch except i. With white preservation, the fold that holds out the white patch
+/// (`white_patch_index`, −1 for none) is fitted without the constraint, so no patch is ever
+/// predicted by a fit that saw it. Error(TooFewPatches) if N − 1 patches cannot fit the model.
+PatchMatrix leave_one_out(const std::string& model_id, const PatchMatrix& camera_RGB,
+                          const PatchMatrix& reference_XYZ, const FitOptions& options = {},
+                          int white_patch_index = -1);
+
+/// A fit with its training and leave-one-out metrics.
+struct ModelEvaluation {
+  FitResult fit;
+  double fit_seconds = 0;      ///< wall time of the training fit alone
+  double fit_cpu_seconds = 0;  ///< process CPU time of the training fit (robust on a busy machine)
+  Metrics training;
+  bool has_loo = false;  ///< false when N − 1 patches are too few for the model
+  Metrics loo;
+  PatchMatrix loo_XYZ;
+};
+ModelEvaluation evaluate_model(const std::string& model_id, const PatchMatrix& camera_RGB,
+                               const PatchMatrix& reference_XYZ, const FitOptions& options = {},
+                               int white_patch_index = -1, bool with_loo = true);
+
+/// One row of the compare table.
+struct CompareRow {
+  std::string model_id;
+  Objective objective = Objective::LeastSquares;
+  int n_terms = 0;
+  bool ok = false;          ///< false: the fit was refused (see error_code, message)
+  std::string error_code;   ///< e.g. "TOO_FEW_PATCHES" when !ok
+  std::string message;      ///< the error, or the fit's warning
+  FitStatus status = FitStatus::Ok;
+  double condition_number = 0;
+  double seconds = 0;       ///< wall time of the training fit (without leave-one-out)
+  double cpu_seconds = 0;   ///< process CPU time of the same
+  Summary train_dE00, loo_dE00, train_dE_xyz, loo_dE_xyz;
+  bool has_loo = false;
+};
+
+/// Every (non-duplicate) model × objective on the same data, sorted by held-out (LOO) mean
+/// CIEDE2000, then training mean; refused fits last. `model_ids` empty: every model of the
+/// table that is not a duplicate; `objectives` empty: ls, psm, de2000.
+std::vector<CompareRow> compare_models(const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ,
+                                       const FitOptions& options = {},
+                                       std::vector<std::string> model_ids = {},
+                                       std::vector<Objective> objectives = {}, int white_patch_index = -1);
+
+/// A named training set (for the transfer table).
+struct NamedPatches {
+  std::string name;
+  PatchMatrix camera_RGB, reference_XYZ;
+};
+
+/// Abed 2013 Table IV layout: for each training set (rows) and model × objective (columns),
+/// the mean and max ΔE_xyz and CIEDE2000 on one fixed test set.
+struct TransferCell {
+  std::string training_set, model_id;
+  Objective objective = Objective::LeastSquares;
+  bool ok = false;
+  std::string error_code, message;
+  Summary dE_xyz, dE00;
+};
+std::vector<TransferCell> transfer_table(const std::vector<NamedPatches>& training,
+                                         const PatchMatrix& test_RGB, const PatchMatrix& test_XYZ,
+                                         const std::vector<std::string>& model_ids,
+                                         const std::vector<Objective>& objectives,
+                                         const FitOptions& options = {});
+
+}  // namespace tristim

@@ -1,0 +1,74 @@
+// Versioned profile JSON: a fitted model with everything needed to use and trust it.
+//
+// Format (version 1), every double written with 17 significant digits so that reading the
+// profile back reproduces every prediction bit for bit:
+// {
+//   "format": "tristim-profile", "version": 1, "tristim_version": "0.1.0",
+//   "model": {"id": "Finlayson2015-2", "n_terms": 6, "terms": ["R", ...],
+//             "coefficients": [[...P...], [...], [...]]},          // 3 × P, XYZ = M·φ(RGB)
+//   "objective": "ls" | "psm" | "de2000",
+//   "colorimetry": {"white": [X, Y, Z], "illuminant": "D50", "observer": "CIE 1931 2°"},
+//   "white_preservation": {"enabled": false, "patch": "", "RGB": [...], "XYZ": [...]},
+//   "training": {"patches": 24, "digest": "fnv1a64:<16 hex digits>", "rgb_max": 13000},
+//   "fit": {"status": "ok", "message": "", "condition_number": ..., "iterations": ...,
+//           "objective_value": ...},
+//   "metrics": {"training": {...}, "loo": {...}}                   // summaries (optional)
+// }
+// The training digest is FNV-1a 64-bit (not cryptographic: it identifies the data, it does
+// not authenticate it) over "tristim-training-v1\n" followed, per patch, by the id bytes, a
+// NUL, and R, G, B, X, Y, Z as IEEE-754 little-endian doubles.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "tristim/evaluation/evaluation.hpp"
+#include "tristim/io/json.hpp"
+#include "tristim/characterisation/models.hpp"
+
+namespace tristim {
+
+constexpr int kProfileVersion = 1;
+
+struct Profile {
+  int version = kProfileVersion;
+  std::string tristim_version;
+  Model model;
+  Objective objective = Objective::LeastSquares;
+  Vec3 white = whites::D50();
+  std::string illuminant = "D50";
+  std::string observer = "CIE 1931 2°";
+  bool white_preserved = false;
+  std::string white_patch;
+  Vec3 white_RGB = Vec3::Zero(), white_XYZ = Vec3::Zero();
+  int training_patches = 0;
+  std::string training_digest;
+  double rgb_max = 1;  ///< largest training camera RGB value (device 1.0 of ICC/.cube exports)
+  FitStatus status = FitStatus::Ok;
+  std::string message;
+  double condition_number = 0;
+  int iterations = 0;
+  double objective_value = 0;
+  json::Value metrics;  ///< object; empty object when not computed
+};
+
+/// "fnv1a64:xxxxxxxxxxxxxxxx" of the training data (see the header comment).
+std::string training_digest(const std::vector<std::string>& ids, const PatchMatrix& camera_RGB,
+                            const PatchMatrix& reference_XYZ);
+
+/// A profile from a fit and its evaluation. `ids` may be empty (then "1".."N" are digested).
+/// `illuminant` empty: "D50"/"D65" when the white has that chromaticity (to 1e-4), else "custom".
+Profile make_profile(const ModelEvaluation& evaluation, const FitOptions& options,
+                     const std::vector<std::string>& ids, const PatchMatrix& camera_RGB,
+                     const PatchMatrix& reference_XYZ, const std::string& white_patch = "",
+                     const std::string& illuminant = "");
+
+std::string profile_to_json(const Profile& profile);
+/// Error(ProfileVersion) for another version, Error(ProfileInvalid) for text that is not
+/// JSON, not a tristim profile, missing fields, an unknown model or a wrong coefficient shape.
+Profile profile_from_json(const std::string& text);
+
+/// Summaries (and, with per_patch, the per-patch arrays) as a JSON object.
+json::Value summary_json(const Summary& s);
+json::Value metrics_json(const Metrics& m, const std::vector<std::string>& ids = {}, bool per_patch = false);
+
+}  // namespace tristim

@@ -1,0 +1,247 @@
+// Frame calibration: dark frames, flat field (Abed 2013 App. C), radial fall-off (Guarnera 2018).
+#include "tristim/capture/calibration.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "tristim/error.hpp"
+
+namespace tristim {
+
+namespace {
+
+// Size and camera of a frame: enough to tell whether two frames can be combined.
+struct FrameId {
+  int width, height;
+  const std::string& make;
+  const std::string& model;
+};
+FrameId frame_id(const RawImage& r) { return {r.width, r.height, r.meta.make, r.meta.model}; }
+FrameId frame_id(const DarkFrame& d) { return {d.width, d.height, d.make, d.model}; }
+FrameId frame_id(const FlatField& f) { return {f.width, f.height, f.make, f.model}; }
+
+// FrameMismatch unless `other` (named `what`) has the image's size and camera.
+void require_same(const FrameId& image, const FrameId& other, const std::string& what) {
+  if (other.width != image.width || other.height != image.height)
+    throw Error(ErrorCode::FrameMismatch,
+                what + " is " + std::to_string(other.width) + " x " + std::to_string(other.height) +
+                    " but the image is " + std::to_string(image.width) + " x " +
+                    std::to_string(image.height) + " (measurement pixels)");
+  if (other.make != image.make || other.model != image.model)
+    throw Error(ErrorCode::FrameMismatch, what + " comes from " + other.make + " " + other.model +
+                                              " but the image from " + image.make + " " + image.model);
+}
+
+}  // namespace
+
+DarkFrame average_dark_frames(const std::vector<const RawImage*>& frames) {
+  if (frames.empty() || !frames[0])
+    throw Error(ErrorCode::InvalidArgument, "no dark frames given");
+  const RawImage& first = *frames[0];
+  DarkFrame d;
+  d.width = first.width;
+  d.height = first.height;
+  d.make = first.meta.make;
+  d.model = first.meta.model;
+  d.frames = static_cast<int>(frames.size());
+  const size_t n = first.rgb.size();
+  for (size_t k = 0; k < frames.size(); ++k) {
+    if (!frames[k]) throw Error(ErrorCode::InvalidArgument, "dark frame " + std::to_string(k + 1) + " is missing");
+    require_same(frame_id(d), frame_id(*frames[k]), "dark frame " + std::to_string(k + 1));
+  }
+  // Sum each element over the frames in double (no second full-size buffer: memory matters in wasm).
+  d.rgb.resize(n);
+  std::array<double, 3> sum{};
+  const double inv = 1.0 / frames.size();
+  for (size_t i = 0; i < n; ++i) {
+    double acc = 0;
+    for (const RawImage* f : frames) acc += f->rgb[i];
+    d.rgb[i] = static_cast<float>(acc * inv);
+    sum[i % 3] += d.rgb[i];
+  }
+  const double npix = static_cast<double>(n / 3);
+  for (int c = 0; c < 3; ++c) d.mean[c] = sum[c] / npix;
+  // Noise floor: spread of one frame around the average (temporal + fixed-pattern residual).
+  std::array<double, 3> ss{};
+  for (size_t i = 0; i < n; ++i) {
+    const double e = first.rgb[i] - (frames.size() > 1 ? d.rgb[i] : d.mean[i % 3]);
+    ss[i % 3] += e * e;
+  }
+  const double dof = frames.size() > 1 ? npix * (1.0 - 1.0 / frames.size()) : npix - 1;
+  for (int c = 0; c < 3; ++c) d.noise[c] = std::sqrt(ss[c] / std::max(1.0, dof));
+  return d;
+}
+
+FlatField make_flat_field(const RawImage& flat, const DarkFrame* dark, DarkMode dark_mode,
+                          const std::optional<std::array<double, 3>>& white_reflectance) {
+  FlatField f;
+  f.width = flat.width;
+  f.height = flat.height;
+  f.make = flat.meta.make;
+  f.model = flat.meta.model;
+  if (dark) require_same(frame_id(flat), frame_id(*dark), "the dark frame");
+  if (white_reflectance)
+    for (double r : *white_reflectance)
+      if (!(r > 0 && r <= 1.5))
+        throw Error(ErrorCode::InvalidArgument, "white reflectance must be in (0, 1.5], got " + std::to_string(r));
+  const size_t n = flat.rgb.size();
+  // Two passes over the flat (check + channel sums, then gains) instead of a second full-size buffer.
+  const auto signal = [&](size_t i) {
+    float d = 0;
+    if (dark) d = dark_mode == DarkMode::PerPixel ? dark->rgb[i] : static_cast<float>(dark->mean[i % 3]);
+    return flat.rgb[i] - d;
+  };
+  std::array<double, 3> sum{};
+  for (size_t i = 0; i < n; ++i) {
+    const float v = signal(i);
+    if (!(v > 0)) {
+      const size_t p = i / 3;
+      throw Error(ErrorCode::FlatFieldZero,
+                  "the flat field has a zero or negative value at pixel (" +
+                      std::to_string(p % flat.width) + ", " + std::to_string(p / flat.width) +
+                      ") channel " + "RGB"[i % 3] + ": expose the flat so every pixel has signal");
+    }
+    sum[i % 3] += v;
+  }
+  const double npix = static_cast<double>(n / 3);
+  f.reflectance_units = white_reflectance.has_value();
+  for (int c = 0; c < 3; ++c) f.target[c] = white_reflectance ? (*white_reflectance)[c] : sum[c] / npix;
+  f.gain.resize(n);
+  for (size_t i = 0; i < n; ++i) f.gain[i] = static_cast<float>(f.target[i % 3] / signal(i));  // App. C step 2
+  return f;
+}
+
+double FalloffFit::factor(double x, double y) const {
+  const double dx = x - centre_x, dy = y - centre_y;  // sqrt, not hypot: per pixel, and slow in wasm
+  const double r = std::sqrt(dx * dx + dy * dy) / r_scale;
+  return p1 * r * r + p2 * r + p3;  // eq (7): f(u_p, v_p)
+}
+
+FalloffFit fit_falloff_Guarnera2018(const RawImage& flat, const DarkFrame* dark) {
+  if (dark) require_same(frame_id(flat), frame_id(*dark), "the dark frame");
+  FalloffFit fit;
+  fit.width = flat.width;
+  fit.height = flat.height;
+  fit.centre_x = flat.width / 2.0;
+  fit.centre_y = flat.height / 2.0;
+  fit.r_scale = std::hypot(fit.centre_x, fit.centre_y);
+  const size_t npix = static_cast<size_t>(flat.width) * flat.height;
+  // Per-channel means (for normalising the channels to a common scale).
+  std::array<double, 3> mean{};
+  size_t used = 0;
+  for (size_t p = 0; p < npix; ++p) {
+    if (flat.saturated[p]) continue;
+    for (int c = 0; c < 3; ++c) mean[c] += flat.rgb[p * 3 + c] - (dark ? dark->rgb[p * 3 + c] : 0.0f);
+    ++used;
+  }
+  for (int c = 0; c < 3; ++c) {
+    mean[c] = used ? mean[c] / used : 0;
+    if (!(mean[c] > 0))
+      throw Error(ErrorCode::FlatFieldZero, "the flat field has no positive signal in channel " +
+                                                std::string(1, "RGB"[c]));
+  }
+  const double inv_mean[3] = {1.0 / (3 * mean[0]), 1.0 / (3 * mean[1]), 1.0 / (3 * mean[2])};
+  constexpr int kBins = 64;
+  std::vector<double> bsum(kBins, 0), bcount(kBins, 0), brsum(kBins, 0);
+  for (int y = 0; y < flat.height; ++y)
+    for (int x = 0; x < flat.width; ++x) {
+      const size_t p = static_cast<size_t>(y) * flat.width + x;
+      if (flat.saturated[p]) continue;
+      double L = 0;
+      for (int c = 0; c < 3; ++c) L += (flat.rgb[p * 3 + c] - (dark ? dark->rgb[p * 3 + c] : 0.0f)) * inv_mean[c];
+      const double dx = x + 0.5 - fit.centre_x, dy = y + 0.5 - fit.centre_y;
+      const double r = std::sqrt(dx * dx + dy * dy) / fit.r_scale;
+      const int b = std::min(kBins - 1, static_cast<int>(r * kBins));
+      bsum[b] += L;
+      brsum[b] += r;
+      bcount[b] += 1;
+    }
+  std::vector<double> rs, Ls, ws;
+  for (int b = 0; b < kBins; ++b)
+    if (bcount[b] > 0) {
+      rs.push_back(brsum[b] / bcount[b]);
+      Ls.push_back(bsum[b] / bcount[b]);
+      ws.push_back(std::sqrt(bcount[b]));
+    }
+  const int m = static_cast<int>(rs.size());
+  if (m < 3) throw Error(ErrorCode::InvalidArgument, "the flat field is too small to fit a radial fall-off");
+  for (double L : Ls)
+    if (!(L > 0)) throw Error(ErrorCode::FlatFieldZero, "the flat field has a ring without positive signal");
+  // f(r) = L(0) / L(r) = p1 r² + p2 r + 1  <=>  1 / L(r) = a + b r + c r² with L(0) = 1/a,
+  // p2 = b/a, p1 = c/a: one linear least-squares fit (rows weighted by L·sqrt(count), i.e.
+  // relative errors), and f(centre) = 1 by construction.
+  Eigen::MatrixXd A(m, 3);
+  Eigen::VectorXd t(m);
+  for (int i = 0; i < m; ++i) {
+    const double w = ws[i] * Ls[i];
+    A(i, 0) = w;
+    A(i, 1) = w * rs[i];
+    A(i, 2) = w * rs[i] * rs[i];
+    t(i) = w / Ls[i];
+  }
+  const Eigen::Vector3d q = A.colPivHouseholderQr().solve(t);
+  if (!(q(0) > 0)) throw Error(ErrorCode::FlatFieldZero, "the flat field's centre has no positive signal");
+  const double L0 = 1.0 / q(0);
+  fit.p1 = q(2) / q(0);
+  fit.p2 = q(1) / q(0);
+  fit.p3 = 1.0;
+  fit.bins = m;
+  double ss = 0, wsum = 0;
+  for (int i = 0; i < m; ++i) {
+    const double f = fit.p1 * rs[i] * rs[i] + fit.p2 * rs[i] + fit.p3;
+    const double e = f * Ls[i] / L0 - 1.0;
+    ss += ws[i] * ws[i] * e * e;
+    wsum += ws[i] * ws[i];
+    fit.max_residual = std::max(fit.max_residual, std::abs(e));
+  }
+  fit.rms_residual = std::sqrt(ss / wsum);
+  return fit;
+}
+
+void FrameCalibration::check_compatible(const RawImage& image) const {
+  if (dark) require_same(frame_id(image), frame_id(*dark), "the dark frame");
+  if (flat) require_same(frame_id(image), frame_id(*flat), "the flat field");
+  if (falloff && (falloff->width != image.width || falloff->height != image.height))
+    throw Error(ErrorCode::FrameMismatch, "the fall-off fit was made on an image of another size");
+}
+
+void FrameCalibration::dark_subtracted(const RawImage& image, int x, int y, float out[3]) const {
+  const size_t i = (static_cast<size_t>(y) * image.width + x) * 3;
+  for (int c = 0; c < 3; ++c) {
+    float v = image.rgb[i + c];
+    if (dark) v -= dark_mode == DarkMode::PerPixel ? dark->rgb[i + c] : static_cast<float>(dark->mean[c]);
+    out[c] = v;
+  }
+}
+
+void FrameCalibration::calibrated(const RawImage& image, int x, int y, float out[3]) const {
+  dark_subtracted(image, x, y, out);
+  const size_t i = (static_cast<size_t>(y) * image.width + x) * 3;
+  if (flat)
+    for (int c = 0; c < 3; ++c) out[c] *= flat->gain[i + c];
+  if (falloff) {
+    const float f = static_cast<float>(falloff->factor(x + 0.5, y + 0.5));
+    for (int c = 0; c < 3; ++c) out[c] *= f;
+  }
+}
+
+std::array<double, 3> FrameCalibration::noise_floor() const {
+  return dark ? dark->noise : std::array<double, 3>{0, 0, 0};
+}
+
+RawImage apply_calibration(const RawImage& image, const FrameCalibration& calibration) {
+  calibration.check_compatible(image);
+  RawImage out;
+  out.meta = image.meta;
+  out.width = image.width;
+  out.height = image.height;
+  out.saturated = image.saturated;
+  out.rgb.resize(image.rgb.size());
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      calibration.calibrated(image, x, y, &out.rgb[(static_cast<size_t>(y) * image.width + x) * 3]);
+  return out;
+}
+
+}  // namespace tristim

@@ -1,0 +1,295 @@
+// Spectral distributions, built-in CIE tables and spectrum -> XYZ (rules in tristim/spectra.hpp).
+#include "tristim/colorimetry/spectra.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+
+#include "tristim/data.hpp"
+#include "tristim/error.hpp"
+#include "tristim/io/patch_files.hpp"
+
+namespace tristim {
+
+const std::vector<double>& SpectralData::column(std::string_view name) const {
+  for (size_t k = 0; k < names.size(); ++k)
+    if (names[k] == name) return values[k];
+  throw Error(ErrorCode::MissingColumn, "no spectral column '" + std::string(name) + "'");
+}
+
+bool is_uniform(const std::vector<double>& w) {
+  if (w.size() < 2) return false;
+  const double h = w[1] - w[0];
+  for (size_t i = 2; i < w.size(); ++i)
+    if (std::abs((w[i] - w[i - 1]) - h) > 1e-9 * std::abs(h)) return false;
+  return true;
+}
+
+std::vector<double> wavelength_grid(double start, double end, double step) {
+  if (!(step > 0) || !(end >= start)) throw Error(ErrorCode::InvalidArgument, "bad wavelength grid");
+  std::vector<double> out;
+  const long n = std::lround((end - start) / step);
+  for (long i = 0; i <= n; ++i) out.push_back(start + step * static_cast<double>(i));
+  return out;
+}
+
+double sprague_interpolate(const std::vector<double>& y, double x0, double h, double x) {
+  const size_t n = y.size();
+  // Boundary: two extra points per end (CIE 167:2005 Table 4, colour's SPRAGUE_C_COEFFICIENTS).
+  static const double C[4][6] = {{884, -1960, 3033, -2648, 1080, -180},
+                                 {508, -540, 488, -367, 144, -24},
+                                 {-24, 144, -367, 488, -540, 508},
+                                 {-180, 1080, -2648, 3033, -1960, 884}};
+  auto r = [&](long j) -> double {  // j is an index into y, may be -2..n+1
+    if (j >= 0 && j < static_cast<long>(n)) return y[static_cast<size_t>(j)];
+    const double* c = j == -2 ? C[0] : j == -1 ? C[1] : j == static_cast<long>(n) ? C[2] : C[3];
+    const size_t base = j < 0 ? 0 : n - 6;
+    double s = 0;
+    for (int k = 0; k < 6; ++k) s += c[k] * y[base + k];
+    return s / 209.0;
+  };
+  const double t = (x - x0) / h;
+  long i = static_cast<long>(std::floor(t));
+  if (i >= static_cast<long>(n) - 1) i = static_cast<long>(n) - 2;
+  if (i < 0) i = 0;
+  const double X = t - static_cast<double>(i);
+  if (X == 0.0) return y[static_cast<size_t>(i)];
+  const double rm2 = r(i - 2), rm1 = r(i - 1), r0 = r(i), r1 = r(i + 1), r2 = r(i + 2), r3 = r(i + 3);
+  // Sprague (1880) quintic through r0, r1 (CIE 167:2005 eq 6; colour's SpragueInterpolator).
+  const double a0 = r0;
+  const double a1 = (2 * rm2 - 16 * rm1 + 16 * r1 - 2 * r2) / 24;
+  const double a2 = (-rm2 + 16 * rm1 - 30 * r0 + 16 * r1 - r2) / 24;
+  const double a3 = (-9 * rm2 + 39 * rm1 - 70 * r0 + 66 * r1 - 33 * r2 + 7 * r3) / 24;
+  const double a4 = (13 * rm2 - 64 * rm1 + 126 * r0 - 124 * r1 + 61 * r2 - 12 * r3) / 24;
+  const double a5 = (-5 * rm2 + 25 * rm1 - 50 * r0 + 50 * r1 - 25 * r2 + 5 * r3) / 24;
+  return a0 + a1 * X + a2 * X * X + a3 * X * X * X + a4 * X * X * X * X + a5 * X * X * X * X * X;
+}
+
+std::vector<double> interpolate_spectrum(const std::vector<double>& w, const std::vector<double>& v,
+                                         const std::vector<double>& nw, bool linear) {
+  if (w.empty() || w.size() != v.size())
+    throw Error(ErrorCode::InvalidArgument, "spectrum with " + std::to_string(w.size()) + " wavelengths and " +
+                                                std::to_string(v.size()) + " values");
+  for (size_t i = 1; i < w.size(); ++i)
+    if (!(w[i] > w[i - 1]))
+      throw Error(ErrorCode::NonMonotonic, "wavelengths not strictly increasing at " + std::to_string(w[i]) + " nm");
+  const bool sprague = !linear && w.size() >= 6 && is_uniform(w);
+  const double h = w.size() > 1 ? w[1] - w[0] : 1;
+  std::vector<double> out(nw.size());
+  for (size_t k = 0; k < nw.size(); ++k) {
+    const double x = nw[k];
+    if (x <= w.front()) {
+      out[k] = v.front();  // constant extrapolation (and the first node)
+    } else if (x >= w.back()) {
+      out[k] = v.back();
+    } else if (sprague) {
+      out[k] = sprague_interpolate(v, w.front(), h, x);
+    } else {
+      const size_t j = static_cast<size_t>(std::upper_bound(w.begin(), w.end(), x) - w.begin());  // w[j-1] <= x < w[j]
+      const double f = (x - w[j - 1]) / (w[j] - w[j - 1]);
+      out[k] = f == 0.0 ? v[j - 1] : v[j - 1] + f * (v[j] - v[j - 1]);
+    }
+  }
+  return out;
+}
+
+SpectralData align_spectra(const SpectralData& d, const std::vector<double>& nw) {
+  SpectralData out;
+  out.wavelengths = nw;
+  out.names = d.names;
+  for (const auto& col : d.values) out.values.push_back(interpolate_spectrum(d.wavelengths, col, nw, d.linear));
+  out.linear = d.linear;
+  return out;
+}
+
+// ------------------------------------------------------------------ observers
+
+Observer parse_observer(std::string_view id) {
+  std::string s;
+  for (char c : id) s.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+  if (s == "1931" || s == "2" || s == "cie1931" || s == "cie 1931" || s == "cie1931_2" || s == "2deg" ||
+      s == "cie 1931 2 degree standard observer")
+    return Observer::CIE1931_2;
+  if (s == "1964" || s == "10" || s == "cie1964" || s == "cie 1964" || s == "cie1964_10" || s == "10deg" ||
+      s == "cie 1964 10 degree standard observer")
+    return Observer::CIE1964_10;
+  throw Error(ErrorCode::UnknownId, "unknown observer '" + std::string(id) + "' (use 1931 or 1964)");
+}
+
+const char* observer_name(Observer o) { return o == Observer::CIE1931_2 ? "1931" : "1964"; }
+
+const SpectralData& cmfs(Observer observer) {
+  static std::once_flag once;
+  static SpectralData table[2];
+  std::call_once(once, [] {
+    table[0] = read_spectral_csv(builtin_file("cmf/cie1931_2deg_360-830_1nm.csv"), "cmf/cie1931_2deg_360-830_1nm.csv");
+    table[1] = read_spectral_csv(builtin_file("cmf/cie1964_10deg_360-830_1nm.csv"), "cmf/cie1964_10deg_360-830_1nm.csv");
+  });
+  return table[observer == Observer::CIE1931_2 ? 0 : 1];
+}
+
+SpectralLocus spectral_locus(Observer observer) {
+  const SpectralData& c = cmfs(observer);
+  SpectralLocus out;
+  for (size_t i = 0; i < c.wavelengths.size(); ++i) {
+    const double X = c.values[0][i], Y = c.values[1][i], Z = c.values[2][i], s = X + Y + Z;
+    if (!(s > 0)) continue;
+    out.wavelengths.push_back(c.wavelengths[i]);
+    out.x.push_back(X / s);
+    out.y.push_back(Y / s);
+  }
+  return out;
+}
+
+// ------------------------------------------------------------------ illuminants
+
+namespace {
+const std::map<std::string, std::string>& illuminant_files() {
+  static const std::map<std::string, std::string> files = {
+      {"A", "illuminants/A_300-780_5nm.csv"},     {"D50", "illuminants/D50_300-780_5nm.csv"},
+      {"D55", "illuminants/D55_300-780_5nm.csv"}, {"D65", "illuminants/D65_300-780_5nm.csv"},
+      {"D75", "illuminants/D75_300-780_5nm.csv"}, {"E", "illuminants/E_360-830_5nm.csv"},
+      {"F2", "illuminants/F2_380-780_5nm.csv"},   {"F11", "illuminants/F11_380-780_5nm.csv"},
+  };
+  return files;
+}
+}  // namespace
+
+std::vector<std::string> illuminant_ids() { return {"A", "D50", "D55", "D65", "D75", "E", "F2", "F11"}; }
+
+SpectralData illuminant_spd(std::string_view id_in) {
+  std::string id;
+  for (char c : id_in) id.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
+  if (id == "FL2") id = "F2";
+  if (id == "FL11") id = "F11";
+  auto it = illuminant_files().find(id);
+  if (it != illuminant_files().end()) {
+    static std::mutex mutex;
+    static std::map<std::string, SpectralData> cache;  // parsed once
+    std::lock_guard<std::mutex> lock(mutex);
+    auto c = cache.find(id);
+    if (c == cache.end()) {
+      SpectralData d = read_spectral_csv(builtin_file(it->second), it->second);
+      d.names = {id};
+      d.linear = true;
+      c = cache.emplace(id, std::move(d)).first;
+    }
+    return c->second;
+  }
+  if (id.size() >= 5 && id[0] == 'D') {
+    char* end = nullptr;
+    const std::string num = id.substr(1, id.size() - 1 - (id.back() == 'K' ? 1 : 0));
+    const double T = std::strtod(num.c_str(), &end);
+    if (*end == '\0' && T >= 4000 && T <= 25000) {
+      SpectralData d = daylight_spd(T);
+      d.names = {id};
+      return d;
+    }
+  }
+  throw Error(ErrorCode::UnknownId, "unknown illuminant '" + std::string(id_in) +
+                                        "' (use A, D50, D55, D65, D75, E, F2, F11, D<CCT> such as D4500, or an SPD file)");
+}
+
+SpectralData daylight_spd(double T) {
+  if (!(T >= 4000 && T <= 25000))
+    throw Error(ErrorCode::InvalidArgument, "daylight CCT " + std::to_string(T) + " K outside 4000..25000 K");
+  static const SpectralData basis =
+      read_spectral_csv(builtin_file("illuminants/daylight_S0_S1_S2_300-830_5nm.csv"), "daylight_S0_S1_S2");
+  // CIE 15:2004 eq 3.3 (xD from T), eq 3.4 (yD), eq 3.5 (M1, M2).
+  const double xD = T <= 7000 ? 0.244063 + 0.09911e3 / T + 2.9678e6 / (T * T) - 4.6070e9 / (T * T * T)
+                              : 0.237040 + 0.24748e3 / T + 1.9018e6 / (T * T) - 2.0064e9 / (T * T * T);
+  const double yD = -3.000 * xD * xD + 2.870 * xD - 0.275;
+  const double M = 0.0241 + 0.2562 * xD - 0.7341 * yD;
+  // Rounded to 3 decimals, as CIE 15:2004 §3.1 does for the tabulated D illuminants.
+  const double M1 = std::round(((-1.3515 - 1.7703 * xD + 5.9114 * yD) / M) * 1000.0) / 1000.0;
+  const double M2 = std::round(((0.0300 - 31.4424 * xD + 30.0717 * yD) / M) * 1000.0) / 1000.0;
+  SpectralData d;
+  d.wavelengths = basis.wavelengths;
+  d.names = {"D" + std::to_string(static_cast<long>(std::lround(T)))};
+  std::vector<double> s(d.wavelengths.size());
+  double at560 = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    s[i] = basis.values[0][i] + M1 * basis.values[1][i] + M2 * basis.values[2][i];
+    if (d.wavelengths[i] == 560.0) at560 = s[i];
+  }
+  for (auto& v : s) v *= 100.0 / at560;
+  d.values = {s};
+  d.linear = true;
+  return d;
+}
+
+// ------------------------------------------------------------------ spectrum -> XYZ
+
+namespace {
+/// Illuminant on the CMF grid and the normalising k = 100 / Σ S ȳ.
+struct Weights {
+  std::vector<double> Sx, Sy, Sz;  // S·x̄, S·ȳ, S·z̄ on the CMF grid
+  double k;
+};
+Weights weights(const SpectralData& illuminant, Observer observer) {
+  if (illuminant.values.empty()) throw Error(ErrorCode::InvalidArgument, "illuminant without values");
+  const SpectralData& c = cmfs(observer);
+  const auto S = interpolate_spectrum(illuminant.wavelengths, illuminant.values[0], c.wavelengths, illuminant.linear);
+  Weights w;
+  const size_t n = c.wavelengths.size();
+  w.Sx.resize(n);
+  w.Sy.resize(n);
+  w.Sz.resize(n);
+  double sum = 0;
+  for (size_t i = 0; i < n; ++i) {
+    w.Sx[i] = S[i] * c.values[0][i];
+    w.Sy[i] = S[i] * c.values[1][i];
+    w.Sz[i] = S[i] * c.values[2][i];
+    sum += w.Sy[i];
+  }
+  if (!(sum > 0)) throw Error(ErrorCode::InvalidArgument, "illuminant has no power in the visible range");
+  w.k = 100.0 / sum;  // CIE 15:2004 eq 7.2
+  return w;
+}
+Vec3 integrate(const Weights& w, const std::vector<double>& R) {
+  double X = 0, Y = 0, Z = 0;
+  for (size_t i = 0; i < R.size(); ++i) {  // CIE 15:2004 eq 7.1
+    X += R[i] * w.Sx[i];
+    Y += R[i] * w.Sy[i];
+    Z += R[i] * w.Sz[i];
+  }
+  return Vec3(w.k * X, w.k * Y, w.k * Z);
+}
+}  // namespace
+
+std::vector<Vec3> reflectances_to_XYZ(const SpectralData& reflectances, const SpectralData& illuminant, Observer observer) {
+  const Weights w = weights(illuminant, observer);
+  const auto& grid = cmfs(observer).wavelengths;
+  std::vector<Vec3> out;
+  out.reserve(reflectances.values.size());
+  for (const auto& col : reflectances.values)
+    out.push_back(integrate(w, interpolate_spectrum(reflectances.wavelengths, col, grid, reflectances.linear)));
+  return out;
+}
+
+Vec3 sd_to_XYZ(const std::vector<double>& wavelengths, const std::vector<double>& reflectance, const SpectralData& illuminant,
+               Observer observer) {
+  SpectralData d;
+  d.wavelengths = wavelengths;
+  d.values = {reflectance};
+  d.names = {"sample"};
+  return reflectances_to_XYZ(d, illuminant, observer)[0];
+}
+
+Vec3 illuminant_white_XYZ(const SpectralData& illuminant, Observer observer) {
+  const Weights w = weights(illuminant, observer);
+  return integrate(w, std::vector<double>(w.Sy.size(), 1.0));
+}
+
+bool reflectance_to_fraction(SpectralData& d) {
+  double mx = 0;
+  for (const auto& c : d.values)
+    for (double v : c) mx = std::max(mx, v);
+  if (mx <= 2.0) return false;
+  for (auto& c : d.values)
+    for (auto& v : c) v /= 100.0;
+  return true;
+}
+
+}  // namespace tristim

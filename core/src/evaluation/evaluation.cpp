@@ -1,0 +1,228 @@
+// Evaluation: per-patch differences, summaries, leave-one-out, compare and transfer tables.
+#include "tristim/evaluation/evaluation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+
+#include "tristim/error.hpp"
+
+namespace tristim {
+
+Summary summarize(const std::vector<double>& values) {
+  Summary s;
+  std::vector<double> v;
+  v.reserve(values.size());
+  for (double d : values)
+    if (std::isfinite(d)) v.push_back(d);
+  if (v.empty()) {
+    const double nan = std::nan("");
+    return {nan, nan, nan, nan, nan, nan, nan};
+  }
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  auto quantile = [&](double q) {
+    const double pos = q * static_cast<double>(n - 1);
+    const size_t lo = static_cast<size_t>(std::floor(pos));
+    const size_t hi = std::min(lo + 1, n - 1);
+    return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+  };
+  s.min = v.front();
+  s.max = v.back();
+  s.median = quantile(0.5);
+  s.p95 = quantile(0.95);
+  double sum = 0, sq = 0;
+  for (double d : v) {
+    sum += d;
+    sq += d * d;
+  }
+  s.mean = sum / static_cast<double>(n);
+  s.rms = std::sqrt(sq / static_cast<double>(n));
+  double var = 0;
+  for (double d : v) var += (d - s.mean) * (d - s.mean);
+  s.std = std::sqrt(var / static_cast<double>(n));
+  return s;
+}
+
+Metrics evaluate(const PatchMatrix& est, const PatchMatrix& ref, const Vec3& white) {
+  if (est.rows() != ref.rows())
+    throw Error(ErrorCode::PatchMismatch, "evaluate: " + std::to_string(est.rows()) + " estimates for " +
+                                              std::to_string(ref.rows()) + " reference patches");
+  if (!(white.minCoeff() > 0) || !white.allFinite())
+    throw Error(ErrorCode::InvalidArgument, "evaluate: the white must be positive, finite XYZ");
+  Metrics m;
+  const Eigen::Index n = ref.rows();
+  auto& p = m.patches;
+  for (auto* v : {&p.dE76, &p.dE94, &p.dE00, &p.dL, &p.dC, &p.dH, &p.dE_xyz, &p.rel_Y}) v->resize(n);
+  std::vector<double> abs_rel;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Vec3 r = ref.row(i).transpose(), e = est.row(i).transpose();
+    const Vec3 Lr = XYZ_to_Lab(r, white), Le = XYZ_to_Lab(e, white);
+    p.dE76[i] = delta_E_CIE1976(Lr, Le);
+    p.dE94[i] = delta_E_CIE1994(Lr, Le);
+    const DeltaE2000 d = delta_E_CIE2000_components(Lr, Le);
+    p.dE00[i] = d.dE;
+    p.dL[i] = d.dL;
+    p.dC[i] = d.dC;
+    p.dH[i] = d.dH;
+    p.dE_xyz[i] = (e - r).norm();
+    p.rel_Y[i] = r[1] > 0 ? (e[1] - r[1]) / r[1] : std::nan("");
+    if (r[1] > 0) abs_rel.push_back(std::fabs(p.rel_Y[i]));
+  }
+  m.dE76 = summarize(p.dE76);
+  m.dE94 = summarize(p.dE94);
+  m.dE00 = summarize(p.dE00);
+  m.dE_xyz = summarize(p.dE_xyz);
+  m.abs_rel_Y = summarize(abs_rel);
+  for (int c = 0; c < 3; ++c) {
+    const double range = n > 0 ? ref.col(c).maxCoeff() - ref.col(c).minCoeff() : 0;
+    const double rmse = n > 0 ? std::sqrt((est.col(c) - ref.col(c)).squaredNorm() / static_cast<double>(n)) : 0;
+    m.NRMSE[c] = range > 0 ? rmse / range : std::nan("");
+  }
+  return m;
+}
+
+namespace {
+PatchMatrix drop_row(const PatchMatrix& m, Eigen::Index k) {
+  PatchMatrix out(m.rows() - 1, 3);
+  for (Eigen::Index i = 0, j = 0; i < m.rows(); ++i)
+    if (i != k) out.row(j++) = m.row(i);
+  return out;
+}
+}  // namespace
+
+PatchMatrix leave_one_out(const std::string& model_id, const PatchMatrix& rgb, const PatchMatrix& xyz,
+                          const FitOptions& options, int white_patch_index) {
+  validate_patches(rgb, xyz);
+  const Eigen::Index n = rgb.rows();
+  if (n < 2) throw Error(ErrorCode::TooFewPatches, "leave-one-out needs at least 2 patches");
+  PatchMatrix out(n, 3);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    FitOptions o = options;
+    std::vector<double> w;
+    if (!options.weights.empty()) {
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (i != k) w.push_back(options.weights[i]);
+      o.weights = w;
+    }
+    if (k == white_patch_index) o.preserve_white = false;
+    o.warn_condition = INFINITY;  // a held-out fit's warnings are not reported
+    const FitResult r = fit(model_id, drop_row(rgb, k), drop_row(xyz, k), o);
+    out.row(k) = predict(r.model, Vec3(rgb.row(k).transpose())).transpose();
+  }
+  return out;
+}
+
+ModelEvaluation evaluate_model(const std::string& model_id, const PatchMatrix& rgb, const PatchMatrix& xyz,
+                               const FitOptions& options, int white_patch_index, bool with_loo) {
+  ModelEvaluation ev;
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t c0 = std::clock();
+  ev.fit = fit(model_id, rgb, xyz, options);
+  ev.fit_cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+  ev.fit_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ev.training = evaluate(ev.fit.fitted, xyz, options.white);
+  const ModelInfo& info = model_info(model_id);
+  const int q = info.n_terms - (options.preserve_white ? 1 : 0);
+  if (with_loo && rgb.rows() - 1 >= std::max(q, 1)) {
+    try {
+      ev.loo_XYZ = leave_one_out(model_id, rgb, xyz, options, white_patch_index);
+      ev.loo = evaluate(ev.loo_XYZ, xyz, options.white);
+      ev.has_loo = true;
+    } catch (const Error& e) {
+      // A fold can be refused (e.g. the only patch that made a channel vary was held out):
+      // no LOO figure then, but the fit itself stands.
+      if (e.code() != ErrorCode::TooFewPatches && e.code() != ErrorCode::IllConditioned) throw;
+      ev.has_loo = false;
+      if (!ev.fit.message.empty()) ev.fit.message += "; ";
+      ev.fit.message += std::string("no leave-one-out figure: ") + e.what();
+    }
+  }
+  return ev;
+}
+
+std::vector<CompareRow> compare_models(const PatchMatrix& rgb, const PatchMatrix& xyz, const FitOptions& options,
+                                       std::vector<std::string> model_ids, std::vector<Objective> objectives,
+                                       int white_patch_index) {
+  validate_patches(rgb, xyz);
+  if (model_ids.empty())
+    for (const auto& m : model_table())
+      if (m.duplicate_of.empty()) model_ids.push_back(m.id);
+  if (objectives.empty())
+    objectives = {Objective::LeastSquares, Objective::PatternSearch, Objective::DeltaE2000};
+  std::vector<CompareRow> rows;
+  for (const auto& id : model_ids) {
+    const ModelInfo& info = model_info(id);
+    for (Objective obj : objectives) {
+      CompareRow row;
+      row.model_id = id;
+      row.objective = obj;
+      row.n_terms = info.n_terms;
+      FitOptions o = options;
+      o.objective = obj;
+      try {
+        const ModelEvaluation ev = evaluate_model(id, rgb, xyz, o, white_patch_index, true);
+        row.seconds = ev.fit_seconds;
+        row.cpu_seconds = ev.fit_cpu_seconds;
+        row.ok = true;
+        row.status = ev.fit.status;
+        row.message = ev.fit.message;
+        row.condition_number = ev.fit.condition_number;
+        row.train_dE00 = ev.training.dE00;
+        row.train_dE_xyz = ev.training.dE_xyz;
+        row.has_loo = ev.has_loo;
+        if (ev.has_loo) {
+          row.loo_dE00 = ev.loo.dE00;
+          row.loo_dE_xyz = ev.loo.dE_xyz;
+        }
+      } catch (const Error& e) {
+        row.ok = false;
+        row.error_code = e.code_name();
+        row.message = e.what();
+      }
+      rows.push_back(std::move(row));
+    }
+  }
+  std::stable_sort(rows.begin(), rows.end(), [](const CompareRow& a, const CompareRow& b) {
+    auto key = [](const CompareRow& r) {
+      if (!r.ok) return std::make_pair(2, 0.0);
+      if (!r.has_loo) return std::make_pair(1, r.train_dE00.mean);
+      return std::make_pair(0, r.loo_dE00.mean);
+    };
+    return key(a) < key(b);
+  });
+  return rows;
+}
+
+std::vector<TransferCell> transfer_table(const std::vector<NamedPatches>& training, const PatchMatrix& test_RGB,
+                                         const PatchMatrix& test_XYZ, const std::vector<std::string>& model_ids,
+                                         const std::vector<Objective>& objectives, const FitOptions& options) {
+  validate_patches(test_RGB, test_XYZ);
+  std::vector<TransferCell> cells;
+  for (const auto& t : training)
+    for (const auto& id : model_ids)
+      for (Objective obj : objectives) {
+        TransferCell c;
+        c.training_set = t.name;
+        c.model_id = id;
+        c.objective = obj;
+        FitOptions o = options;
+        o.objective = obj;
+        try {
+          const FitResult r = fit(id, t.camera_RGB, t.reference_XYZ, o);
+          const Metrics m = evaluate(predict(r.model, test_RGB), test_XYZ, options.white);
+          c.ok = true;
+          c.message = r.message;
+          c.dE_xyz = m.dE_xyz;
+          c.dE00 = m.dE00;
+        } catch (const Error& e) {
+          c.error_code = e.code_name();
+          c.message = e.what();
+        }
+        cells.push_back(std::move(c));
+      }
+  return cells;
+}
+
+}  // namespace tristim

@@ -1,0 +1,344 @@
+// Small JSON value: strict parser, round-trip writer.
+#include "tristim/io/json.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "tristim/error.hpp"
+
+namespace tristim::json {
+
+Value::Value(const std::vector<double>& v) : type_(Type::Array) {
+  array_.reserve(v.size());
+  for (double d : v) array_.emplace_back(d);
+}
+
+static const char* type_name(Value::Type t) {
+  switch (t) {
+    case Value::Type::Null: return "null";
+    case Value::Type::Bool: return "boolean";
+    case Value::Type::Number: return "number";
+    case Value::Type::String: return "string";
+    case Value::Type::Array: return "array";
+    case Value::Type::Object: return "object";
+  }
+  return "?";
+}
+
+static Error wrong(const std::string& what, const char* want, Value::Type got) {
+  return Error(ErrorCode::ProfileInvalid, what + " must be a " + want + ", got " + type_name(got));
+}
+
+double Value::as_number(const std::string& what) const {
+  if (type_ != Type::Number) throw wrong(what, "number", type_);
+  return number_;
+}
+bool Value::as_bool(const std::string& what) const {
+  if (type_ != Type::Bool) throw wrong(what, "boolean", type_);
+  return bool_;
+}
+const std::string& Value::as_string(const std::string& what) const {
+  if (type_ != Type::String) throw wrong(what, "string", type_);
+  return string_;
+}
+const std::vector<Value>& Value::as_array(const std::string& what) const {
+  if (type_ != Type::Array) throw wrong(what, "array", type_);
+  return array_;
+}
+std::vector<double> Value::as_numbers(const std::string& what) const {
+  std::vector<double> out;
+  for (const auto& v : as_array(what)) out.push_back(v.as_number(what + " element"));
+  return out;
+}
+
+Value& Value::push(Value v) {
+  if (type_ == Type::Null) type_ = Type::Array;
+  if (type_ != Type::Array) throw Error(ErrorCode::Internal, "json: push on a non-array");
+  array_.push_back(std::move(v));
+  return array_.back();
+}
+Value& Value::set(const std::string& key, Value v) {
+  if (type_ == Type::Null) type_ = Type::Object;
+  if (type_ != Type::Object) throw Error(ErrorCode::Internal, "json: set on a non-object");
+  for (auto& kv : object_)
+    if (kv.first == key) {
+      kv.second = std::move(v);
+      return kv.second;
+    }
+  object_.emplace_back(key, std::move(v));
+  return object_.back().second;
+}
+const Value* Value::find(const std::string& key) const {
+  if (type_ != Type::Object) return nullptr;
+  for (const auto& kv : object_)
+    if (kv.first == key) return &kv.second;
+  return nullptr;
+}
+const Value& Value::at(const std::string& key) const {
+  const Value* v = find(key);
+  if (!v) throw Error(ErrorCode::ProfileInvalid, "missing field '" + key + "'");
+  return *v;
+}
+
+std::string number_text(double d) {
+  if (!std::isfinite(d)) return "null";
+  if (d == std::floor(d) && std::fabs(d) < 1e15) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.0f", d);
+    if (std::strcmp(buf, "-0") == 0) return "-0.0";
+    return buf;
+  }
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", d);
+  return buf;
+}
+
+static void escape(std::string& out, const std::string& s) {
+  out += '"';
+  for (unsigned char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (c < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += static_cast<char>(c);
+        }
+    }
+  }
+  out += '"';
+}
+
+void Value::dump_to(std::string& out, int indent, int depth) const {
+  auto newline = [&](int d) {
+    if (indent < 0) return;
+    out += '\n';
+    out.append(static_cast<size_t>(indent * d), ' ');
+  };
+  switch (type_) {
+    case Type::Null: out += "null"; break;
+    case Type::Bool: out += bool_ ? "true" : "false"; break;
+    case Type::Number: out += number_text(number_); break;
+    case Type::String: escape(out, string_); break;
+    case Type::Array: {
+      out += '[';
+      // Arrays of numbers stay on one line even when pretty-printing.
+      bool flat = true;
+      for (const auto& v : array_) flat = flat && (v.type_ == Type::Number || v.type_ == Type::Null);
+      for (size_t i = 0; i < array_.size(); ++i) {
+        if (i) out += indent >= 0 && flat ? ", " : ",";
+        if (!flat) newline(depth + 1);
+        array_[i].dump_to(out, indent, depth + 1);
+      }
+      if (!flat && !array_.empty()) newline(depth);
+      out += ']';
+      break;
+    }
+    case Type::Object: {
+      out += '{';
+      for (size_t i = 0; i < object_.size(); ++i) {
+        if (i) out += ',';
+        newline(depth + 1);
+        escape(out, object_[i].first);
+        out += indent >= 0 ? ": " : ":";
+        object_[i].second.dump_to(out, indent, depth + 1);
+      }
+      if (!object_.empty()) newline(depth);
+      out += '}';
+      break;
+    }
+  }
+}
+
+std::string Value::dump(int indent) const {
+  std::string out;
+  dump_to(out, indent, 0);
+  return out;
+}
+
+namespace {
+struct Parser {
+  const std::string& s;
+  size_t i = 0;
+  int depth = 0;
+
+  [[noreturn]] void fail(const std::string& what) {
+    throw Error(ErrorCode::ParseError, "JSON: " + what + " at byte " + std::to_string(i));
+  }
+  void ws() {
+    while (i < s.size() && (s[i] == ' ' || s[i] == '\n' || s[i] == '\r' || s[i] == '\t')) ++i;
+  }
+  bool lit(const char* w) {
+    const size_t n = std::strlen(w);
+    if (s.compare(i, n, w) == 0) {
+      i += n;
+      return true;
+    }
+    return false;
+  }
+  Value value() {
+    ws();
+    if (i >= s.size()) fail("unexpected end");
+    if (++depth > 200) fail("nesting too deep");
+    Value v;
+    const char c = s[i];
+    if (c == '{') v = object();
+    else if (c == '[') v = array();
+    else if (c == '"') v = Value(str());
+    else if (lit("true")) v = Value(true);
+    else if (lit("false")) v = Value(false);
+    else if (lit("null")) v = Value();
+    else v = Value(number());
+    --depth;
+    return v;
+  }
+  double number() {
+    const size_t start = i;
+    if (i < s.size() && s[i] == '-') ++i;
+    if (i >= s.size() || !std::isdigit(static_cast<unsigned char>(s[i]))) fail("invalid value");
+    while (i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || s[i] == '.' || s[i] == 'e' ||
+                            s[i] == 'E' || s[i] == '+' || s[i] == '-'))
+      ++i;
+    const std::string t = s.substr(start, i - start);
+    char* end = nullptr;
+    const double d = std::strtod(t.c_str(), &end);
+    if (end != t.c_str() + t.size()) fail("invalid number '" + t + "'");
+    return d;
+  }
+  static void utf8(std::string& out, unsigned cp) {
+    if (cp < 0x80) out += static_cast<char>(cp);
+    else if (cp < 0x800) {
+      out += static_cast<char>(0xC0 | (cp >> 6));
+      out += static_cast<char>(0x80 | (cp & 0x3F));
+    } else if (cp < 0x10000) {
+      out += static_cast<char>(0xE0 | (cp >> 12));
+      out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+      out += static_cast<char>(0x80 | (cp & 0x3F));
+    } else {
+      out += static_cast<char>(0xF0 | (cp >> 18));
+      out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+      out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+      out += static_cast<char>(0x80 | (cp & 0x3F));
+    }
+  }
+  unsigned hex4() {
+    if (i + 4 > s.size()) fail("bad \\u escape");
+    unsigned v = 0;
+    for (int k = 0; k < 4; ++k) {
+      const char c = s[i++];
+      v <<= 4;
+      if (c >= '0' && c <= '9') v |= c - '0';
+      else if (c >= 'a' && c <= 'f') v |= c - 'a' + 10;
+      else if (c >= 'A' && c <= 'F') v |= c - 'A' + 10;
+      else fail("bad \\u escape");
+    }
+    return v;
+  }
+  std::string str() {
+    ++i;  // opening quote
+    std::string out;
+    while (true) {
+      if (i >= s.size()) fail("unterminated string");
+      const char c = s[i++];
+      if (c == '"') break;
+      if (static_cast<unsigned char>(c) < 0x20) fail("control character in string");
+      if (c != '\\') {
+        out += c;
+        continue;
+      }
+      if (i >= s.size()) fail("unterminated string");
+      const char e = s[i++];
+      switch (e) {
+        case '"': out += '"'; break;
+        case '\\': out += '\\'; break;
+        case '/': out += '/'; break;
+        case 'b': out += '\b'; break;
+        case 'f': out += '\f'; break;
+        case 'n': out += '\n'; break;
+        case 'r': out += '\r'; break;
+        case 't': out += '\t'; break;
+        case 'u': {
+          unsigned cp = hex4();
+          if (cp >= 0xD800 && cp < 0xDC00 && i + 1 < s.size() && s[i] == '\\' && s[i + 1] == 'u') {
+            i += 2;
+            const unsigned lo = hex4();
+            cp = 0x10000 + ((cp - 0xD800) << 10) + (lo - 0xDC00);
+          }
+          utf8(out, cp);
+          break;
+        }
+        default: fail("bad escape");
+      }
+    }
+    return out;
+  }
+  Value array() {
+    ++i;
+    Value v = Value::array();
+    ws();
+    if (i < s.size() && s[i] == ']') {
+      ++i;
+      return v;
+    }
+    while (true) {
+      v.push(value());
+      ws();
+      if (i < s.size() && s[i] == ',') {
+        ++i;
+        continue;
+      }
+      if (i < s.size() && s[i] == ']') {
+        ++i;
+        return v;
+      }
+      fail("expected ',' or ']'");
+    }
+  }
+  Value object() {
+    ++i;
+    Value v = Value::object();
+    ws();
+    if (i < s.size() && s[i] == '}') {
+      ++i;
+      return v;
+    }
+    while (true) {
+      ws();
+      if (i >= s.size() || s[i] != '"') fail("expected a key");
+      std::string key = str();
+      ws();
+      if (i >= s.size() || s[i] != ':') fail("expected ':'");
+      ++i;
+      v.set(key, value());
+      ws();
+      if (i < s.size() && s[i] == ',') {
+        ++i;
+        continue;
+      }
+      if (i < s.size() && s[i] == '}') {
+        ++i;
+        return v;
+      }
+      fail("expected ',' or '}'");
+    }
+  }
+};
+}  // namespace
+
+Value parse(const std::string& text) {
+  Parser p{text};
+  Value v = p.value();
+  p.ws();
+  if (p.i != text.size()) p.fail("trailing characters");
+  return v;
+}
+
+}  // namespace tristim::json

@@ -1,0 +1,267 @@
+// Profile JSON: write, read back exactly, digest the training data.
+#include "tristim/profile/profile.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+
+#include "tristim/error.hpp"
+#include "tristim/version.hpp"
+
+namespace tristim {
+
+namespace {
+
+struct Fnv1a64 {
+  uint64_t h = 0xcbf29ce484222325ULL;
+  void bytes(const void* data, size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < n; ++i) {
+      h ^= p[i];
+      h *= 0x100000001b3ULL;
+    }
+  }
+  void f64(double d) {
+    uint64_t u;
+    std::memcpy(&u, &d, 8);
+    unsigned char le[8];
+    for (int i = 0; i < 8; ++i) le[i] = static_cast<unsigned char>(u >> (8 * i));
+    bytes(le, 8);
+  }
+};
+
+json::Value vec3(const Vec3& v) { return json::Value(std::vector<double>{v[0], v[1], v[2]}); }
+
+Vec3 read_vec3(const json::Value& v, const std::string& what) {
+  const auto a = v.as_numbers(what);
+  if (a.size() != 3) throw Error(ErrorCode::ProfileInvalid, what + " must have 3 numbers");
+  return Vec3(a[0], a[1], a[2]);
+}
+
+std::string guess_illuminant(const Vec3& w) {
+  auto same = [&](const Vec3& ref) {
+    return w[1] > 0 && ((w / w[1]) - (ref / ref[1])).cwiseAbs().maxCoeff() < 1e-4;
+  };
+  if (same(whites::D50())) return "D50";
+  if (same(whites::D65())) return "D65";
+  return "custom";
+}
+
+FitStatus status_from_name(const std::string& s) {
+  for (FitStatus st : {FitStatus::Ok, FitStatus::IllConditioned, FitStatus::ExactlyDetermined,
+                       FitStatus::IterationLimit})
+    if (s == fit_status_name(st)) return st;
+  throw Error(ErrorCode::ProfileInvalid, "unknown fit status '" + s + "'");
+}
+
+}  // namespace
+
+std::string training_digest(const std::vector<std::string>& ids, const PatchMatrix& rgb, const PatchMatrix& xyz) {
+  Fnv1a64 f;
+  const char* tag = "tristim-training-v1\n";
+  f.bytes(tag, std::strlen(tag));
+  for (Eigen::Index i = 0; i < rgb.rows(); ++i) {
+    const std::string id = i < static_cast<Eigen::Index>(ids.size()) ? ids[i] : std::to_string(i + 1);
+    f.bytes(id.data(), id.size());
+    f.bytes("", 1);
+    for (int c = 0; c < 3; ++c) f.f64(rgb(i, c));
+    for (int c = 0; c < 3; ++c) f.f64(xyz(i, c));
+  }
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "fnv1a64:%016llx", static_cast<unsigned long long>(f.h));
+  return buf;
+}
+
+json::Value summary_json(const Summary& s) {
+  json::Value o = json::Value::object();
+  o.set("min", s.min);
+  o.set("median", s.median);
+  o.set("mean", s.mean);
+  o.set("p95", s.p95);
+  o.set("max", s.max);
+  o.set("rms", s.rms);
+  o.set("std", s.std);
+  return o;
+}
+
+json::Value metrics_json(const Metrics& m, const std::vector<std::string>& ids, bool per_patch) {
+  json::Value o = json::Value::object();
+  o.set("dE76", summary_json(m.dE76));
+  o.set("dE94", summary_json(m.dE94));
+  o.set("dE00", summary_json(m.dE00));
+  o.set("dE_xyz", summary_json(m.dE_xyz));
+  o.set("abs_rel_Y", summary_json(m.abs_rel_Y));
+  o.set("NRMSE", vec3(m.NRMSE));
+  if (per_patch) {
+    json::Value p = json::Value::object();
+    if (!ids.empty()) {
+      json::Value a = json::Value::array();
+      for (const auto& id : ids) a.push(id);
+      p.set("ids", a);
+    }
+    p.set("dE76", m.patches.dE76);
+    p.set("dE94", m.patches.dE94);
+    p.set("dE00", m.patches.dE00);
+    p.set("dL", m.patches.dL);
+    p.set("dC", m.patches.dC);
+    p.set("dH", m.patches.dH);
+    p.set("dE_xyz", m.patches.dE_xyz);
+    p.set("rel_Y", m.patches.rel_Y);
+    o.set("patches", p);
+  }
+  return o;
+}
+
+Profile make_profile(const ModelEvaluation& ev, const FitOptions& options, const std::vector<std::string>& ids,
+                     const PatchMatrix& rgb, const PatchMatrix& xyz, const std::string& white_patch,
+                     const std::string& illuminant) {
+  Profile p;
+  p.tristim_version = kVersion;
+  p.model = ev.fit.model;
+  p.objective = ev.fit.objective;
+  p.white = options.white;
+  p.illuminant = illuminant.empty() ? guess_illuminant(options.white) : illuminant;
+  p.white_preserved = ev.fit.white_preserved;
+  p.white_patch = white_patch;
+  p.white_RGB = options.white_RGB;
+  p.white_XYZ = options.white_XYZ;
+  p.training_patches = static_cast<int>(rgb.rows());
+  p.training_digest = training_digest(ids, rgb, xyz);
+  p.rgb_max = rgb.rows() > 0 ? rgb.maxCoeff() : 1.0;
+  if (!(p.rgb_max > 0)) p.rgb_max = 1.0;
+  p.status = ev.fit.status;
+  p.message = ev.fit.message;
+  p.condition_number = ev.fit.condition_number;
+  p.iterations = ev.fit.iterations;
+  p.objective_value = ev.fit.objective_value;
+  p.metrics = json::Value::object();
+  p.metrics.set("training", metrics_json(ev.training));
+  if (ev.has_loo) p.metrics.set("loo", metrics_json(ev.loo));
+  return p;
+}
+
+std::string profile_to_json(const Profile& p) {
+  const ModelInfo& info = model_info(p.model.id);
+  json::Value o = json::Value::object();
+  o.set("format", "tristim-profile");
+  o.set("version", p.version);
+  o.set("tristim_version", p.tristim_version.empty() ? std::string(kVersion) : p.tristim_version);
+  json::Value model = json::Value::object();
+  model.set("id", p.model.id);
+  model.set("n_terms", info.n_terms);
+  json::Value terms = json::Value::array();
+  for (const auto& t : info.term_names) terms.push(t);
+  model.set("terms", terms);
+  json::Value coef = json::Value::array();
+  for (Eigen::Index c = 0; c < p.model.coefficients.rows(); ++c) {
+    std::vector<double> row(p.model.coefficients.cols());
+    for (Eigen::Index j = 0; j < p.model.coefficients.cols(); ++j) row[j] = p.model.coefficients(c, j);
+    coef.push(json::Value(row));
+  }
+  model.set("coefficients", coef);
+  o.set("model", model);
+  o.set("objective", objective_id(p.objective));
+  json::Value col = json::Value::object();
+  col.set("white", vec3(p.white));
+  col.set("illuminant", p.illuminant);
+  col.set("observer", p.observer);
+  o.set("colorimetry", col);
+  json::Value wp = json::Value::object();
+  wp.set("enabled", p.white_preserved);
+  wp.set("patch", p.white_patch);
+  wp.set("RGB", vec3(p.white_RGB));
+  wp.set("XYZ", vec3(p.white_XYZ));
+  o.set("white_preservation", wp);
+  json::Value tr = json::Value::object();
+  tr.set("patches", p.training_patches);
+  tr.set("digest", p.training_digest);
+  tr.set("rgb_max", p.rgb_max);
+  o.set("training", tr);
+  json::Value f = json::Value::object();
+  f.set("status", fit_status_name(p.status));
+  f.set("message", p.message);
+  f.set("condition_number", p.condition_number);
+  f.set("iterations", p.iterations);
+  f.set("objective_value", p.objective_value);
+  o.set("fit", f);
+  o.set("metrics", p.metrics.is_object() ? p.metrics : json::Value::object());
+  return o.dump(2) + "\n";
+}
+
+Profile profile_from_json(const std::string& text) {
+  json::Value o;
+  try {
+    o = json::parse(text);
+  } catch (const Error& e) {
+    throw Error(ErrorCode::ProfileInvalid, std::string("profile is not valid JSON: ") + e.what());
+  }
+  if (!o.is_object()) throw Error(ErrorCode::ProfileInvalid, "a profile must be a JSON object");
+  const json::Value* fmt = o.find("format");
+  if (!fmt || !fmt->is_string() || fmt->as_string() != "tristim-profile")
+    throw Error(ErrorCode::ProfileInvalid, "not a tristim profile (\"format\" must be \"tristim-profile\")");
+  const json::Value* ver = o.find("version");
+  if (!ver) throw Error(ErrorCode::ProfileInvalid, "missing field 'version'");
+  if (!ver->is_number() || ver->as_number() != kProfileVersion)
+    throw Error(ErrorCode::ProfileVersion, "profile version " + (ver->is_number() ? json::number_text(ver->as_number()) : std::string("?")) +
+                                               " is not supported (this tristim reads version " +
+                                               std::to_string(kProfileVersion) + ")");
+  Profile p;
+  p.version = kProfileVersion;
+  if (const auto* tv = o.find("tristim_version")) p.tristim_version = tv->as_string("tristim_version");
+  const json::Value& model = o.at("model");
+  p.model.id = model.at("id").as_string("model.id");
+  const ModelInfo* info = nullptr;
+  try {
+    info = &model_info(p.model.id);
+  } catch (const Error&) {
+    throw Error(ErrorCode::ProfileInvalid, "unknown model id '" + p.model.id + "' in profile");
+  }
+  const auto& rows = model.at("coefficients").as_array("model.coefficients");
+  if (rows.size() != 3) throw Error(ErrorCode::ProfileInvalid, "model.coefficients must have 3 rows");
+  p.model.coefficients.resize(3, info->n_terms);
+  for (int c = 0; c < 3; ++c) {
+    const auto r = rows[c].as_numbers("model.coefficients row");
+    if (static_cast<int>(r.size()) != info->n_terms)
+      throw Error(ErrorCode::ProfileInvalid, "model '" + p.model.id + "' needs " + std::to_string(info->n_terms) +
+                                                 " coefficients per row, got " + std::to_string(r.size()));
+    for (int j = 0; j < info->n_terms; ++j) {
+      if (!std::isfinite(r[j])) throw Error(ErrorCode::ProfileInvalid, "non-finite coefficient");
+      p.model.coefficients(c, j) = r[j];
+    }
+  }
+  try {
+    p.objective = objective_from_id(o.at("objective").as_string("objective"));
+  } catch (const Error& e) {
+    if (e.code() == ErrorCode::ProfileInvalid) throw;
+    throw Error(ErrorCode::ProfileInvalid, e.what());
+  }
+  const json::Value& col = o.at("colorimetry");
+  p.white = read_vec3(col.at("white"), "colorimetry.white");
+  if (!(p.white.minCoeff() > 0)) throw Error(ErrorCode::ProfileInvalid, "colorimetry.white must be positive");
+  if (const auto* v = col.find("illuminant")) p.illuminant = v->as_string("colorimetry.illuminant");
+  if (const auto* v = col.find("observer")) p.observer = v->as_string("colorimetry.observer");
+  if (const auto* wp = o.find("white_preservation")) {
+    p.white_preserved = wp->at("enabled").as_bool("white_preservation.enabled");
+    if (const auto* v = wp->find("patch")) p.white_patch = v->as_string("white_preservation.patch");
+    if (const auto* v = wp->find("RGB")) p.white_RGB = read_vec3(*v, "white_preservation.RGB");
+    if (const auto* v = wp->find("XYZ")) p.white_XYZ = read_vec3(*v, "white_preservation.XYZ");
+  }
+  const json::Value& tr = o.at("training");
+  p.training_patches = static_cast<int>(tr.at("patches").as_number("training.patches"));
+  p.training_digest = tr.at("digest").as_string("training.digest");
+  if (const auto* v = tr.find("rgb_max")) p.rgb_max = v->as_number("training.rgb_max");
+  if (!(p.rgb_max > 0)) throw Error(ErrorCode::ProfileInvalid, "training.rgb_max must be positive");
+  if (const auto* f = o.find("fit")) {
+    if (const auto* v = f->find("status")) p.status = status_from_name(v->as_string("fit.status"));
+    if (const auto* v = f->find("message")) p.message = v->as_string("fit.message");
+    if (const auto* v = f->find("condition_number"); v && v->is_number()) p.condition_number = v->as_number();
+    if (const auto* v = f->find("iterations"); v && v->is_number()) p.iterations = static_cast<int>(v->as_number());
+    if (const auto* v = f->find("objective_value"); v && v->is_number()) p.objective_value = v->as_number();
+  }
+  if (const auto* m = o.find("metrics"); m && m->is_object()) p.metrics = *m;
+  else p.metrics = json::Value::object();
+  return p;
+}
+
+}  // namespace tristim

@@ -1,0 +1,107 @@
+// Evaluation: summaries, per-patch differences, NRMSE, leave-one-out, compare, transfer table.
+#include <cmath>
+#include <random>
+
+#include "test_support.hpp"
+#include "tristim/error.hpp"
+#include "tristim/evaluation/evaluation.hpp"
+
+using namespace tristim;
+
+namespace {
+PatchMatrix rgb_grid(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.03, 0.9);
+  PatchMatrix m(n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) m(i, c) = u(rng);
+  return m;
+}
+}  // namespace
+
+TEST_CASE("summaries: min, median, mean, p95, max, RMS, std", "[evaluation]") {
+  const Summary s = summarize({4, 1, 3, 2});
+  CHECK(s.min == 1);
+  CHECK(s.max == 4);
+  CHECK(s.median == Approx(2.5));
+  CHECK(s.mean == Approx(2.5));
+  CHECK(s.p95 == Approx(3.85));  // numpy.percentile([1,2,3,4], 95)
+  CHECK(s.rms == Approx(std::sqrt(7.5)));
+  CHECK(s.std == Approx(std::sqrt(1.25)));
+  CHECK(std::isnan(summarize({}).mean));
+}
+
+TEST_CASE("evaluate: identical data gives zero errors; NRMSE uses the reference range", "[evaluation]") {
+  PatchMatrix ref = rgb_grid(10, 1) * 100.0;
+  const Metrics z = evaluate(ref, ref);
+  CHECK(z.dE00.max == 0);
+  CHECK(z.dE_xyz.max == 0);
+  PatchMatrix est = ref;
+  est.col(1).array() += 2.0;  // Y off by 2 everywhere
+  const Metrics m = evaluate(est, ref);
+  const double range = ref.col(1).maxCoeff() - ref.col(1).minCoeff();
+  CHECK(m.NRMSE[1] == Approx(2.0 / range));
+  CHECK(m.NRMSE[0] == 0);
+  CHECK(m.dE_xyz.mean == Approx(2.0));
+  CHECK(m.patches.rel_Y[0] == Approx(2.0 / ref(0, 1)));
+  CHECK(m.dE00.min > 0);
+  // dL carries the lightness part: estimate lighter -> positive dL.
+  CHECK(m.patches.dL[0] > 0);
+}
+
+TEST_CASE("leave-one-out is exact for a planted model and larger than training error on noise", "[evaluation]") {
+  const PatchMatrix rgb = rgb_grid(24, 4);
+  Model truth{"matrix-3x4", Eigen::MatrixXd(3, 4)};
+  truth.coefficients << 40, 30, 15, 1, 20, 70, 8, 1.5, 2, 10, 90, 0.5;
+  const PatchMatrix xyz = predict(truth, rgb);
+  const PatchMatrix loo = leave_one_out("matrix-3x4", rgb, xyz);
+  CHECK((loo - xyz).cwiseAbs().maxCoeff() < 1e-9);
+  PatchMatrix noisy = xyz;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> nd(0, 0.5);
+  for (int i = 0; i < 24; ++i)
+    for (int c = 0; c < 3; ++c) noisy(i, c) = std::max(0.0, noisy(i, c) + nd(rng));
+  const ModelEvaluation ev = evaluate_model("Finlayson2015-3", rgb, noisy);
+  REQUIRE(ev.has_loo);
+  CHECK(ev.loo.dE00.mean > ev.training.dE00.mean);
+}
+
+TEST_CASE("compare: every model × objective, sorted by held-out error, refusals last", "[evaluation]") {
+  const PatchMatrix rgb = rgb_grid(24, 8);
+  Model truth{"Finlayson2015-2", Eigen::MatrixXd(3, 6)};
+  truth.coefficients << 40, 30, 15, 3, 1, 2, 20, 70, 8, 1, 2, 1, 2, 10, 90, 1, 1, 3;
+  const PatchMatrix xyz = predict(truth, rgb);
+  const auto rows = compare_models(rgb, xyz, {}, {}, {Objective::LeastSquares});
+  REQUIRE(rows.size() > 10);
+  bool seen_refused = false;
+  double last = -1;
+  for (const auto& r : rows) {
+    if (!r.ok) {
+      seen_refused = true;
+      CHECK(!r.error_code.empty());
+      continue;
+    }
+    CHECK(!seen_refused);
+    if (r.has_loo) {
+      CHECK(r.loo_dE00.mean >= last);
+      last = r.loo_dE00.mean;
+    }
+  }
+  CHECK(seen_refused);  // Cheung2004-35 on 24 patches
+  // The generating model (or a superset) is at the top with ~zero held-out error.
+  CHECK(rows.front().loo_dE00.mean < 1e-6);
+}
+
+TEST_CASE("transfer table: train on one set, test on another (Abed 2013 Table IV layout)", "[evaluation]") {
+  const PatchMatrix a = rgb_grid(24, 1), b = rgb_grid(40, 2), test = rgb_grid(10, 3);
+  Model truth{"matrix-3x3", Eigen::Matrix3d()};
+  truth.coefficients << 40, 30, 15, 20, 70, 8, 2, 10, 90;
+  const auto cells = transfer_table({{"A", a, predict(truth, a)}, {"B", b, predict(truth, b)}}, test,
+                                    predict(truth, test), {"matrix-3x3", "matrix-3x4"},
+                                    {Objective::LeastSquares});
+  REQUIRE(cells.size() == 4);
+  for (const auto& c : cells) {
+    CHECK(c.ok);
+    CHECK(c.dE00.max < 1e-6);
+  }
+}
