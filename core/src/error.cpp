@@ -31,6 +31,16 @@ const char* error_code_name(ErrorCode code) {
     case ErrorCode::ProfileVersion: return "PROFILE_VERSION";
     case ErrorCode::ProfileInvalid: return "PROFILE_INVALID";
     case ErrorCode::ExportFailed: return "EXPORT_FAILED";
+    case ErrorCode::RecipeVersion: return "RECIPE_VERSION";
+    case ErrorCode::RecipeInvalid: return "RECIPE_INVALID";
+    case ErrorCode::ImageUnsupported: return "IMAGE_UNSUPPORTED";
+    case ErrorCode::ImageCorrupt: return "IMAGE_CORRUPT";
+    case ErrorCode::WavelengthMismatch: return "WAVELENGTH_MISMATCH";
+    case ErrorCode::IllPosed: return "ILL_POSED";
+    case ErrorCode::MissingMetadata: return "MISSING_METADATA";
+    case ErrorCode::NoUsableData: return "NO_USABLE_DATA";
+    case ErrorCode::ChartNotFound: return "CHART_NOT_FOUND";
+    case ErrorCode::LimitExceeded: return "LIMIT_EXCEEDED";
     case ErrorCode::Internal: return "INTERNAL";
   }
   return "INTERNAL";

@@ -40,6 +40,18 @@ enum class ErrorCode {
   ProfileVersion,     ///< a profile of an unknown/unsupported version
   ProfileInvalid,     ///< a profile with missing or inconsistent fields
   ExportFailed,       ///< a writer (ICC, TIFF …) failed
+  // --- recipes (profile/recipe.hpp)
+  RecipeVersion,      ///< a recipe of an unknown/unsupported version
+  RecipeInvalid,      ///< a recipe with an unknown field, a missing field or a wrong type
+  // --- methods of the papers and what they read
+  ImageUnsupported,   ///< not an image any decoder here reads (TIFF/PNG/JPEG), or an unsupported variant
+  ImageCorrupt,       ///< an image file that is truncated or inconsistent
+  WavelengthMismatch, ///< spectral sets on incompatible wavelength ranges
+  IllPosed,           ///< a request with no unique answer (e.g. every Saunderson coefficient free)
+  MissingMetadata,    ///< a RAW without the exposure time / f-number a method needs
+  NoUsableData,       ///< every sample saturated or dark, nothing left to fit
+  ChartNotFound,      ///< automatic chart detection found no chart
+  LimitExceeded,      ///< an input beyond a stated resource limit (size, count, depth)
   Internal,           ///< a bug: an invariant broke
 };
 

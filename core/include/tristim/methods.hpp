@@ -1,0 +1,59 @@
+// The shape every pluggable stage's method table shares (colour-science's
+// MATRIX_COLOUR_CORRECTION_METHODS idea): one row per method with its id, label, the paper it
+// comes from and the schema of its options. The page builds every picker and options form from
+// these rows; the CLI's --help lists them; a recipe names a row by id and gives option values.
+//
+// Stages with a table: characterisation objectives (characterisation/objectives.hpp),
+// linearisation (linearisation/linearisation.hpp), surface correction (surface/surface.hpp).
+// Models have their own richer row (ModelInfo, characterisation/models.hpp).
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+namespace tristim {
+
+/// One option of a method. `type` is "number", "integer", "boolean" (0/1 in the parameters
+/// map), "choice" (one of `choices`, in the settings map) or "text" (settings map).
+struct OptionSpec {
+  std::string name;         ///< key in MethodChoice::parameters / settings, snake_case
+  std::string type;         ///< "number" | "integer" | "boolean" | "choice" | "text"
+  std::string label;        ///< short human label for forms
+  double default_number = 0;      ///< number / integer / boolean
+  std::string default_text;       ///< choice / text
+  double min = 0, max = 0;        ///< inclusive bounds of number/integer (min == max: unbounded)
+  std::vector<std::string> choices;
+  std::string description;  ///< one sentence: what it does, units
+};
+
+/// One row of a stage's method table.
+struct MethodInfo {
+  std::string id;         ///< the same string in C++, JS, files and the UI
+  std::string label;      ///< human-readable
+  std::string reference;  ///< the paper and equation(s), or "" for trivial methods
+  std::vector<OptionSpec> options;
+};
+
+/// A method chosen for a stage, with its option values (what a recipe stores). Options not
+/// given take the table's defaults; options the method does not have are refused.
+struct MethodChoice {
+  std::string method;
+  std::map<std::string, double> parameters;    ///< number / integer / boolean options
+  std::map<std::string, std::string> settings; ///< choice / text options
+};
+
+/// Checks `choice` against `info` (Error(UnknownId) for an option the method lacks,
+/// Error(InvalidArgument) for a value of the wrong kind or out of bounds) and returns it with
+/// every missing option filled with its default.
+MethodChoice complete_choice(const MethodInfo& info, const MethodChoice& choice);
+
+/// The value of a number/integer/boolean option (after complete_choice, always present).
+double choice_number(const MethodChoice& choice, const std::string& name);
+/// The value of a choice/text option.
+const std::string& choice_text(const MethodChoice& choice, const std::string& name);
+
+/// Parses "id" or "id:name=value,name=value" (the CLI's --linearisation / --surface syntax);
+/// values that parse as numbers go to parameters, others to settings.
+MethodChoice parse_choice(const std::string& text);
+
+}  // namespace tristim
