@@ -219,6 +219,7 @@ void check_reflectances(const SpectralData& reflectances, const std::string& wha
   for (size_t k = 0; k < reflectances.values.size(); ++k)
     for (size_t w = 0; w < reflectances.values[k].size(); ++w) {
       const double v = reflectances.values[k][w];
+      if (v >= 0 && v <= 1.5) continue;  // the message is built only for a bad value
       const std::string where = what + ": patch '" + (k < reflectances.names.size() ? reflectances.names[k] : "?") +
                                 "' at " + exact_text(reflectances.wavelengths[w]) + " nm";
       if (!std::isfinite(v)) throw Error(ErrorCode::InvalidArgument, where + " is not finite");
