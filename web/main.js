@@ -63,7 +63,6 @@ document.getElementById('new-session').addEventListener('click', async () => {
 async function start() {
   try {
     const { version } = await app.engine.call('hello');
-    await app.engine.capabilities();
     app.catalog = await app.engine.call('catalog');
     status.textContent = `Colour engine tristim ${version} ready (WebAssembly, in a worker).`;
     status.dataset.ready = 'true';
@@ -92,7 +91,7 @@ async function start() {
   if (fresh) {
     app.views.results.setStatus('Fitting the example with three models…');
     const r = await app.views.fit.runDefault();
-    if (!r) app.views.results.setStatus('No fitted model yet: the example could not be fitted with this build of the colour engine (see steps 1–3).');
+    if (!r) app.views.results.setStatus('No fitted model yet: the example could not be fitted (see steps 1–3).');
   } else app.views.results.refresh();
   document.body.dataset.ready = 'true';
 }

@@ -1,29 +1,19 @@
-// The method list: one descriptor per model family (family label, about, default options, an
-// optional options form). The picker shows the models the engine's listModels() offers, grouped
-// by the descriptor that matches each id, so a new engine model appears without a page change.
+// The model families: one descriptor per family (family label, about). The picker shows the
+// models the engine's listModels() offers, grouped by the descriptor that matches each id, so a
+// new engine model appears without a page change.
 import matrix from './matrix.js';
 import polynomial from './polynomial.js';
 import rootPolynomial from './root_polynomial.js';
 import guarnera from './guarnera.js';
 
 export const FAMILIES = [matrix, rootPolynomial, polynomial, guarnera];
-const OTHER = { family: 'Other models', about: '', defaults: {}, form: () => null };
+const OTHER = { family: 'Other models', about: '' };
 
-/// engine model entry (string or {id, label, reference, duplicateOf, ...}) -> descriptor.
+/// An engine ModelInfo row (or an id) with its family: {id, label, family, about, duplicate_of}.
 export function describe(model) {
   const m = typeof model === 'string' ? { id: model } : model;
-  const id = String(m.id);
-  const d = FAMILIES.find((x) => x.match(id)) ?? OTHER;
-  const dup = m.duplicateOf ?? m.duplicate_of ?? '';
-  return {
-    id,
-    label: m.label ?? id,
-    family: d.family,
-    about: m.reference ?? d.about,
-    duplicateOf: dup,
-    defaults: { ...d.defaults, ...(m.defaults ?? {}) },
-    form: (opts, onChange) => d.form(opts, onChange),
-  };
+  const d = FAMILIES.find((x) => x.match(m.id)) ?? OTHER;
+  return { id: m.id, label: m.label ?? m.id, family: d.family, about: m.reference ?? d.about, duplicate_of: m.duplicate_of ?? '' };
 }
 
 /// The models a fresh session fits: these ids when the engine has them, else the first three.
