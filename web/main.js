@@ -3,20 +3,22 @@
 import { Engine } from './lib/engine.js';
 import { store } from './store.js';
 import { h } from './lib/ui.js';
-import * as reference from './views/reference.js';
-import * as images from './views/images.js';
-import * as fit from './views/fit.js';
-import * as results from './views/results.js';
-import * as apply from './views/apply.js';
-import * as exporter from './views/export.js';
+import * as reference from './reference/view.js';
+import * as images from './images/view.js';
+import * as fit from './fit/view.js';
+import * as results from './results/view.js';
+import * as apply from './apply/view.js';
+import * as exporter from './export/view.js';
 
-const STEPS = ['reference', 'images', 'fit', 'results', 'apply', 'export'];
+// The features, in journey order: web/<feature>/view.js, each mounted into <section id="step-<feature>">.
+const FEATURES = { reference, images, fit, results, apply, export: exporter };
+const STEPS = Object.keys(FEATURES);
 const status = document.getElementById('engine-status');
 
 const app = {
   engine: new Engine(),
   store,
-  session: {},        // persisted: settings, files.*, corners, fitChoice, results, selected, step
+  session: {},        // persisted: settings, files.*, corners, layout, fitChoice, results (each with its recipe), selected, recipe, step
   derived: {},        // recomputed: reference, locus, sample, preview
   views: {},
   bus: new EventTarget(),
@@ -76,8 +78,7 @@ async function start() {
   const fresh = !saved.settings;
   Object.assign(app.session, saved);
 
-  const mounts = { reference, images, fit, results, apply, export: exporter };
-  for (const [step, mod] of Object.entries(mounts)) {
+  for (const [step, mod] of Object.entries(FEATURES)) {
     app.views[step] = mod.mount(document.getElementById(`step-${step}`), app);
   }
   if (fresh) await app.save('settings', { ...app.session.settings });   // the session now exists

@@ -57,6 +57,14 @@ test('first screen: the example is sampled and fitted, engine in a worker, no co
       assert.ok(m >= min, `${name}: ${m} marks, expected ≥ ${min} (${JSON.stringify(await markCounts(page, name))})`);
     }
     assert.equal(await page.locator('[data-unavailable]').count(), 0);
+    // The objectives' options forms come from the engine's table: the CIEDE2000 default is its 'auto'.
+    assert.equal(await page.$eval('#step-fit details[data-objective="de2000"] select[data-option="algorithm"]', (s) => s.value), 'auto');
+    assert.equal(await page.$eval('#step-fit details[data-objective="psm"] input[data-option="expansion"]', (i) => i.value), '2');
+    // The session holds the Recipe the selected fit was made with.
+    const recipe = await page.evaluate(() => window.tristim.store.get('recipe'));
+    assert.equal(recipe.sampling.layout.chart, 'passport');
+    assert.equal(recipe.characterisation.objective.method, 'ls');
+    assert.equal(recipe.reference.illuminant, 'D50');
     await screenshot(page, 'first-screen');
     assert.deepEqual(b.problems, []);
 

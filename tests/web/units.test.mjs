@@ -7,9 +7,9 @@ import { deSegments } from '../../web/plots/de_bars.js';
 import { xyFromXYZ, cssColours } from '../../web/plots/common.js';
 import { locusData } from '../../web/plots/xy.js';
 import { xyzScatterData } from '../../web/plots/xyz_scatter.js';
-import { readCube, readIccHeader } from '../../web/lib/formats.js';
-import { renderXYZ } from '../../web/lib/render.js';
-import { describe as describeModel } from '../../web/methods/index.js';
+import { readCube, readIccHeader } from '../../web/export/formats.js';
+import { renderXYZ } from '../../web/apply/render.js';
+import { describe as describeModel } from '../../web/fit/models/index.js';
 import { defaultChoice, completeChoice } from '../../web/lib/options_form.js';
 
 const close = (a, b, tol = 1e-9) => assert.ok(Math.abs(a - b) <= tol, `${a} vs ${b} (tol ${tol})`);

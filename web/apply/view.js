@@ -2,7 +2,7 @@
 // the XYZ image rendered to sRGB, a false-colour map of Y with a named CVD-safe colour map and
 // its legend, and X, Y, Z, x, y, L*a*b* under the pointer.
 import { h, field, select, showError, clearError, progressBar, fmt, fileBytes } from '../lib/ui.js';
-import { cameraOf } from './fit.js';
+import { cameraOf } from '../fit/view.js';
 
 const MAPS = {
   viridis: { label: 'viridis', interp: () => globalThis.d3.interpolateViridis },

@@ -1,7 +1,7 @@
 // Step 6: download the selected profile as JSON, the per-patch CSV, an ICC profile and a .cube
 // LUT; load any of them back (a profile JSON becomes a result again, evaluated on this chart).
 import { h, field, showError, clearError, download } from '../lib/ui.js';
-import { readCube, readIccHeader } from '../lib/formats.js';
+import { readCube, readIccHeader } from './formats.js';
 
 export function mount(section, app) {
   const { engine } = app;

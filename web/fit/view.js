@@ -1,7 +1,7 @@
 // Step 3: pick any number of models x objectives and fit them in the worker, with progress and a
 // cancel button (which terminates the worker; the page re-sends the RAW bytes it keeps).
 import { h, field, showError, clearError, progressBar } from '../lib/ui.js';
-import { describe, FAMILIES, DEFAULT_MODELS } from '../methods/index.js';
+import { describe, FAMILIES, DEFAULT_MODELS } from './models/index.js';
 import { pairData } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';

@@ -9,7 +9,7 @@ import { labPlanePlot } from '../plots/lab.js';
 import { deBarsPlot } from '../plots/de_bars.js';
 import { xyzScatterPlot } from '../plots/xyz_scatter.js';
 import { swatchPairsPlot } from '../plots/swatch_pairs.js';
-import { referenceText } from './fit.js';
+import { referenceText } from '../fit/view.js';
 
 export function mount(section, app) {
   const tableBox = h('div', { class: 'table-box' });
