@@ -1,4 +1,12 @@
-# Copies web/ and the vendored plotting library into the site folder.
+# Copies web/ and the vendored plotting library into the site folder (emptied first, but for the
+# module itself, so a file removed from web/ does not linger in the site).
+file(GLOB old LIST_DIRECTORIES true ${SITE}/*)
+foreach(f ${old})
+  get_filename_component(name ${f} NAME)
+  if(NOT name MATCHES "^tristim\\.(mjs|wasm)$")
+    file(REMOVE_RECURSE ${f})
+  endif()
+endforeach()
 file(COPY ${SRC}/web/ DESTINATION ${SITE})
 set(vendor ${SITE}/vendor)
 file(MAKE_DIRECTORY ${vendor})

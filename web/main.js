@@ -3,20 +3,22 @@
 import { Engine } from './lib/engine.js';
 import { store } from './store.js';
 import { h } from './lib/ui.js';
-import * as reference from './views/reference.js';
-import * as images from './views/images.js';
-import * as fit from './views/fit.js';
-import * as results from './views/results.js';
-import * as apply from './views/apply.js';
-import * as exporter from './views/export.js';
+import * as reference from './reference/view.js';
+import * as images from './images/view.js';
+import * as fit from './fit/view.js';
+import * as results from './results/view.js';
+import * as apply from './apply/view.js';
+import * as exporter from './export/view.js';
 
-const STEPS = ['reference', 'images', 'fit', 'results', 'apply', 'export'];
+// The features, in journey order: web/<feature>/view.js, each mounted into <section id="step-<feature>">.
+const FEATURES = { reference, images, fit, results, apply, export: exporter };
+const STEPS = Object.keys(FEATURES);
 const status = document.getElementById('engine-status');
 
 const app = {
   engine: new Engine(),
   store,
-  session: {},        // persisted: settings, files.*, corners, fitChoice, results, selected, step
+  session: {},        // persisted: settings, files.*, corners, layout, fitChoice, results (each with its recipe), selected, recipe, step
   derived: {},        // recomputed: reference, locus, sample, preview
   views: {},
   bus: new EventTarget(),
@@ -63,7 +65,6 @@ document.getElementById('new-session').addEventListener('click', async () => {
 async function start() {
   try {
     const { version } = await app.engine.call('hello');
-    await app.engine.capabilities();
     app.catalog = await app.engine.call('catalog');
     status.textContent = `Colour engine tristim ${version} ready (WebAssembly, in a worker).`;
     status.dataset.ready = 'true';
@@ -77,8 +78,7 @@ async function start() {
   const fresh = !saved.settings;
   Object.assign(app.session, saved);
 
-  const mounts = { reference, images, fit, results, apply, export: exporter };
-  for (const [step, mod] of Object.entries(mounts)) {
+  for (const [step, mod] of Object.entries(FEATURES)) {
     app.views[step] = mod.mount(document.getElementById(`step-${step}`), app);
   }
   if (fresh) await app.save('settings', { ...app.session.settings });   // the session now exists
@@ -92,7 +92,7 @@ async function start() {
   if (fresh) {
     app.views.results.setStatus('Fitting the example with three models…');
     const r = await app.views.fit.runDefault();
-    if (!r) app.views.results.setStatus('No fitted model yet: the example could not be fitted with this build of the colour engine (see steps 1–3).');
+    if (!r) app.views.results.setStatus('No fitted model yet: the example could not be fitted (see steps 1–3).');
   } else app.views.results.refresh();
   document.body.dataset.ready = 'true';
 }

@@ -1,11 +1,34 @@
 // The Web Worker that hosts the wasm module. It creates the module once, lazily, and answers
-// requests by type; handlers live in handlers.js. Heavy state (decoded images) stays here.
+// requests by type. The message table is assembled from the features: each web/<feature>/
+// handlers.js exports {type: (T, msg, {state, progress}) -> {result, transfer}}. Heavy state
+// (decoded images, the applied XYZ image) stays here, in `state`.
 import createTristim from './tristim.mjs';
-import { handlers } from './handlers.js';
+import { reply } from './lib/reply.js';
+import * as reference from './reference/handlers.js';
+import * as images from './images/handlers.js';
+import * as fit from './fit/handlers.js';
+import * as apply from './apply/handlers.js';
+import * as exporter from './export/handlers.js';
+
+const FEATURES = [reference, images, fit, apply, exporter];
+
+const handlers = {
+  hello: (T) => ({ result: { version: T.version() } }),
+  /// Every table the page builds its pickers from (the engine's method tables and layouts).
+  catalog: (T) => reply({
+    charts: T.listCharts(), illuminants: T.listIlluminants(), cameras: T.listCameras(), models: T.listModels(),
+    objectives: T.listObjectives(), linearisations: T.listLinearisations(), surfaces: T.listSurfaceCorrections(),
+    layouts: Object.fromEntries(T.listChartLayouts().map((id) => [id, id === 'custom' ? null : T.chartLayout({ chart: id })])),
+  }),
+};
+for (const f of FEATURES) {
+  for (const type of Object.keys(f.handlers)) if (handlers[type]) throw new Error(`two features handle '${type}'`);
+  Object.assign(handlers, f.handlers);
+}
 
 let modulePromise = null;
 const engine = () => (modulePromise ??= createTristim());
-const state = {};  // per-worker state shared by handlers (e.g. the decoded image)
+const state = {};  // per-worker state shared by handlers (e.g. the decoded images)
 
 // Anything that escapes the request handlers is a bug: say so on the console (the browser tests
 // fail on any console error). The page's onerror only rejects the pending calls.

@@ -73,7 +73,7 @@ test('referenceChart and simulateCamera agree with the native CLI (when the nati
     const csv = execFileSync(exe, ['simulate', '--camera', 'Canon_EOS_5D_Mark_II', '--reflectances', 'sg140', '--illuminant', 'D65',
       '--noise', String(noise), '--seed', '9', '--precision', '17']).toString();
     const rows = csv.trim().split('\n').slice(1).map((l) => l.split(','));
-    const sim = T.simulateCamera('Canon_EOS_5D_Mark_II', 'sg140', 'D65', { noise, seed: 9 });
+    const sim = T.simulateCamera('Canon_EOS_5D_Mark_II', 'sg140', 'D65', { noise_sigma: noise, seed: 9 });
     rows.forEach((row, i) => { for (let k = 0; k < 3; k++) compare(kind, sim.RGB[3 * i + k], Number(row[1 + k]), `simulate ${row[0]}[${k}]`); });
   }
   for (const [kind, w] of Object.entries(worst)) t.diagnostic(`${kind}: worst relative difference ${w.d} (${w.what})`);
@@ -88,14 +88,14 @@ test('parseReferenceFile: spectral CSV, Lab CSV and CGATS', async () => {
   const spectral = text('dcamprof/colorchecker24_after_nov2014_reflectance_380-730_10nm.csv');
   const a = T.parseReferenceFile(spectral, 'cc24.csv', 'D65', '1931');
   const b = T.referenceChart('cc24', 'D65', '1931');
-  assert.equal(a.format, 'csv-spectral');
+  assert.equal(T.parsePatchFile(spectral, 'cc24.csv').format, 'csv-spectral');
   assert.deepEqual(a.ids, b.ids);
   for (let i = 0; i < 72; i++) assert.equal(a.XYZ[i], b.XYZ[i]);  // same spectra, same numbers
   const lab = T.parseReferenceFile('patch,L,a,b\nA01,50,10,-10\nA02,60,0,0\n', 'lab.csv', 'D50', '1931');
   assert.deepEqual(lab.ids, ['A1', 'A2']);
   assert.deepEqual(Array.from(lab.Lab.slice(0, 3)), [50, 10, -10]);
   const cie = T.parseReferenceFile(text('debian-argyll-ref/original/ColorChecker.cie'), 'ColorChecker.cie', 'D50', '1931');
-  assert.equal(cie.format, 'cgats');
+  assert.equal(T.parsePatchFile(text('debian-argyll-ref/original/ColorChecker.cie'), 'ColorChecker.cie').format, 'cgats');
   assert.equal(cie.ids.length, 24);
   close(cie.Lab[0], 37.99, 1e-12, 'L of A1');
 });
@@ -152,7 +152,7 @@ test('pairById and simulateCamera (the fit will pair simulated RGB with the refe
   assert.deepEqual(Array.from(p.measured), Array.from(sim.RGB));
   assert.deepEqual(Array.from(p.reference), Array.from(ref.XYZ));
   throwsCode(assert, () => T.pairById(['A1'], [1, 2, 3], ['Z9'], [1, 2, 3]), 'PATCH_MISMATCH');
-  const noisy = T.simulateCamera('Nikon_D850', 'cc24', 'D50', { noise: 1, seed: 5, oecfGamma: 1.8, oecfScale: 22, whiteLevel: 80, clipMax: 255, quantise: true });
+  const noisy = T.simulateCamera('Nikon_D850', 'cc24', 'D50', { noise_sigma: 1, seed: 5, oecf: true, oecf_gamma: 1.8, oecf_scale: 22, white_level: 80, clip_max: 255, quantise: true });
   for (const v of noisy.RGB) assert.equal(v, Math.round(v));
   throwsCode(assert, () => T.simulateCamera('Leica M3', 'cc24', 'D65', {}), 'UNKNOWN_ID');
 });

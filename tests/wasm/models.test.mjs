@@ -28,6 +28,10 @@ function passport() {
   return { rgb, xyz, ids };
 }
 
+/// A fit from a recipe's characterisation and evaluation stages, on paired tables.
+const fitModel = (T, rgb, xyz, ids, characterisation, evaluation = {}) => T.fitTables({ characterisation, evaluation }, ids, rgb, xyz);
+const numbered = (n) => Array.from({ length: n }, (_, i) => String(i + 1));
+
 test('listModels / listObjectives describe the method table', async () => {
   const T = await loadTristim();
   const models = T.listModels();
@@ -35,8 +39,8 @@ test('listModels / listObjectives describe the method table', async () => {
   for (const id of ['matrix-3x3', 'matrix-3x4', 'Shen2008', 'Finlayson2015-2', 'Cheung2004-35', 'Guarnera2018-T2R'])
     assert.ok(ids.includes(id), id);
   const t2r = models.find((m) => m.id === 'Guarnera2018-T2R');
-  assert.equal(t2r.nTerms, 6);
-  assert.equal(t2r.duplicateOf, 'Finlayson2015-2');
+  assert.equal(t2r.n_terms, 6);
+  assert.equal(t2r.duplicate_of, 'Finlayson2015-2');
   assert.deepEqual(T.listObjectives().map((o) => o.id), ['ls', 'psm', 'de2000']);
 });
 
@@ -50,87 +54,89 @@ test('fitModel: planted 3x3 recovered, profile round-trips through evaluateProfi
     for (let k = 0; k < 3; k++) xyz[3 * i + k] = M[3 * k] * c[0] + M[3 * k + 1] * c[1] + M[3 * k + 2] * c[2];
   }
   for (const objective of ['ls', 'psm', 'de2000']) {
-    const r = T.fitModel(rgb, xyz, [], { model: 'matrix-3x3', objective });
-    assert.ok(r.coefficients instanceof Float64Array);
-    r.coefficients.forEach((v, i) => assert.ok(Math.abs(v - M[i]) < 1e-9, `${objective} coef ${i}: ${v}`));
-    assert.ok(r.metrics.training.dE00.max < 1e-6);
-    assert.ok(r.metrics.loo.dE00.max < 1e-6);
+    const r = fitModel(T, rgb, xyz, numbered(n), { model: 'matrix-3x3', objective });
+    const coefficients = r.evaluation.fit.model.coefficients;
+    assert.ok(coefficients instanceof Float64Array);
+    coefficients.forEach((v, i) => assert.ok(Math.abs(v - M[i]) < 1e-9, `${objective} coef ${i}: ${v}`));
+    assert.ok(r.evaluation.training.dE00.max < 1e-6);
+    assert.ok(r.evaluation.loo.dE00.max < 1e-6);
     const p = JSON.parse(r.profile);
     assert.equal(p.format, 'tristim-profile');
     assert.equal(p.version, 1);
     const ev = T.evaluateProfile(r.profile, rgb, xyz, []);
-    assert.equal(ev.sameDataAsTraining, true);
+    assert.equal(ev.same_data_as_training, true);
     assert.ok(ev.estimated instanceof Float64Array);
-    ev.estimated.forEach((v, i) => assert.equal(v, r.fitted[i]));
+    ev.estimated.forEach((v, i) => assert.equal(v, r.evaluation.fit.fitted[i]));
   }
 });
 
 test('fitModel on the Passport patches: LOO reported, best model beats the 3x3', async () => {
   const T = await loadTristim();
   const { rgb, xyz, ids } = passport();
-  const a = T.fitModel(rgb, xyz, ids, { model: 'matrix-3x3', objective: 'ls' });
-  const b = T.fitModel(rgb, xyz, ids, { model: 'Finlayson2015-2', objective: 'ls' });
-  assert.equal(a.status, 'ok');
-  assert.equal(a.metrics.training.patches.ids.length, 24);
-  assert.equal(a.metrics.loo.patches.dE00.length, 24);
-  assert.ok(b.metrics.loo.dE00.mean < a.metrics.loo.dE00.mean);
-  assert.ok(a.conditionNumber > 1 && a.conditionNumber < 1e3);
-  const w = T.fitModel(rgb, xyz, ids, { model: 'matrix-3x4', objective: 'de2000', whitePatch: 'D1' });
-  const est = w.fitted.slice(18 * 3, 18 * 3 + 3);
+  const a = fitModel(T, rgb, xyz, ids, { model: 'matrix-3x3', objective: 'ls' }).evaluation;
+  const b = fitModel(T, rgb, xyz, ids, { model: 'Finlayson2015-2', objective: 'ls' }).evaluation;
+  assert.equal(a.fit.status, 'ok');
+  assert.equal(a.training.patches.dE00.length, 24);
+  assert.equal(a.loo.patches.dE00.length, 24);
+  assert.ok(b.loo.dE00.mean < a.loo.dE00.mean);
+  assert.ok(a.fit.condition_number > 1 && a.fit.condition_number < 1e3);
+  const w = fitModel(T, rgb, xyz, ids, { model: 'matrix-3x4', objective: 'de2000', white_patch: 'D1' }).evaluation;
+  const est = w.fit.fitted.slice(18 * 3, 18 * 3 + 3);
   for (let k = 0; k < 3; k++) assert.ok(Math.abs(est[k] - xyz[18 * 3 + k]) < 1e-9);
 });
 
 test('compareModels: rows sorted by held-out error, refusals last with a code', async () => {
   const T = await loadTristim();
   const { rgb, xyz, ids } = passport();
-  const rows = T.compareModels(rgb, xyz, ids, { objectives: ['ls'] });
+  const rows = T.compareModels(rgb, xyz, {}, [], ['ls'], -1);
   assert.ok(rows.length > 10);
-  const okRows = rows.filter((r) => r.ok && r.loo);
-  for (let i = 1; i < okRows.length; i++) assert.ok(okRows[i].loo.dE00.mean >= okRows[i - 1].loo.dE00.mean);
+  const okRows = rows.filter((r) => r.ok && r.has_loo);
+  for (let i = 1; i < okRows.length; i++) assert.ok(okRows[i].loo_dE00.mean >= okRows[i - 1].loo_dE00.mean);
   const last = rows[rows.length - 1];
   assert.equal(last.ok, false);
-  assert.equal(last.errorCode, 'TOO_FEW_PATCHES');
+  assert.equal(last.error_code, 'TOO_FEW_PATCHES');
 });
 
-test('applyProfileToImage, exportIcc, exportCube, exportPatchCsv', async () => {
+test('applyProfileToImage, exportIcc, exportCube, patchCsv', async () => {
   const T = await loadTristim();
   const { rgb, xyz, ids } = passport();
-  const r = T.fitModel(rgb, xyz, ids, { model: 'Finlayson2015-2' });
+  const r = fitModel(T, rgb, xyz, ids, { model: 'Finlayson2015-2' });
   const w = 4, h = 6;
   const img = new Float32Array(w * h * 3);
   for (let i = 0; i < 24; i++) img.set(rgb.subarray(3 * i, 3 * i + 3), 3 * i);
-  const out = T.applyProfileToImage(r.profile, img, w, h);
+  const out = T.applyProfileToImage(r.profile, img, w, h).pixels;
+  const fitted = r.evaluation.fit.fitted;
   assert.ok(out instanceof Float32Array);
   assert.equal(out.length, w * h * 3);
-  for (let i = 0; i < 72; i++) assert.ok(Math.abs(out[i] - r.fitted[i]) < 1e-3 * (1 + Math.abs(r.fitted[i])));
+  for (let i = 0; i < 72; i++) assert.ok(Math.abs(out[i] - fitted[i]) < 1e-3 * (1 + Math.abs(fitted[i])));
   const icc = T.exportIcc(r.profile);
   assert.ok(icc instanceof Uint8Array);
   assert.equal(String.fromCharCode(...icc.slice(36, 40)), 'acsp');
   assert.equal(icc[8], 4);
-  const icc2 = T.exportIcc(r.profile, { version: 2.4, gridPoints: 17 });
+  const icc2 = T.exportIcc(r.profile, { version: 2.4, grid_points: 17 });
   assert.equal(icc2[8], 2);
   const cube = T.exportCube(r.profile, 9);
   assert.match(cube, /LUT_3D_SIZE 9/);
   assert.equal(cube.trim().split('\n').filter((l) => /^[-0-9]/.test(l)).length, 9 ** 3);
-  const csv = T.exportPatchCsv(r.profile, rgb, xyz, ids);
+  const csv = T.patchCsv(ids, rgb, xyz, fitted, [96.4212, 100, 82.5188], r.evaluation.loo_XYZ);
   assert.equal(csv.trim().split('\n').length, 25);
 });
 
 test('bad input reaches JS as coded errors', async () => {
   const T = await loadTristim();
   const { rgb, xyz, ids } = passport();
-  throwsCode(assert, () => T.fitModel(rgb, xyz.subarray(0, 69), ids, { model: 'matrix-3x3' }), 'PATCH_MISMATCH');
-  throwsCode(assert, () => T.fitModel(rgb, xyz, ids.slice(1), { model: 'matrix-3x3' }), 'PATCH_MISMATCH');
-  throwsCode(assert, () => T.fitModel(rgb, xyz, ids, { model: 'nope' }), 'UNKNOWN_ID');
-  throwsCode(assert, () => T.fitModel(rgb, xyz, ids, { model: 'Cheung2004-35' }), 'TOO_FEW_PATCHES');
+  throwsCode(assert, () => fitModel(T, rgb, xyz.subarray(0, 69), ids, { model: 'matrix-3x3' }), 'PATCH_MISMATCH');
+  throwsCode(assert, () => fitModel(T, rgb, xyz, ids.slice(1), { model: 'matrix-3x3' }), 'PATCH_MISMATCH');
+  throwsCode(assert, () => fitModel(T, rgb, xyz, ids, { model: 'nope' }), 'UNKNOWN_ID');
+  throwsCode(assert, () => fitModel(T, rgb, xyz, ids, { model: 'Cheung2004-35' }), 'TOO_FEW_PATCHES');
   const nan = rgb.slice();
   nan[4] = NaN;
-  throwsCode(assert, () => T.fitModel(nan, xyz, ids, { model: 'matrix-3x3' }), 'NON_FINITE');
+  throwsCode(assert, () => fitModel(T, nan, xyz, ids, { model: 'matrix-3x3' }), 'NON_FINITE');
   const neg = xyz.slice();
   neg[5] = -1;
-  throwsCode(assert, () => T.fitModel(rgb, neg, ids, { model: 'matrix-3x3' }), 'NEGATIVE_VALUE');
-  throwsCode(assert, () => T.fitModel(rgb, xyz, ids, { model: 'matrix-3x3', objective: 'magic' }), 'UNKNOWN_ID');
-  const good = T.fitModel(rgb, xyz, ids, { model: 'matrix-3x3', loo: false }).profile;
+  throwsCode(assert, () => fitModel(T, rgb, neg, ids, { model: 'matrix-3x3' }), 'NEGATIVE_VALUE');
+  throwsCode(assert, () => fitModel(T, rgb, xyz, ids, { model: 'matrix-3x3', objective: 'magic' }), 'UNKNOWN_ID');
+  const good = fitModel(T, rgb, xyz, ids, { model: 'matrix-3x3' }, { leave_one_out: false }).profile;
   throwsCode(assert, () => T.evaluateProfile(good.replace('"version": 1', '"version": 7'), rgb, xyz, ids), 'PROFILE_VERSION');
   throwsCode(assert, () => T.evaluateProfile('{"format": "tristim-profile", "version": 1}', rgb, xyz, ids), 'PROFILE_INVALID');
   throwsCode(assert, () => T.exportIcc('not json'), 'PROFILE_INVALID');
@@ -140,20 +146,20 @@ test('bad input reaches JS as coded errors', async () => {
 test('applyProfile on a decoded RAW gives an XYZ image of the RAW size', async () => {
   const T = await loadTristim();
   const { rgb, xyz, ids } = passport();
-  const r = T.fitModel(rgb, xyz, ids, { model: 'matrix-3x3', loo: false });
+  const r = fitModel(T, rgb, xyz, ids, { model: 'matrix-3x3' }, { leave_one_out: false });
   const raw = T.decodeRaw(readShared('raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng'));
   try {
     const out = T.applyProfile(r.profile, raw);
     assert.equal(out.width, raw.width());
     assert.equal(out.height, raw.height());
-    assert.ok(out.XYZ instanceof Float32Array);
-    assert.equal(out.XYZ.length, raw.width() * raw.height() * 3);
+    assert.ok(out.pixels instanceof Float32Array);
+    assert.equal(out.pixels.length, raw.width() * raw.height() * 3);
     const lin = raw.linearRGB();
-    const M = r.coefficients;
+    const M = r.evaluation.fit.model.coefficients;
     const i = 3 * (Math.floor(raw.height() / 2) * raw.width() + Math.floor(raw.width() / 2));
     for (let k = 0; k < 3; k++) {
       const want = M[3 * k] * lin[i] + M[3 * k + 1] * lin[i + 1] + M[3 * k + 2] * lin[i + 2];
-      assert.ok(Math.abs(out.XYZ[i + k] - want) < 1e-4 * (1 + Math.abs(want)));
+      assert.ok(Math.abs(out.pixels[i + k] - want) < 1e-4 * (1 + Math.abs(want)));
     }
   } finally {
     raw.delete();

@@ -155,7 +155,7 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
       const rs = window.tristim.session.results;
       const imp = rs[rs.length - 1];
       const orig = rs.find((r) => r.fit.profile === imp.fit.profile && r !== imp);
-      return { sameData: imp.evaluation.sameDataAsTraining, a: Array.from(orig.fit.fitted), b: Array.from(imp.evaluation.estimated), la: orig.fit.metrics.loo?.dE00?.mean, lb: imp.fit.metrics.loo?.dE00?.mean };
+      return { sameData: imp.evaluation.same_data_as_training, a: Array.from(orig.fit.evaluation.fit.fitted), b: Array.from(imp.evaluation.estimated), la: orig.fit.evaluation.loo?.dE00?.mean, lb: imp.fit.evaluation.loo?.dE00?.mean };
     });
     assert.equal(same.sameData, true);
     assert.deepEqual(same.b, same.a);

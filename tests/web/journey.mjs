@@ -21,8 +21,6 @@ export async function waitReady(page, timeout = 60000) {
   await page.waitForSelector('body[data-ready="true"]', { timeout });
 }
 
-export const caps = (page) => page.evaluate(() => window.tristim.engine.caps);
-
 export async function step(page, name) {
   await page.click(`#steps a[data-step="${name}"]`);
   await page.waitForSelector(`#step-${name}:not([hidden])`);

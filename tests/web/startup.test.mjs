@@ -3,7 +3,20 @@
 // (issue 5: "the README's serve command opens with the example chart already sampled and fitted").
 import test from 'node:test';
 import assert from 'node:assert/strict';
-import { openBrowser, screenshot } from './harness.mjs';
+import fs from 'node:fs';
+import path from 'node:path';
+import { openBrowser, screenshot, repoRoot } from './harness.mjs';
+import { loadTristim } from '../wasm/load.mjs';
+
+/// Names of the engine functions the page's code calls (`T.name(`), from web/.
+function engineCalls(dir = path.join(repoRoot, 'web'), out = new Set()) {
+  for (const e of fs.readdirSync(dir, { withFileTypes: true })) {
+    const p = path.join(dir, e.name);
+    if (e.isDirectory()) engineCalls(p, out);
+    else if (p.endsWith('.js')) for (const m of fs.readFileSync(p, 'utf8').matchAll(/\bT\.(\w+)\(/g)) out.add(m[1]);
+  }
+  return [...out];
+}
 import { waitReady, marks, markCounts } from './journey.mjs';
 
 test('first screen: the example is sampled and fitted, engine in a worker, no console error or off-origin request', async () => {
@@ -15,9 +28,10 @@ test('first screen: the example is sampled and fitted, engine in a worker, no co
     assert.match(await page.textContent('#engine-status'), /tristim \d+\.\d+\.\d+ ready/);
     const csp = await page.evaluate(() => document.querySelector('meta[http-equiv="Content-Security-Policy"]')?.content);
     assert.match(csp, /default-src 'self'/);
-    // Every engine function the page calls exists in this build (none is reported "not available").
-    const caps = await page.evaluate(() => window.tristim.engine.caps);
-    assert.deepEqual(Object.keys(caps).filter((f) => !caps[f]), []);
+    // Every engine function the page calls (T.name( in web/) exists in this build.
+    const T = await loadTristim();
+    assert.ok(engineCalls().length > 20, `the scan finds the page's engine calls: ${engineCalls()}`);
+    assert.deepEqual(engineCalls().filter((f) => typeof T[f] !== 'function'), []);
 
     await waitReady(page);
     // Nothing was stored before: this is the example, shown on the Results step.
@@ -43,6 +57,14 @@ test('first screen: the example is sampled and fitted, engine in a worker, no co
       assert.ok(m >= min, `${name}: ${m} marks, expected ≥ ${min} (${JSON.stringify(await markCounts(page, name))})`);
     }
     assert.equal(await page.locator('[data-unavailable]').count(), 0);
+    // The objectives' options forms come from the engine's table: the CIEDE2000 default is its 'auto'.
+    assert.equal(await page.$eval('#step-fit details[data-objective="de2000"] select[data-option="algorithm"]', (s) => s.value), 'auto');
+    assert.equal(await page.$eval('#step-fit details[data-objective="psm"] input[data-option="expansion"]', (i) => i.value), '2');
+    // The session holds the Recipe the selected fit was made with.
+    const recipe = await page.evaluate(() => window.tristim.store.get('recipe'));
+    assert.equal(recipe.sampling.layout.chart, 'passport');
+    assert.equal(recipe.characterisation.objective.method, 'ls');
+    assert.equal(recipe.reference.illuminant, 'D50');
     await screenshot(page, 'first-screen');
     assert.deepEqual(b.problems, []);
 

@@ -1,45 +1,21 @@
-// Node unit tests of the page's pure functions (geometry, pairing, plot data, formats, display).
+// Node unit tests of the page's pure functions (pairing, plot data, formats, display, forms).
+// (Chart layouts, the corner homography and crossed corners are the engine's: tests/wasm.)
 import test from 'node:test';
 import assert from 'node:assert/strict';
-import { squareToQuad, gridCells, isCrossed } from '../../web/lib/geometry.js';
 import { pairData } from '../../web/lib/pairs.js';
-import { flagNames, sampleOut } from '../../web/lib/shapes.js';
 import { deSegments } from '../../web/plots/de_bars.js';
 import { xyFromXYZ, cssColours } from '../../web/plots/common.js';
 import { locusData } from '../../web/plots/xy.js';
 import { xyzScatterData } from '../../web/plots/xyz_scatter.js';
-import { readCube, readIccHeader } from '../../web/lib/formats.js';
-import { renderXYZ } from '../../web/lib/render.js';
-import { cellId } from '../../web/lib/charts.js';
-import { describe as describeModel } from '../../web/methods/index.js';
+import { readCube, readIccHeader } from '../../web/export/formats.js';
+import { renderXYZ } from '../../web/apply/render.js';
+import { describe as describeModel } from '../../web/fit/models/index.js';
+import { defaultChoice, completeChoice } from '../../web/lib/options_form.js';
 
 const close = (a, b, tol = 1e-9) => assert.ok(Math.abs(a - b) <= tol, `${a} vs ${b} (tol ${tol})`);
 
-test('squareToQuad maps the unit square onto the four corners (projective)', () => {
-  const c = [10, 20, 110, 25, 120, 90, 5, 80];
-  const m = squareToQuad(c);
-  [[0, 0], [1, 0], [1, 1], [0, 1]].forEach(([u, v], i) => { const [x, y] = m(u, v); close(x, c[2 * i], 1e-9); close(y, c[2 * i + 1], 1e-9); });
-});
-
-test('gridCells: the 6x4 grid with gaps fills the corners edge to edge', () => {
-  const cells = gridCells([0, 0, 600, 0, 600, 400, 0, 400], 4, 6, 1, 0.14);
-  assert.equal(cells.length, 24);
-  close(cells[0].quad[0][0], 0, 1e-9); close(cells[0].quad[0][1], 0, 1e-9);
-  close(cells[23].quad[2][0], 600, 1e-9); close(cells[23].quad[2][1], 400, 1e-9);
-  const half = gridCells([0, 0, 600, 0, 600, 400, 0, 400], 4, 6, 0.5, 0.14);
-  close(half[0].quad[1][0] - half[0].quad[0][0], (cells[0].quad[1][0] - cells[0].quad[0][0]) / 2, 1e-9);
-  assert.equal(cellId('passport', 3, 5), 'D6');
-  assert.equal(cellId('sg140', 9, 13), 'N10');
-});
-
-test('isCrossed finds self-intersecting corners', () => {
-  assert.equal(isCrossed([0, 0, 10, 0, 10, 10, 0, 10]), false);
-  assert.equal(isCrossed([0, 0, 10, 10, 10, 0, 0, 10]), true);
-});
-
-test('flags in any encoding become word lists; pairing leaves out saturated patches by id', () => {
-  assert.deepEqual(flagNames([['dark', 'nonuniform'], 'saturated', '', 5], 4), [['dark', 'nonuniform'], ['saturated'], [], ['saturated', 'non-uniform']]);
-  const s = sampleOut({ ids: ['A1', 'A2', 'X9'], RGB: [1, 2, 3, 4, 5, 6, 7, 8, 9], flags: [[], ['saturated'], []] });
+test('pairing leaves out saturated patches by id', () => {
+  const s = { ids: ['A1', 'A2', 'X9'], RGB: Float64Array.from([1, 2, 3, 4, 5, 6, 7, 8, 9]), flags: [[], ['saturated'], []] };
   const ref = { ids: ['A2', 'A1'], XYZ: Float64Array.from([20, 21, 22, 10, 11, 12]) };
   const d = pairData(s, ref);
   assert.deepEqual(d.ids, ['A1']);
@@ -87,6 +63,16 @@ test('readers of exports: .cube and ICC header', () => {
   const hd = readIccHeader(icc);
   assert.equal(hd.version, '4.3'); assert.equal(hd.deviceClass, 'scnr'); assert.equal(hd.pcs, 'XYZ');
   assert.throws(() => readIccHeader(new Uint8Array(10)), (e) => e.code === 'PARSE_ERROR');
+});
+
+test('options forms: a MethodChoice from an OptionSpec table, stored choices completed', () => {
+  const info = { id: 'de2000', options: [
+    { name: 'algorithm', type: 'choice', default_text: 'auto', default_number: 0, choices: ['auto', 'lm'] },
+    { name: 'rms', type: 'boolean', default_number: 0, default_text: '' },
+    { name: 'max_evaluations', type: 'integer', default_number: 0, default_text: '' }] };
+  assert.deepEqual(defaultChoice(info), { method: 'de2000', parameters: { rms: 0, max_evaluations: 0 }, settings: { algorithm: 'auto' } });
+  const stored = { method: 'de2000', parameters: { rms: 1, gone: 3 }, settings: {} };
+  assert.deepEqual(completeChoice(info, stored), { method: 'de2000', parameters: { rms: 1, max_evaluations: 0 }, settings: { algorithm: 'auto' } });
 });
 
 test('model descriptors group the engine ids by family', () => {

@@ -8,18 +8,9 @@ export class Engine extends EventTarget {
     super();
     this.generation = 0;
     this.client = new EngineClient();
-    this.caps = null;
   }
 
   call(type, args, opts) { return this.client.call(type, args, opts); }
-
-  /// Which engine functions exist in this build: {referenceChart: true, fitModel: false, ...}.
-  async capabilities() {
-    this.caps ??= await this.call('capabilities');
-    return this.caps;
-  }
-
-  has(fn) { return !!this.caps?.[fn]; }
 
   /// Stops whatever the worker is doing (pending calls reject with code CANCELLED) and starts a
   /// new worker.

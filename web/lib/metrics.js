@@ -1,18 +1,8 @@
-// Reads summary errors out of a fit result, whatever nesting the engine uses:
-// set = 'training' | 'loo' | 'heldOut'; stat = 'mean' | 'median' | 'p95' | 'max' | 'rms'.
-import { pick } from './perpatch.js';
-
-const SETS = {
-  training: ['training', 'train', 'metrics.training', 'metrics.train'],
-  loo: ['loo', 'leaveOneOut', 'looCV', 'metrics.loo', 'metrics.leaveOneOut', 'crossValidation'],
-  heldOut: ['heldOut', 'held_out', 'test', 'metrics.heldOut'],
-};
-
+// Summary errors of a result (the engine's Metrics): set = 'training' | 'loo' | 'heldOut';
+// stat = 'mean' | 'median' | 'p95' | 'max' | 'rms' (CIEDE2000).
 export function metric(result, set, stat = 'mean') {
-  const src = { ...(result.fit ?? {}), ...(set === 'heldOut' && result.heldOut ? { heldOut: result.heldOut } : {}) };
-  const paths = [];
-  for (const s of SETS[set]) paths.push(`${s}.dE2000.${stat}`, `${s}.CIE2000.${stat}`, `${s}.dE00.${stat}`, `${s}.${stat}`);
-  const v = pick(src, ...paths);
+  const m = set === 'heldOut' ? result.heldOut : result.fit?.evaluation?.[set];
+  const v = m?.dE00?.[stat];
   return typeof v === 'number' ? v : NaN;
 }
 

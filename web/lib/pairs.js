@@ -6,7 +6,7 @@ export function pairData(sample, reference, { exclude = (f) => f.includes('satur
   sample.ids.forEach((id, i) => {
     const j = refIndex.get(id);
     if (j === undefined) { missing.push(id); return; }
-    if (exclude(sample.flagNames?.[i] ?? [])) { excluded.push({ id, flags: sample.flagNames[i] }); return; }
+    if (exclude(sample.flags?.[i] ?? [])) { excluded.push({ id, flags: sample.flags[i] }); return; }
     ids.push(id);
     rgb.push(sample.RGB[3 * i], sample.RGB[3 * i + 1], sample.RGB[3 * i + 2]);
     xyz.push(reference.XYZ[3 * j], reference.XYZ[3 * j + 1], reference.XYZ[3 * j + 2]);

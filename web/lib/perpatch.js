@@ -4,37 +4,28 @@
 // (`display`, added by the worker's fit/evaluate handlers from XYZToLab / XYZToDisplaySRGB).
 import { cssColours } from '../plots/common.js';
 
-/// First defined value among candidate paths ('a.b.c') of obj.
-export function pick(obj, ...paths) {
-  for (const p of paths) {
-    let v = obj;
-    for (const k of p.split('.')) { v = v?.[k]; if (v == null) break; }
-    if (v != null) return v;
-  }
-  return undefined;
-}
-
+/// A result's patches: {rows, n, white}. result.fit.evaluation is the engine's ModelEvaluation
+/// (fitted profiles) or the same shape from evaluateProfile (imported ones); result.fit.display
+/// holds the engine's L*a*b* and display sRGB (the worker's fit/evaluate handlers).
 export function perPatch(result, reference) {
-  const ev = result.evaluation ?? {};
-  const fit = result.fit ?? {};
+  const ev = result.fit.evaluation;
   const ids = Array.from(result.ids);
   const n = ids.length;
-  const refXYZ = result.xyz;
-  const estXYZ = pick(ev, 'estimated') ?? pick(fit, 'fitted');
-  const patches = pick(ev, 'metrics.patches') ?? pick(fit, 'metrics.training.patches') ?? {};
-  const disp = (pick(ev, 'estimated') ? ev.display : fit.display) ?? null;
-  const white = disp?.white ?? ev.white ?? result.options?.white ?? reference?.white;
+  const refXYZ = result.xyz, estXYZ = ev.fit.fitted;
+  const patches = ev.training.patches;
+  const disp = result.fit.display;
+  const white = result.white;
   const refIndex = new Map(reference?.ids.map((id, i) => [id, i]) ?? []);
   const refColour = reference ? cssColours(reference.sRGB) : [];
-  const estColour = disp ? cssColours(disp.estSRGB) : [];
+  const estColour = cssColours(disp.estSRGB);
   const num = (a, i) => (a && a[i] != null ? a[i] : NaN);
   const rows = ids.map((id, i) => {
     const g = (a, k) => (a ? a[3 * i + k] : NaN);
     const ref = [g(refXYZ, 0), g(refXYZ, 1), g(refXYZ, 2)];
     const est = [g(estXYZ, 0), g(estXYZ, 1), g(estXYZ, 2)];
     // CIELAB against the fit's white, computed by the engine.
-    const [L, a, b] = disp ? [g(disp.refLab, 0), g(disp.refLab, 1), g(disp.refLab, 2)] : [NaN, NaN, NaN];
-    const [Le, ae, be] = disp ? [g(disp.estLab, 0), g(disp.estLab, 1), g(disp.estLab, 2)] : [NaN, NaN, NaN];
+    const [L, a, b] = [g(disp.refLab, 0), g(disp.refLab, 1), g(disp.refLab, 2)];
+    const [Le, ae, be] = [g(disp.estLab, 0), g(disp.estLab, 1), g(disp.estLab, 2)];
     return {
       id, i,
       X: ref[0], Y: ref[1], Z: ref[2], Xe: est[0], Ye: est[1], Ze: est[2],
@@ -48,10 +39,7 @@ export function perPatch(result, reference) {
     const sx = r.X + r.Y + r.Z, se = r.Xe + r.Ye + r.Ze;
     r.x = r.X / sx; r.y = r.Y / sx; r.xe = r.Xe / se; r.ye = r.Ye / se;
   }
-  return {
-    rows, n, white,
-    has: { estXYZ: !!estXYZ, Lab: !!disp, dE: !!patches.dE00, parts: !!(patches.dL && patches.dC && patches.dH) },
-  };
+  return { rows, n, white };
 }
 
 /// Hover text for a patch row.

@@ -77,12 +77,6 @@ export function setOptions(s, options, value) {
   if (value != null && options.some((o) => (typeof o === 'string' ? o : o.value) === value)) s.value = value;
 }
 
-/// A notice that a feature's engine function is missing; never a fake result.
-export function unavailable(what, fn) {
-  return h('p', { class: 'unavailable', dataset: { unavailable: fn } },
-    `${what} is not available yet: this build of the colour engine has no ${fn}().`);
-}
-
 /// A progress bar with a label, updated by progress messages {fraction, stage}.
 export function progressBar(label) {
   const bar = h('progress', { max: 1, value: 0, 'aria-label': label });

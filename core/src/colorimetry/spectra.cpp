@@ -158,6 +158,14 @@ const std::map<std::string, std::string>& illuminant_files() {
 
 std::vector<std::string> illuminant_ids() { return {"A", "D50", "D55", "D65", "D75", "E", "F2", "F11"}; }
 
+std::vector<IlluminantInfo> list_illuminants() {
+  const std::map<std::string, std::string> names = {{"A", "A (tungsten, 2856 K)"}, {"E", "E (equal energy)"},
+                                                    {"F2", "F2 (cool white fluorescent)"}, {"F11", "F11 (TL84-type fluorescent)"}};
+  std::vector<IlluminantInfo> out;
+  for (const auto& id : illuminant_ids()) out.push_back({id, names.count(id) ? names.at(id) : "CIE " + id});
+  return out;
+}
+
 SpectralData illuminant_spd(std::string_view id_in) {
   std::string id;
   for (char c : id_in) id.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));

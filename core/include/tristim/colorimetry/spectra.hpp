@@ -78,6 +78,11 @@ SpectralLocus spectral_locus(Observer observer);
 /// Ids of the built-in illuminants: A, D50, D55, D65, D75, E, F2, F11. (Any "D<CCT>", e.g.
 /// "D4000", also works: CIE daylight at that correlated colour temperature.)
 std::vector<std::string> illuminant_ids();
+/// The same with a name for pickers ("F11 (TL84-type fluorescent)").
+struct IlluminantInfo {
+  std::string id, name;
+};
+std::vector<IlluminantInfo> list_illuminants();
 
 /// Relative SPD of a built-in illuminant (one column named after it), as tabulated; or, for an
 /// id "D<T>" with 4000 <= T <= 25000 that is not tabulated, daylight_spd(T). Error(UnknownId).

@@ -1,8 +1,8 @@
 // Step 5: apply the selected profile to the whole RAW (the chart, or another RAW of a scene):
 // the XYZ image rendered to sRGB, a false-colour map of Y with a named CVD-safe colour map and
 // its legend, and X, Y, Z, x, y, L*a*b* under the pointer.
-import { h, field, select, showError, clearError, unavailable, progressBar, fmt, fileBytes } from '../lib/ui.js';
-import { cameraOf } from './fit.js';
+import { h, field, select, showError, clearError, progressBar, fmt, fileBytes } from '../lib/ui.js';
+import { cameraOf } from '../fit/view.js';
 
 const MAPS = {
   viridis: { label: 'viridis', interp: () => globalThis.d3.interpolateViridis },
@@ -32,7 +32,6 @@ export function mount(section, app) {
   applyBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'apply-error' });
   applyBtn.setAttribute('aria-describedby', 'apply-error');
   applyBtn.after(applyBtn._errorSlot);
-  if (!engine.has('applyProfileToImage')) { section.insertBefore(unavailable('Applying a profile to an image', 'applyProfileToImage'), which); applyBtn.disabled = true; }
 
   let sceneBytes = null;
   let sceneMeta = null;
@@ -124,7 +123,7 @@ export function mount(section, app) {
     const t0 = performance.now();
     try {
       const L = lut();
-      const white = r.options?.white ?? r.evaluation?.white ?? app.derived.reference?.white ?? [96.42, 100, 82.49];
+      const white = r.white;
       const out = await engine.call('applyRender', { profile: r.fit.profile, slot, white, lut: L.buffer, maxSide: 1400 }, { transfer: [L.buffer], onProgress: progress.update });
       draw(srgbCanvas, out, out.srgb);
       draw(yCanvas, out, out.ymap);
@@ -144,7 +143,7 @@ export function mount(section, app) {
     } catch (e) {
       if (e.code !== 'CANCELLED') showError(applyBtn, e, 'Apply');
       return null;
-    } finally { progress.done(); applyBtn.disabled = !engine.has('applyProfileToImage'); }
+    } finally { progress.done(); applyBtn.disabled = false; }
   }
   applyBtn.addEventListener('click', run);
 

@@ -1,13 +1,5 @@
-// Export formats the page writes itself (per-patch CSV) and light readers used to load exports
-// back (.cube header and size, ICC header), so a user can check a file before trusting it.
-export function perPatchCsv(rows, result) {
-  const f = (v, d = 4) => (Number.isFinite(v) ? v.toFixed(d) : '');
-  const head = 'patch,R,G,B,X,Y,Z,X_est,Y_est,Z_est,L,a,b,L_est,a_est,b_est,dE2000,dL,dC,dH';
-  const lines = rows.map((r) => [r.id, f(result.rgb[3 * r.i], 3), f(result.rgb[3 * r.i + 1], 3), f(result.rgb[3 * r.i + 2], 3),
-    f(r.X), f(r.Y), f(r.Z), f(r.Xe), f(r.Ye), f(r.Ze), f(r.L), f(r.a), f(r.b), f(r.Le), f(r.ae), f(r.be), f(r.dE), f(r.dL), f(r.dC), f(r.dH)].join(','));
-  return `${head}\n${lines.join('\n')}\n`;
-}
-
+// Light readers used to load exports back (.cube header and size, ICC header), so a user can
+// check a file before trusting it. (Every file the page writes comes from the engine.)
 /// .cube (Adobe/Resolve 3D LUT): returns {size, title, entries, domainMin, domainMax} or throws.
 export function readCube(text) {
   let size = 0, title = '', entries = 0, domainMin = [0, 0, 0], domainMax = [1, 1, 1];

@@ -1,8 +1,7 @@
 // Step 2: the chart RAW (plus optional dark frame and flat field), decoded in the worker; the
 // preview with four draggable corner handles and the patch grid; the per-patch table with flags,
 // re-sampled as the corners move. Emits 'sample'.
-import { h, field, select, showError, clearError, unavailable, progressBar, fmt, fileBytes } from '../lib/ui.js';
-import { LAYOUTS } from '../lib/charts.js';
+import { h, field, select, showError, clearError, progressBar, fmt, fileBytes } from '../lib/ui.js';
 import { CornerEditor } from './corners.js';
 import { patchTable } from './patch_table.js';
 
@@ -37,18 +36,19 @@ export function mount(section, app) {
     const f = app.session['files.flat'];
     if (f && await decode('flat', f)) await resample();
   });
-  const layoutSel = select(Object.entries(LAYOUTS).map(([value, l]) => ({ value, label: l.label })), app.session.layout?.chart ?? 'passport');
+  // The layouts the engine has (chart_layout ids), named after the built-in charts.
+  const chartName = (id) => app.catalog.charts.find((c) => c.id === id)?.name ?? (id === 'custom' ? 'Custom grid (rows × columns)' : id);
+  const layoutSel = select(Object.keys(app.catalog.layouts).map((value) => ({ value, label: chartName(value) })), app.session.layout?.chart ?? 'passport');
   const rowsIn = h('input', { type: 'number', min: 1, max: 30, value: app.session.layout?.rows ?? 4 });
   const colsIn = h('input', { type: 'number', min: 1, max: 30, value: app.session.layout?.columns ?? 6 });
   const areaIn = h('input', { type: 'number', min: 0.05, max: 1, step: 0.05, value: app.session.sampleOptions?.area ?? 0.5 });
-  const L0 = app.session.layout ?? {};
-  const gapIn = h('input', { type: 'number', min: 0, max: 2, step: 0.01, value: L0.gap ?? 0 });
-  const marginIns = ['left', 'top', 'right', 'bottom'].map((side, k) => h('input', { type: 'number', min: 0, max: 0.45, step: 0.01, value: L0.margins?.[k] ?? 0, 'aria-label': `Margin ${side}` }));
+  const gapIn = h('input', { type: 'number', min: 0, max: 2, step: 0.01, value: 0 });
+  const marginIns = ['left', 'top', 'right', 'bottom'].map((side) => h('input', { type: 'number', min: 0, max: 0.45, step: 0.01, value: 0, 'aria-label': `Margin ${side}` }));
   const customBox = h('span', { class: 'custom-grid' }, field('Rows', rowsIn), field('Columns', colsIn),
     field('Gap (× patch size)', gapIn),
     h('fieldset', { class: 'margins' }, h('legend', {}, 'Margins inside the corners (fraction of width / height: left, top, right, bottom)'), marginIns));
   const meta = h('p', { class: 'meta', 'aria-live': 'polite' });
-  const editor = new CornerEditor({ onChange: (c, final) => cornersChanged(c, final) });
+  const editor = new CornerEditor({ onChange: (c, final) => cornersChanged(c, final), grid: (layout, corners) => engine.call('grid', { layout, corners }) });
   const cornerErr = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'corners-error' });
   editor.el.setAttribute('aria-describedby', 'corners-error');
   editor.el._errorSlot = cornerErr;
@@ -64,11 +64,6 @@ export function mount(section, app) {
     h('p', { class: 'hint' }, 'Drag the four corner handles onto the chart\'s outer patch corners (A1 top-left). '
       + 'With the keyboard: Tab to a handle, arrow keys move it 1 pixel (Shift: 10).'),
     h('div', { class: 'images-layout' }, h('div', {}, editor.el, cornerErr), h('div', {}, sampleSummary, tableBox)));
-  if (!engine.has('decodeRaw')) {
-    fileRow.after(unavailable('Decoding RAW files', 'decodeRaw'));
-    for (const i of Object.values(inputs)) i.disabled = true;
-  }
-  if (!engine.has('sampleChart')) tableBox.append(unavailable('Sampling the chart patches', 'sampleChart'));
 
   // Drag and drop onto the zone (or anywhere on this step) sets the chart RAW.
   for (const ev of ['dragover', 'dragenter']) section.addEventListener(ev, (e) => { e.preventDefault(); drop.classList.add('over'); });
@@ -79,23 +74,16 @@ export function mount(section, app) {
     if (f) setFile('chart', f);
   });
 
+  /// The engine's LayoutOptions for the chosen layout.
   function layoutOptions() {
     const chart = layoutSel.value;
-    const o = { chart };
-    if (chart === 'custom') {
-      o.rows = Number(rowsIn.value); o.columns = Number(colsIn.value); o.gap = Number(gapIn.value);
-      const m = marginIns.map((i) => Number(i.value));
-      if (m.some((v) => v > 0)) o.margins = m;
-    }
-    return o;
-  }
-  function gridShape() {
-    const l = layoutOptions();
-    return l.chart === 'custom' ? { rows: l.rows, cols: l.columns, gap: l.gap } : LAYOUTS[l.chart] ?? LAYOUTS.passport;
+    if (chart !== 'custom') return { chart };
+    const [margin_left, margin_top, margin_right, margin_bottom] = marginIns.map((i) => Number(i.value));
+    return { chart, rows: Number(rowsIn.value), columns: Number(colsIn.value), gap: Number(gapIn.value), margin_left, margin_top, margin_right, margin_bottom };
   }
   function syncLayout() {
     customBox.hidden = layoutSel.value !== 'custom';
-    editor.setGrid({ ...gridShape(), area: Number(areaIn.value), layout: layoutSel.value });
+    editor.setLayout(layoutOptions());
   }
   for (const el of [layoutSel, rowsIn, colsIn, areaIn, gapIn, ...marginIns]) {
     el.addEventListener('change', () => {
@@ -147,14 +135,13 @@ export function mount(section, app) {
 
   /// Decodes {name, bytes} into the worker's slot; shows progress and errors next to the input.
   async function decode(slot, file) {
-    if (!engine.has('decodeRaw')) return false;
     progress.start(`Decoding ${file.name}…`);
     const t0 = performance.now();
     try {
       // The page keeps its own bytes: the worker gets copies (transferred).
       const copies = (file.list ?? [file]).map((f) => new Uint8Array(f.bytes).slice().buffer);
       const msg = file.list ? { slot, bytesList: copies } : { slot, bytes: copies[0] };
-      if (slot === 'flat') msg.flatOptions = { mode: flatMode.value };
+      if (slot === 'flat') msg.flatMode = flatMode.value;
       const r = await engine.call('decode', msg, { transfer: copies, onProgress: progress.update });
       decodedGen[slot] = engine.generation;
       names[slot].textContent = `${file.name} — ${r.width}×${r.height} (decoded in ${((performance.now() - t0) / 1000).toFixed(2)} s)`
@@ -185,7 +172,7 @@ export function mount(section, app) {
   function calibrationText(slot, c) {
     const d = c?.dark, f = c?.flat;
     if (slot === 'dark' && d) return `; dark: ${d.frames} frame(s), mean ${d.mean.map((v) => fmt(v, 1)).join(' / ')} DN, noise ${d.noise.map((v) => fmt(v, 1)).join(' / ')} DN`;
-    if (slot === 'flat' && f) return f.mode === 'radial' ? `; radial fall-off p1 ${fmt(f.p1, 4)}, p2 ${fmt(f.p2, 4)}, p3 ${fmt(f.p3, 4)}, rms residual ${fmt(f.rmsResidual, 4)}` : `; flat field (${f.mode}) applied`;
+    if (slot === 'flat' && f) return f.mode === 'radial' ? `; radial fall-off p1 ${fmt(f.p1, 4)}, p2 ${fmt(f.p2, 4)}, p3 ${fmt(f.p3, 4)}, rms residual ${fmt(f.rms_residual, 4)}` : `; flat field (${f.mode}) applied`;
     return '';
   }
   const fmtShutter = (t) => (t > 0 && t < 1 ? `1/${Math.round(1 / t)}` : `${t}`);
@@ -212,7 +199,7 @@ export function mount(section, app) {
 
   async function resample() {
     const seq = ++sampleSeq;
-    if (!engine.has('sampleChart') || !app.session['files.chart']) return null;
+    if (!app.session['files.chart']) return null;
     if (!(await ensureDecoded())) {
       console.warn(`resample ${seq}: the chart image is not decoded in this worker`);
       return null;
@@ -234,7 +221,7 @@ export function mount(section, app) {
     } catch (e) {
       if (seq !== sampleSeq || e.code === 'CANCELLED') return null;
       showError(editor.el, e, 'Corners');
-      editor.setSample(null);
+      editor.setSample(null, e.code);
       if (app.derived.sample) {
         tableBox.classList.add('stale');
         sampleSummary.textContent = 'These corners were refused; the table shows the last good sampling.';
@@ -245,7 +232,7 @@ export function mount(section, app) {
 
   function renderTable(s) {
     tableBox.classList.remove('stale');
-    const flagged = s.flagNames.filter((f) => f.length).length;
+    const flagged = s.flags.filter((f) => f.length).length;
     sampleSummary.textContent = `${s.ids.length} patches sampled; ${flagged} flagged.`;
     tableBox.replaceChildren(patchTable(s));
   }
@@ -253,7 +240,13 @@ export function mount(section, app) {
   /// Restores the session's files and corners (or the example on a first visit).
   async function restore(fresh) {
     const L = app.session.layout;
-    if (L) { layoutSel.value = L.chart; if (L.rows) rowsIn.value = L.rows; if (L.columns) colsIn.value = L.columns; }
+    if (L) {
+      layoutSel.value = L.chart;
+      if (L.rows) rowsIn.value = L.rows;
+      if (L.columns) colsIn.value = L.columns;
+      if (L.gap >= 0) gapIn.value = L.gap;
+      ['margin_left', 'margin_top', 'margin_right', 'margin_bottom'].forEach((k, i) => { if (L[k]) marginIns[i].value = L[k]; });
+    }
     syncLayout();
     if (fresh) await loadExample();
     for (const slot of Object.keys(SLOTS)) {
@@ -266,7 +259,6 @@ export function mount(section, app) {
   }
 
   async function loadExample() {
-    if (!engine.has('decodeRaw')) return;
     try {
       const cfg = await (await fetch('examples/passport.json')).json();
       const res = await fetch(`examples/${cfg.file}`);

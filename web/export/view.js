@@ -1,13 +1,12 @@
 // Step 6: download the selected profile as JSON, the per-patch CSV, an ICC profile and a .cube
 // LUT; load any of them back (a profile JSON becomes a result again, evaluated on this chart).
-import { h, field, showError, clearError, unavailable, download } from '../lib/ui.js';
-import { perPatch } from '../lib/perpatch.js';
-import { perPatchCsv, readCube, readIccHeader } from '../lib/formats.js';
+import { h, field, showError, clearError, download } from '../lib/ui.js';
+import { readCube, readIccHeader } from './formats.js';
 
 export function mount(section, app) {
   const { engine } = app;
   const which = h('p', { class: 'summary' });
-  const btn = (label, fn, needs) => {
+  const btn = (label, fn) => {
     const b = h('button', { type: 'button', dataset: { export: label } }, label);
     b._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: `export-${label.replace(/\W+/g, '-')}-error` });
     b.setAttribute('aria-describedby', b._errorSlot.id);
@@ -17,21 +16,19 @@ export function mount(section, app) {
       if (!r) { showError(b, Object.assign(new Error('no profile yet'), { code: 'NO_PROFILE' }), label); return; }
       try { await fn(r); } catch (e) { showError(b, e, label); }
     });
-    const wrap = h('div', { class: 'field' }, b, b._errorSlot);
-    if (needs && !engine.has(needs)) { b.disabled = true; wrap.append(unavailable(label, needs)); }
-    return wrap;
+    return h('div', { class: 'field' }, b, b._errorSlot);
   };
   const base = (r) => `tristim-${r.modelId}-${r.objective}`.replace(/[^\w.-]+/g, '_');
   const exports = h('div', { class: 'controls' },
     btn('Profile JSON', (r) => download(`${base(r)}.json`, r.fit.profile, 'application/json')),
     btn('Per-patch CSV', async (r) => {
-      const text = engine.has('exportPatchCsv')
-        ? (await engine.call('exportPatchCsv', { profile: r.fit.profile, rgb: r.rgb, xyz: r.xyz, ids: r.ids })).text
-        : perPatchCsv(perPatch(r, app.derived.reference).rows, r);
+      // The engine's per-patch CSV: estimates, every ΔE, and the leave-one-out estimates when there are.
+      const e = r.fit.evaluation;
+      const { text } = await engine.call('patchCsv', { ids: r.ids, rgb: r.rgb, xyz: r.xyz, estimated: e.fit.fitted, white: r.white, loo: e.loo_XYZ ?? [] });
       download(`${base(r)}-patches.csv`, text, 'text/csv');
     }),
-    btn('ICC profile', async (r) => { const { bytes } = await engine.call('exportIcc', { profile: r.fit.profile }); download(`${base(r)}.icc`, bytes, 'application/vnd.iccprofile'); }, 'exportIcc'),
-    btn('.cube LUT', async (r) => { const { text } = await engine.call('exportCube', { profile: r.fit.profile, size: 33 }); download(`${base(r)}.cube`, text, 'text/plain'); }, 'exportCube'));
+    btn('ICC profile', async (r) => { const { bytes } = await engine.call('exportIcc', { profile: r.fit.profile }); download(`${base(r)}.icc`, bytes, 'application/vnd.iccprofile'); }),
+    btn('.cube LUT', async (r) => { const { text } = await engine.call('exportCube', { profile: r.fit.profile, size: 33 }); download(`${base(r)}.cube`, text, 'text/plain'); }));
 
   const importInput = h('input', { type: 'file', accept: '.json,.csv,.icc,.icm,.cube' });
   const imported = h('div', { class: 'import-result', 'aria-live': 'polite' });
@@ -85,21 +82,23 @@ export function mount(section, app) {
     const any = (app.session.results ?? [])[0];
     const data = any ?? null;
     if (!data) throw Object.assign(new Error('fit once (step 3) so there is chart data to evaluate the profile on'), { code: 'NO_DATA' });
-    if (!engine.has('evaluateProfile')) throw Object.assign(new Error('this build of the colour engine has no evaluateProfile()'), { code: 'NOT_AVAILABLE' });
     const evaluation = await engine.call('evaluate', { profile: text, rgb: data.rgb, xyz: data.xyz, ids: data.ids });
-    const modelId = evaluation.model ?? json.model?.id ?? String(json.model ?? 'imported');
-    const objective = evaluation.objective ?? json.objective ?? '';
-    const modelLabel = (app.catalog.models ?? []).find((m) => m.id === modelId)?.label ?? modelId;
+    const { profile } = evaluation;
+    const modelLabel = app.catalog.models.find((m) => m.id === profile.model.id)?.label ?? profile.model.id;
     // Training errors: the profile evaluated on the current chart; leave-one-out: as stored in the
-    // profile (from its own training data; the same data when sameDataAsTraining).
+    // profile (from its own training data; the same data when same_data_as_training).
+    const same = evaluation.same_data_as_training;
     const fit = {
       profile: text,
-      metrics: { training: evaluation.metrics, loo: evaluation.sameDataAsTraining ? json.metrics?.loo ?? null : null },
-      status: evaluation.sameDataAsTraining ? 'imported' : 'imported (other training data)',
-      message: '', conditionNumber: json.fit?.condition_number,
+      display: evaluation.display,
+      evaluation: {
+        fit: { status: same ? 'imported' : 'imported (other training data)', message: '', condition_number: profile.condition_number, fitted: evaluation.estimated },
+        training: evaluation.metrics,
+        loo: same ? json.metrics?.loo ?? null : null,
+      },
     };
-    const result = { key: `imported|${f.name}|${Date.now()}`, modelId, objective, label: `${modelLabel} · ${objective} (imported ${f.name})`,
-      ids: data.ids, rgb: data.rgb, xyz: data.xyz, options: { white: evaluation.white }, fit, evaluation };
+    const result = { key: `imported|${f.name}|${Date.now()}`, modelId: profile.model.id, objective: profile.objective,
+      label: `${modelLabel} · ${profile.objective} (imported ${f.name})`, ids: data.ids, rgb: data.rgb, xyz: data.xyz, white: profile.white, fit, evaluation };
     const results = [...(app.session.results ?? []), result];
     await app.save('results', results);
     await app.save('selected', result.key);

@@ -1,17 +1,18 @@
 // Step 3: pick any number of models x objectives and fit them in the worker, with progress and a
 // cancel button (which terminates the worker; the page re-sends the RAW bytes it keeps).
-import { h, field, showError, clearError, unavailable, progressBar } from '../lib/ui.js';
-import { options as listOptions } from '../lib/catalog.js';
-import { describe, FAMILIES, DEFAULT_MODELS } from '../methods/index.js';
+import { h, field, showError, clearError, progressBar } from '../lib/ui.js';
+import { describe, FAMILIES, DEFAULT_MODELS } from './models/index.js';
 import { pairData } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
-import { OBJECTIVE_OPTIONS } from '../methods/objectives.js';
+import { optionsForm, completeChoice } from '../lib/options_form.js';
 
 export function mount(section, app) {
   const { engine } = app;
-  const models = (app.catalog.models ?? []).map(describe);
-  const objectives = listOptions(app.catalog.objectives);
+  const models = app.catalog.models.map(describe);
+  const objectives = app.catalog.objectives;   // the engine's objective table (MethodInfo rows)
   const choice = (app.session.fitChoice ??= defaultChoice(models, objectives));
+  // Each objective's options as a MethodChoice, completed from the table's defaults.
+  choice.objectiveChoices = Object.fromEntries(objectives.map((o) => [o.id, completeChoice(o, choice.objectiveChoices?.[o.id])]));
 
   const modelBox = h('fieldset', { class: 'checklist' }, h('legend', {}, 'Models'));
   const families = [...new Set(models.map((m) => m.family))];
@@ -20,29 +21,23 @@ export function mount(section, app) {
     const about = FAMILIES.find((f) => f.family === fam)?.about;
     if (about) group.append(h('small', { class: 'hint' }, about));
     for (const m of models.filter((x) => x.family === fam)) {
-      const opts = (choice.options[m.id] ??= { ...m.defaults });
       const cb = h('input', { type: 'checkbox', value: m.id, checked: choice.models.includes(m.id), dataset: { model: m.id } });
       cb.id = `model-${m.id}`;
       cb.addEventListener('change', () => { toggle(choice.models, m.id, cb.checked); persist(); });
-      const form = m.form(opts, (o) => { choice.options[m.id] = o; persist(); });
       group.append(h('div', { class: 'check', title: m.about }, cb, h('label', { for: cb.id }, m.label),
-        h('code', { class: 'model-id' }, m.id), m.duplicateOf ? h('small', { class: 'hint' }, `same span as ${m.duplicateOf}`) : null, form));
+        h('code', { class: 'model-id' }, m.id), m.duplicate_of ? h('small', { class: 'hint' }, `same span as ${m.duplicate_of}`) : null));
     }
     modelBox.append(group);
   }
   const objBox = h('fieldset', { class: 'checklist' }, h('legend', {}, 'Objectives'));
   for (const o of objectives) {
-    const cb = h('input', { type: 'checkbox', value: o.value, checked: choice.objectives.includes(o.value), dataset: { objective: o.value } });
-    cb.id = `objective-${o.value}`;
-    cb.addEventListener('change', () => { toggle(choice.objectives, o.value, cb.checked); persist(); });
+    const cb = h('input', { type: 'checkbox', value: o.id, checked: choice.objectives.includes(o.id), dataset: { objective: o.id } });
+    cb.id = `objective-${o.id}`;
+    cb.addEventListener('change', () => { toggle(choice.objectives, o.id, cb.checked); persist(); });
     objBox.append(h('div', { class: 'check' }, cb, h('label', { for: cb.id }, o.label), o.reference ? h('small', { class: 'hint' }, ` ${o.reference}`) : null));
-    const spec = OBJECTIVE_OPTIONS[o.value];
-    if (spec) {
-      choice.objectiveOptions ??= {};
-      const opts = (choice.objectiveOptions[o.value] ??= { ...spec.defaults });
-      const set = (v) => { choice.objectiveOptions[o.value] = v; persist(); };
-      objBox.append(h('details', { class: 'objective-options' }, h('summary', {}, `${o.label}: options`),
-        h('div', { class: 'controls' }, spec.form(opts, (v) => { Object.assign(opts, v); set(opts); }))));
+    if (o.options.length) {
+      objBox.append(h('details', { class: 'objective-options', dataset: { objective: o.id } }, h('summary', {}, `${o.label}: options`),
+        h('div', { class: 'controls' }, optionsForm(o, choice.objectiveChoices[o.id], () => persist()))));
     }
   }
   const excludeCb = h('input', { type: 'checkbox', checked: choice.excludeSaturated !== false });
@@ -57,7 +52,6 @@ export function mount(section, app) {
   const heldClear = h('button', { type: 'button', hidden: true }, 'Remove');
   const heldField = field('Held-out chart (optional): camera RGB per patch, CSV or CGATS', heldInput,
     'Another photograph or chart, e.g. the CSV of `tristim sample`. Its X, Y, Z columns are used when present, otherwise its ids are paired with the reference. Every fit is also evaluated on it.');
-  if (!engine.has('parsePatchFile')) heldInput.disabled = true;
   const runBtn = h('button', { type: 'button', class: 'primary' }, 'Fit selected');
   const cancelBtn = h('button', { type: 'button', disabled: true }, 'Cancel');
   const progress = progressBar('Fitting');
@@ -74,8 +68,6 @@ export function mount(section, app) {
   runBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'fit-error' });
   runBtn.setAttribute('aria-describedby', 'fit-error');
   runBtn.after(cancelBtn, runBtn._errorSlot);
-  if (!engine.has('fitModel')) { section.insertBefore(unavailable('Fitting models', 'fitModel'), dataNote); runBtn.disabled = true; }
-  if (!models.length && engine.has('listModels')) modelBox.append(h('p', {}, 'The engine lists no models.'));
 
   const persist = () => app.save('fitChoice', JSON.parse(JSON.stringify(choice)));
 
@@ -95,13 +87,13 @@ export function mount(section, app) {
   /// The held-out set {name, ids, rgb, xyz} from a patch file, paired with the reference by id.
   async function loadHeldOut(file) {
     const p = await engine.call('parsePatchFile', { text: file.text, fileName: file.name });
-    if (!p.RGB) throw Object.assign(new Error(`${file.name} has no R, G, B columns`), { code: 'MISSING_COLUMN' });
+    if (!p.has_RGB) throw Object.assign(new Error(`${file.name} has no R, G, B columns`), { code: 'MISSING_COLUMN' });
     let xyz = p.XYZ;
     let ids = p.ids, rgb = p.RGB;
-    if (!xyz) {
+    if (!p.has_XYZ) {
       const ref = app.derived.reference;
       if (!ref) throw Object.assign(new Error('no reference to pair the held-out patches with (step 1)'), { code: 'NO_REFERENCE' });
-      const d = pairData({ ids, RGB: rgb, flagNames: [] }, ref);
+      const d = pairData({ ids, RGB: rgb, flags: [] }, ref);
       if (!d.ids.length) throw Object.assign(new Error(`${file.name}: no patch id in common with the reference`), { code: 'PATCH_MISMATCH' });
       ({ ids, rgb, xyz } = d);
     }
@@ -119,7 +111,7 @@ export function mount(section, app) {
   }
   heldInput.addEventListener('change', async () => { const f = heldInput.files[0]; if (f) await setHeldOut({ name: f.name, text: await f.text() }); });
   heldClear.addEventListener('click', () => { heldInput.value = ''; setHeldOut(null); });
-  if (app.session.heldOutFile && engine.has('parsePatchFile')) app.on('reference', function once() { if (!heldOut) setHeldOut(app.session.heldOutFile); });
+  if (app.session.heldOutFile) app.on('reference', function once() { if (!heldOut) setHeldOut(app.session.heldOutFile); });
 
   let running = false;
   cancelBtn.addEventListener('click', () => {
@@ -152,22 +144,19 @@ export function mount(section, app) {
     try {
       for (const [k, { mId, obj }] of jobs.entries()) {
         const m = models.find((x) => x.id === mId) ?? describe(mId);
-        const label = `${m.label} · ${objectives.find((o) => o.value === obj)?.label ?? obj}`;
+        const label = `${m.label} · ${objectives.find((o) => o.id === obj)?.label ?? obj}`;
         progress.update({ fraction: k / jobs.length, stage: `Fitting ${label} (${k + 1} of ${jobs.length})` });
-        const options = { model: mId, objective: obj, ...choice.options[mId], white: ref.white, illuminant: ref.settings.illuminant };
-        if (choice.preserveWhite) options.whitePatch = brightestPatch(data);
-        if (choice.objectiveOptions?.[obj]) options[obj] = { ...choice.objectiveOptions[obj] };
+        const recipe = recipeFor(mId, obj, ref, data);
         try {
           const t1 = performance.now();
-          const fit = await engine.call('fit', { rgb: data.rgb, xyz: data.xyz, ids: data.ids, options });
-          const evaluation = null;   // fitModel already returns the training estimates and per-patch errors
-          let held = null;
-          if (heldOut && engine.has('evaluateProfile')) {
-            const e = await engine.call('evaluate', { profile: fit.profile, rgb: heldOut.rgb, xyz: heldOut.xyz, ids: heldOut.ids });
-            held = { ...e.metrics, set: heldOut.name };
-          }
-          results.push({ key: `${mId}|${obj}|${JSON.stringify(choice.options[mId])}`, modelId: mId, objective: obj, label, options, ids: data.ids, rgb: data.rgb, xyz: data.xyz, fit, evaluation, heldOut: held, referenceText: referenceText(ref), camera: cameraOf(app.derived.image?.metadata) });
-          log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${fit.status && fit.status !== 'ok' ? ` — ${fit.status}: ${fit.message ?? ''}` : ''}`));
+          const { source, settings, data_digest, ...reference } = ref;   // the engine's ReferenceChart
+          const { layout, homography, patches } = app.derived.sample;     // the engine's ChartSample
+          const fit = await engine.call('fit', { recipe, sample: { layout, homography, patches }, reference, heldOut });
+          results.push({ key: `${mId}|${obj}|${JSON.stringify(recipe.characterisation.objective)}`, modelId: mId, objective: obj, label,
+            recipe: fit.recipe, white: fit.recipe.characterisation.lab_white, ids: fit.ids, rgb: fit.linear_RGB, xyz: fit.reference_XYZ,
+            fit, heldOut: fit.held_out ?? null, referenceText: referenceText(ref), camera: cameraOf(app.derived.image?.metadata) });
+          const { status, message } = fit.evaluation.fit;
+          log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}`));
         } catch (e) {
           if (e.code === 'CANCELLED') throw e;
           log.append(h('li', { class: 'error', dataset: { code: e.code } }, `${label}: ${e.message} (${e.code})`));
@@ -177,7 +166,9 @@ export function mount(section, app) {
       log.append(h('li', {}, `${results.length} of ${jobs.length} fits in ${((performance.now() - t0) / 1000).toFixed(2)} s.`));
       if (results.length) {
         await app.save('results', results);
-        await app.save('selected', bestByLoo(results).key);
+        const best = bestByLoo(results);
+        await app.save('selected', best.key);
+        await app.save('recipe', best.recipe);   // how the selected profile was made
         app.mark('fit', 'done');
         app.emit('results', results);
       } else if (jobs.length) {
@@ -188,15 +179,31 @@ export function mount(section, app) {
       if (e.code !== 'CANCELLED') showError(runBtn, e, 'Fit');
       return null;
     } finally {
-      running = false; runBtn.disabled = !engine.has('fitModel'); cancelBtn.disabled = true;
+      running = false; runBtn.disabled = false; cancelBtn.disabled = true;
       progress.done();
     }
   }
   runBtn.addEventListener('click', async () => { if ((await run())?.length) app.goto('results'); });
 
+  /// The recipe of one fit: every setting of steps 1–3 that decides the profile.
+  function recipeFor(model, objective, ref, data) {
+    const s = app.session, rs = ref.settings;
+    const flat = !!s['files.flat'], radial = s.flatMode === 'radial';
+    const sample = app.derived.sample;
+    return {
+      reference: rs.referenceFile ? { chart: 'file', data_digest: ref.data_digest, illuminant: rs.illuminant, observer: rs.observer }
+        : { chart: rs.chart, illuminant: rs.illuminant, observer: rs.observer },
+      capture: { dark_frames: s['files.dark'] ? s['files.dark'].list?.length ?? 1 : 0, flat_field: flat && !radial, falloff: flat && radial },
+      sampling: { layout: s.layout ?? { chart: 'passport' }, corners: sample.corners, area: s.sampleOptions?.area ?? 0.5,
+        exclude: choice.excludeAllFlagged ? [] : data.excluded.map((e) => e.id), exclude_flagged: !!choice.excludeAllFlagged },
+      characterisation: { model, objective: choice.objectiveChoices[objective], white_patch: choice.preserveWhite ? brightestPatch(data) : '', lab_white: ref.white },
+      evaluation: { leave_one_out: true },
+    };
+  }
+
   /// First visit: fit the default models with the first objective, then show the results.
   async function runDefault() {
-    if (!engine.has('fitModel') || !app.derived.sample || !app.derived.reference) return null;
+    if (!app.derived.sample || !app.derived.reference) return null;
     return run();
   }
   describeData();
@@ -231,6 +238,5 @@ function toggle(list, v, on) {
 function defaultChoice(models, objectives) {
   const picked = DEFAULT_MODELS.filter((id) => models.some((m) => m.id === id));
   for (const m of models) if (picked.length < 3 && !picked.includes(m.id)) picked.push(m.id);
-  const ls = objectives.find((o) => /^(ls|least)/i.test(o.value)) ?? objectives[0];
-  return { models: picked, objectives: ls ? [ls.value] : [], options: {}, excludeSaturated: true, excludeAllFlagged: false, preserveWhite: false };
+  return { models: picked, objectives: [objectives[0].id], excludeSaturated: true, excludeAllFlagged: false, preserveWhite: false };
 }

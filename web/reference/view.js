@@ -1,6 +1,6 @@
 // Step 1: the reference — chart (built-in or uploaded CSV/CGATS), illuminant and observer; the
 // patches as swatches with XYZ and Lab, and the CIE xy diagram. Emits 'reference'.
-import { h, field, select, setOptions, showError, clearError, unavailable, fmt } from '../lib/ui.js';
+import { h, field, select, setOptions, showError, clearError, fmt } from '../lib/ui.js';
 import { options, OBSERVERS } from '../lib/catalog.js';
 import { cssColours, xyFromXYZ, figure } from '../plots/common.js';
 import { xyPlot } from '../plots/xy.js';
@@ -31,15 +31,8 @@ export function mount(section, app) {
       'Per-patch XYZ or Lab, or spectral reflectances; the same ids as the chart layout'), fileState, useBuiltin));
   section.append(controls, summary, h('div', { class: 'ref-layout' }, swatches, plotBox));
 
-  if (!engine.has('referenceChart')) {
-    controls.after(unavailable('Computing reference XYZ for a built-in chart', 'referenceChart'));
-  }
-  if (!engine.has('parseReferenceFile')) fileInput.disabled = true;
-  if (!charts.length) chartSel.disabled = true;
-  if (!illuminants.length) illumSel.disabled = true;
 
   async function computeLocus() {
-    if (!engine.has('spectralLocus')) return null;
     const key = settings.observer;
     if (app.derived.locus?.observer === key) return app.derived.locus;
     try {
@@ -55,7 +48,6 @@ export function mount(section, app) {
     let ref = null;
     const args = { illuminant: s.illuminant, observer: s.observer };
     if (s.referenceFile) {
-      if (!engine.has('parseReferenceFile')) return;
       try {
         ref = await engine.call('parseReference', { text: s.referenceFile.text, fileName: s.referenceFile.name, ...args });
         ref.source = `file ${s.referenceFile.name}`;
@@ -65,7 +57,6 @@ export function mount(section, app) {
         return e;
       }
     } else {
-      if (!engine.has('referenceChart')) return;
       try {
         ref = await engine.call('reference', { chart: s.chart, ...args });
         ref.source = `built-in chart ${chartSel.selectedOptions[0]?.textContent ?? s.chart}`;
@@ -118,7 +109,6 @@ export function mount(section, app) {
     const white = Xw + Yw + Zw > 0 ? { x: Xw / (Xw + Yw + Zw), y: Yw / (Xw + Yw + Zw) } : null;
     const svg = xyPlot({ locus: app.derived.locus, points, white, observer: settings.observer });
     plotBox.replaceChildren(figure(svg, { name: 'reference-xy', caption: `Reference patches on the CIE ${settings.observer} xy diagram` }));
-    if (!app.derived.locus) plotBox.prepend(unavailable('The spectral locus', 'spectralLocus'));
   }
 
   const persist = () => app.save('settings', { ...settings });
@@ -143,11 +133,11 @@ export function mount(section, app) {
     const f = settings.referenceFile;
     fileState.textContent = f ? `Using ${f.name}.` : '';
     useBuiltin.hidden = !f;
-    chartSel.disabled = !!f || !charts.length;
+    chartSel.disabled = !!f;
   }
   syncFile();
-  if (!charts.some((c) => c.value === settings.chart) && charts.length) settings.chart = charts[0].value;
-  if (!illuminants.some((c) => c.value === settings.illuminant) && illuminants.length) {
+  if (!charts.some((c) => c.value === settings.chart)) settings.chart = charts[0].value;
+  if (!illuminants.some((c) => c.value === settings.illuminant)) {
     settings.illuminant = (illuminants.find((c) => c.value === 'D50') ?? illuminants[0]).value;
   }
   setOptions(chartSel, charts, settings.chart);

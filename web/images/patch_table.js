@@ -5,13 +5,13 @@ export function patchTable(s) {
   const n = s.ids.length;
   const rows = [];
   for (let i = 0; i < n; i++) {
-    const f = s.flagNames[i];
+    const f = s.flags[i];
     rows.push(h('tr', { class: f.includes('saturated') ? 'flagged saturated' : f.length ? 'flagged' : '', dataset: { id: s.ids[i] } },
       h('th', { scope: 'row' }, s.ids[i]),
       [0, 1, 2].map((k) => h('td', {}, fmt(s.RGB[3 * i + k], 1))),
       [0, 1, 2].map((k) => h('td', {}, s.std ? fmt(s.std[3 * i + k], 1) : '–')),
       h('td', {}, s.n ? String(s.n[i]) : '–'),
-      h('td', {}, s.saturatedFraction ? `${fmt(100 * maxOf(s.saturatedFraction, i, s.saturatedFraction.length / n), 1)} %` : '–'),
+      h('td', {}, s.saturated_fraction ? `${fmt(100 * maxOf(s.saturated_fraction, i, s.saturated_fraction.length / n), 1)} %` : '–'),
       h('td', { class: 'flags' }, f.length ? f.join(', ') : 'ok')));
   }
   return h('table', { class: 'patch-table' },

@@ -1,7 +1,7 @@
 // The preview with four draggable corner handles (pointer and keyboard) and the patch grid drawn
 // over it. Coordinates are those of the measurement image (half resolution), as sampleChart wants.
-import { gridCells, isCrossed } from '../lib/geometry.js';
-import { cellId } from '../lib/charts.js';
+// The grid is the engine's: its chart layout placed by its homography while the corners move,
+// then the sampled areas of the engine's sampling once it belongs to these corners.
 
 const NS = 'http://www.w3.org/2000/svg';
 const svgEl = (tag, attrs = {}) => {
@@ -12,12 +12,16 @@ const svgEl = (tag, attrs = {}) => {
 const CORNER_NAMES = ['top-left (first patch)', 'top-right', 'bottom-right (last patch)', 'bottom-left'];
 
 export class CornerEditor {
-  constructor({ onChange }) {
+  /// onChange(corners, final); grid(layout, corners) -> Promise<{layout: ChartLayout, homography}>.
+  constructor({ onChange, grid }) {
     this.onChange = onChange;
+    this.gridOf = grid;
     this.width = 0; this.height = 0;
     this.corners = new Float64Array(8);
-    this.grid = { rows: 4, cols: 6, area: 0.5, layout: 'passport', gap: 0.14 };
+    this.layout = { chart: 'passport' };
+    this.grid = null;          // {layout, homography, key} of the last placed grid
     this.sample = null;
+    this.refused = null;       // the code of the last refused sampling of these corners
     this.el = document.createElement('div');
     this.el.className = 'corner-editor';
     this.el.tabIndex = -1;
@@ -112,30 +116,46 @@ export class CornerEditor {
     if (w) this.onChange(this.corners, true);
   }
 
-  setGrid(g) { this.grid = g; this.draw(); }
-  setSample(s) { this.sample = s; this.draw(); }
+  setLayout(layout) { this.layout = layout; this.draw(); }
+  /// The engine's sampling of the current corners, or null and the code it refused them with.
+  setSample(s, refused = null) { this.sample = s; this.refused = refused; this.draw(); }
+
+  /// Asks the engine for the grid of the current layout and corners (one request at a time).
+  placeGrid(key) {
+    if (this.placing || this.requested === key) return;
+    this.requested = key;
+    this.placing = this.gridOf(this.layout, Array.from(this.corners))
+      .then((g) => { this.grid = { ...g, key }; }, () => { this.grid = null; })
+      .finally(() => { this.placing = null; this.draw(); });
+  }
+
+  /// The patch cells of the placed grid, mapped through the homography: [{id, quad}].
+  gridCells() {
+    const H = this.grid.homography;
+    const map = (u, v) => { const w = H[6] * u + H[7] * v + H[8]; return [(H[0] * u + H[1] * v + H[2]) / w, (H[3] * u + H[4] * v + H[5]) / w]; };
+    return this.grid.layout.patches.map((p) => ({ id: p.id, quad: [[p.u0, p.v0], [p.u1, p.v0], [p.u1, p.v1], [p.u0, p.v1]].map(([u, v]) => map(u, v)) }));
+  }
 
   draw() {
     const c = this.corners;
     this.outline.setAttribute('points', [0, 1, 2, 3].map((i) => `${c[2 * i]},${c[2 * i + 1]}`).join(' '));
-    this.outline.classList.toggle('crossed', isCrossed(c));
+    this.outline.classList.toggle('crossed', this.refused === 'CORNERS_CROSSED');
     this.clipRect.setAttribute('width', this.width);
     this.clipRect.setAttribute('height', this.height);
     this.handles.forEach((g, i) => {
       g.setAttribute('transform', `translate(${c[2 * i]},${c[2 * i + 1]})`);
       g.setAttribute('aria-valuetext', `x ${c[2 * i].toFixed(1)}, y ${c[2 * i + 1].toFixed(1)}`);
     });
-    const { rows, cols, area, layout, gap = 0 } = this.grid;
     const flagsById = new Map();
     const s = this.sample && this.sample.corners?.every((v, i) => v === c[i]) ? this.sample : null;
-    if (s) s.ids.forEach((id, i) => flagsById.set(id, s.flagNames[i]));
+    if (s) s.ids.forEach((id, i) => flagsById.set(id, s.flags[i]));
     const scale = Math.max(1, this.width / 900);
     this.svg.style.setProperty('--stroke', `${1.2 * scale}px`);
-    // The engine's own sample areas when they belong to these corners; the JS grid while dragging.
-    const crossed = isCrossed(c);
-    const cells = crossed ? [] : s?.sampleQuads
-      ? s.ids.map((id, i) => ({ id, quad: [0, 1, 2, 3].map((k) => [s.sampleQuads[8 * i + 2 * k], s.sampleQuads[8 * i + 2 * k + 1]]) }))
-      : gridCells(c, rows, cols, area, gap).map((cell) => ({ ...cell, id: cellId(layout, cell.row, cell.col) }));
+    // The engine's sample areas when they belong to these corners; its placed grid while dragging.
+    const key = JSON.stringify([this.layout, Array.from(c)]);
+    if (!s && this.grid?.key !== key && this.width) this.placeGrid(key);
+    const cells = s ? s.ids.map((id, i) => ({ id, quad: [0, 1, 2, 3].map((k) => [s.sample_quads[8 * i + 2 * k], s.sample_quads[8 * i + 2 * k + 1]]) }))
+      : this.refused || !this.grid ? [] : this.gridCells();
     this.gridLayer.replaceChildren(...cells.map((cell) => {
       const id = cell.id;
       const flags = flagsById.get(id);

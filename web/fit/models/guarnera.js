@@ -3,6 +3,4 @@ export default {
   family: 'Guarnera et al. 2018',
   match: (id) => /^Guarnera2018/i.test(id),
   about: 'T1 (eq 13), To (eq 14), T2R (eq 15); fitted by pattern search in the paper (objective "psm").',
-  defaults: {},
-  form: () => null,
 };

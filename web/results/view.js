@@ -1,6 +1,6 @@
 // Step 4: the comparison table of every fitted model (sortable) and, for the selected one, the
 // xy diagram with arrows, CIELAB planes, ΔE00 bars, XYZ scatter and swatch pairs.
-import { h, fmt, unavailable } from '../lib/ui.js';
+import { h, fmt } from '../lib/ui.js';
 import { metric, COLUMNS } from '../lib/metrics.js';
 import { perPatch, patchTitle } from '../lib/perpatch.js';
 import { figure } from '../plots/common.js';
@@ -9,7 +9,7 @@ import { labPlanePlot } from '../plots/lab.js';
 import { deBarsPlot } from '../plots/de_bars.js';
 import { xyzScatterPlot } from '../plots/xyz_scatter.js';
 import { swatchPairsPlot } from '../plots/swatch_pairs.js';
-import { referenceText } from './fit.js';
+import { referenceText } from '../fit/view.js';
 
 export function mount(section, app) {
   const tableBox = h('div', { class: 'table-box' });
@@ -47,7 +47,7 @@ export function mount(section, app) {
       h('tbody', {}, rows.map((r) => h('tr', { class: r === selected ? 'selected' : '', dataset: { key: r.key } },
         h('th', { scope: 'row' }, r.label),
         COLUMNS.map((c) => h('td', { dataset: { col: c.key } }, fmt(metric(r, c.set, c.stat)))),
-        h('td', {}, r.fit.status ? `${r.fit.status}${r.fit.message ? ': ' + r.fit.message : ''}` : 'ok'),
+        h('td', {}, `${r.fit.evaluation.fit.status}${r.fit.evaluation.fit.message ? ': ' + r.fit.evaluation.fit.message : ''}`),
         h('td', {}, h('button', { type: 'button', 'aria-pressed': String(r === selected), 'aria-label': `Show the plots of ${r.label}`, onclick: () => { app.save('selected', r.key); refresh(); } }, r === selected ? 'shown' : 'show'))))));
   }
 
@@ -67,11 +67,6 @@ export function mount(section, app) {
         parts.push(h('p', { class: 'unavailable', role: 'status' }, `The reference in step 1 has changed since this fit (now: ${referenceText(ref)}). Fit again in step 3 to use it.`));
       }
     }
-    if (!pp.has.estXYZ) {
-      parts.push(unavailable('Per-patch estimates', 'evaluateProfile'));
-      detail.replaceChildren(...parts);
-      return;
-    }
     const rows = pp.rows;
     const arrows = rows.filter((r) => Number.isFinite(r.xe)).map((r) => ({ id: r.id, x1: r.x, y1: r.y, x2: r.xe, y2: r.ye, title: patchTitle(r) }));
     const points = rows.map((r) => ({ id: r.id, x: r.x, y: r.y, fill: r.fill, title: patchTitle(r) }));
@@ -82,18 +77,14 @@ export function mount(section, app) {
       figure(xyPlot({ locus: app.derived.locus, points, arrows, white, observer: obs, width: 410, zoom: true }),
         { name: 'xy-arrows', caption: `CIE ${obs} xy, zoomed to the patches: reference (dot) → estimate (arrow head); dashed: sRGB gamut` }),
     ];
-    if (pp.has.Lab) {
-      figs.push(figure(labPlanePlot(rows, 'a'), { name: 'lab-a-L', caption: 'CIELAB a*–L*: reference (dot) → estimate (small dot)' }));
-      figs.push(figure(labPlanePlot(rows, 'C'), { name: 'lab-C-L', caption: 'CIELAB C*–L*: reference (dot) → estimate (small dot)' }));
-    } else figs.push(unavailable('The CIELAB planes', 'evaluateProfile (Lab)'));
-    if (pp.has.dE) {
-      figs.push(figure(deBarsPlot(rows), { name: 'de2000-bars', caption: 'CIEDE2000 per patch, split into ΔL/ΔC/ΔH shares; the chip under each bar is the patch', className: 'wide' }));
-    } else figs.push(unavailable('Per-patch CIEDE2000', 'evaluateProfile (dE2000)'));
+    figs.push(figure(labPlanePlot(rows, 'a'), { name: 'lab-a-L', caption: 'CIELAB a*–L*: reference (dot) → estimate (small dot)' }));
+    figs.push(figure(labPlanePlot(rows, 'C'), { name: 'lab-C-L', caption: 'CIELAB C*–L*: reference (dot) → estimate (small dot)' }));
+    figs.push(figure(deBarsPlot(rows), { name: 'de2000-bars', caption: 'CIEDE2000 per patch, split into ΔL/ΔC/ΔH shares; the chip under each bar is the patch', className: 'wide' }));
     figs.push(figure(xyzScatterPlot(rows), { name: 'xyz-scatter', caption: 'Estimated vs reference X, Y, Z; dashed: identity', className: 'wide' }));
     figs.push(figure(swatchPairsPlot(rows), { name: 'swatch-pairs', caption: 'Reference (square) and estimate (disc), display sRGB' }));
     const mean = rows.reduce((s, r) => s + (Number.isFinite(r.dE) ? r.dE : 0), 0) / rows.length;
     parts.push(h('p', { class: 'summary' }, `${rows.length} training patches; mean ΔE00 ${fmt(mean)}; `
-      + `condition number ${fmt(result.fit.conditionNumber ?? result.fit.condition, 1)}.`));
+      + `condition number ${fmt(result.fit.evaluation.fit.condition_number, 1)}.`));
     parts.push(h('div', { class: 'plots' }, figs));
     // The same numbers as a table, for keyboard and screen-reader users (and copying).
     const f2 = (v) => fmt(v, 2);

@@ -1,0 +1,61 @@
+// Declarations: version, built-in data, and every table the page builds its pickers from —
+// charts, illuminants, models, the method tables of each stage (MethodInfo / OptionSpec rows),
+// chart layouts and the corner homography.
+#include "tristim/characterisation/objectives.hpp"
+#include "tristim/chart/layout.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/data.hpp"
+#include "tristim/linearisation/linearisation.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+#include "tristim/surface/surface.hpp"
+#include "tristim/version.hpp"
+#include "types.hpp"
+
+using namespace tristim;
+using emscripten::value_object;
+using wasm::def;
+
+namespace {
+std::string version() { return kVersion; }
+template <class Row>
+std::vector<MethodInfo> infos(const std::vector<Row>& rows) {
+  std::vector<MethodInfo> out;
+  for (const auto& r : rows) out.push_back(r.info);
+  return out;
+}
+std::vector<MethodInfo> objectives() { return infos(objective_table()); }
+std::vector<MethodInfo> linearisations() { return infos(linearisation_table()); }
+std::vector<MethodInfo> surfaces() { return infos(surface_table()); }
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(tristim_catalog) {
+  { using S = ChartInfo; value_object<S>("ChartInfo") FIELD(id) FIELD(name) FIELD(patches) FIELD(rows) FIELD(columns) FIELD(source); }
+  { using S = IlluminantInfo; value_object<S>("IlluminantInfo") FIELD(id) FIELD(name); }
+  { using S = Monomial; value_object<S>("Monomial") FIELD(r) FIELD(g) FIELD(b); }
+  { using S = ModelInfo; value_object<S>("ModelInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(n_terms)
+      FIELD(term_names) FIELD(terms) FIELD(root) FIELD(linear) FIELD(exposure_invariant) FIELD(duplicate_of); }
+  { using S = OptionSpec; value_object<S>("OptionSpec") FIELD(name) FIELD(type) FIELD(label) FIELD(default_number)
+      FIELD(default_text) FIELD(min) FIELD(max) FIELD(choices) FIELD(description); }
+  { using S = MethodInfo; value_object<S>("MethodInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(options); }
+  { using S = MethodChoice; value_object<S>("MethodChoice") FIELD(method) FIELD(parameters) FIELD(settings); }
+  { using S = LayoutOptions; value_object<S>("LayoutOptions") FIELD(chart) FIELD(rows) FIELD(columns)
+      FIELD(margin_left) FIELD(margin_top) FIELD(margin_right) FIELD(margin_bottom) FIELD(gap); }
+  { using S = PatchCell; value_object<S>("PatchCell") FIELD(id) FIELD(row) FIELD(column) FIELD(u0) FIELD(v0) FIELD(u1) FIELD(v1); }
+  { using S = ChartLayout; value_object<S>("ChartLayout") FIELD(chart) FIELD(rows) FIELD(columns) FIELD(gap) FIELD(patches); }
+
+  def<&version>("version");
+  def<&builtin_files>("builtinFiles");
+  def<&builtin_file>("builtinFile");
+  def<&list_charts>("listCharts");
+  def<&list_illuminants>("listIlluminants");
+  def<&camera_names>("cameraNames");
+  def<&model_table>("listModels");
+  def<&objectives>("listObjectives");
+  def<&linearisations>("listLinearisations");
+  def<&surfaces>("listSurfaceCorrections");
+  def<&complete_choice>("completeChoice");
+  def<&parse_choice>("parseChoice");
+  def<&chart_layout_ids>("listChartLayouts");
+  def<&chart_layout>("chartLayout");
+  def<&homography_unit_square>("homographyUnitSquare");
+}

@@ -1,0 +1,58 @@
+// Declarations: the Recipe (every stage of a characterisation as a value) and the one data path
+// from a recipe and its inputs to a profile (profile/characterise.hpp). A Recipe argument may be
+// given as its JSON text; MethodChoice members as "id:name=value,...".
+#include "tristim/profile/characterise.hpp"
+#include "types.hpp"
+
+using namespace tristim;
+using emscripten::value_object;
+using wasm::def;
+
+namespace {
+
+/// What a fit hands back to the page: the completed recipe, the training set as fitted (after
+/// the linearisation stage), the evaluation and the profile JSON (which embeds the recipe).
+struct FitOutcome {
+  Recipe recipe;
+  std::vector<std::string> ids, excluded;
+  PatchMatrix linear_RGB, reference_XYZ;
+  ModelEvaluation evaluation;
+  std::string profile;
+};
+FitOutcome outcome(const Recipe& recipe, const TrainingSet& training) {
+  const Characterisation c = characterise(recipe, training);
+  return {c.recipe, training.ids, training.excluded, c.linear_RGB, training.reference_XYZ, c.evaluation, profile_to_json(c.profile)};
+}
+/// fitSample(recipe, sample, reference): a chart sample paired with a reference by patch id.
+FitOutcome fit_sample(const Recipe& recipe, const ChartSample& sample, const ReferenceChart& reference) {
+  return outcome(recipe, training_set(recipe, sample, reference));
+}
+/// fitTables(recipe, ids, rgb, xyz): patch tables already paired row by row.
+FitOutcome fit_tables(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& rgb, const PatchMatrix& xyz) {
+  return outcome(recipe, training_set(recipe, ids, rgb, xyz));
+}
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(tristim_recipe) {
+  { using S = ReferenceStage; value_object<S>("ReferenceStage") FIELD(chart) FIELD(data_digest) FIELD(illuminant) FIELD(observer); }
+  { using S = CaptureStage; value_object<S>("CaptureStage") FIELD(dark_frames) FIELD(dark_mode) FIELD(flat_field) FIELD(falloff)
+      FIELD(saturation) FIELD(noise_floor); }
+  { using S = SamplingStage; value_object<S>("SamplingStage") FIELD(layout) FIELD(corners) FIELD(area) FIELD(exclude)
+      FIELD(exclude_flagged); }
+  { using S = CharacterisationStage; value_object<S>("CharacterisationStage") FIELD(model) FIELD(objective) FIELD(white_patch)
+      FIELD(lab_white); }
+  { using S = EvaluationStage; value_object<S>("EvaluationStage") FIELD(leave_one_out) FIELD(held_out_digest); }
+  { using S = Recipe; value_object<S>("Recipe") FIELD(version) FIELD(reference) FIELD(capture) FIELD(sampling)
+      FIELD(linearisation) FIELD(surface) FIELD(characterisation) FIELD(evaluation); }
+  { using S = FitOutcome; value_object<S>("FitOutcome") FIELD(recipe) FIELD(ids) FIELD(excluded) FIELD(linear_RGB)
+      FIELD(reference_XYZ) FIELD(evaluation) FIELD(profile); }
+
+  def<&fit_sample>("fitSample");
+  def<&fit_tables>("fitTables");
+  def<&recipe_reference>("recipeReference");
+  def<&complete_recipe>("completeRecipe");
+  def<&recipe_to_json>("recipeToJson");
+  def<static_cast<Recipe (*)(const std::string&)>(&recipe_from_json)>("recipeFromJson");
+  def<&bytes_digest>("bytesDigest");
+}

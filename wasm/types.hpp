@@ -1,0 +1,42 @@
+// Conversions of core types that cross in a form of their own (shared by every bind_*.cpp, so each
+// type converts the same way everywhere): enums as their ids, a MethodChoice also from the CLI's
+// "id:name=value" text, a Recipe or a Profile also from its JSON text.
+#pragma once
+#include "boundary.hpp"
+#include "tristim/characterisation/models.hpp"
+#include "tristim/colorimetry/spectra.hpp"
+#include "tristim/methods.hpp"
+#include "tristim/profile/profile.hpp"
+#include "tristim/profile/recipe.hpp"
+
+namespace tristim::wasm {
+
+inline Observer observer_of(const std::string& id) { return parse_observer(id); }
+template <>
+struct Conv<Observer> : EnumConv<Observer, &observer_name, &observer_of> {
+  static Observer from(const val& v) {  // 1931 as a number works too
+    return v.isNumber() ? parse_observer(std::to_string(v.as<int>())) : EnumConv::from(v);
+  }
+};
+template <> struct Conv<Objective> : EnumConv<Objective, &objective_id, &objective_from_id> {};
+inline FitStatus fit_status_of(const std::string& id) {
+  for (FitStatus s : {FitStatus::Ok, FitStatus::IllConditioned, FitStatus::ExactlyDetermined, FitStatus::IterationLimit})
+    if (id == fit_status_name(s)) return s;
+  throw Error(ErrorCode::UnknownId, "unknown fit status '" + id + "'");
+}
+template <> struct Conv<FitStatus> : EnumConv<FitStatus, &fit_status_name, &fit_status_of> {};
+
+template <>
+struct Conv<MethodChoice> : StructConv<MethodChoice> {  // "psm:expansion=3" or {method, parameters, settings}
+  static MethodChoice from(const val& v) { return v.isString() ? parse_choice(v.as<std::string>()) : StructConv<MethodChoice>::from(v); }
+};
+template <>
+struct Conv<Recipe> : StructConv<Recipe> {  // the recipe JSON text, or the declared struct
+  static Recipe from(const val& v) { return v.isString() ? recipe_from_json(v.as<std::string>()) : StructConv<Recipe>::from(v); }
+};
+template <>
+struct Conv<Profile> : StructConv<Profile> {  // the profile JSON text, or the declared struct
+  static Profile from(const val& v) { return v.isString() ? profile_from_json(v.as<std::string>()) : StructConv<Profile>::from(v); }
+};
+
+}  // namespace tristim::wasm

@@ -1,0 +1,19 @@
+// Worker handler of step 3: one fit of a recipe (the engine's Recipe) on the chart sample paired
+// with the reference, with its display colours and its errors on a held-out set.
+import { reply, displayOf } from '../lib/reply.js';
+
+export const handlers = {
+  /// A measured patch file (CSV/CGATS with R,G,B and maybe X,Y,Z) for a held-out test set.
+  parsePatchFile: (T, { text, fileName }) => reply(T.parsePatchFile(text, fileName)),
+
+  /// Fits a recipe on the chart sample paired with the reference (and evaluates the profile on
+  /// the held-out set {name, ids, rgb, xyz} when there is one).
+  fit: (T, { recipe, sample, reference, heldOut }, { progress }) => {
+    progress(NaN, `fitting ${recipe.characterisation.model}`);
+    if (heldOut) recipe.evaluation.held_out_digest = T.trainingDigest(heldOut.ids, heldOut.rgb, heldOut.xyz);
+    const out = T.fitSample(recipe, sample, reference);
+    out.display = displayOf(T, out.reference_XYZ, out.evaluation.fit.fitted, out.recipe.characterisation.lab_white);
+    if (heldOut) out.held_out = { ...T.evaluateProfile(out.profile, heldOut.rgb, heldOut.xyz, heldOut.ids).metrics, set: heldOut.name };
+    return reply(out);
+  },
+};

@@ -1,0 +1,20 @@
+// The model families: one descriptor per family (family label, about). The picker shows the
+// models the engine's listModels() offers, grouped by the descriptor that matches each id, so a
+// new engine model appears without a page change.
+import matrix from './matrix.js';
+import polynomial from './polynomial.js';
+import rootPolynomial from './root_polynomial.js';
+import guarnera from './guarnera.js';
+
+export const FAMILIES = [matrix, rootPolynomial, polynomial, guarnera];
+const OTHER = { family: 'Other models', about: '' };
+
+/// An engine ModelInfo row (or an id) with its family: {id, label, family, about, duplicate_of}.
+export function describe(model) {
+  const m = typeof model === 'string' ? { id: model } : model;
+  const d = FAMILIES.find((x) => x.match(m.id)) ?? OTHER;
+  return { id: m.id, label: m.label ?? m.id, family: d.family, about: m.reference ?? d.about, duplicate_of: m.duplicate_of ?? '' };
+}
+
+/// The models a fresh session fits: these ids when the engine has them, else the first three.
+export const DEFAULT_MODELS = ['matrix-3x3', 'Finlayson2015-2', 'Shen2008'];

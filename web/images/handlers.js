@@ -1,0 +1,87 @@
+// Worker handlers of step 2: decoding RAW files into the worker's slots ('chart', 'dark', 'flat',
+// 'scene'; the images stay here, state.raw[slot]), the chart image's dark/flat calibration,
+// sampling the chart, the engine's patch grid for the corner editor.
+import { reply, coded } from '../lib/reply.js';
+
+/// Sets the chart image's dark frame and flat field from the decoded slots (Abed 2013 App. C);
+/// returns what the engine reports. Throws (e.g. FRAME_MISMATCH) when a frame does not fit.
+function calibrate(state) {
+  const chart = state.raw?.chart;
+  if (!chart) return null;
+  const out = {};
+  if (state.raw.dark) out.dark = chart.setDark(state.raw.dark, 'pixel'); else chart.clearDark();
+  if (state.raw.flat) {
+    out.flat = chart.setFlat(state.raw.flat, state.flatMode ?? 'pixel');
+    out.flat.mode = state.flatMode ?? 'pixel';
+  } else chart.clearFlat();
+  return out;
+}
+function calibrateQuietly(state) {
+  try { return calibrate(state); } catch { state.raw?.chart?.clearDark(); state.raw?.chart?.clearFlat(); return null; }
+}
+function freeRaw(raw) {
+  if (raw) for (const r of [raw].flat()) r.delete();
+}
+
+export const handlers = {
+  /// Decodes RAW bytes into state.raw[slot] ('chart', 'dark', 'flat', 'scene'); returns metadata,
+  /// the display preview (chart and scene) and, for dark/flat, the calibration it gave the chart.
+  /// `bytesList` (dark frames): several files, decoded and averaged by the engine (setDark).
+  decode: (T, { slot = 'chart', bytes, bytesList, flatMode, previewSide = 1200 }, { state, progress }) => {
+    progress(NaN, 'decoding RAW');
+    state.raw ??= {};
+    let raw;
+    if (bytesList) {
+      const list = [];
+      try {
+        bytesList.forEach((b, i) => {
+          progress(i / bytesList.length, `decoding frame ${i + 1} of ${bytesList.length}`);
+          list.push(T.decodeRaw(new Uint8Array(b)));
+        });
+      } catch (e) { for (const r of list) r.delete(); throw e; }
+      raw = list;
+    } else raw = T.decodeRaw(new Uint8Array(bytes));
+    const first = Array.isArray(raw) ? raw[0] : raw;
+    progress(0.8, 'building preview');
+    let result;
+    try {
+      result = { width: first.width(), height: first.height(), metadata: first.metadata() };
+      if (slot === 'chart') {
+        const p = first.preview(previewSide);
+        result.preview = { ...p, rgba: new Uint8ClampedArray(p.rgba.buffer) };
+      }
+    } catch (e) { freeRaw(raw); throw e; }
+    // The new image replaces the slot's previous one only once it fits (calibrate below).
+    const previous = { raw: state.raw[slot], flatMode: state.flatMode };
+    state.raw[slot] = raw;
+    if (slot === 'flat') state.flatMode = flatMode;
+    if (slot !== 'scene') {
+      try {
+        result.calibration = calibrate(state);
+      } catch (e) {
+        // A frame that does not fit (FRAME_MISMATCH, FLAT_FIELD_ZERO, ...) is refused: the slot
+        // keeps its previous image, and the calibration that went with it.
+        freeRaw(raw);
+        if (previous.raw) state.raw[slot] = previous.raw; else delete state.raw[slot];
+        state.flatMode = previous.flatMode;
+        calibrateQuietly(state);
+        throw e;
+      }
+    }
+    freeRaw(previous.raw);
+    return reply(result);
+  },
+
+  sample: (T, { layout, corners, sampleOptions = {} }, { state }) => {
+    if (!state.raw?.chart) throw coded('no RAW image decoded yet', 'NO_IMAGE');
+    return reply(T.sampleChart(state.raw.chart, layout, corners, sampleOptions));
+  },
+  /// The patch grid of a layout placed by four corners (for drawing; the engine's homography).
+  grid: (T, { layout, corners }) => reply({ layout: T.chartLayout(layout), homography: T.homographyUnitSquare(corners) }),
+
+  forget: (T, { slot }, { state }) => {
+    freeRaw(state.raw?.[slot]);
+    delete state.raw?.[slot];
+    return { result: calibrateQuietly(state) };
+  },
+};
