@@ -111,7 +111,10 @@ test('applyProfileToImage, exportIcc, exportCube, exportPatchCsv', async () => {
   assert.equal(icc2[8], 2);
   const cube = T.exportCube(r.profile, 9);
   assert.match(cube, /LUT_3D_SIZE 9/);
-  assert.equal(cube.trim().split('\n').filter((l) => /^[-0-9]/.test(l)).length, 9 ** 3);
+  // Resolve convention: a 1D shaper of LUT_1D_SIZE rows, then the 9³ rows of the 3D LUT.
+  const shaper = Number(cube.match(/^LUT_1D_SIZE (\d+)$/m)[1]);
+  assert.ok(shaper >= 2);
+  assert.equal(cube.trim().split('\n').filter((l) => /^[-0-9]/.test(l)).length, shaper + 9 ** 3);
   const csv = T.exportPatchCsv(r.profile, rgb, xyz, ids);
   assert.equal(csv.trim().split('\n').length, 25);
 });
