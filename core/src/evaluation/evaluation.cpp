@@ -98,6 +98,9 @@ PatchMatrix leave_one_out(const std::string& model_id, const PatchMatrix& rgb, c
   validate_patches(rgb, xyz);
   const Eigen::Index n = rgb.rows();
   if (n < 2) throw Error(ErrorCode::TooFewPatches, "leave-one-out needs at least 2 patches");
+  if (options.objective == Objective::LeastSquares)
+    return leave_one_out_least_squares(model_id, rgb, xyz, options, white_patch_index);
+  // Other objectives refit once per patch (N fits of N - 1 patches, work ~ N^2): capped.
   if (static_cast<std::size_t>(n) > limits::kMaxLeaveOneOutPatches)
     throw Error(ErrorCode::LimitExceeded, "leave-one-out refits the model once per patch: " + std::to_string(n) +
                                               " patches, over the limit of " + std::to_string(limits::kMaxLeaveOneOutPatches));

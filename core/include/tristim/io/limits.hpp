@@ -23,8 +23,9 @@ constexpr std::size_t kMaxJsonArray = 100000;    ///< elements of one array or m
 constexpr std::size_t kMaxJsonString = 1u << 20; ///< bytes of one string
 constexpr std::size_t kMaxJsonValues = 250000;   ///< values in one document
 
-// --- evaluation: leave-one-out refits the model once per patch (N fits of N − 1 patches), so
-// its work grows as N²; above this many patches it is skipped with a message (the fit stands).
+// --- evaluation: leave-one-out of least squares is in closed form (any N); for the iterative
+// objectives (psm, de2000) it refits once per patch (N fits of N − 1 patches, work ~ N²), so above
+// this many patches it is skipped with a message (the fit stands).
 constexpr std::size_t kMaxLeaveOneOutPatches = 2000;
 
 // --- images: RAW decoding is capped by DecodeOptions::max_megapixels (capture/raw.hpp); image
