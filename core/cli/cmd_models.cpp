@@ -206,10 +206,11 @@ int run_apply(const Args& args, std::ostream&) {
 }
 
 const char* kExportUsage =
-    "tristim export --profile p.json (--icc out.icc [--icc-version 4.3|2.4] [--grid 33] |\n"
+    "tristim export --profile p.json (--icc out.icc [--icc-version 4.3|2.4] [--grid 49] |\n"
     "               --cube out.cube [--size 33]) [--rgb-scale S]\n"
     "  ICC input profile (lcms2; matrix/shaper for 3×3 models, AToB0 LUT otherwise) or a .cube\n"
-    "  3D LUT. Device value 1.0 = camera RGB S (default: the profile's largest training value).";
+    "  (Resolve convention: 1D shaper u = d^(1/2.2), then a 3D LUT; read by Resolve and OpenColorIO).\n"
+    "  Device value d = 1.0 = camera RGB S (default: the profile's largest training value).";
 
 int run_export(const Args& args, std::ostream&) {
   args.allow_only({"profile", "icc", "cube", "size", "grid", "rgb-scale", "icc-version"});
@@ -219,7 +220,7 @@ int run_export(const Args& args, std::ostream&) {
   if (args.has("icc")) {
     IccOptions o;
     o.rgb_scale = scale;
-    o.grid_points = static_cast<int>(args.get_double("grid", 33));
+    o.grid_points = static_cast<int>(args.get_double("grid", IccOptions{}.grid_points));
     o.version = args.get_double("icc-version", 4.3);
     const auto icc = export_icc(p, o);
     write_bytes(args.get("icc"), icc.data(), icc.size());

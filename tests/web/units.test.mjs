@@ -54,6 +54,8 @@ test('Y map: the white is at the top of the colour table, half the white in its 
 test('readers of exports: .cube and ICC header', () => {
   const cube = 'TITLE "t"\nLUT_3D_SIZE 2\n' + '0 0 0\n'.repeat(8);
   assert.equal(readCube(cube).size, 2);
+  const shaped = 'LUT_1D_SIZE 3\nLUT_1D_INPUT_RANGE 0 1\nLUT_3D_SIZE 2\n' + '0 0 0\n'.repeat(3 + 8);
+  assert.deepEqual([readCube(shaped).size, readCube(shaped).shaperSize, readCube(shaped).entries], [2, 3, 8]);
   assert.throws(() => readCube('LUT_3D_SIZE 2\n0 0 0\n'), (e) => e.code === 'PARSE_ERROR');
   const icc = new Uint8Array(144);
   new DataView(icc.buffer).setUint32(0, 144);

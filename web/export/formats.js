@@ -1,8 +1,9 @@
 // Light readers used to load exports back (.cube header and size, ICC header), so a user can
 // check a file before trusting it. (Every file the page writes comes from the engine.)
-/// .cube (Adobe/Resolve 3D LUT): returns {size, title, entries, domainMin, domainMax} or throws.
+/// .cube (Adobe/Resolve 3D LUT, optionally after a Resolve 1D shaper of LUT_1D_SIZE rows):
+/// returns {size, shaperSize, title, entries, domainMin, domainMax} or throws; entries counts 3D rows.
 export function readCube(text) {
-  let size = 0, title = '', entries = 0, domainMin = [0, 0, 0], domainMax = [1, 1, 1];
+  let size = 0, shaperSize = 0, title = '', entries = 0, domainMin = [0, 0, 0], domainMax = [1, 1, 1];
   const lines = text.split(/\r?\n/);
   lines.forEach((line, k) => {
     const t = line.trim();
@@ -10,6 +11,7 @@ export function readCube(text) {
     const [key, ...rest] = t.split(/\s+/);
     if (key === 'TITLE') title = t.slice(6).replace(/^"|"$/g, '');
     else if (key === 'LUT_3D_SIZE') size = Number(rest[0]);
+    else if (key === 'LUT_1D_SIZE') shaperSize = Number(rest[0]);
     else if (key === 'DOMAIN_MIN') domainMin = rest.map(Number);
     else if (key === 'DOMAIN_MAX') domainMax = rest.map(Number);
     else if (/^[-+.\deE]/.test(key)) {
@@ -19,8 +21,11 @@ export function readCube(text) {
     }
   });
   if (!size) throw Object.assign(new Error('no LUT_3D_SIZE line'), { code: 'PARSE_ERROR' });
-  if (entries !== size ** 3) throw Object.assign(new Error(`${entries} table rows, expected ${size}³ = ${size ** 3}`), { code: 'PARSE_ERROR' });
-  return { size, title, entries, domainMin, domainMax };
+  if (entries !== shaperSize + size ** 3) {
+    const want = shaperSize ? `${shaperSize} shaper + ${size}³ = ${shaperSize + size ** 3}` : `${size}³ = ${size ** 3}`;
+    throw Object.assign(new Error(`${entries} table rows, expected ${want}`), { code: 'PARSE_ERROR' });
+  }
+  return { size, shaperSize, title, entries: entries - shaperSize, domainMin, domainMax };
 }
 
 /// ICC header (ICC.1:2022 §7.2): size, version, class, colour space, PCS, and the description.

@@ -7,6 +7,7 @@
 #include <ctime>
 
 #include "tristim/error.hpp"
+#include "tristim/io/limits.hpp"
 
 namespace tristim {
 
@@ -99,6 +100,10 @@ PatchMatrix leave_one_out(const std::string& model_id, const PatchMatrix& rgb, c
   if (n < 2) throw Error(ErrorCode::TooFewPatches, "leave-one-out needs at least 2 patches");
   if (options.objective == Objective::LeastSquares)
     return leave_one_out_least_squares(model_id, rgb, xyz, options, white_patch_index);
+  // Other objectives refit once per patch (N fits of N - 1 patches, work ~ N^2): capped.
+  if (static_cast<std::size_t>(n) > limits::kMaxLeaveOneOutPatches)
+    throw Error(ErrorCode::LimitExceeded, "leave-one-out refits the model once per patch: " + std::to_string(n) +
+                                              " patches, over the limit of " + std::to_string(limits::kMaxLeaveOneOutPatches));
   PatchMatrix out(n, 3);
   for (Eigen::Index k = 0; k < n; ++k) {
     FitOptions o = options;
@@ -135,7 +140,9 @@ ModelEvaluation evaluate_model(const std::string& model_id, const PatchMatrix& r
     } catch (const Error& e) {
       // A fold can be refused (e.g. the only patch that made a channel vary was held out):
       // no LOO figure then, but the fit itself stands.
-      if (e.code() != ErrorCode::TooFewPatches && e.code() != ErrorCode::IllConditioned) throw;
+      if (e.code() != ErrorCode::TooFewPatches && e.code() != ErrorCode::IllConditioned &&
+          e.code() != ErrorCode::LimitExceeded)
+        throw;
       ev.has_loo = false;
       if (!ev.fit.message.empty()) ev.fit.message += "; ";
       ev.fit.message += std::string("no leave-one-out figure: ") + e.what();

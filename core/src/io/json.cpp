@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <unordered_map>
 
 #include "tristim/error.hpp"
+#include "tristim/io/limits.hpp"
 
 namespace tristim::json {
 
@@ -28,7 +30,8 @@ static const char* type_name(Value::Type t) {
 }
 
 static Error wrong(const std::string& what, const char* want, Value::Type got) {
-  return Error(ErrorCode::ProfileInvalid, what + " must be a " + want + ", got " + type_name(got));
+  const bool vowel = std::strchr("aeiou", want[0]) != nullptr;
+  return Error(ErrorCode::ProfileInvalid, what + " must be " + (vowel ? "an " : "a ") + want + ", got " + type_name(got));
 }
 
 double Value::as_number(const std::string& what) const {
@@ -80,6 +83,19 @@ const Value& Value::at(const std::string& key) const {
   const Value* v = find(key);
   if (!v) throw Error(ErrorCode::ProfileInvalid, "missing field '" + key + "'");
   return *v;
+}
+
+void reject_unknown(const Value& object, std::initializer_list<const char*> known, const std::string& where,
+                    ErrorCode code) {
+  for (const auto& kv : object.members()) {
+    bool ok = false;
+    for (const char* k : known) ok = ok || kv.first == k;
+    if (!ok) {
+      std::string list;
+      for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      throw Error(code, where + ": unknown field '" + kv.first + "' (known: " + list + ")");
+    }
+  }
 }
 
 std::string number_text(double d) {
@@ -164,14 +180,19 @@ std::string Value::dump(int indent) const {
   return out;
 }
 
-namespace {
+namespace detail {
 struct Parser {
   const std::string& s;
   size_t i = 0;
   int depth = 0;
+  size_t values = 0;
 
   [[noreturn]] void fail(const std::string& what) {
     throw Error(ErrorCode::ParseError, "JSON: " + what + " at byte " + std::to_string(i));
+  }
+  [[noreturn]] void too_much(const std::string& what, size_t limit) {
+    throw Error(ErrorCode::LimitExceeded,
+                "JSON: " + what + " at byte " + std::to_string(i) + " (the limit is " + std::to_string(limit) + ")");
   }
   void ws() {
     while (i < s.size() && (s[i] == ' ' || s[i] == '\n' || s[i] == '\r' || s[i] == '\t')) ++i;
@@ -187,7 +208,8 @@ struct Parser {
   Value value() {
     ws();
     if (i >= s.size()) fail("unexpected end");
-    if (++depth > 200) fail("nesting too deep");
+    if (++depth > limits::kMaxJsonDepth) too_much("nesting too deep", static_cast<size_t>(limits::kMaxJsonDepth));
+    if (++values > limits::kMaxJsonValues) too_much("too many values", limits::kMaxJsonValues);
     Value v;
     const char c = s[i];
     if (c == '{') v = object();
@@ -250,6 +272,7 @@ struct Parser {
       const char c = s[i++];
       if (c == '"') break;
       if (static_cast<unsigned char>(c) < 0x20) fail("control character in string");
+      if (out.size() >= limits::kMaxJsonString) too_much("string too long", limits::kMaxJsonString);
       if (c != '\\') {
         out += c;
         continue;
@@ -289,6 +312,7 @@ struct Parser {
       return v;
     }
     while (true) {
+      if (v.size() >= limits::kMaxJsonArray) too_much("array too long", limits::kMaxJsonArray);
       v.push(value());
       ws();
       if (i < s.size() && s[i] == ',') {
@@ -305,6 +329,7 @@ struct Parser {
   Value object() {
     ++i;
     Value v = Value::object();
+    std::unordered_map<std::string, size_t> index;  // a repeated key replaces the earlier value
     ws();
     if (i < s.size() && s[i] == '}') {
       ++i;
@@ -313,11 +338,19 @@ struct Parser {
     while (true) {
       ws();
       if (i >= s.size() || s[i] != '"') fail("expected a key");
+      if (v.size() >= limits::kMaxJsonArray) too_much("object with too many members", limits::kMaxJsonArray);
       std::string key = str();
       ws();
       if (i >= s.size() || s[i] != ':') fail("expected ':'");
       ++i;
-      v.set(key, value());
+      Value member = value();
+      const auto at = index.find(key);
+      if (at != index.end()) {
+        v.object_[at->second].second = std::move(member);
+      } else {
+        index.emplace(key, v.object_.size());
+        v.object_.emplace_back(std::move(key), std::move(member));
+      }
       ws();
       if (i < s.size() && s[i] == ',') {
         ++i;
@@ -331,10 +364,13 @@ struct Parser {
     }
   }
 };
-}  // namespace
+}  // namespace detail
 
 Value parse(const std::string& text) {
-  Parser p{text};
+  if (text.size() > limits::kMaxJsonBytes)
+    throw Error(ErrorCode::LimitExceeded, "JSON: " + std::to_string(text.size()) + " bytes, over the limit of " +
+                                              std::to_string(limits::kMaxJsonBytes) + " for a profile or recipe");
+  detail::Parser p{text};
   Value v = p.value();
   p.ws();
   if (p.i != text.size()) p.fail("trailing characters");

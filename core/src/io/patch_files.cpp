@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "tristim/error.hpp"
+#include "tristim/io/limits.hpp"
 
 namespace tristim {
 
@@ -31,8 +32,22 @@ std::string where(std::string_view source, int line) {
   return std::string(source.empty() ? "input" : source) + ", line " + std::to_string(line);
 }
 
-/// Splits text into lines (\n, \r\n or \r), dropping a UTF-8 BOM.
-std::vector<std::string> split_lines(std::string_view text) {
+[[noreturn]] void too_large(std::string_view source, const std::string& what, std::size_t limit) {
+  throw Error(ErrorCode::LimitExceeded, std::string(source.empty() ? "input" : source) + ": " + what +
+                                            ", over the limit of " + std::to_string(limit));
+}
+
+/// Splits text into lines (\n, \r\n or \r), dropping a UTF-8 BOM. Error(LimitExceeded) for text
+/// over limits::kMaxTextFileBytes or with more lines than a table of limits::kMaxTableRows rows can
+/// have (checked before any line is copied).
+std::vector<std::string> split_lines(std::string_view text, std::string_view source) {
+  if (text.size() > limits::kMaxTextFileBytes)
+    too_large(source, std::to_string(text.size()) + " bytes", limits::kMaxTextFileBytes);
+  // Headers, keywords and comments: a few hundred lines at most in real files.
+  const std::size_t max_lines = limits::kMaxTableRows + 10000;
+  std::size_t n_lines = 0;
+  for (char c : text) n_lines += c == '\n' || c == '\r';
+  if (n_lines > 2 * max_lines) too_large(source, std::to_string(n_lines) + "+ lines", max_lines);
   if (text.size() >= 3 && static_cast<unsigned char>(text[0]) == 0xEF &&
       static_cast<unsigned char>(text[1]) == 0xBB && static_cast<unsigned char>(text[2]) == 0xBF)
     text.remove_prefix(3);
@@ -49,6 +64,7 @@ std::vector<std::string> split_lines(std::string_view text) {
     }
   }
   if (!cur.empty()) lines.push_back(cur);
+  if (lines.size() > max_lines) too_large(source, std::to_string(lines.size()) + " lines", max_lines);
   return lines;
 }
 
@@ -312,7 +328,7 @@ int TextTable::find(std::initializer_list<const char*> names) const { return fin
 TextTable parse_delimited(std::string_view text, std::string_view source) {
   TextTable t;
   t.source = std::string(source);
-  const auto lines = split_lines(text);
+  const auto lines = split_lines(text, source);
   size_t i = 0;
   while (i < lines.size() && (is_blank(lines[i]) || trim(lines[i])[0] == '#')) ++i;
   if (i >= lines.size()) throw Error(ErrorCode::EmptyFile, std::string(source.empty() ? "input" : source) + ": empty file");
@@ -321,6 +337,8 @@ TextTable parse_delimited(std::string_view text, std::string_view source) {
                tabs = std::count(head.begin(), head.end(), '\t');
   const char delim = (tabs > commas && tabs > semis) ? '\t' : (semis > commas ? ';' : ',');
   t.header = split_delimited(head, delim);
+  if (t.header.size() > limits::kMaxTableColumns)
+    too_large(source, std::to_string(t.header.size()) + " columns", limits::kMaxTableColumns);
   t.header_line = static_cast<int>(i) + 1;
   // A trailing delimiter on every line (spreadsheet exports) is an empty last column: dropped.
   const bool trailing = t.header.size() > 1 && t.header.back().empty();
@@ -335,6 +353,7 @@ TextTable parse_delimited(std::string_view text, std::string_view source) {
     if (cells.size() != t.header.size())
       throw Error(ErrorCode::RowLength, where(source, static_cast<int>(i) + 1) + ": " + std::to_string(cells.size()) +
                                             " values, the header has " + std::to_string(t.header.size()));
+    if (t.rows.size() >= limits::kMaxTableRows) too_large(source, "more than " + std::to_string(t.rows.size()) + " rows", limits::kMaxTableRows);
     t.rows.push_back(std::move(cells));
     t.lines.push_back(static_cast<int>(i) + 1);
   }
@@ -387,7 +406,7 @@ PatchTable read_patch_csv(std::string_view text, std::string_view source) {
 }
 
 PatchTable read_cgats(std::string_view text, std::string_view source) {
-  const auto lines = split_lines(text);
+  const auto lines = split_lines(text, source);
   size_t i = 0;
   while (i < lines.size() && is_blank(lines[i])) ++i;
   if (i >= lines.size()) throw Error(ErrorCode::EmptyFile, std::string(source.empty() ? "input" : source) + ": empty file");
@@ -409,6 +428,8 @@ PatchTable read_cgats(std::string_view text, std::string_view source) {
         continue;
       }
       for (auto& f : split_ws(s)) fields.push_back(f);
+      if (fields.size() > limits::kMaxTableColumns)
+        too_large(source, std::to_string(fields.size()) + " fields", limits::kMaxTableColumns);
       continue;
     }
     if (in_data) {
@@ -421,6 +442,7 @@ PatchTable read_cgats(std::string_view text, std::string_view source) {
       if (cells.size() != fields.size())
         throw Error(ErrorCode::RowLength, where(source, ln) + ": " + std::to_string(cells.size()) + " values, BEGIN_DATA_FORMAT has " +
                                               std::to_string(fields.size()) + " fields");
+      if (rows.size() >= limits::kMaxTableRows) too_large(source, "more than " + std::to_string(rows.size()) + " rows", limits::kMaxTableRows);
       rows.push_back(std::move(cells));
       row_lines.push_back(ln);
       continue;

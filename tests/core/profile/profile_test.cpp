@@ -188,10 +188,12 @@ TEST_CASE("ICC export passes lcms2's transicc (v4) and Argyll's iccdump (v2)", "
 TEST_CASE(".cube export: size, header and corner values", "[profile]") {
   const Profile p = fitted_profile("matrix-3x3");
   const std::string cube = export_cube(p, 5);
-  CHECK(cube.find("LUT_3D_SIZE 5") != std::string::npos);
+  CHECK(cube.find("LUT_3D_SIZE 5\nLUT_3D_INPUT_RANGE 0 1\n") != std::string::npos);
+  CHECK(cube.find("LUT_1D_SIZE " + std::to_string(kCubeShaperSize) + "\nLUT_1D_INPUT_RANGE 0 1\n") != std::string::npos);
+  CHECK(cube.find("TITLE") == std::string::npos);  // OpenColorIO's Resolve reader refuses TITLE
   size_t lines = 0;
   for (char c : cube) lines += c == '\n';
-  CHECK(lines == 125 + 6);
+  CHECK(lines == 6 + 4 + kCubeShaperSize + 125);  // comments, keywords, 1D shaper, 3D table
   // Last entry = white corner (1,1,1) -> model(rgb_max,...) / white Y.
   const Vec3 want = predict(p.model, Vec3(Vec3::Constant(p.rgb_max))) / p.white[1];
   const size_t last = cube.rfind('\n', cube.size() - 2);

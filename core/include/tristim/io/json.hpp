@@ -2,13 +2,20 @@
 // significant digits, so reading back gives the identical double). Used for profiles and CLI
 // output; not a general-purpose library.
 #pragma once
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "tristim/error.hpp"
+
 namespace tristim::json {
+
+namespace detail {
+struct Parser;
+}
 
 class Value {
  public:
@@ -57,6 +64,7 @@ class Value {
   std::string dump(int indent = -1) const;
 
  private:
+  friend struct detail::Parser;  // builds objects with a key index (no quadratic duplicate check)
   void dump_to(std::string& out, int indent, int depth) const;
   Type type_ = Type::Null;
   bool bool_ = false;
@@ -66,8 +74,15 @@ class Value {
   std::vector<std::pair<std::string, Value>> object_;
 };
 
-/// Parses JSON text. Error(ParseError) with the byte offset on malformed input.
+/// Parses JSON text. Error(ParseError) with the byte offset on malformed input;
+/// Error(LimitExceeded) beyond the limits of io/limits.hpp (size, depth, array/object length,
+/// string length, number of values), so no document costs more than ~25 MB of values.
 Value parse(const std::string& text);
+
+/// Refuses an object member whose key is not in `known`: Error(code) "<where>: unknown field 'x'
+/// (known: ...)". For readers that must not keep what they do not understand (profiles, recipes).
+void reject_unknown(const Value& object, std::initializer_list<const char*> known, const std::string& where,
+                    ErrorCode code);
 
 /// A double as the shortest-safe round-trip text (17 significant digits; non-finite -> null).
 std::string number_text(double d);

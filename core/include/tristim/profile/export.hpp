@@ -4,7 +4,9 @@
 // Device encoding of the ICC and .cube exports: device value d = camera RGB / rgb_scale
 // (default: the profile's training rgb_max), so d = 1 is the brightest training value.
 // Output: XYZ relative to the profile's white (white Y -> 1). The ICC PCS is D50: when the
-// profile white is not D50, XYZ is adapted with Bradford and a 'chad' tag records it.
+// profile white is not D50, XYZ is adapted with Bradford; a v4 profile records it in 'chad' and
+// has wtpt = D50, a v2 profile (no 'chad' in v2) has wtpt = the profile white (see export.cpp).
+// The ICC header's date is fixed, so one profile always gives the same bytes.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -17,17 +19,23 @@ namespace tristim {
 
 struct IccOptions {
   double rgb_scale = 0;       ///< 0: profile.rgb_max
-  int grid_points = 33;       ///< CLUT grid of LUT-based profiles (2..255)
+  /// CLUT grid of LUT-based profiles (2..255). 49: on the Passport degree-2 profile a 33-point
+  /// grid read back by lcms2 at mean ΔE00 0.050, max 0.27 (darkest patch); 49 well inside the
+  /// goals (mean < 0.05, max < 0.3; tests/core/profile/export_readers_test.cpp). ~0.7 MB.
+  int grid_points = 49;
   double shaper_gamma = 2.2;  ///< A-curve of LUT profiles: grid is uniform in d^(1/gamma)
   std::string description;    ///< empty: "tristim <model> (<objective>)"
   /// ICC version: 4.3 (default) or 2.4 (for readers without v4 support, e.g. Argyll 2.3's
-  /// icclib; AToB0 then is a lut16Type and the white is not written as D50 but the same way).
+  /// icclib, which refuses every v4 profile). v2: AToB0 is a lut16Type ('mft2': 4096-entry input
+  /// tables, the same 16-bit XYZ encoding as v4), wtpt is the profile white, no 'chad', no ID.
   double version = 4.3;
 };
 
 /// ICC v4.3 input-class RGB -> PCS XYZ profile. A plain 3×3 model gives a matrix/shaper
 /// profile (rXYZ/gXYZ/bXYZ + identity TRCs); every other model an AToB0 lutAtoBType with
-/// A curves (gamma 1/shaper_gamma), a 16-bit CLUT sampled from the model, identity B curves.
+/// A curves (gamma 1/shaper_gamma), a 16-bit CLUT sampled from the model holding XYZ offset and
+/// scaled to keep -0.5..2 (negative predictions survive at the nodes), and B curves that map it
+/// to PCSXYZ, clipping to 0 .. 1 + 32767/32768 only there.
 /// Error(ExportFailed) if lcms2 refuses.
 std::vector<uint8_t> export_icc(const Profile& profile, const IccOptions& options = {});
 
@@ -35,8 +43,16 @@ std::vector<uint8_t> export_icc(const Profile& profile, const IccOptions& option
 /// relative colorimetric. For checks and tests.
 PatchMatrix icc_device_to_XYZ(const std::vector<uint8_t>& icc, const PatchMatrix& device_RGB);
 
-/// .cube (Adobe/Resolve 3D LUT) of `size`³ entries (2..256): input device RGB (0..1), output
-/// XYZ / white Y, red index fastest.
+/// The .cube's 1D shaper: rows and exponent (u = d^(1/kCubeShaperGamma)).
+constexpr int kCubeShaperSize = 4096;
+constexpr double kCubeShaperGamma = 2.2;
+
+/// .cube in the Resolve convention (read by Resolve and OpenColorIO): a 1D shaper of
+/// kCubeShaperSize rows, u = d^(1/2.2) per channel, followed by a 3D LUT of `size`³ rows (2..129,
+/// red fastest) holding XYZ / white Y at u. Input d = camera RGB / rgb_scale (0..1, clamped).
+/// The shaper puts grid points where the model bends (near black, where the roots of a
+/// root-polynomial are steep): on the Passport degree-2 profile a 33³ linear-domain grid was off by
+/// up to 5.5 ΔE00 in the shadows, the shaped one by < 0.3 (tests/core/profile/export_readers_test).
 std::string export_cube(const Profile& profile, int size = 33, double rgb_scale = 0);
 
 /// Per-patch CSV: id, RGB, reference XYZ, estimate XYZ, ΔE76, ΔE94, ΔE00, ΔL, ΔC, ΔH, ΔE_xyz,

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets of tests/fuzz with Debian's clang (address + undefined sanitizers on
+# the whole core) into build/fuzz and runs each on its committed seed corpus.
+#   scripts/fuzz.sh            short run: FUZZ_SECONDS (default 60) per target (CI)
+#   scripts/fuzz.sh long       long run: FUZZ_RUNS (default 10000000) executions per target
+# New inputs found go to build/fuzz/corpus/<target> (not committed); crashes to build/fuzz/crashes.
+# Exit status 1 if any target crashed. Third-party libraries (lcms2, LibRaw, NLopt) are Debian's
+# uninstrumented builds here.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+mode=${1:-short}
+out=build/fuzz
+cmake -S . -B "$out" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  -DTRISTIM_FUZZ=ON ${CCACHE:+-DCMAKE_CXX_COMPILER_LAUNCHER=ccache} > "$out.configure.log" 2>&1 \
+  || { cat "$out.configure.log"; exit 1; }
+cmake --build "$out" -j"$(nproc)" > "$out.build.log" 2>&1 || { tail -40 "$out.build.log"; exit 1; }
+mkdir -p "$out/crashes"
+status=0
+for bin in "$out"/tests/fuzz/fuzz_*; do
+  [ -x "$bin" ] || continue
+  name=$(basename "$bin")
+  seeds=tests/fuzz/corpus/${name#fuzz_}
+  work="$out/corpus/${name#fuzz_}"
+  mkdir -p "$work"
+  if [ "$mode" = long ]; then limit="-runs=${FUZZ_RUNS:-10000000}"; else limit="-max_total_time=${FUZZ_SECONDS:-60}"; fi
+  echo "[fuzz] $name ($mode)"
+  "$bin" "$work" "$seeds" $limit -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
+    -artifact_prefix="$out/crashes/$name-" -print_final_stats=1 > "$out/$name.log" 2>&1
+  rc=$?
+  grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$out/$name.log" | sed "s/^/[fuzz] $name /"
+  if [ $rc -ne 0 ]; then status=1; echo "[fuzz] $name FAILED (exit $rc):"; grep -E "ERROR|SUMMARY|Test unit written" "$out/$name.log" | head -5; fi
+done
+if [ $status -eq 0 ]; then echo "[fuzz] no crashes"; else echo "[fuzz] crashes in $out/crashes"; fi
+exit $status
