@@ -157,10 +157,14 @@ json::Value curves_json(const Linearisation& l) {
   return a;
 }
 
+// 17 significant digits: the values read back are the values computed.
 std::string linear_csv(const std::vector<std::string>& ids, const PatchMatrix& lin) {
   std::string out = "patch,R,G,B\n";
-  for (Eigen::Index i = 0; i < lin.rows(); ++i)
-    out += ids[static_cast<size_t>(i)] + "," + fmt(lin(i, 0)) + "," + fmt(lin(i, 1)) + "," + fmt(lin(i, 2)) + "\n";
+  char buf[96];
+  for (Eigen::Index i = 0; i < lin.rows(); ++i) {
+    std::snprintf(buf, sizeof buf, ",%.17g,%.17g,%.17g\n", lin(i, 0), lin(i, 1), lin(i, 2));
+    out += ids[static_cast<size_t>(i)] + buf;
+  }
   return out;
 }
 

@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <cstdlib>
 #include <sstream>
+#include <string_view>
 
 #include "rows.hpp"
 #include "tristim/data.hpp"
@@ -16,9 +18,45 @@
 
 namespace tristim {
 
+namespace {
+
+// The built-in table is trusted and large (1269 × 81 numbers): a plain strtod pass instead of
+// the checking reader (read_spectral_csv), which takes ~100× longer on it. A malformed built-in
+// file is a bug (Error Internal).
+SpectralData parse_builtin_spectral(std::string_view name) {
+  const std::string text(builtin_file(name));
+  SpectralData s;
+  size_t pos = text.find('\n');
+  if (pos == std::string::npos) throw Error(ErrorCode::Internal, "built-in " + std::string(name) + ": no header");
+  {
+    size_t start = text.find(',');  // skip "wavelength_nm"
+    while (start < pos) {
+      const size_t end = std::min(text.find(',', start + 1), pos);
+      s.names.push_back(text.substr(start + 1, end - start - 1));
+      start = end;
+    }
+  }
+  s.values.resize(s.names.size());
+  const char* p = text.c_str() + pos + 1;
+  const char* const end = text.c_str() + text.size();
+  while (p < end && *p != '\0') {
+    char* next = nullptr;
+    s.wavelengths.push_back(std::strtod(p, &next));
+    p = next;
+    for (auto& column : s.values) {
+      if (*p != ',') throw Error(ErrorCode::Internal, "built-in " + std::string(name) + ": short row");
+      column.push_back(std::strtod(p + 1, &next));
+      p = next;
+    }
+    while (p < end && (*p == '\r' || *p == '\n')) ++p;
+  }
+  return s;
+}
+
+}  // namespace
+
 const SpectralData& munsell_reflectances() {
-  static const SpectralData set = read_spectral_csv(
-      builtin_file("reflectances/munsell_matt_1269_reflectance_380-780_5nm.csv"), "built-in Munsell 1269");
+  static const SpectralData set = parse_builtin_spectral("reflectances/munsell_matt_1269_reflectance_380-780_5nm.csv");
   return set;
 }
 
@@ -44,7 +82,19 @@ namespace {
 Eigen::MatrixXd gram(const SpectralData& set, const std::vector<double>& wavelengths) {
   const size_t N = wavelengths.size();
   Eigen::MatrixXd R(N, set.size());
+  // Where every wavelength is one of the set's own, take the values as they are (the interpolation
+  // rule passes through its samples); otherwise resample each reflectance.
+  std::vector<size_t> at;
+  for (double w : wavelengths) {
+    const auto it = std::lower_bound(set.wavelengths.begin(), set.wavelengths.end(), w - 1e-9);
+    if (it == set.wavelengths.end() || std::fabs(*it - w) > 1e-9) break;
+    at.push_back(static_cast<size_t>(it - set.wavelengths.begin()));
+  }
   for (size_t s = 0; s < set.size(); ++s) {
+    if (at.size() == N) {
+      for (size_t i = 0; i < N; ++i) R(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(s)) = set.values[s][at[i]];
+      continue;
+    }
     const std::vector<double> v = interpolate_spectrum(set.wavelengths, set.values[s], wavelengths, set.linear);
     for (size_t i = 0; i < N; ++i) R(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(s)) = v[i];
   }
