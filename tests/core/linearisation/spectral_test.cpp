@@ -1,11 +1,14 @@
 // Spectral characterisation (Shen et al. 2008 eqs 26-28): planted W, per-pixel = per-patch,
 // CSV and JSON round trips, colorimetric error of the estimates, bad input.
 #include <cmath>
+#include <cstring>
+#include <map>
 
 #include "test_support.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/linearisation/spectral.hpp"
+#include "tristim/profile/export.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
 using namespace tristim;
@@ -106,4 +109,33 @@ TEST_CASE("spectral: bad input gives coded errors", "[linearisation][spectral]")
   PatchMatrix flat = p.stored;
   flat.col(2) = flat.col(1);
   test::require_code([&] { fit_spectral(p.lin, p.ids, flat, p.reflectances); }, ErrorCode::IllConditioned);
+}
+
+TEST_CASE("spectral: the multi-band float TIFF holds every band", "[linearisation][spectral]") {
+  const int w = 3, h = 2, bands = 31;
+  std::vector<float> px(static_cast<size_t>(w * h * bands));
+  for (size_t i = 0; i < px.size(); ++i) px[i] = 0.01f * static_cast<float>(i);
+  const std::vector<uint8_t> b = float_tiff_bands(px.data(), w, h, bands, "reflectance");
+  auto u16 = [&](size_t at) { return static_cast<uint32_t>(b[at] | b[at + 1] << 8); };
+  auto u32 = [&](size_t at) { return u16(at) | u16(at + 2) << 16; };
+  REQUIRE(b.size() > 8);
+  CHECK(b[0] == 'I');
+  CHECK(u16(2) == 42);
+  const size_t ifd = u32(4);
+  std::map<uint32_t, std::pair<uint32_t, uint32_t>> tags;  // id -> (count, value/offset)
+  for (uint32_t i = 0; i < u16(ifd); ++i) {
+    const size_t e = ifd + 2 + 12 * i;
+    tags[u16(e)] = {u32(e + 4), u16(e + 2) == 3 && u32(e + 4) == 1 ? u16(e + 8) : u32(e + 8)};
+  }
+  CHECK(tags[277].second == static_cast<uint32_t>(bands));  // SamplesPerPixel
+  CHECK(tags[262].second == 1);                             // MinIsBlack
+  CHECK(tags[338].first == static_cast<uint32_t>(bands - 1));  // ExtraSamples
+  CHECK(tags[258].first == static_cast<uint32_t>(bands));
+  CHECK(u16(tags[258].second) == 32);
+  CHECK(u16(tags[339].second + 2 * (bands - 1)) == 3);      // SampleFormat: float, every band
+  const size_t data = tags[273].second;
+  CHECK(tags[279].second == static_cast<uint32_t>(w * h * bands * 4));
+  float last;
+  std::memcpy(&last, b.data() + data + 4 * (px.size() - 1), 4);
+  CHECK(last == px.back());
 }
