@@ -8,6 +8,7 @@
 #include "test_support.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/evaluation/evaluation.hpp"
+#include "tristim/io/patch_files.hpp"
 #include "tristim/linearisation/linearisation.hpp"
 #include "tristim/linearisation/oecf_Shen2008.hpp"
 #include "tristim/linearisation/spectral.hpp"
@@ -265,4 +266,32 @@ TEST_CASE("Shen2008: bad input gives coded errors or visible warnings", "[linear
   const Linearisation c = fit_linearisation(parse_choice("Shen2008"), clipped);
   CHECK(c.message.find("channel G: clipped (0 or full scale) and left out: B5") != std::string::npos);
   CHECK(c.message.find("channel B: clipped (0 or full scale) and left out: A4") != std::string::npos);
+}
+
+TEST_CASE("Shen2008: real RAW patches through an 8-bit γ = 2.2 encoding (a Table I on real sensor data)",
+          "[linearisation][shen]") {
+  // The Passport DNG's 24 patches (Canon 550D, linear RAW means derived by dcraw_emu), encoded as
+  // an 8-bit camera would: ρ = round(255 (u / 1.02 u_max)^(1/2.2)). Reflectances: X-Rite's
+  // ColorChecker before Nov 2014 (the Passport predates it). Greys D1-D6 only for R².
+  const PatchTable raw = read_patch_file(test::read_shared("raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv"),
+                                         "passport.csv");
+  REQUIRE(raw.RGB.size() == 24);
+  double top = 0;
+  for (const auto& v : raw.RGB) top = std::max(top, v.maxCoeff());
+  LinearisationData d;
+  d.full_scale = 255;
+  d.reflectances = chart_reflectances("cc24-2005");
+  d.camera_RGB.resize(24, 3);
+  for (int i = 0; i < 24; ++i) {
+    d.ids.push_back(std::string(1, "ABCD"[i / 6]) + std::to_string(i % 6 + 1));
+    for (int c = 0; c < 3; ++c) d.camera_RGB(i, c) = std::round(255 * std::pow(raw.RGB[i][c] / (1.02 * top), 1 / 2.2));
+  }
+  Vec3 previous = Vec3::Zero();
+  for (int L = 0; L <= 3; ++L) {
+    const Linearisation l = fit_linearisation(MethodChoice{"Shen2008", {{"L", L}}, {{"grey", greys_of("cc24")}}}, d);
+    INFO("L = " << L << ": R² " << l.r_squared.transpose() << "; " << l.message);
+    if (L >= 2) CHECK(l.r_squared.minCoeff() > 0.995);
+    CHECK(l.r_squared.mean() > previous.mean());  // Table I: R² grows with L
+    previous = l.r_squared;
+  }
 }
