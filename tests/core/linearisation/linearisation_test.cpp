@@ -64,7 +64,7 @@ TEST_CASE("linearisation: gamma and sRGB are exact and invert on a grid (1e-12)"
   CHECK(linearisation_method("sRGB").apply(s, 1, 255) == Approx(1).epsilon(1e-15));
 }
 
-TEST_CASE("linearisation: polyfit recovers a planted polynomial; R² and correlation", "[linearisation]") {
+TEST_CASE("linearisation: polyfit recovers a planted polynomial, R² and correlation", "[linearisation]") {
   const std::vector<double> c{0.02, 0.3, -0.1, 0.9};
   std::vector<double> x, y;
   for (int i = 0; i < 12; ++i) {
@@ -138,7 +138,7 @@ TEST_CASE("linearisation: grey and colour polynomials recover a planted per-chan
   }
 }
 
-TEST_CASE("linearisation: log-polynomials fit a power law exactly; clipped patches are named", "[linearisation]") {
+TEST_CASE("linearisation: log-polynomials fit a power law exactly, clipped patches are named", "[linearisation]") {
   const ReferenceChart ref = reference_chart("cc24", "D65");
   LinearisationData d = chart_data("cc24", PatchMatrix::Zero(24, 3));
   d.full_scale = 255;

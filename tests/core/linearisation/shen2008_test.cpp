@@ -191,7 +191,7 @@ std::vector<double> worst_r2(const std::string& chart, double sigma, int L, int 
 }
 }  // namespace
 
-TEST_CASE("Shen2008: the 18-sample chart degrades first as noise grows; L helps", "[linearisation][shen]") {
+TEST_CASE("Shen2008: the 18-sample chart degrades first as noise grows, L helps", "[linearisation][shen]") {
   // 40 noise realisations per case; the 10th percentile of the worst channel's R².
   const int seeds = 40;
   auto p10 = [](const std::vector<double>& v) { return v[v.size() / 10]; };

@@ -70,7 +70,7 @@ TEST_CASE("spectral: W (eq 27) recovers reflectances in a 3-dimensional span exa
   CHECK(a.dE00_summary.max < 1e-8);
 }
 
-TEST_CASE("spectral: per-pixel estimates equal the per-patch ones; CSV and JSON round trips", "[linearisation][spectral]") {
+TEST_CASE("spectral: per-pixel estimates equal the per-patch ones, CSV and JSON round trips", "[linearisation][spectral]") {
   const Planted p = planted();
   const SpectralModel m = fit_spectral(p.lin, p.ids, p.stored, p.reflectances);
   std::vector<float> rgb;
