@@ -92,12 +92,6 @@ double sRGB_decode(double v) {
   return v < 0 ? -l : l;
 }
 
-double sRGB_encode_value(double v) {
-  const double a = std::fabs(v);
-  const double e = a <= 0.0031308 ? 12.92 * a : 1.055 * std::pow(a, 1.0 / 2.4) - 0.055;
-  return v < 0 ? -e : e;
-}
-
 std::vector<std::string> split_ids(const std::string& list) {
   std::vector<std::string> out;
   std::string item;
@@ -291,7 +285,10 @@ double inverse_gamma(const Linearisation& l, int c, double y) {
 }
 
 double apply_sRGB(const Linearisation& l, int, double value) { return sRGB_decode(value / l.full_scale); }
-double inverse_sRGB(const Linearisation& l, int, double y) { return sRGB_encode_value(y) * l.full_scale; }
+// The one sRGB encoder (colorimetry.hpp), odd-symmetric here; linear values above 1 map to full scale.
+double inverse_sRGB(const Linearisation& l, int, double y) {
+  return (y < 0 ? -sRGB_encode(-y) : sRGB_encode(y)) * l.full_scale;
+}
 
 }  // namespace
 

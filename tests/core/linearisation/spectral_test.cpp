@@ -50,7 +50,7 @@ Planted planted() {
     p.reflectances.names.push_back(p.ids.back());
     p.reflectances.values.emplace_back(r.data(), r.data() + N);
     const Eigen::Vector3d u = m * r;
-    for (int c = 0; c < 3; ++c) p.stored(q, c) = 255 * sRGB_encode_value(u[c]);
+    for (int c = 0; c < 3; ++c) p.stored(q, c) = 255 * sRGB_encode(u[c]);
   }
   return p;
 }

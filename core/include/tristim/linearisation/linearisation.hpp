@@ -147,8 +147,8 @@ double coefficient_of_determination(const std::vector<double>& y, const std::vec
 /// Squared Pearson correlation of two equally long sequences (NaN if either is constant).
 double squared_correlation(const std::vector<double>& a, const std::vector<double>& b);
 
-/// IEC 61966-2-1 sRGB decoding (encoded 0..1 -> linear), odd-symmetric for negative inputs.
+/// IEC 61966-2-1 sRGB decoding (encoded 0..1 -> linear), odd-symmetric for negative inputs; the
+/// encoder is colorimetry.hpp's sRGB_encode.
 double sRGB_decode(double encoded);
-double sRGB_encode_value(double linear);
 
 }  // namespace tristim
