@@ -20,6 +20,7 @@ const char* kFitUsage =
     "            [--out profile.json] [--csv patches_out.csv] [--no-loo] [--recipe-out recipe.json]\n"
     "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm auto|lm|bobyqa|sbplx]\n"
     "            [--de-xtol X] [--de-ftol F] [--de-max-evaluations N] [--de-step S]\n"
+    "            [--linearisation <id>[:name=value,...]]   (the recipe's linearisation stage: tristim linearise --list)\n"
     "tristim fit --recipe recipe.json (--rgb patches.csv | --raw chart.dng) [--xyz reference.csv]\n"
     "            [--out profile.json] [--csv patches_out.csv] [--recipe-out recipe.json]\n"
     "  Fits camera RGB -> XYZ and prints (or writes) the profile JSON with training and\n"
@@ -45,6 +46,7 @@ Recipe recipe_from_flags(const Args& args, const PatchData& d, const std::string
   r.characterisation.white_patch = white_index >= 0 ? d.ids[white_index] : "";
   r.characterisation.lab_white = o.white;
   r.evaluation.leave_one_out = !args.has("no-loo");
+  if (args.has("linearisation")) r.linearisation = parse_choice(args.get("linearisation"));
   return complete_recipe(r);
 }
 
@@ -109,7 +111,7 @@ int run_fit(const Args& args, std::ostream& out) {
   } else {
     args.allow_only({"rgb", "xyz", "model", "objective", "white", "lab-white", "ref-white", "out", "csv",
                      "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol", "de-ftol",
-                     "de-max-evaluations", "de-rms", "de-step", "no-loo", "recipe-out"});
+                     "de-max-evaluations", "de-rms", "de-step", "no-loo", "recipe-out", "linearisation"});
     const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
     recipe = recipe_from_flags(args, d, read_file(args.get("xyz")));
     training = training_set(recipe, d.ids, d.rgb, d.xyz);

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "linearise_option.hpp"
 #include "patch_args.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
@@ -54,6 +55,7 @@ const char* kCompareUsage =
     "tristim compare --rgb patches.csv --xyz reference.csv [--objectives ls,psm,de2000]\n"
     "                [--models id,id,...] [--white <patch>] [--lab-white ...] [--ref-white ...]\n"
     "                [--test-rgb other.csv --test-xyz other_ref.csv] [--json]\n"
+    "                [--linearisation <id>[:options]|fitted.json [--reflectances spectra.csv|<chart>] [--full-scale 255]]\n"
     "  Every model × objective on the same patches: training and leave-one-out CIEDE2000,\n"
     "  sorted by the held-out mean. With --test-rgb/--test-xyz also the train-on-one /\n"
     "  test-on-another table (Abed 2013 Table IV layout).";
@@ -83,9 +85,10 @@ json::Value compare_row_json(const CompareRow& r) {
 int run_compare(const Args& args, std::ostream& out) {
   args.allow_only({"rgb", "xyz", "objectives", "models", "white", "lab-white", "ref-white", "test-rgb",
                    "test-xyz", "json", "objective", "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol",
-                   "de-ftol", "de-max-evaluations", "de-rms", "de-step"});
+                   "de-ftol", "de-max-evaluations", "de-rms", "de-step", "linearisation", "reflectances", "full-scale"});
   const Vec3 ref_white = parse_white(args, "ref-white", whites::D50());
-  const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), ref_white);
+  PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), ref_white);
+  const Linearisation lin = linearisation_option(args, "compare", d.ids, d.rgb, d.xyz, ref_white);  // linearise_option.hpp
   int white_index = -1;
   const FitOptions o = fit_options(args, d, white_index);
   std::vector<Objective> objectives;
@@ -96,7 +99,8 @@ int run_compare(const Args& args, std::ostream& out) {
   const auto rows = compare_models(d.rgb, d.xyz, o, models, objectives, white_index);
   std::vector<TransferCell> transfer;
   if (args.has("test-rgb") || args.has("test-xyz")) {
-    const PatchData t = load_pairs(args.get("test-rgb"), args.get("test-xyz"), ref_white);
+    PatchData t = load_pairs(args.get("test-rgb"), args.get("test-xyz"), ref_white);
+    t.rgb = linearise(lin, t.rgb);
     std::vector<std::string> ids = models;
     if (ids.empty())
       for (const auto& m : model_table())
@@ -168,13 +172,13 @@ int run_compare(const Args& args, std::ostream& out) {
 }
 
 const char* kApplyUsage =
-    "tristim apply <profile.json> <image> --out xyz.tiff|xyz.pfm\n"
+    "tristim apply <profile.json> <image> --out xyz.tiff|xyz.pfm [--linearisation gamma|sRGB|fitted.json [--full-scale 255]]\n"
     "  Applies the profile to a linear camera-RGB image and writes 32-bit float XYZ (TIFF,\n"
     "  uncompressed, or PFM). Input: a RAW file (decoded like the chart: linear, black subtracted,\n"
     "  no white balance) or a colour PFM of linear camera RGB.";
 
 int run_apply(const Args& args, std::ostream&) {
-  args.allow_only({"out"});
+  args.allow_only({"out", "linearisation", "full-scale"});
   if (args.positional.size() != 2)
     throw Error(ErrorCode::InvalidArgument, "usage: tristim apply <profile.json> <image> --out xyz.tiff|pfm");
   const Profile p = profile_from_json(read_file(args.positional[0]));
@@ -191,6 +195,7 @@ int run_apply(const Args& args, std::ostream&) {
     rgb.height = raw.height;
     rgb.pixels = std::move(raw.rgb);
   }
+  linearise_image(linearisation_for_image(args), rgb.pixels.data(), rgb.pixels.size() / 3);  // linearise_option.hpp
   const std::string out_path = args.get("out");
   const auto t0 = std::chrono::steady_clock::now();
   const Image3f xyz = apply_profile(p, rgb.pixels.data(), rgb.width, rgb.height);

@@ -1,24 +1,22 @@
-// The linearisation table and its dispatcher.
+// The linearisation table, its dispatcher, application to patches and images, plot samples and
+// the JSON form of a fitted linearisation.
 #include "tristim/linearisation/linearisation.hpp"
 
+#include <cmath>
+
+#include "rows.hpp"
 #include "tristim/error.hpp"
 
 namespace tristim {
 
 namespace {
 
-Linearisation fit_identity(const LinearisationData& data, const MethodChoice& choice) {
-  Linearisation l;
-  l.choice = choice;
-  l.full_scale = data.full_scale > 0 ? data.full_scale : 1;
-  return l;
-}
-
-double apply_identity(const Linearisation&, int, double value) { return value; }
-
 std::vector<LinearisationMethod> build_table() {
-  std::vector<LinearisationMethod> t;
-  t.push_back({{"identity", "None (linear data, e.g. RAW)", "", {}}, fit_identity, apply_identity});
+  using namespace linearisation_detail;
+  std::vector<LinearisationMethod> t{row_identity(), row_gamma(), row_sRGB()};
+  for (auto& r : rows_polynomial()) t.push_back(std::move(r));
+  // Guarnera2018 (absolute colorimetry, guarnera2018.cpp) goes here: t.push_back(row_Guarnera2018());
+  t.push_back(row_Shen2008());
   return t;
 }
 
@@ -47,6 +45,185 @@ PatchMatrix linearise(const Linearisation& fitted, const PatchMatrix& camera_RGB
   for (Eigen::Index i = 0; i < camera_RGB.rows(); ++i)
     for (int c = 0; c < 3; ++c) out(i, c) = m.apply(fitted, c, camera_RGB(i, c));
   return out;
+}
+
+PatchMatrix delinearise(const Linearisation& fitted, const PatchMatrix& linear_RGB) {
+  const LinearisationMethod& m = linearisation_method(fitted.choice.method);
+  PatchMatrix out(linear_RGB.rows(), 3);
+  for (Eigen::Index i = 0; i < linear_RGB.rows(); ++i)
+    for (int c = 0; c < 3; ++c) out(i, c) = m.inverse(fitted, c, linear_RGB(i, c));
+  return out;
+}
+
+void linearise_image(const Linearisation& fitted, float* rgb, size_t n_pixels) {
+  const LinearisationMethod& m = linearisation_method(fitted.choice.method);
+  if (fitted.choice.method == "identity") return;
+  const bool polynomial = m.apply == linearisation_detail::apply_polynomial;
+  for (int c = 0; c < 3; ++c) {
+    if (polynomial) {  // Horner inline: no call per sample
+      const std::vector<double>& k = fitted.coefficients[c];
+      const double inv = 1.0 / fitted.full_scale;
+      for (size_t i = 0; i < n_pixels; ++i) {
+        const double x = rgb[3 * i + c] * inv;
+        double y = 0;
+        for (size_t j = k.size(); j-- > 0;) y = y * x + k[j];
+        rgb[3 * i + c] = static_cast<float>(y);
+      }
+    } else {
+      for (size_t i = 0; i < n_pixels; ++i) rgb[3 * i + c] = static_cast<float>(m.apply(fitted, c, rgb[3 * i + c]));
+    }
+  }
+}
+
+CurveSamples sample_curve(const Linearisation& fitted, int channel, int n) {
+  if (channel < 0 || channel > 2 || n < 2) throw Error(ErrorCode::InvalidArgument, "sample_curve: channel 0..2, n >= 2");
+  const LinearisationMethod& m = linearisation_method(fitted.choice.method);
+  CurveSamples s;
+  const double a = fitted.domain[channel][0], b = fitted.domain[channel][1];
+  const bool shen = fitted.choice.method == "Shen2008";
+  const bool grey = shen && !fitted.grey_coefficients[channel].empty();
+  const double top = shen ? m.apply(fitted, channel, b * fitted.full_scale) : 1.0;
+  const double grey_top = grey ? polyval(fitted.grey_coefficients[channel], b) : 1.0;
+  for (int i = 0; i < n; ++i) {
+    const double x = a + (b - a) * i / (n - 1);
+    s.x.push_back(x);
+    s.linear.push_back(m.apply(fitted, channel, x * fitted.full_scale) / top);
+    if (grey) s.grey_based.push_back(polyval(fitted.grey_coefficients[channel], x) / grey_top);
+  }
+  return s;
+}
+
+// ---- JSON ----------------------------------------------------------------------------------------
+
+namespace {
+
+json::Value strings_json(const std::vector<std::string>& v) {
+  json::Value a = json::Value::array();
+  for (const auto& s : v) a.push(s);
+  return a;
+}
+
+[[noreturn]] void invalid(const std::string& what) {
+  throw Error(ErrorCode::ProfileInvalid, "linearisation: " + what);
+}
+
+const json::Value& field(const json::Value& o, const std::string& key) {
+  const json::Value* v = o.find(key);
+  if (!v) invalid("missing field '" + key + "'");
+  return *v;
+}
+
+std::vector<std::string> strings_of(const json::Value& o, const std::string& key) {
+  const json::Value& a = field(o, key);
+  if (!a.is_array()) invalid("'" + key + "' must be an array");
+  std::vector<std::string> out;
+  for (const auto& e : a.as_array()) {
+    if (!e.is_string()) invalid("'" + key + "' must hold strings");
+    out.push_back(e.as_string());
+  }
+  return out;
+}
+
+std::array<std::vector<double>, 3> triple_of(const json::Value& o, const std::string& key) {
+  const json::Value& a = field(o, key);
+  if (!a.is_array() || a.size() != 3) invalid("'" + key + "' must be an array of 3 arrays");
+  std::array<std::vector<double>, 3> out;
+  for (int c = 0; c < 3; ++c) {
+    const json::Value& e = a.as_array()[static_cast<size_t>(c)];
+    if (!e.is_array()) invalid("'" + key + "' must be an array of 3 arrays");
+    for (const auto& v : e.as_array()) {
+      if (!v.is_number() || !std::isfinite(v.as_number())) invalid("'" + key + "' must hold finite numbers");
+      out[static_cast<size_t>(c)].push_back(v.as_number());
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+json::Value linearisation_json(const Linearisation& l) {
+  json::Value o = json::Value::object();
+  o.set("method", l.choice.method);
+  json::Value p = json::Value::object(), s = json::Value::object();
+  for (const auto& [k, v] : l.choice.parameters) p.set(k, v);
+  for (const auto& [k, v] : l.choice.settings) s.set(k, v);
+  o.set("parameters", p);
+  o.set("settings", s);
+  o.set("full_scale", l.full_scale);
+  json::Value coef = json::Value::array(), dom = json::Value::array(), grey = json::Value::array(),
+              r2 = json::Value::array();
+  for (int c = 0; c < 3; ++c) {
+    coef.push(json::Value(l.coefficients[c]));
+    dom.push(json::Value(std::vector<double>{l.domain[c][0], l.domain[c][1]}));
+    grey.push(json::Value(l.grey_coefficients[c]));
+    r2.push(std::isfinite(l.r_squared[c]) ? json::Value(l.r_squared[c]) : json::Value(nullptr));
+  }
+  o.set("coefficients", coef);
+  o.set("domain", dom);
+  o.set("r_squared", r2);
+  o.set("fitted", strings_json(l.fitted));
+  o.set("greys", strings_json(l.greys));
+  o.set("grey_reason", l.grey_reason);
+  o.set("grey_coefficients", grey);
+  o.set("monotonic", l.monotonic);
+  o.set("message", l.message);
+  return o;
+}
+
+Linearisation linearisation_from_json(const json::Value& o) {
+  if (!o.is_object()) invalid("not a JSON object");
+  Linearisation l;
+  const json::Value& method = field(o, "method");
+  if (!method.is_string()) invalid("'method' must be a string");
+  MethodChoice choice;
+  choice.method = method.as_string();
+  const json::Value& p = field(o, "parameters");
+  const json::Value& s = field(o, "settings");
+  if (!p.is_object() || !s.is_object()) invalid("'parameters' and 'settings' must be objects");
+  for (const auto& [k, v] : p.members()) {
+    if (!v.is_number()) invalid("parameter '" + k + "' must be a number");
+    choice.parameters[k] = v.as_number();
+  }
+  for (const auto& [k, v] : s.members()) {
+    if (!v.is_string()) invalid("setting '" + k + "' must be a string");
+    choice.settings[k] = v.as_string();
+  }
+  l.choice = complete_choice(linearisation_method(choice.method).info, choice);
+  const json::Value& fs = field(o, "full_scale");
+  if (!fs.is_number() || !(fs.as_number() > 0) || !std::isfinite(fs.as_number())) invalid("'full_scale' must be > 0");
+  l.full_scale = fs.as_number();
+  l.coefficients = triple_of(o, "coefficients");
+  const auto dom = triple_of(o, "domain");
+  for (int c = 0; c < 3; ++c) {
+    if (dom[c].size() != 2) invalid("'domain' must hold 3 pairs");
+    l.domain[c] = {dom[c][0], dom[c][1]};
+  }
+  const json::Value& r2 = field(o, "r_squared");
+  if (!r2.is_array() || r2.size() != 3) invalid("'r_squared' must have 3 entries");
+  for (int c = 0; c < 3; ++c) {
+    const json::Value& v = r2.as_array()[static_cast<size_t>(c)];
+    if (v.is_null()) continue;
+    if (!v.is_number()) invalid("'r_squared' must hold numbers or null");
+    l.r_squared[c] = v.as_number();
+  }
+  l.fitted = strings_of(o, "fitted");
+  l.greys = strings_of(o, "greys");
+  const json::Value& reason = field(o, "grey_reason");
+  if (!reason.is_string()) invalid("'grey_reason' must be a string");
+  l.grey_reason = reason.as_string();
+  l.grey_coefficients = triple_of(o, "grey_coefficients");
+  const json::Value& mono = field(o, "monotonic");
+  if (!mono.is_bool()) invalid("'monotonic' must be true or false");
+  l.monotonic = mono.as_bool();
+  const json::Value& msg = field(o, "message");
+  if (!msg.is_string()) invalid("'message' must be a string");
+  l.message = msg.as_string();
+  // A curve that needs coefficients must have them.
+  const std::string& id = l.choice.method;
+  if (id != "identity" && id != "sRGB")
+    for (int c = 0; c < 3; ++c)
+      if (l.coefficients[c].empty()) invalid("'coefficients' of channel " + std::to_string(c) + " are empty");
+  return l;
 }
 
 }  // namespace tristim

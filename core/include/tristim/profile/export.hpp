@@ -65,6 +65,10 @@ std::string patch_csv(const std::vector<std::string>& ids, const PatchMatrix& ca
 /// (SampleFormat 3, PlanarConfiguration 1, one strip), interleaved input of width × height × 3.
 std::vector<uint8_t> float_tiff(const float* pixels, int width, int height,
                                 const std::string& description = "CIE XYZ");
+/// The same with `bands` 32-bit float samples per pixel (band fastest), Photometric
+/// MinIsBlack with bands − 1 ExtraSamples: spectral images (linearisation/spectral.hpp).
+std::vector<uint8_t> float_tiff_bands(const float* pixels, int width, int height, int bands,
+                                      const std::string& description);
 /// An interleaved 3-channel float image (RGB in, XYZ out), row 0 at the top.
 struct Image3f {
   int width = 0, height = 0;

@@ -1,0 +1,413 @@
+// CLI: `tristim linearise` (fit one linearisation, write linear per-patch values and, with
+// --json, the curves and R²), `tristim spectral fit|apply` (Shen et al. 2008 eqs 26-28), and the
+// `--linearisation` option other commands take (linearise_option.hpp).
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "cli.hpp"
+#include "linearise_option.hpp"
+#include "tristim/capture/raw.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/error.hpp"
+#include "tristim/io/json.hpp"
+#include "tristim/io/patch_files.hpp"
+#include "tristim/linearisation/spectral.hpp"
+#include "tristim/profile/export.hpp"
+
+namespace tristim::cli {
+
+namespace {
+
+bool file_exists(const std::string& path) { return std::ifstream(path).good(); }
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  if (!f) throw Error(ErrorCode::InvalidArgument, "cannot write '" + path + "'");
+  f << text;
+  if (!f) throw Error(ErrorCode::ExportFailed, "writing '" + path + "' failed");
+}
+
+void warn(const std::string& command, const Linearisation& l) {
+  if (!l.message.empty()) std::cerr << "tristim " << command << ": warning: " << l.message << "\n";
+}
+
+/// A chart id (its built-in reflectances) or a spectral file; names normalised, fractions.
+SpectralData load_reflectances(const std::string& value) {
+  for (const auto& c : list_charts())
+    if (c.id == value) {
+      SpectralData s = chart_reflectances(value);
+      for (auto& n : s.names) n = normalise_patch_id(n);
+      return s;
+    }
+  if (!file_exists(value))
+    throw Error(ErrorCode::UnknownId, "--reflectances '" + value + "' is neither a chart id nor a readable file");
+  const PatchTable t = read_patch_file(read_file(value), value);
+  if (!t.has_spectra)
+    throw Error(ErrorCode::MissingColumn, value + ": no spectral columns (first column wavelength, or 380,390,... columns)");
+  SpectralData s = t.spectra;
+  reflectance_to_fraction(s);
+  return s;
+}
+
+SpectralData illuminant_of(const Args& args) {
+  const std::string v = args.get("illuminant", "D65");
+  if (file_exists(v)) {
+    SpectralData d = read_spectral_csv(read_file(v), v);
+    d.values.resize(1);
+    d.names.resize(1);
+    return d;
+  }
+  return illuminant_spd(v);
+}
+
+Vec3 white_arg(const Args& args) {
+  if (!args.has("ref-white")) return whites::D50();
+  const std::string s = args.get("ref-white");
+  if (s == "D50" || s == "d50") return whites::D50();
+  if (s == "D65" || s == "d65") return whites::D65();
+  std::vector<double> v;
+  for (const auto& p : split_ids(s)) v.push_back(std::strtod(p.c_str(), nullptr));
+  if (v.size() != 3 || !(v[0] > 0 && v[1] > 0 && v[2] > 0))
+    throw Error(ErrorCode::InvalidArgument, "--ref-white expects D50, D65 or X,Y,Z");
+  return Vec3(v[0], v[1], v[2]);
+}
+
+/// Camera RGB and whatever reference the options give, paired by patch id (the RGB file's order).
+LinearisationData load_data(const Args& args) {
+  const std::string rgb_path = args.get("rgb");
+  const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
+  if (!rgb.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
+  LinearisationData d;
+  d.ids = rgb.ids;
+  d.camera_RGB.resize(static_cast<Eigen::Index>(rgb.ids.size()), 3);
+  for (size_t i = 0; i < rgb.ids.size(); ++i) d.camera_RGB.row(static_cast<Eigen::Index>(i)) = rgb.RGB[i].transpose();
+  if (args.has("xyz") && args.has("reflectances"))
+    throw Error(ErrorCode::InvalidArgument, "give --reflectances or --xyz, not both");
+  if (args.has("reflectances")) {
+    d.reflectances = load_reflectances(args.get("reflectances"));
+    const SpectralData ill = illuminant_of(args);
+    d.white = illuminant_white_XYZ(ill);
+    d.reference_XYZ.resize(d.camera_RGB.rows(), 3);
+    for (size_t i = 0; i < d.ids.size(); ++i)
+      d.reference_XYZ.row(static_cast<Eigen::Index>(i)) =
+          sd_to_XYZ(d.reflectances.wavelengths, d.reflectances.column(d.ids[i]), ill).transpose();
+  }
+  if (args.has("xyz")) {
+    const std::string path = args.get("xyz");
+    const PatchTable ref = read_patch_file(read_file(path), path);
+    d.white = white_arg(args);
+    if (!ref.has_XYZ && !ref.has_Lab) throw Error(ErrorCode::MissingColumn, path + ": needs X, Y, Z or L, a, b columns");
+    d.reference_XYZ.resize(d.camera_RGB.rows(), 3);
+    for (size_t i = 0; i < d.ids.size(); ++i) {
+      size_t j = 0;
+      while (j < ref.ids.size() && ref.ids[j] != d.ids[i]) ++j;
+      if (j == ref.ids.size())
+        throw Error(ErrorCode::PatchMismatch, "patch '" + d.ids[i] + "' of " + rgb_path + " is not in " + path);
+      d.reference_XYZ.row(static_cast<Eigen::Index>(i)) =
+          (ref.has_XYZ ? ref.XYZ[j] : Lab_to_XYZ(ref.Lab[j], d.white)).transpose();
+    }
+  }
+  d.full_scale = args.has("full-scale") ? args.get_double("full-scale", 0) : default_full_scale(d.camera_RGB);
+  if (!(d.full_scale > 0)) throw Error(ErrorCode::InvalidArgument, "--full-scale expects a positive number");
+  return d;
+}
+
+/// --method (or --linearisation) with --grey, --J, --K, --L, --basis folded in.
+MethodChoice choice_of(const Args& args, const std::string& key, LinearisationData& d) {
+  MethodChoice c = parse_choice(args.get(key));
+  if (args.has("grey")) {
+    std::string joined;
+    for (const auto& id : split_ids(args.get("grey"))) joined += (joined.empty() ? "" : ";") + id;
+    c.settings["grey"] = joined;
+  }
+  for (const char* k : {"J", "K", "L"})
+    if (args.has(k)) c.parameters[k] = args.get_double(k, 0);
+  if (args.has("basis")) {
+    const std::string b = args.get("basis");
+    if (b == "munsell1269" || b == "patches") {
+      c.settings["basis"] = b;
+    } else {
+      d.basis_reflectances = load_reflectances(b);
+      c.settings["basis"] = "user";
+    }
+  }
+  return c;
+}
+
+json::Value curves_json(const Linearisation& l) {
+  json::Value a = json::Value::array();
+  for (int c = 0; c < 3; ++c) {
+    const CurveSamples s = sample_curve(l, c, 101);
+    json::Value o = json::Value::object();
+    o.set("channel", std::string(1, "RGB"[c]));
+    o.set("x", json::Value(s.x));
+    o.set("linear", json::Value(s.linear));
+    if (!s.grey_based.empty()) o.set("grey_based", json::Value(s.grey_based));
+    a.push(o);
+  }
+  return a;
+}
+
+// 17 significant digits: the values read back are the values computed.
+std::string linear_csv(const std::vector<std::string>& ids, const PatchMatrix& lin) {
+  std::string out = "patch,R,G,B\n";
+  char buf[96];
+  for (Eigen::Index i = 0; i < lin.rows(); ++i) {
+    std::snprintf(buf, sizeof buf, ",%.17g,%.17g,%.17g\n", lin(i, 0), lin(i, 1), lin(i, 2));
+    out += ids[static_cast<size_t>(i)] + buf;
+  }
+  return out;
+}
+
+Linearisation read_fitted(const std::string& path) {
+  const json::Value v = json::parse(read_file(path));
+  if (const json::Value* inner = v.is_object() ? v.find("linearisation") : nullptr) return linearisation_from_json(*inner);
+  return linearisation_from_json(v);
+}
+
+// ---- tristim linearise --------------------------------------------------------------------------
+
+const char* kLineariseUsage =
+    "tristim linearise --method <id>[:name=value,...] --rgb patches.csv\n"
+    "                  [--reflectances spectra.csv|<chart id> [--illuminant D65] | --xyz reference.csv [--ref-white D50]]\n"
+    "                  [--grey id,id,...] [--J 8 --K 2 --L 2] [--basis munsell1269|patches|set.csv]\n"
+    "                  [--full-scale 255] [--out linear.csv] [--json]\n"
+    "  Fits one linearisation (the inverse OECF per channel) and writes the linearised per-patch\n"
+    "  values (same ids, columns R,G,B) to stdout or --out; with --json, stdout gets the fitted\n"
+    "  curves (coefficients, 101 samples per channel over the fitted range, the grey-based curve\n"
+    "  for Shen2008), R² per channel, the greys used and why, and the warnings (also on stderr).\n"
+    "  --json output loads back as --linearisation file.json (fit, compare, apply, spectral).\n"
+    "  Methods (tristim linearise --list): identity, gamma, sRGB, grey-polynomial,\n"
+    "  grey-log-polynomial, colour-polynomial, colour-log-polynomial, Shen2008 (needs\n"
+    "  --reflectances). --full-scale: the encoding's largest value (default 1, 255 or 65535,\n"
+    "  whichever first holds every value). --illuminant: for XYZ from reflectances (greys, colour\n"
+    "  targets). Values of --xyz may be XYZ or L*a*b* (with --ref-white).";
+
+int run_linearise(const Args& args, std::ostream& out) {
+  args.allow_only({"method", "rgb", "reflectances", "xyz", "illuminant", "ref-white", "grey", "J", "K", "L", "basis",
+                   "full-scale", "out", "json", "list"});
+  if (args.has("list")) {
+    json::Value a = json::Value::array();
+    for (const auto& m : linearisation_table()) {
+      json::Value o = json::Value::object();
+      o.set("id", m.info.id);
+      o.set("label", m.info.label);
+      o.set("reference", m.info.reference);
+      o.set("needs", m.needs);
+      json::Value opts = json::Value::array();
+      for (const auto& s : m.info.options) opts.push(s.name);
+      o.set("options", opts);
+      a.push(o);
+    }
+    out << a.dump(2) << "\n";
+    return 0;
+  }
+  LinearisationData d = load_data(args);
+  const MethodChoice choice = choice_of(args, "method", d);
+  const Linearisation l = fit_linearisation(choice, d);
+  warn("linearise", l);
+  const PatchMatrix lin = linearise(l, d.camera_RGB);
+  const std::string csv = linear_csv(d.ids, lin);
+  if (args.has("out")) write_text(args.get("out"), csv);
+  if (args.has("json")) {
+    json::Value o = json::Value::object();
+    o.set("method", l.choice.method);
+    o.set("full_scale", l.full_scale);
+    json::Value r2 = json::Value::array();
+    for (int c = 0; c < 3; ++c) r2.push(std::isfinite(l.r_squared[c]) ? json::Value(l.r_squared[c]) : json::Value(nullptr));
+    o.set("r_squared", r2);
+    o.set("monotonic", l.monotonic);
+    o.set("warnings", l.message);
+    o.set("linearisation", linearisation_json(l));
+    o.set("curves", curves_json(l));
+    out << o.dump(2) << "\n";
+  } else if (!args.has("out")) {
+    out << csv;
+  }
+  return 0;
+}
+
+}  // namespace
+
+// ---- the --linearisation option of other commands ------------------------------------------------
+
+const std::vector<std::string>& linearisation_option_names() {
+  static const std::vector<std::string> names{"linearisation", "reflectances", "full-scale"};
+  return names;
+}
+
+double default_full_scale(const PatchMatrix& rgb) {
+  const double m = rgb.size() ? rgb.maxCoeff() : 0;
+  if (m <= 1) return 1;
+  if (m <= 255) return 255;
+  if (m <= 65535) return 65535;
+  return m;
+}
+
+Linearisation linearisation_option(const Args& args, const std::string& command, const std::vector<std::string>& ids,
+                                   PatchMatrix& rgb, const PatchMatrix& reference_XYZ, const Vec3& white) {
+  LinearisationData d;
+  d.ids = ids;
+  d.camera_RGB = rgb;
+  d.full_scale = args.has("full-scale") ? args.get_double("full-scale", 0) : default_full_scale(rgb);
+  if (!args.has("linearisation")) return fit_linearisation(parse_choice("identity"), d);
+  const std::string value = args.get("linearisation");
+  Linearisation l;
+  if (file_exists(value)) {
+    l = read_fitted(value);
+  } else {
+    d.reference_XYZ = reference_XYZ;
+    d.white = white;
+    if (args.has("reflectances")) d.reflectances = load_reflectances(args.get("reflectances"));
+    l = fit_linearisation(parse_choice(value), d);
+  }
+  warn(command, l);
+  rgb = linearise(l, rgb);
+  return l;
+}
+
+Linearisation linearisation_for_image(const Args& args) {
+  LinearisationData d;
+  d.camera_RGB = PatchMatrix::Ones(1, 3);
+  d.full_scale = args.get_double("full-scale", 255);
+  if (!args.has("linearisation")) return fit_linearisation(parse_choice("identity"), d);
+  const std::string value = args.get("linearisation");
+  if (file_exists(value)) return read_fitted(value);
+  const MethodChoice c = parse_choice(value);
+  if (!linearisation_method(c.method).needs.empty())
+    throw Error(ErrorCode::InvalidArgument, "--linearisation " + c.method +
+                                                " is fitted to patches: pass the JSON written by `tristim linearise --json`");
+  return fit_linearisation(c, d);
+}
+
+namespace {
+
+// ---- tristim spectral fit | apply ------------------------------------------------------------------
+
+const char* kSpectralUsage =
+    "tristim spectral fit --rgb patches.csv --reflectances spectra.csv|<chart id>\n"
+    "                     [--linearisation <id>[:options] | fitted.json] [--full-scale 255]\n"
+    "                     [--illuminant D65] [--observer 1931] [--out model.json] [--csv estimates.csv]\n"
+    "tristim spectral apply model.json --rgb patches.csv [--reflectances measured.csv] [--out estimates.csv] [--json]\n"
+    "tristim spectral apply model.json <image.dng|image.pfm> --out bands.tiff\n"
+    "  Spectral characterisation (Shen et al. 2008 eqs 26-28): W = [r][û]⁺ from linearised camera\n"
+    "  RGB to reflectance. `fit` prints the model JSON with the training patches' spectral RMS\n"
+    "  (eq 28) and CIEDE2000 of the estimated reflectances under --illuminant/--observer\n"
+    "  (default D65, 1931), or writes it to --out; --csv writes the estimated reflectances.\n"
+    "  `apply` writes estimated reflectances of patches (spectral CSV) — with --reflectances and\n"
+    "  --json, their errors as JSON instead — or of an image as a multi-band 32-bit float TIFF\n"
+    "  (one band per wavelength).";
+
+json::Value evaluation_json(const SpectralEvaluation& e) {
+  json::Value o = json::Value::object();
+  json::Value s = json::Value::object();
+  s.set("spectral_rms_mean", e.rms_summary.mean);
+  s.set("spectral_rms_std", e.rms_summary.std);
+  s.set("spectral_rms_max", e.rms_summary.max);
+  s.set("dE00_mean", e.dE00_summary.mean);
+  s.set("dE00_std", e.dE00_summary.std);
+  s.set("dE00_max", e.dE00_summary.max);
+  o.set("summary", s);
+  json::Value p = json::Value::array();
+  for (size_t i = 0; i < e.ids.size(); ++i) {
+    json::Value r = json::Value::object();
+    r.set("patch", e.ids[i]);
+    r.set("spectral_rms", e.rms[i]);
+    r.set("dE00", e.dE00[i]);
+    p.push(r);
+  }
+  o.set("patches", p);
+  return o;
+}
+
+int run_spectral(const Args& args, std::ostream& out) {
+  if (args.positional.empty()) throw Error(ErrorCode::InvalidArgument, "usage: tristim spectral fit|apply ... (see --help)");
+  const std::string what = args.positional[0];
+  const Observer observer = parse_observer(args.get("observer", "1931"));
+  if (what == "fit") {
+    args.allow_only({"rgb", "reflectances", "linearisation", "full-scale", "illuminant", "observer", "out", "csv"});
+    if (args.positional.size() != 1) throw Error(ErrorCode::InvalidArgument, "spectral fit takes no positional argument");
+    LinearisationData d = load_data(args);
+    PatchMatrix rgb = d.camera_RGB;
+    const Linearisation l = linearisation_option(args, "spectral", d.ids, rgb, d.reference_XYZ, d.white);
+    if (d.reflectances.size() == 0) throw Error(ErrorCode::MissingColumn, "spectral fit needs --reflectances");
+    const SpectralModel m = fit_spectral(l, d.ids, d.camera_RGB, d.reflectances);
+    const SpectralEvaluation e = evaluate_spectral(m, d.ids, d.camera_RGB, d.reflectances, illuminant_of(args), observer);
+    if (args.has("csv")) write_text(args.get("csv"), spectral_csv(estimate_reflectances(m, d.ids, d.camera_RGB)));
+    json::Value o = spectral_model_json(m);
+    o.set("training", evaluation_json(e));
+    if (args.has("out")) {
+      write_text(args.get("out"), o.dump(2) + "\n");
+      std::cerr << "tristim spectral: " << d.ids.size() << " patches, spectral RMS mean " << e.rms_summary.mean
+                << ", CIEDE2000 mean " << e.dE00_summary.mean << "\n";
+    } else {
+      out << o.dump(2) << "\n";
+    }
+    return 0;
+  }
+  if (what != "apply") throw Error(ErrorCode::InvalidArgument, "spectral: expected fit or apply, got '" + what + "'");
+  args.allow_only({"rgb", "reflectances", "illuminant", "observer", "out", "json"});
+  if (args.positional.size() < 2) throw Error(ErrorCode::InvalidArgument, "spectral apply needs the model JSON");
+  const SpectralModel m = spectral_model_from_json(json::parse(read_file(args.positional[1])));
+  if (args.positional.size() == 3) {  // an image
+    const std::string path = args.positional[2], out_path = args.get("out");
+    Image3f rgb;
+    const auto dot = path.rfind('.');
+    const std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+    if (ext == "pfm" || ext == "PFM") {
+      rgb = read_pfm(read_file(path));
+    } else {
+      const std::string bytes = read_file(path);
+      RawImage raw = decode_raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+      rgb.width = raw.width;
+      rgb.height = raw.height;
+      rgb.pixels = std::move(raw.rgb);
+    }
+    const size_t n = static_cast<size_t>(rgb.width) * static_cast<size_t>(rgb.height);
+    std::vector<float> bands(n * m.wavelengths.size());
+    estimate_reflectance_image(m, rgb.pixels.data(), n, bands.data());
+    std::string desc = "reflectance (tristim spectral), bands at";
+    for (double w : m.wavelengths) desc += " " + fmt(w);
+    desc += " nm";
+    const auto tiff = float_tiff_bands(bands.data(), rgb.width, rgb.height, static_cast<int>(m.wavelengths.size()), desc);
+    std::ofstream f(out_path, std::ios::binary);
+    if (!f) throw Error(ErrorCode::InvalidArgument, "cannot write '" + out_path + "'");
+    f.write(reinterpret_cast<const char*>(tiff.data()), static_cast<std::streamsize>(tiff.size()));
+    std::cerr << "tristim spectral: " << rgb.width << "x" << rgb.height << ", " << m.wavelengths.size() << " bands -> "
+              << out_path << "\n";
+    return 0;
+  }
+  const std::string rgb_path = args.get("rgb");
+  const PatchTable t = read_patch_file(read_file(rgb_path), rgb_path);
+  if (!t.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
+  PatchMatrix rgb(static_cast<Eigen::Index>(t.ids.size()), 3);
+  for (size_t i = 0; i < t.ids.size(); ++i) rgb.row(static_cast<Eigen::Index>(i)) = t.RGB[i].transpose();
+  const SpectralData est = estimate_reflectances(m, t.ids, rgb);
+  if (args.has("json")) {
+    if (!args.has("reflectances")) throw Error(ErrorCode::InvalidArgument, "spectral apply --json needs --reflectances");
+    const SpectralData measured = load_reflectances(args.get("reflectances"));
+    out << evaluation_json(evaluate_spectral(m, t.ids, rgb, measured, illuminant_of(args), observer)).dump(2) << "\n";
+    if (args.has("out")) write_text(args.get("out"), spectral_csv(est));
+    return 0;
+  }
+  if (args.has("out")) write_text(args.get("out"), spectral_csv(est));
+  else out << spectral_csv(est);
+  return 0;
+}
+
+const CommandRegistration reg_linearise({"linearise", "fit a linearisation (inverse OECF) -> linear patches CSV / JSON",
+                                         kLineariseUsage, run_linearise});
+const CommandRegistration reg_spectral({"spectral", "spectral characterisation: fit W, estimate reflectances",
+                                        kSpectralUsage, run_spectral});
+
+}  // namespace
+}  // namespace tristim::cli

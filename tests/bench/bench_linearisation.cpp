@@ -1,0 +1,93 @@
+// Output lines "BENCH <case> <step> <ms>" and "CASE <case> <text>" are read by scripts/bench.sh
+// (native and wasm side by side); the other lines are for a human running it directly.
+// Benchmark: the non-grey OECF (Shen et al. 2008, J = 8, L = 2, K = 2) on 140 patches (the
+// ColorChecker SG simulated by eq 29), cold (the built-in Munsell set parsed and its PCA made)
+// and warm; and spectral reconstruction (eq 26, 31 bands 400-700 nm) of a 24 MP image, in strips
+// of 1 MP, next to a memcpy of the same output bytes. Prints figures; asserts nothing.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "tristim/chart/reference.hpp"
+#include "tristim/linearisation/linearisation.hpp"
+#include "tristim/linearisation/spectral.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+
+using namespace tristim;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+template <class F>
+double best_ms(int reps, F&& f) {
+  double best = 1e300;
+  for (int i = 0; i < reps; ++i) {
+    const auto t0 = Clock::now();
+    f();
+    best = std::min(best, ms_since(t0));
+  }
+  return best;
+}
+
+LinearisationData sg_simulated() {
+  const SpectralData refl = chart_reflectances("sg140");
+  const SpectralData d65 = illuminant_spd("D65");
+  SimulationOptions o;
+  o.white_level = 80;
+  o.oecf = true;
+  o.noise_sigma = 1;
+  o.clip_max = 255;
+  const auto rgb = simulate_camera_RGB(camera_ssf("Canon_EOS_5D_Mark_II"), refl, d65, o);
+  LinearisationData d;
+  d.ids = refl.names;
+  d.reflectances = refl;
+  d.full_scale = 255;
+  d.camera_RGB.resize(static_cast<Eigen::Index>(rgb.size()), 3);
+  for (size_t i = 0; i < rgb.size(); ++i) d.camera_RGB.row(static_cast<Eigen::Index>(i)) = rgb[i].transpose();
+  return d;
+}
+
+}  // namespace
+
+int main() {
+  const LinearisationData d = sg_simulated();
+  // use_greys: every one of the 140 patches takes part (the SG's greys would otherwise be left out).
+  const MethodChoice choice{"Shen2008", {{"J", 8}, {"L", 2}, {"K", 2}, {"use_greys", 1}}, {}};
+  std::printf("== Shen 2008 non-grey OECF, J = 8, L = 2, K = 2, 140 patches ==\n");
+  const auto t0 = Clock::now();
+  Linearisation lin = fit_linearisation(choice, d);
+  const double cold = ms_since(t0);
+  const double warm = best_ms(20, [&] { lin = fit_linearisation(choice, d); });
+  std::printf("  cold (parse 1269 Munsell chips, PCA) %8.2f ms\n  warm                                 %8.2f ms\n", cold, warm);
+  std::printf("CASE oecf_Shen2008_140 J=8 L=2 K=2 on the simulated SG (140 patches): warm %.2f ms, cold %.1f ms\n", warm, cold);
+  std::printf("BENCH oecf_Shen2008_140 warm %.3f\n", warm);
+  std::printf("BENCH oecf_Shen2008_140 cold %.3f\n", cold);
+
+  // Spectral model on 400-700 nm at 10 nm (the paper's N = 31).
+  SpectralData refl = align_spectra(d.reflectances, wavelength_grid(400, 700, 10));
+  const SpectralModel model = fit_spectral(lin, d.ids, d.camera_RGB, refl);
+  const size_t w = 6000, h = 4000, n = w * h, strip = 1000000, N = model.wavelengths.size();
+  std::vector<float> rgb(3 * n);
+  for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<float>(20 + (i * 7919 % 2300) * 0.1);
+  std::vector<float> out(strip * N), copy_src(strip * N, 0.5f);
+  const double t_spec = best_ms(3, [&] {
+    for (size_t s = 0; s < n; s += strip) estimate_reflectance_image(model, rgb.data() + 3 * s, std::min(strip, n - s), out.data());
+  });
+  const double t_copy = best_ms(3, [&] {
+    for (size_t s = 0; s < n; s += strip) std::memcpy(out.data(), copy_src.data(), std::min(strip, n - s) * N * 4);
+  });
+  const double gb = static_cast<double>(n) * N * 4 / 1e9;
+  std::printf("\n== spectral reconstruction, %zux%zu, %zu bands (%.1f GB of output, 1 MP strips) ==\n", w, h, N, gb);
+  std::printf("  memcpy of the output bytes %8.1f ms  (%.2f GB/s)\n", t_copy, gb / t_copy * 1e3);
+  std::printf("  linearise + W (eq 26)      %8.1f ms  (%.2f GB/s) = %.0f %% of memcpy bandwidth\n", t_spec,
+              gb / t_spec * 1e3, 100 * t_copy / t_spec);
+  std::printf("CASE spectral_24MP %zux%zu RGB -> %zu bands (Shen2008 linearisation + W): %.0f %% of memcpy bandwidth\n", w, h,
+              N, 100 * t_copy / t_spec);
+  std::printf("BENCH spectral_24MP memcpy %.2f\n", t_copy);
+  std::printf("BENCH spectral_24MP reconstruct %.2f\n", t_spec);
+  return 0;
+}

@@ -1,0 +1,217 @@
+// The linearisation table: fixed curves, grey- and colour-based polynomials, grey choice,
+// inverses, JSON round trip and bad input.
+#include <cmath>
+
+#include "test_support.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/io/patch_files.hpp"
+#include "tristim/linearisation/linearisation.hpp"
+
+using namespace tristim;
+
+namespace {
+
+LinearisationData chart_data(const std::string& chart, const PatchMatrix& rgb) {
+  const ReferenceChart ref = reference_chart(chart, "D65");
+  LinearisationData d;
+  d.ids = ref.ids;
+  d.camera_RGB = rgb;
+  d.reference_XYZ.resize(static_cast<Eigen::Index>(ref.XYZ.size()), 3);
+  for (size_t i = 0; i < ref.XYZ.size(); ++i) d.reference_XYZ.row(static_cast<Eigen::Index>(i)) = ref.XYZ[i].transpose();
+  d.white = ref.white;
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("linearisation table: ids in the issue's order, options complete, choice syntax", "[linearisation]") {
+  std::vector<std::string> ids;
+  for (const auto& m : linearisation_table()) ids.push_back(m.info.id);
+  const std::vector<std::string> expected{"identity", "gamma", "sRGB", "grey-polynomial", "grey-log-polynomial",
+                                          "colour-polynomial", "colour-log-polynomial", "Shen2008"};
+  CHECK(ids == expected);
+  const MethodChoice c = complete_choice(linearisation_method("Shen2008").info, parse_choice("Shen2008:J=6,grey=D1;D2;D3"));
+  CHECK(choice_number(c, "J") == 6);
+  CHECK(choice_number(c, "K") == 2);
+  CHECK(choice_number(c, "L") == 2);
+  CHECK(choice_text(c, "basis") == "munsell1269");
+  CHECK(choice_text(c, "grey") == "D1;D2;D3");
+  CHECK(choice_number(complete_choice(linearisation_method("gamma").info, parse_choice("gamma")), "gamma") == 2.2);
+  test::require_code([] { linearisation_method("Guarnera2019"); }, ErrorCode::UnknownId);
+  test::require_code([] { complete_choice(linearisation_method("Shen2008").info, parse_choice("Shen2008:J=0")); },
+                     ErrorCode::InvalidArgument);
+  test::require_code([] { complete_choice(linearisation_method("gamma").info, parse_choice("gamma:K=2")); },
+                     ErrorCode::UnknownId);
+}
+
+TEST_CASE("linearisation: gamma and sRGB are exact and invert on a grid (1e-12)", "[linearisation]") {
+  LinearisationData d;
+  d.camera_RGB = PatchMatrix::Constant(1, 3, 100);
+  d.full_scale = 255;
+  for (const char* id : {"identity", "gamma", "sRGB"}) {
+    const Linearisation l = fit_linearisation(parse_choice(id), d);
+    const LinearisationMethod& m = linearisation_method(id);
+    for (int i = 0; i <= 255; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const double y = m.apply(l, c, i);
+        CHECK(std::fabs(m.inverse(l, c, y) - i) <= 1e-12 * 255);
+      }
+  }
+  const Linearisation g = fit_linearisation(parse_choice("gamma:gamma=2.2"), d);
+  CHECK(linearisation_method("gamma").apply(g, 0, 127.5) == Approx(std::pow(0.5, 2.2)).epsilon(1e-15));
+  const Linearisation s = fit_linearisation(parse_choice("sRGB"), d);
+  CHECK(linearisation_method("sRGB").apply(s, 1, 255 * 0.04045) == Approx(0.04045 / 12.92).epsilon(1e-14));
+  CHECK(linearisation_method("sRGB").apply(s, 1, 255) == Approx(1).epsilon(1e-15));
+}
+
+TEST_CASE("linearisation: polyfit recovers a planted polynomial, R² and correlation", "[linearisation]") {
+  const std::vector<double> c{0.02, 0.3, -0.1, 0.9};
+  std::vector<double> x, y;
+  for (int i = 0; i < 12; ++i) {
+    x.push_back(0.05 + 0.08 * i);
+    y.push_back(polyval(c, x.back()));
+  }
+  const std::vector<double> f = polyfit(x, y, 3);
+  for (int k = 0; k < 4; ++k) CHECK(f[k] == Approx(c[k]).margin(1e-12));
+  CHECK(coefficient_of_determination(y, y) == 1);
+  std::vector<double> z;
+  for (double v : y) z.push_back(3 * v + 1);
+  CHECK(squared_correlation(y, z) == Approx(1).epsilon(1e-14));
+  test::require_code([&] { polyfit({0.1, 0.2}, {1, 2}, 2); }, ErrorCode::TooFewPatches);
+  test::require_code([&] { polyfit({0.2, 0.2, 0.2}, {1, 2, 3}, 2); }, ErrorCode::IllConditioned);
+}
+
+TEST_CASE("linearisation: automatic greys on the ColorChecker say which and why", "[linearisation]") {
+  const ReferenceChart ref = reference_chart("cc24", "D65");
+  LinearisationData d = chart_data("cc24", PatchMatrix::Ones(24, 3));
+  const GreySelection g = select_greys(d, {}, 2.0);
+  std::vector<std::string> greys;
+  for (int r : g.rows) greys.push_back(d.ids[r]);
+  // The post-2014 white D1 is more than 2 ΔE00 from neutral under D65; D2..D6 are greys.
+  CHECK(greys == std::vector<std::string>{"D2", "D3", "D4", "D5", "D6"});
+  CHECK(g.reason.find("automatic") != std::string::npos);
+  CHECK(g.reason.find("D6 0.") != std::string::npos);
+  const GreySelection given = select_greys(d, split_ids("D1;D2,D3"), 2.0);
+  CHECK(given.rows == std::vector<int>{18, 19, 20});
+  test::require_code([&] { select_greys(d, {"Z9"}, 2.0); }, ErrorCode::UnknownId);
+  LinearisationData bare;
+  bare.ids = d.ids;
+  bare.camera_RGB = d.camera_RGB;
+  test::require_code([&] { select_greys(bare, {}, 2.0); }, ErrorCode::MissingColumn);
+}
+
+TEST_CASE("linearisation: grey and colour polynomials recover a planted per-channel OECF", "[linearisation]") {
+  // Stored values ρ_c = 255 · F_c(t_c) with F_c the inverse of a cubic (different per channel);
+  // t = the greys' Y / Y_white (grey rows) or the linear sRGB of the reference (colour rows).
+  const ReferenceChart ref = reference_chart("cc24", "D65");
+  const std::vector<std::vector<double>> cubic{{0.0, 0.6, 0.1, 0.3}, {0.01, 0.5, 0.3, 0.2}, {0.0, 0.8, -0.1, 0.3}};
+  LinearisationData d = chart_data("cc24", PatchMatrix::Zero(24, 3));
+  d.full_scale = 255;
+  const Mat3 M = display_matrix(ref.white);
+  for (const bool grey : {true, false}) {
+    for (Eigen::Index i = 0; i < 24; ++i) {
+      const Vec3 t = grey ? Vec3::Constant(ref.XYZ[i][1] / ref.white[1]) : Vec3(M * ref.XYZ[i]);
+      for (int c = 0; c < 3; ++c) {
+        // invert the cubic by bisection on [0, 1.2]: x with P(x) = t
+        double lo = 0, hi = 1.2;
+        for (int it = 0; it < 200; ++it) (polyval(cubic[c], 0.5 * (lo + hi)) < t[c] ? lo : hi) = 0.5 * (lo + hi);
+        // out of the curve's range (a colour outside the sRGB gamut): stored as 0, clipped
+        d.camera_RGB(i, c) = t[c] <= polyval(cubic[c], 0) ? 0 : 255 * 0.5 * (lo + hi);
+      }
+    }
+    const std::string id = grey ? "grey-polynomial" : "colour-polynomial";
+    MethodChoice choice = parse_choice(id + ":K=3");
+    if (grey) choice.settings["grey"] = "D1;D2;D3;D4;D5;D6";
+    const Linearisation l = fit_linearisation(choice, d);
+    INFO(id << ": " << l.message);
+    for (int c = 0; c < 3; ++c) {
+      for (int k = 0; k < 4; ++k) CHECK(l.coefficients[c][k] == Approx(cubic[c][k]).margin(1e-8));
+      CHECK(l.r_squared[c] == Approx(1).margin(1e-12));
+    }
+    CHECK(l.monotonic);
+    if (grey) CHECK(l.greys.size() == 6);
+    CHECK(l.grey_reason == (grey ? "given: 6 patches" : ""));
+    // apply ∘ inverse on the patches
+    const PatchMatrix lin = linearise(l, d.camera_RGB);
+    const PatchMatrix back = delinearise(l, lin);
+    CHECK((back - d.camera_RGB).cwiseAbs().maxCoeff() < 1e-9);
+  }
+}
+
+TEST_CASE("linearisation: log-polynomials fit a power law exactly, clipped patches are named", "[linearisation]") {
+  const ReferenceChart ref = reference_chart("cc24", "D65");
+  LinearisationData d = chart_data("cc24", PatchMatrix::Zero(24, 3));
+  d.full_scale = 255;
+  for (Eigen::Index i = 0; i < 24; ++i)
+    for (int c = 0; c < 3; ++c) d.camera_RGB(i, c) = 255 * std::pow(ref.XYZ[i][1] / ref.white[1] * 0.95, 1 / 2.2);
+  d.camera_RGB(18, 0) = 255;  // D1 red clipped
+  MethodChoice choice = parse_choice("grey-log-polynomial:K=1");
+  choice.settings["grey"] = "D1;D2;D3;D4;D5;D6";
+  const Linearisation l = fit_linearisation(choice, d);
+  CHECK(l.message.find("channel R: clipped (0 or full scale) and left out: D1") != std::string::npos);
+  for (int c = 0; c < 3; ++c) {
+    CHECK(l.coefficients[c][1] == Approx(2.2).epsilon(1e-12));                // ln y = ln 0.95⁻¹·… + 2.2 ln x
+    CHECK(l.coefficients[c][0] == Approx(-std::log(0.95)).margin(1e-12));
+  }
+  const LinearisationMethod& m = linearisation_method("grey-log-polynomial");
+  CHECK(m.apply(l, 1, 0) == 0);
+  CHECK(m.inverse(l, 2, m.apply(l, 2, 77)) == Approx(77).epsilon(1e-12));
+}
+
+TEST_CASE("linearisation: a non-monotonic curve is flagged, not hidden", "[linearisation]") {
+  LinearisationData d = chart_data("cc24", PatchMatrix::Zero(24, 3));
+  d.full_scale = 255;
+  // Stored values that fall as Y rises over the top greys: a degree-2 fit bends down.
+  const double stored[6] = {150, 250, 240, 120, 60, 20};
+  for (int i = 0; i < 6; ++i) d.camera_RGB.row(18 + i).setConstant(stored[i]);
+  MethodChoice choice = parse_choice("grey-polynomial:K=2");
+  choice.settings["grey"] = "D1;D2;D3;D4;D5;D6";
+  const Linearisation l = fit_linearisation(choice, d);
+  CHECK_FALSE(l.monotonic);
+  CHECK(l.message.find("not increasing") != std::string::npos);
+}
+
+TEST_CASE("linearisation: bad input gives coded errors", "[linearisation]") {
+  LinearisationData d = chart_data("cc24", PatchMatrix::Constant(24, 3, 100));
+  d.full_scale = 255;
+  MethodChoice few = parse_choice("grey-polynomial:K=3");
+  few.settings["grey"] = "D2;D3;D4";
+  test::require_code([&] { fit_linearisation(few, d); }, ErrorCode::TooFewPatches);
+  LinearisationData bad = d;
+  bad.camera_RGB(3, 1) = std::nan("");
+  test::require_code([&] { fit_linearisation(parse_choice("gamma"), bad); }, ErrorCode::NonFinite);
+  LinearisationData mismatch = d;
+  mismatch.ids.pop_back();
+  test::require_code([&] { fit_linearisation(parse_choice("sRGB"), mismatch); }, ErrorCode::PatchMismatch);
+  LinearisationData clipped = d;
+  clipped.camera_RGB.setConstant(255);
+  MethodChoice all = parse_choice("grey-polynomial");
+  all.settings["grey"] = "D1;D2;D3;D4;D5;D6";
+  test::require_code([&] { fit_linearisation(all, clipped); }, ErrorCode::NoUsableData);
+  LinearisationData none;
+  none.camera_RGB = d.camera_RGB;
+  test::require_code([&] { fit_linearisation(parse_choice("colour-polynomial"), none); }, ErrorCode::MissingColumn);
+  test::require_code([&] { fit_linearisation(parse_choice("Shen2008"), d); }, ErrorCode::MissingColumn);
+}
+
+TEST_CASE("linearisation: JSON round trip is exact", "[linearisation]") {
+  const ReferenceChart ref = reference_chart("cc24", "D65");
+  LinearisationData d = chart_data("cc24", PatchMatrix::Zero(24, 3));
+  d.full_scale = 255;
+  for (Eigen::Index i = 0; i < 24; ++i)
+    d.camera_RGB.row(i) = (255 * (display_matrix(ref.white) * ref.XYZ[i]).cwiseMax(0.001).array().pow(1 / 2.1)).matrix().transpose();
+  const Linearisation l = fit_linearisation(parse_choice("colour-polynomial:K=2"), d);
+  const Linearisation back = linearisation_from_json(json::parse(linearisation_json(l).dump()));
+  CHECK(back.choice.method == l.choice.method);
+  CHECK(back.choice.parameters == l.choice.parameters);
+  CHECK(back.coefficients == l.coefficients);
+  CHECK(back.domain == l.domain);
+  CHECK(back.fitted == l.fitted);
+  CHECK((linearise(back, d.camera_RGB) - linearise(l, d.camera_RGB)).cwiseAbs().maxCoeff() == 0);
+  json::Value broken = linearisation_json(l);
+  broken.set("coefficients", json::Value::array());
+  test::require_code([&] { linearisation_from_json(broken); }, ErrorCode::ProfileInvalid);
+  json::Value unknown = linearisation_json(l);
+  unknown.set("method", "cubic-spline");
+  test::require_code([&] { linearisation_from_json(unknown); }, ErrorCode::UnknownId);
+}
