@@ -75,9 +75,17 @@ bool starts_with(const std::uint8_t* d, std::size_t n, const char* sig, std::siz
   return n >= len && std::memcmp(d, sig, len) == 0;
 }
 
-/// A classic TIFF whose first directory holds tag `tag` (bounds-checked walk of IFD0 only).
-bool ifd0_has_tag(const std::uint8_t* d, std::size_t n, std::uint16_t tag) {
-  if (n < 8 || !(d[0] == 'I' || d[0] == 'M')) return false;
+/// What the first directory (IFD0) of a classic TIFF says about itself, enough to tell a camera
+/// RAW from a plain image (a bounds-checked walk of IFD0's entries only).
+struct Ifd0 {
+  std::uint32_t width = 0, height = 0;
+  int photometric = -1;
+  bool dng = false;      ///< DNGVersion (50706)
+  bool sub_ifds = false; ///< SubIFDs (330): where NEF, ARW and other RAWs keep their sensor data
+};
+Ifd0 read_ifd0(const std::uint8_t* d, std::size_t n) {
+  Ifd0 out;
+  if (n < 8 || !(d[0] == 'I' || d[0] == 'M')) return out;
   const bool le = d[0] == 'I';
   const auto u16 = [&](std::size_t o) {
     return static_cast<std::uint16_t>(le ? d[o] | d[o + 1] << 8 : d[o] << 8 | d[o + 1]);
@@ -89,14 +97,20 @@ bool ifd0_has_tag(const std::uint8_t* d, std::size_t n, std::uint16_t tag) {
                     static_cast<std::uint32_t>(d[o + 2]) << 8 | static_cast<std::uint32_t>(d[o + 3]);
   };
   const std::size_t ifd = u32(4);
-  if (ifd > n - 2) return false;
+  if (ifd > n - 2) return out;
   const std::size_t count = u16(ifd);
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t e = ifd + 2 + 12 * i;
-    if (e + 12 > n) return false;
-    if (u16(e) == tag) return true;
+    if (e + 12 > n) break;
+    const std::uint16_t tag = u16(e), type = u16(e + 2);
+    const std::uint32_t value = type == 3 ? u16(e + 8) : u32(e + 8);  // SHORT or LONG, inline
+    if (tag == 256) out.width = value;
+    else if (tag == 257) out.height = value;
+    else if (tag == 262) out.photometric = static_cast<int>(value);
+    else if (tag == 330) out.sub_ifds = true;
+    else if (tag == 50706) out.dng = true;
   }
-  return false;
+  return out;
 }
 
 /// Image formats no decoder here reads, by signature (name, or nullptr).
@@ -143,8 +157,17 @@ FileFormat detect_format(const std::uint8_t* d, std::size_t n) {
   if (big_tiff) return FileFormat::Tiff;  // LibRaw reads no BigTIFF
   if (tiff) {
     if (n >= 10 && d[8] == 'C' && d[9] == 'R') return FileFormat::Raw;  // Canon CR2
-    if (ifd0_has_tag(d, n, 50706)) return FileFormat::Raw;              // DNGVersion
-    return libraw_identifies(d, n) ? FileFormat::Raw : FileFormat::Tiff;
+    const Ifd0 ifd0 = read_ifd0(d, n);
+    if (ifd0.dng) return FileFormat::Raw;
+    int raw_width = 0, raw_height = 0;
+    if (!libraw_identifies(d, n, &raw_width, &raw_height)) return FileFormat::Tiff;
+    // LibRaw also takes a plain 16-bit grey TIFF with a camera maker's Make tag for sensor data.
+    // A first image that declares itself grey or RGB, has no sub-images, and is the very raster
+    // LibRaw would read is the TIFF's own image.
+    const bool plain = (ifd0.photometric == 1 || ifd0.photometric == 2) && !ifd0.sub_ifds &&
+                       ifd0.width == static_cast<std::uint32_t>(raw_width) &&
+                       ifd0.height == static_cast<std::uint32_t>(raw_height);
+    return plain ? FileFormat::Tiff : FileFormat::Raw;
   }
   if (const char* other = unsupported_image_format(d, n))
     throw Error(ErrorCode::ImageUnsupported, std::string("a ") + other +

@@ -452,10 +452,13 @@ RawImage decode_raw(const std::uint8_t* data, std::size_t size, const DecodeOpti
   return img;
 }
 
-bool libraw_identifies(const std::uint8_t* data, std::size_t size) {
+bool libraw_identifies(const std::uint8_t* data, std::size_t size, int* raw_width, int* raw_height) {
   if (data == nullptr || size < 64) return false;
   auto proc = std::make_unique<LibRaw>(LIBRAW_OPTIONS_NONE);  // large: not on the (wasm) stack
-  return proc->open_buffer(const_cast<std::uint8_t*>(data), size) == LIBRAW_SUCCESS;
+  if (proc->open_buffer(const_cast<std::uint8_t*>(data), size) != LIBRAW_SUCCESS) return false;
+  if (raw_width) *raw_width = proc->imgdata.sizes.raw_width;
+  if (raw_height) *raw_height = proc->imgdata.sizes.raw_height;
+  return true;
 }
 
 RawMetadata inspect_raw(const std::uint8_t* data, std::size_t size, const DecodeOptions& options) {

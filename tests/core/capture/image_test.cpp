@@ -21,6 +21,7 @@ namespace {
 const char* kSharedJpeg = "raw-images/tinydng/colorchart_preview_dcraw_emu_srgb.jpg";
 const char* kPassport = "raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng";
 const char* kCr2 = "raw-images/debian-rawtran-doc/IMG_5952_canon_eos_30d.CR2";
+const char* kKdc = "raw-images/rawpy/RAW_KODAK_DC50.KDC";
 
 std::vector<std::uint8_t> bytes_of(const std::string& s) { return {s.begin(), s.end()}; }
 
@@ -327,6 +328,8 @@ TEST_CASE("the format comes from the bytes, not the name: RAW, image, other imag
   CHECK(detect_format(dng.data(), dng.size()) == FileFormat::Raw);  // TIFF-structured, DNGVersion
   const auto cr2 = bytes_of(test::read_shared(kCr2));
   CHECK(detect_format(cr2.data(), cr2.size()) == FileFormat::Raw);  // TIFF-structured, "CR"
+  const auto kdc = bytes_of(test::read_shared(kKdc));
+  CHECK(detect_format(kdc.data(), kdc.size()) == FileFormat::Raw);  // TIFF-structured, LibRaw's
   CHECK(decode_any(dng).meta.format == "raw");
   CHECK(decode_any(dng).meta.encoding == "linear");
 
@@ -467,4 +470,20 @@ TEST_CASE("truncated and corrupt images give IMAGE_CORRUPT, oversized ones LIMIT
     require_code([&] { decode_any(test::write_png(im), {}, small); }, ErrorCode::LimitExceeded);
     require_code([&] { decode_any(test::write_jpeg(im), {}, small); }, ErrorCode::LimitExceeded);
   }
+}
+
+TEST_CASE("a plain grey or RGB TIFF from a camera maker is a TIFF, not sensor data", "[image]") {
+  for (int channels : {1, 3})
+    for (int bits : {8, 16}) {
+      INFO(channels << " channel(s), " << bits << "-bit");
+      const TestImage im = random_image(64, 48, channels, bits, 77);
+      test::TiffWriteOptions o;
+      o.make = "Canon";
+      o.model = "Canon EOS 550D";
+      const auto file = test::write_tiff(im, o);
+      CHECK(detect_format(file.data(), file.size()) == FileFormat::Tiff);
+      const RawImage img = decode_any(file);
+      CHECK(img.meta.make == "Canon");
+      require_exact(img, im);
+    }
 }

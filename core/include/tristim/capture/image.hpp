@@ -42,8 +42,10 @@ const char* file_format_name(FileFormat format);
 /// The decoder for these bytes, from their signature:
 ///   PNG   89 50 4E 47 0D 0A 1A 0A;   JPEG  FF D8 FF;
 ///   TIFF  "II*\0" / "MM\0*" (and BigTIFF "II+\0" / "MM\0+"), unless it is a camera RAW: a CR2
-///         marker ("CR" at byte 8), a DNGVersion tag in the first directory, or any TIFF LibRaw
-///         identifies as a RAW (LibRaw declines plain RGB TIFFs);
+///         marker ("CR" at byte 8), a DNGVersion tag in the first directory, or a TIFF LibRaw
+///         identifies as a RAW — except when the first directory declares a grey or RGB image,
+///         has no SubIFDs, and is the raster LibRaw would read (LibRaw takes a 16-bit grey TIFF
+///         with a camera maker's Make tag for sensor data; such a file is a TIFF here);
 ///   other image formats that are not read here (GIF, BMP, WebP, HEIF/AVIF, JPEG 2000, JPEG XL,
 ///   PNM, OpenEXR, Radiance HDR, PSD): ErrorCode::ImageUnsupported naming the format;
 ///   anything else: Raw. Errors: EmptyFile (0 bytes), ImageUnsupported.

@@ -91,9 +91,11 @@ inline RawImage decode_raw(const std::vector<std::uint8_t>& bytes, const DecodeO
 }
 
 /// True when LibRaw's open_buffer accepts the bytes as a camera RAW (its file-type
-/// identification; no image data is unpacked, no error is thrown). capture/image.hpp uses it to
-/// tell TIFF-structured RAWs from plain TIFFs.
-bool libraw_identifies(const std::uint8_t* data, std::size_t size);
+/// identification; no image data is unpacked, no error is thrown), with the raster it would read
+/// (raw_width × raw_height, when the pointers are given). capture/image.hpp uses it to tell
+/// TIFF-structured RAWs from plain TIFFs.
+bool libraw_identifies(const std::uint8_t* data, std::size_t size, int* raw_width = nullptr,
+                       int* raw_height = nullptr);
 
 /// Metadata only (no unpacking of image data), for `tristim inspect`.
 RawMetadata inspect_raw(const std::uint8_t* data, std::size_t size, const DecodeOptions& options = {});
