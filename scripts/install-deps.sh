@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # Installs everything tristim needs on a fresh Debian 12 machine (run as root).
-# Idempotent: a second run only checks. Source packages (LibRaw, lcms2, NLopt) are fetched
-# from Debian's archive into third_party/ (git-ignored) for the WebAssembly build; none of
-# their source is committed.
+# Idempotent: a second run only checks. Source packages (LibRaw, lcms2, NLopt, zlib, libpng,
+# libjpeg-turbo, libtiff) are fetched from Debian's archive into third_party/ (git-ignored) for
+# the WebAssembly build; none of their source is committed.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 
 PKGS="build-essential cmake pkg-config dpkg-dev libeigen3-dev libraw-dev catch2 emscripten
 chromium liblcms2-dev liblcms2-utils libnlopt-dev libnlopt-cxx-dev argyll python3-opencv
-python3-numpy ca-certificates opencolorio-tools"
+python3-numpy ca-certificates opencolorio-tools libtiff-dev libpng-dev libjpeg-dev zlib1g-dev"
 
 missing=""
 for p in $PKGS; do
@@ -44,6 +44,10 @@ fetch_src() { # $1 package, $2 dir glob
 fetch_src libraw 'libraw-0*/'
 fetch_src lcms2 'lcms2-2*/'
 fetch_src nlopt 'nlopt-2*/'
+fetch_src zlib 'zlib-1*/'
+fetch_src libpng1.6 'libpng1.6-1*/'
+fetch_src libjpeg-turbo 'libjpeg-turbo-2*/'
+fetch_src tiff 'tiff-4*/'
 
 # JS dependencies (pinned in package-lock.json).
 if [ -f "$here/package.json" ]; then

@@ -1,4 +1,5 @@
-// CLI: `tristim inspect <raw>` and `tristim sample <raw> --chart ... --corners ...`.
+// CLI: `tristim inspect <file>` and `tristim sample <file> --chart ... --corners ...`: camera RAW,
+// TIFF, PNG or JPEG (capture/image.hpp decode_any: by the file's bytes, not its name).
 #include <array>
 #include <iostream>
 #include <memory>
@@ -10,6 +11,7 @@
 #include "tristim/capture/calibration.hpp"
 #include "tristim/chart/layout.hpp"
 #include "tristim/error.hpp"
+#include "tristim/capture/image.hpp"
 #include "tristim/capture/raw.hpp"
 
 namespace tristim::cli {
@@ -18,7 +20,7 @@ namespace {
 RawImage load_raw(const std::string& path) {
   const std::string bytes = read_file(path);
   try {
-    return decode_raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+    return decode_any(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
   } catch (const Error& e) {
     throw Error(e.code(), "'" + path + "': " + e.what());
   }
@@ -41,7 +43,7 @@ std::vector<double> numbers(const std::string& text, const std::string& option) 
 int run_inspect(const Args& args, std::ostream& out) {
   args.allow_only({});
   if (args.positional.size() != 1)
-    throw Error(ErrorCode::InvalidArgument, "inspect takes exactly one RAW file");
+    throw Error(ErrorCode::InvalidArgument, "inspect takes exactly one RAW, TIFF, PNG or JPEG file");
   const RawImage img = load_raw(args.positional[0]);
   std::string json = metadata_to_json(img.meta);
   json.pop_back();  // add the hash of the linear data to the object
@@ -53,7 +55,7 @@ int run_sample(const Args& args, std::ostream& out) {
   args.allow_only({"chart", "corners", "dark", "dark-mode", "flat", "flat-mode", "white-reflectance",
                    "area", "rows", "columns", "margins"});
   if (args.positional.size() != 1)
-    throw Error(ErrorCode::InvalidArgument, "sample takes exactly one RAW file");
+    throw Error(ErrorCode::InvalidArgument, "sample takes exactly one RAW, TIFF, PNG or JPEG file");
   LayoutOptions layout;
   layout.chart = args.get("chart");
   layout.rows = static_cast<int>(args.get_double("rows", 0));
@@ -112,16 +114,21 @@ int run_sample(const Args& args, std::ostream& out) {
 }
 
 const CommandRegistration inspect_cmd{Command{
-    "inspect", "RAW file metadata as JSON (LibRaw)",
-    "usage: tristim inspect <raw>\n"
-    "Prints one JSON object: make, model, lens, iso, shutter_s, f_number, timestamp, layout, cfa_pattern,\n"
-    "black and white levels, LibRaw's camera matrices (preview only), the measurement image size\n"
-    "(width, height: half resolution for Bayer sensors) and linear_hash (FNV-1a of the linear data).",
+    "inspect", "RAW, TIFF, PNG or JPEG file metadata as JSON",
+    "usage: tristim inspect <file>\n"
+    "The file is a camera RAW (LibRaw), an 8/16-bit TIFF, an 8/16-bit PNG or a JPEG, recognised by\n"
+    "its bytes, not its name. Prints one JSON object: format (raw, tiff, png, jpeg), encoding (linear:\n"
+    "black-subtracted RAW data; stored: an image's values as stored, no colour management),\n"
+    "declared_colour (an image's ICC profile / gAMA / sRGB declarations, reported, not applied), make,\n"
+    "model, lens, iso, shutter_s, f_number, timestamp, layout, cfa_pattern, bits, black and white\n"
+    "levels (an image's white_level is its full scale, 255 or 65535), LibRaw's camera matrices\n"
+    "(preview only), the measurement image size (width, height: half resolution for Bayer sensors)\n"
+    "and linear_hash (FNV-1a of the decoded data).",
     run_inspect}};
 
 const CommandRegistration sample_cmd{Command{
-    "sample", "per-patch linear camera RGB of a chart in a RAW file (CSV)",
-    "usage: tristim sample <raw> --chart <id> --corners x1,y1,x2,y2,x3,y3,x4,y4\n"
+    "sample", "per-patch camera RGB of a chart in a RAW, TIFF, PNG or JPEG file (CSV)",
+    "usage: tristim sample <file> --chart <id> --corners x1,y1,x2,y2,x3,y3,x4,y4\n"
     "                      [--dark f ...] [--dark-mode pixel|channel]\n"
     "                      [--flat f] [--flat-mode pixel|radial] [--white-reflectance r | r,g,b]\n"
     "                      [--area 0.5] [--rows N --columns M --margins l,t,r,b]\n"
@@ -129,13 +136,15 @@ const CommandRegistration sample_cmd{Command{
     "  optional --margins as fractions of the chart width/height).\n"
     "--corners: the four outer corners of the patch grid, clockwise from the top-left (the\n"
     "  corner at patch A1), in HALF-RESOLUTION image coordinates for Bayer sensors (the\n"
-    "  measurement image of `tristim inspect`: width x height; pixel (x, y) covers [x, x+1)).\n"
+    "  measurement image of `tristim inspect`: width x height; pixel (x, y) covers [x, x+1));\n"
+    "  full-resolution pixel coordinates for TIFF, PNG and JPEG images.\n"
     "--dark: dark frames (repeat the option), averaged, subtracted per pixel or per channel.\n"
     "--flat: flat-field frame: per-pixel gains (Abed 2013 App. C) or a radial fall-off fit\n"
     "  (Guarnera 2018 eq 7; coefficients printed on stderr).\n"
     "--area: sampled fraction of each patch's width and height (default 0.5: the central quarter).\n"
-    "Output CSV: patch,R,G,B,R_std,G_std,B_std,n,flags — linear, black-subtracted DN (no white\n"
-    "balance, no matrix); flags: saturated;dark;nonuniform.",
+    "Output CSV: patch,R,G,B,R_std,G_std,B_std,n,flags — for a RAW, linear, black-subtracted DN (no\n"
+    "white balance, no matrix); for a TIFF/PNG/JPEG, the values as stored (0..255 or 0..65535, not\n"
+    "linearised: see `tristim inspect`'s format and bits); flags: saturated;dark;nonuniform.",
     run_sample}};
 
 }  // namespace

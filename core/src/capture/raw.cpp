@@ -425,6 +425,15 @@ RawImage decode_raw(const std::uint8_t* data, std::size_t size, const DecodeOpti
   return img;
 }
 
+bool libraw_identifies(const std::uint8_t* data, std::size_t size, int* raw_width, int* raw_height) {
+  if (data == nullptr || size < 64) return false;
+  auto proc = std::make_unique<LibRaw>(LIBRAW_OPTIONS_NONE);  // large: not on the (wasm) stack
+  if (proc->open_buffer(const_cast<std::uint8_t*>(data), size) != LIBRAW_SUCCESS) return false;
+  if (raw_width) *raw_width = proc->imgdata.sizes.raw_width;
+  if (raw_height) *raw_height = proc->imgdata.sizes.raw_height;
+  return true;
+}
+
 RawMetadata inspect_raw(const std::uint8_t* data, std::size_t size, const DecodeOptions& options) {
   // Black levels of some cameras come from masked pixels read by unpack(): unpack, then describe.
   auto proc = open_and_unpack(data, size, options, true);
@@ -434,6 +443,9 @@ RawMetadata inspect_raw(const std::uint8_t* data, std::size_t size, const Decode
 std::string metadata_to_json(const RawMetadata& m) {
   auto arr = [](const auto& a) { return json::Value(std::vector<double>(a.begin(), a.end())); };
   json::Value o = json::Value::object();
+  o.set("format", m.format);
+  o.set("encoding", m.encoding);
+  o.set("declared_colour", m.declared_colour);
   o.set("make", m.make);
   o.set("model", m.model);
   o.set("lens", m.lens);
@@ -476,6 +488,25 @@ Preview render_preview(const RawImage& image, int max_side) {
   pv.width = std::max(1, image.width / pv.scale);
   pv.height = std::max(1, image.height / pv.scale);
   const auto& m = image.meta;
+  if (m.encoding == "stored") {
+    // An image's stored values are already display-encoded: shown as they are (box mean / full
+    // scale), no white balance, matrix, exposure or transfer curve.
+    const double fs = m.white_level > 0 ? m.white_level : 255.0;
+    const double inv_n = 1.0 / (static_cast<double>(pv.scale) * pv.scale);
+    pv.rgba.resize(static_cast<size_t>(pv.width) * pv.height * 4);
+    for (int j = 0; j < pv.height; ++j)
+      for (int i = 0; i < pv.width; ++i) {
+        double acc[3] = {0, 0, 0};
+        for (int y = j * pv.scale; y < (j + 1) * pv.scale; ++y)
+          for (int x = i * pv.scale; x < (i + 1) * pv.scale; ++x)
+            for (int c = 0; c < 3; ++c) acc[c] += image.at(x, y, c);
+        std::uint8_t* px = &pv.rgba[(static_cast<size_t>(j) * pv.width + i) * 4];
+        for (int c = 0; c < 3; ++c)
+          px[c] = static_cast<std::uint8_t>(std::lround(std::min(1.0, std::max(0.0, acc[c] * inv_n / fs)) * 255.0));
+        px[3] = 255;
+      }
+    return pv;
+  }
   std::array<double, 3> wb = m.as_shot_wb;
   for (double& w : wb)
     if (!(w > 0) || !std::isfinite(w)) w = 1.0;

@@ -18,9 +18,17 @@ namespace tristim {
 ///              becomes one pixel with the mean of each colour (third resolution, no interpolation).
 ///  - "linear": already-RGB data (linear DNG, sRAW): one sensor pixel -> one pixel (block 1×1).
 ///  - "monochrome": one channel; copied to R = G = B (block 1×1).
+///  - "rgb": a TIFF/PNG/JPEG image with three samples per pixel (capture/image.hpp; block 1×1).
 /// Anything else (4-colour CMYG / RGBE CFAs, CFAs whose 2×2 block lacks R, G or B, Foveon,
 /// floating-point DNG) is refused with ErrorCode::RawUnsupported naming the pattern.
 struct RawMetadata {
+  std::string format = "raw";        ///< the decoder: "raw" (LibRaw), "tiff", "png", "jpeg"
+  std::string encoding = "linear";   ///< "linear": black-subtracted sensor DN (RAW); "stored":
+                                     ///< an image's values as stored in the file, 0..white_level,
+                                     ///< possibly non-linear (see capture/image.hpp)
+  std::string declared_colour;       ///< images: what the file declares about its colour encoding,
+                                     ///< reported and NEVER applied, ';'-separated, e.g.
+                                     ///< "ICC profile (3144 bytes);gamma 0.45455"; "" if nothing
   std::string make, model, lens;     ///< "" when unknown
   double iso = 0;                    ///< ISO speed, 0 if unknown
   double shutter_s = 0;              ///< exposure time in seconds, 0 if unknown
@@ -35,7 +43,7 @@ struct RawMetadata {
   int sensor_width = 0, sensor_height = 0;  ///< visible sensor area used, in sensor pixels
   int raw_width = 0, raw_height = 0;        ///< full stored raster incl. masked borders
   int width = 0, height = 0;         ///< the measurement image (half resolution for Bayer)
-  int bits = 0;                      ///< bits per sample LibRaw reports (0 if unknown)
+  int bits = 0;                      ///< bits per sample LibRaw reports (0 if unknown); images: 8 or 16
   int flip = 0;                      ///< LibRaw's orientation: 0 none, 3 180°, 5 90° CCW, 6 90° CW.
                                      ///< The measurement image and preview stay in sensor orientation.
   std::array<double, 4> cfa_black{}; ///< black level per 2×2 CFA position (row-major), DN
@@ -82,6 +90,13 @@ inline RawImage decode_raw(const std::vector<std::uint8_t>& bytes, const DecodeO
   return decode_raw(bytes.data(), bytes.size(), options);
 }
 
+/// True when LibRaw's open_buffer accepts the bytes as a camera RAW (its file-type
+/// identification; no image data is unpacked, no error is thrown), with the raster it would read
+/// (raw_width × raw_height, when the pointers are given). capture/image.hpp uses it to tell
+/// TIFF-structured RAWs from plain TIFFs.
+bool libraw_identifies(const std::uint8_t* data, std::size_t size, int* raw_width = nullptr,
+                       int* raw_height = nullptr);
+
 /// Metadata only (no unpacking of image data), for `tristim inspect`.
 RawMetadata inspect_raw(const std::uint8_t* data, std::size_t size, const DecodeOptions& options = {});
 
@@ -92,6 +107,8 @@ std::string metadata_to_json(const RawMetadata& meta);
 /// integer factor `scale` so that max(width, height) <= max_side, white balanced with the
 /// as-shot multipliers, converted with LibRaw's camera matrix (rgb_cam), exposed so that the
 /// 99th percentile of luminance maps to 0.9, and encoded with the sRGB transfer curve.
+/// An image with stored values (meta.encoding "stored": TIFF/PNG/JPEG) is shown as stored:
+/// box mean / white_level × 255, nothing else.
 /// Preview pixel (i, j) covers measurement pixels [i*scale, (i+1)*scale) × [j*scale, (j+1)*scale).
 struct Preview {
   int width = 0, height = 0;
