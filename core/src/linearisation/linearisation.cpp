@@ -2,6 +2,7 @@
 #include "tristim/linearisation/linearisation.hpp"
 
 #include "tristim/error.hpp"
+#include "tristim/linearisation/guarnera2018.hpp"
 
 namespace tristim {
 
@@ -19,6 +20,7 @@ double apply_identity(const Linearisation&, int, double value) { return value; }
 std::vector<LinearisationMethod> build_table() {
   std::vector<LinearisationMethod> t;
   t.push_back({{"identity", "None (linear data, e.g. RAW)", "", {}}, fit_identity, apply_identity});
+  t.push_back(linearisation_row_Guarnera2018());
   return t;
 }
 
