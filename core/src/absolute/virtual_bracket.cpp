@@ -150,8 +150,13 @@ Vec3 virtual_XYZ(const VirtualSensor& sensor, const VirtualScene& scene, int k, 
   return r[k].xyz_per_Y * scene.luminance[k] * gain;
 }
 
-RawImage capture_virtual(const VirtualSensor& s, const VirtualScene& scene, const ExposureSettings& e,
-                         std::uint64_t seed) {
+namespace {
+
+// Calls block(x, y, v) for every measurement pixel with its sensor values v = {R, G1, G2, B}
+// (the noise drawn in that order, pixel after pixel).
+template <class Block>
+void simulate_blocks(const VirtualSensor& s, const VirtualScene& scene, const ExposureSettings& e, std::uint64_t seed,
+                     Block block) {
   check_scene(scene);
   if (!(e.exposure_s > 0 && e.f_number > 0))
     throw Error(ErrorCode::InvalidArgument, "virtual camera: exposure time and f-number must be > 0");
@@ -163,7 +168,39 @@ RawImage capture_virtual(const VirtualSensor& s, const VirtualScene& scene, cons
                      (e.iso > 0 ? e.iso / 100.0 : 1.0);
   const double range = s.saturation - s.noise_floor;
   const double electrons = s.electrons_per_dn * range;  // at u = 1
-  const double flag_level = 0.98 * s.reported_saturation;
+  GaussianNoise noise(seed);
+  const double cx = scene.width / 2.0, cy = scene.height / 2.0, r_scale = std::hypot(cx, cy);
+  auto sensor_value = [&](int c, double u) {
+    if (electrons > 0) {
+      const double el = u * electrons;
+      u = (el + std::sqrt(std::max(el, 0.0)) * noise.next()) / electrons;  // shot noise
+    }
+    const double v = u < 0 ? -std::pow(-u, s.oecf_exponent[c]) : std::pow(u, s.oecf_exponent[c]);  // OECF
+    double dn = s.noise_floor + range * v + s.read_noise * noise.next();
+    dn = std::min(dn, s.saturation);
+    return s.quantise ? std::round(dn) : dn;
+  };
+  for (int y = 0; y < scene.height; ++y)
+    for (int x = 0; x < scene.width; ++x) {
+      const size_t p = static_cast<size_t>(y) * scene.width + x;
+      const double dx = x + 0.5 - cx, dy = y + 0.5 - cy, r = std::sqrt(dx * dx + dy * dy) / r_scale;
+      const double f = s.falloff_p1 * r * r + s.falloff_p2 * r + 1.0;
+      const int k = scene.label[p];
+      const double Y = scene.luminance[k] * (scene.gain.empty() ? 1.0 : scene.gain[p]);
+      const double base = Y * eps / s.saturation_exposure / f;
+      double v[4];
+      v[0] = sensor_value(0, base * resp[k].q[0]);
+      v[1] = sensor_value(1, base * resp[k].q[1]);
+      v[2] = sensor_value(1, base * resp[k].q[1]);
+      v[3] = sensor_value(2, base * resp[k].q[2]);
+      block(x, y, v);
+    }
+}
+
+}  // namespace
+
+RawImage capture_virtual(const VirtualSensor& s, const VirtualScene& scene, const ExposureSettings& e,
+                         std::uint64_t seed) {
   RawImage img;
   img.width = scene.width;
   img.height = scene.height;
@@ -188,43 +225,34 @@ RawImage capture_virtual(const VirtualSensor& s, const VirtualScene& scene, cons
   const size_t npix = static_cast<size_t>(scene.width) * scene.height;
   img.rgb.resize(npix * 3);
   img.saturated.assign(npix, 0);
-  GaussianNoise noise(seed);
-  const double cx = scene.width / 2.0, cy = scene.height / 2.0, r_scale = std::hypot(cx, cy);
-  auto sensor_value = [&](int c, double u) {
-    if (electrons > 0) {
-      const double el = u * electrons;
-      u = (el + std::sqrt(std::max(el, 0.0)) * noise.next()) / electrons;  // shot noise
-    }
-    const double v = u < 0 ? -std::pow(-u, s.oecf_exponent[c]) : std::pow(u, s.oecf_exponent[c]);  // OECF
-    double dn = s.noise_floor + range * v + s.read_noise * noise.next();
-    dn = std::min(dn, s.saturation);
-    return s.quantise ? std::round(dn) : dn;
-  };
-  for (int y = 0; y < scene.height; ++y)
-    for (int x = 0; x < scene.width; ++x) {
-      const size_t p = static_cast<size_t>(y) * scene.width + x;
-      const double dx = x + 0.5 - cx, dy = y + 0.5 - cy, r = std::sqrt(dx * dx + dy * dy) / r_scale;
-      const double f = s.falloff_p1 * r * r + s.falloff_p2 * r + 1.0;
-      const int k = scene.label[p];
-      const double Y = scene.luminance[k] * (scene.gain.empty() ? 1.0 : scene.gain[p]);
-      const double base = Y * eps / s.saturation_exposure / f;
-      double out[3];
-      for (int c = 0; c < 3; ++c) {
-        const double u = base * resp[k].q[c];
-        const double a = sensor_value(c, u);
-        double flag = a >= flag_level;
-        if (c == 1) {  // two greens per Bayer block
-          const double b = sensor_value(c, u);
-          flag = flag || b >= flag_level;
-          out[c] = 0.5 * (a + b);
-        } else {
-          out[c] = a;
-        }
-        if (flag) img.saturated[p] |= static_cast<std::uint8_t>(1u << c);
-      }
-      for (int c = 0; c < 3; ++c) img.rgb[p * 3 + c] = static_cast<float>(out[c]);
-    }
+  const double flag_level = 0.98 * s.reported_saturation;  // decode_raw's rule
+  simulate_blocks(s, scene, e, seed, [&](int x, int y, const double* v) {
+    const size_t p = static_cast<size_t>(y) * scene.width + x;
+    img.rgb[p * 3] = static_cast<float>(v[0]);
+    img.rgb[p * 3 + 1] = static_cast<float>(0.5 * (v[1] + v[2]));
+    img.rgb[p * 3 + 2] = static_cast<float>(v[3]);
+    std::uint8_t flags = 0;
+    if (v[0] >= flag_level) flags |= 1;
+    if (v[1] >= flag_level || v[2] >= flag_level) flags |= 2;
+    if (v[3] >= flag_level) flags |= 4;
+    img.saturated[p] = flags;
+  });
   return img;
+}
+
+std::vector<std::uint16_t> capture_virtual_mosaic(const VirtualSensor& s, const VirtualScene& scene,
+                                                  const ExposureSettings& e, std::uint64_t seed) {
+  const size_t W = 2 * static_cast<size_t>(scene.width);
+  std::vector<std::uint16_t> out(W * 2 * scene.height);
+  auto dn = [](double v) { return static_cast<std::uint16_t>(std::clamp(std::round(v), 0.0, 65535.0)); };
+  simulate_blocks(s, scene, e, seed, [&](int x, int y, const double* v) {
+    const size_t r0 = 2 * static_cast<size_t>(y) * W + 2 * x;  // RGGB
+    out[r0] = dn(v[0]);
+    out[r0 + 1] = dn(v[1]);
+    out[r0 + W] = dn(v[2]);
+    out[r0 + W + 1] = dn(v[3]);
+  });
+  return out;
 }
 
 }  // namespace tristim

@@ -5,6 +5,7 @@
 
 #include "absolute_bench.hpp"
 #include "test_support.hpp"
+#include "dng_writer.hpp"
 #include "tristim/absolute/profile.hpp"
 
 using namespace tristim;
@@ -153,4 +154,28 @@ TEST_CASE("absolute: the profile JSON round trip is exact", "[absolute]") {
   std::string broken = text;
   broken.replace(broken.find("\"k\""), 3, "\"q\"");
   test::require_code([&] { absolute_profile_from_json(broken); }, ErrorCode::ProfileInvalid);
+}
+
+TEST_CASE("absolute: a virtual bracket frame written as DNG decodes to the same image and exposure", "[absolute]") {
+  const auto& b = test::bench();
+  const VirtualScene scene = two_level_scene(40, 2000);
+  const ExposureSettings e{1.0 / 125, 5.6, 0};
+  const RawImage direct = capture_virtual(b.sensor, scene, e, 31);
+  DngWriteOptions o;
+  o.make = b.sensor.make;
+  o.model = b.sensor.model;
+  o.white = static_cast<std::uint32_t>(b.sensor.reported_saturation);
+  o.exposure_s = e.exposure_s;
+  o.f_number = e.f_number;
+  const RawImage decoded = decode_raw(write_dng(capture_virtual_mosaic(b.sensor, scene, e, 31), 2 * scene.width,
+                                                2 * scene.height, o));
+  CHECK(decoded.rgb == direct.rgb);
+  CHECK(decoded.saturated == direct.saturated);
+  CHECK(decoded.meta.make == direct.meta.make);
+  CHECK(decoded.meta.model == direct.meta.model);
+  const ExposureSettings read = exposure_from_metadata(decoded.meta, "virtual.dng");
+  CHECK(read.exposure_s == Approx(1.0 / 125));
+  CHECK(read.f_number == Approx(5.6));
+  CHECK(read.iso == 0);  // not written (see dng_writer.hpp): no ISO scaling
+  CHECK(decoded.meta.saturation[1] == b.sensor.reported_saturation);
 }
