@@ -120,22 +120,6 @@ std::vector<double> linear_start(const std::string& method, const std::vector<st
   return {mu, (sy - mu * sx) / n};
 }
 
-// Saunderson coefficients that reproduce a scaler-offset correction (Appendix B read backwards),
-// for the given free block; the fixed block is taken from `base`.
-std::vector<double> saunderson_from_scaler_offset(const std::vector<double>& base, double mu, double rho, bool capture_free) {
-  std::vector<double> c = base;
-  if (capture_free) {  // μ = (1 − k1c)/(1 − k1), ρ = k_ins,c·k1c − μ·k_ins·k1
-    c[4] = c[1];
-    c[3] = 1 - mu * (1 - c[0]);
-    c[5] = c[3] > 1e-6 ? (rho + mu * c[2] * c[0]) / c[3] : c[5];
-  } else {
-    c[1] = c[4];
-    c[0] = mu > 1e-6 ? 1 - (1 - c[3]) / mu : c[0];
-    c[2] = c[0] > 1e-6 && mu > 1e-6 ? (c[5] * c[3] - rho) / (mu * c[0]) : c[2];
-  }
-  return c;
-}
-
 }  // namespace
 
 std::vector<size_t> free_coefficients(const std::string& method, const std::string& free) {
@@ -243,8 +227,6 @@ SurfaceFitResult fit_surface(const MethodChoice& start, const SpectralData& meas
       if (o.name == row.coefficients[j]) { lb.push_back(o.min); ub.push_back(o.max); }
   const bool saunderson = row.info.id == "saunderson";
   const PointCorrection::Kind kind = surface_detail::correction_kind(row.info.id);
-  const bool capture_free = free == std::vector<size_t>{3, 4, 5};
-  const bool measurement_free = free == std::vector<size_t>{0, 1, 2};
   bool hit_limit = false;
 
   auto fit_block = [&](size_t w0, size_t w1) -> std::vector<double> {
@@ -265,18 +247,8 @@ SurfaceFitResult fit_surface(const MethodChoice& start, const SpectralData& meas
       starts.push_back(linear_start(row.info.id, M, T, w0, w1));
       starts.push_back(pick(base));
     } else {
-      starts.push_back(pick(base));
-      // Appendix B: scaler-offset is Saunderson with k2 = k2c, so its optimum read back as
-      // Saunderson coefficients is a start that makes this fit no worse than scaler-offset
-      // whenever those coefficients lie inside the bounds.
-      if (capture_free || measurement_free) {
-        const auto so = linear_start("scaler-offset", M, T, w0, w1);
-        starts.push_back(pick(saunderson_from_scaler_offset(base, so[0], so[1], capture_free)));
-      }
-      std::vector<double> other = base;  // the other end of the specular term
-      for (size_t j : free)
-        if (j == 2 || j == 5) other[j] = base[j] > 0.5 ? 0 : 1;
-      starts.push_back(pick(other));
+      const auto so = linear_start("scaler-offset", M, T, w0, w1);  // Appendix B start, see correction.hpp
+      for (const auto& c : surface_detail::saunderson_starts(base, free, so[0], so[1])) starts.push_back(pick(c));
     }
     const Minimum m = surface_detail::minimise_from_starts(f, starts, lb, ub, options.max_evaluations,
                                                            "surface fit (" + row.info.id + ")");
@@ -308,9 +280,15 @@ SurfaceFitResult fit_surface(const MethodChoice& start, const SpectralData& meas
   }
   const SpectralData illuminant = options.illuminant.size() ? options.illuminant : illuminant_spd("D50");
   r.white = illuminant_white_XYZ(illuminant, options.observer);
-  const auto xyz_m = reflectances_to_XYZ(r.measured, illuminant, options.observer);
-  const auto xyz_c = reflectances_to_XYZ(r.corrected, illuminant, options.observer);
-  const auto xyz_t = reflectances_to_XYZ(r.target, illuminant, options.observer);
+  // XYZ through the integration rule as one L × 3 matrix (correction.hpp): the same numbers
+  // as reflectances_to_XYZ, without aligning every column to the 1 nm grid.
+  const Eigen::MatrixXd Tm = surface_detail::integration_matrix(grid, r.measured.linear, illuminant, options.observer);
+  auto xyz_of = [&](const SpectralData& d) {
+    std::vector<Vec3> out;
+    for (const auto& column : d.values) out.push_back(Tm.transpose() * Eigen::Map<const Eigen::VectorXd>(column.data(), L));
+    return out;
+  };
+  const auto xyz_m = xyz_of(r.measured), xyz_c = xyz_of(r.corrected), xyz_t = xyz_of(r.target);
   double ss_before = 0, ss_after = 0;
   for (size_t k = 0; k < M.size(); ++k) {
     double b = 0, a = 0;

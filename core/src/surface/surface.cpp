@@ -38,6 +38,47 @@ PointCorrection prepare_correction(PointCorrection::Kind kind, const std::vector
   return p;
 }
 
+Eigen::MatrixXd integration_matrix(const std::vector<double>& wavelengths, bool linear, const SpectralData& illuminant,
+                                   Observer observer) {
+  const size_t L = wavelengths.size();
+  SpectralData unit;
+  unit.wavelengths = wavelengths;
+  unit.linear = linear;
+  for (size_t j = 0; j < L; ++j) {
+    std::vector<double> e(L, 0.0);
+    e[j] = 1;
+    unit.values.push_back(std::move(e));
+    unit.names.push_back("e" + std::to_string(j));
+  }
+  const auto xyz = reflectances_to_XYZ(unit, illuminant, observer);
+  Eigen::MatrixXd T(static_cast<Eigen::Index>(L), 3);
+  for (size_t j = 0; j < L; ++j) T.row(static_cast<Eigen::Index>(j)) = xyz[j].transpose();
+  return T;
+}
+
+std::vector<std::vector<double>> saunderson_starts(const std::vector<double>& base, const std::vector<size_t>& free,
+                                                   double mu, double rho) {
+  std::vector<std::vector<double>> starts = {base};
+  const bool capture = free == std::vector<size_t>{3, 4, 5}, measurement = free == std::vector<size_t>{0, 1, 2};
+  if (!capture && !measurement) return starts;
+  std::vector<double> c = base;
+  if (capture) {
+    c[4] = c[1];
+    c[3] = 1 - mu * (1 - c[0]);
+    if (c[3] > 1e-6) c[5] = (rho + mu * c[2] * c[0]) / c[3];
+  } else {
+    c[1] = c[4];
+    if (mu > 1e-6) c[0] = 1 - (1 - c[3]) / mu;
+    if (c[0] > 1e-6 && mu > 1e-6) c[2] = (c[5] * c[3] - rho) / (mu * c[0]);
+  }
+  starts.push_back(c);
+  std::vector<double> other = base;
+  const size_t ins = capture ? 5 : 2;
+  other[ins] = base[ins] > 0.5 ? 0 : 1;
+  starts.push_back(other);
+  return starts;
+}
+
 }  // namespace surface_detail
 
 using surface_detail::PointCorrection;
@@ -178,6 +219,7 @@ void check_reflectances(const SpectralData& reflectances, const std::string& wha
   for (size_t k = 0; k < reflectances.values.size(); ++k)
     for (size_t w = 0; w < reflectances.values[k].size(); ++w) {
       const double v = reflectances.values[k][w];
+      if (v >= 0 && v <= 1.5) continue;  // the message is built only for a bad value
       const std::string where = what + ": patch '" + (k < reflectances.names.size() ? reflectances.names[k] : "?") +
                                 "' at " + exact_text(reflectances.wavelengths[w]) + " nm";
       if (!std::isfinite(v)) throw Error(ErrorCode::InvalidArgument, where + " is not finite");
