@@ -59,6 +59,20 @@ Entry rationals(std::uint16_t tag, const double* v, size_t n, bool is_signed) {
   return e;
 }
 
+// An unsigned rational close to v: 1/n for exposure times such as 1/250 s, else v·10⁶/10⁶.
+Entry exact_rational(std::uint16_t tag, double v) {
+  Entry e{tag, RATIONAL, 1, {}};
+  const double inv = 1.0 / v;
+  if (v < 1 && std::fabs(inv - std::round(inv)) < 1e-6 * inv) {
+    put32(e.data, 1u);
+    put32(e.data, static_cast<std::uint32_t>(std::lround(inv)));
+  } else {
+    put32(e.data, static_cast<std::uint32_t>(std::lround(v * 1e6)));
+    put32(e.data, 1000000u);
+  }
+  return e;
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> write_dng(const std::vector<std::uint16_t>& values, int width, int height,
@@ -104,6 +118,8 @@ std::vector<std::uint8_t> write_dng(const std::vector<std::uint16_t>& values, in
   e.push_back(shorts(284, {1}));
   e.push_back(shorts(33421, {static_cast<std::uint16_t>(cfa_dim), static_cast<std::uint16_t>(cfa_dim)}));
   e.push_back(bytes(33422, cfa));
+  if (o.exposure_s > 0) e.push_back(exact_rational(33434, o.exposure_s));
+  if (o.f_number > 0) e.push_back(exact_rational(33437, o.f_number));
   e.push_back(bytes(50706, {1, 4, 0, 0}));
   e.push_back(bytes(50707, {1, 1, 0, 0}));
   e.push_back(ascii(50708, o.make + " " + o.model));

@@ -19,6 +19,9 @@ struct DngWriteOptions {
   std::array<double, 9> color_matrix{0.6461, -0.0907, -0.0882, -0.4300, 1.2184, 0.2378,
                                      -0.0819, 0.1944, 0.5931};
   std::array<double, 3> as_shot_neutral{0.5, 1.0, 0.7};
+  double exposure_s = 0;             ///< ExposureTime (33434), written when > 0
+  double f_number = 0;               ///< FNumber (33437), written when > 0 (no ISO: LibRaw reads
+                                     ///< ISO only from an EXIF sub-IFD, which this writer lacks)
   std::uint32_t header_width = 0;    ///< if nonzero, the header claims this width (tests)
   std::uint32_t header_height = 0;   ///< if nonzero, the header claims this height (tests)
 };

@@ -6,6 +6,7 @@
 
 #include "rows.hpp"
 #include "tristim/error.hpp"
+#include "tristim/linearisation/guarnera2018.hpp"
 
 namespace tristim {
 
@@ -15,7 +16,7 @@ std::vector<LinearisationMethod> build_table() {
   using namespace linearisation_detail;
   std::vector<LinearisationMethod> t{row_identity(), row_gamma(), row_sRGB()};
   for (auto& r : rows_polynomial()) t.push_back(std::move(r));
-  // Guarnera2018 (absolute colorimetry, guarnera2018.cpp) goes here: t.push_back(row_Guarnera2018());
+  t.push_back(linearisation_row_Guarnera2018());  // absolute colorimetry, guarnera2018.cpp
   t.push_back(row_Shen2008());
   return t;
 }

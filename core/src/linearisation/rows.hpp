@@ -14,9 +14,8 @@ LinearisationMethod row_gamma();
 LinearisationMethod row_sRGB();
 /// grey-polynomial, grey-log-polynomial, colour-polynomial, colour-log-polynomial.
 std::vector<LinearisationMethod> rows_polynomial();
-// The absolute-colorimetry work adds `LinearisationMethod row_Guarnera2018();` here (its own
-// file, guarnera2018.cpp) and one line in linearisation.cpp's table, between the polynomial rows
-// and Shen2008.
+// Guarnera2018 (absolute colorimetry) is declared in tristim/linearisation/guarnera2018.hpp
+// (linearisation_row_Guarnera2018, guarnera2018.cpp); it sits between the polynomial rows and Shen2008.
 LinearisationMethod row_Shen2008();
 
 // --- shared helpers ----------------------------------------------------------------------

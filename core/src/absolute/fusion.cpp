@@ -1,0 +1,294 @@
+// Guarnera 2018 section 3.1: Algorithm 1 and the weighted multi-exposure fusion
+// (rules in tristim/absolute/fusion.hpp).
+#include "tristim/absolute/fusion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "tristim/error.hpp"
+
+namespace tristim {
+
+const char* fusion_mode_id(FusionMode mode) { return mode == FusionMode::Recursive ? "recursive" : "weighted"; }
+
+FusionMode fusion_mode_from_id(const std::string& id) {
+  if (id == "weighted" || id == "fusion") return FusionMode::Weighted;
+  if (id == "recursive" || id == "algorithm1" || id == "select") return FusionMode::Recursive;
+  throw Error(ErrorCode::UnknownId, "unknown exposure combination '" + id + "' (weighted, recursive)");
+}
+
+double reliability_Guarnera2018(Zone zone, double u, double w, double u_min) {
+  if (zone != Zone::Saturated && u <= u_min) return 0;
+  switch (zone) {
+    case Zone::Saturated: return 0;
+    case Zone::Centre: return 1;
+    case Zone::Under: return u > 0 ? std::min(1.0, w * u) : 0.0;
+    case Zone::Over: return std::max(0.0, std::min(1.0, w * (1 - u)));
+  }
+  return 0;
+}
+
+namespace {
+
+// x^p on [0, x_max] by linear interpolation in a table of 65536 segments (relative error below
+// 1e-5 for x > 1e-3·x_max with p near 1); std::pow outside. Signed: (−x)^p = −x^p.
+class PowerTable {
+ public:
+  PowerTable() = default;
+  PowerTable(double p, double x_max) : p_(p), linear_(p == 1.0), x_max_(x_max), scale_(kN / x_max) {
+    if (linear_) return;
+    table_.resize(kN + 2);
+    for (int i = 0; i <= kN + 1; ++i) table_[i] = static_cast<float>(std::pow(i / scale_, p));
+  }
+  double operator()(double x) const {
+    if (linear_) return x;
+    const double a = std::fabs(x);
+    double y;
+    if (a < x_max_) {
+      const double t = a * scale_;
+      const int i = static_cast<int>(t);
+      const double f = t - i;
+      y = table_[i] + f * (table_[i + 1] - table_[i]);
+    } else {
+      y = std::pow(a, p_);
+    }
+    return x < 0 ? -y : y;
+  }
+
+ private:
+  static constexpr int kN = 65536;
+  double p_ = 1;
+  bool linear_ = true;
+  double x_max_ = 1, scale_ = 1;
+  std::vector<float> table_;
+};
+
+// Eqs (7), (8), (10) for every pixel of one frame, with the per-channel constants hoisted.
+struct FrameKernel {
+  const Normalisation& n;
+  double inv_eps;
+  double floor[3], inv_range[3], area[3], inv_k2[3], k1[3], u_min[3];
+  PowerTable root[3];
+
+  FrameKernel(const Normalisation& norm, const LuminanceFit& fit, const ExposureSettings& e)
+      : n(norm), inv_eps(1.0 / e.factor(fit.iso_reference)) {
+    double f_max = 1;
+    if (n.falloff) {  // f(r) over r in [0, 1] (r = 1 at the corners)
+      for (int i = 0; i <= 16; ++i) {
+        const double r = i / 16.0;
+        f_max = std::max(f_max, n.falloff->p1 * r * r + n.falloff->p2 * r + n.falloff->p3);
+      }
+    }
+    for (int c = 0; c < 3; ++c) {
+      floor[c] = n.noise_floor[c];
+      u_min[c] = n.detection_unit(c);
+      inv_range[c] = 1.0 / (n.saturation[c] - n.noise_floor[c]);
+      area[c] = n.area_ratio(c);
+      inv_k2[c] = 1.0 / fit.curves[c].k2;
+      k1[c] = fit.curves[c].k1;
+      root[c] = PowerTable(1.0 / fit.curves[c].k3, 1.05 * area[c] * f_max);
+    }
+  }
+  // L(c) in cd/m² of value v at fall-off f (eqs 7, 8, 10); u is (v − n)/(S − n).
+  double luminance(int c, double u, double f) const {
+    const double R = u * area[c] * f;                      // eq (7)
+    return (root[c](R) * inv_k2[c] - k1[c]) * inv_eps;     // eqs (8), (10)
+  }
+};
+
+void check_frame(const FusedLuminance& out, const Normalisation& n, const RawImage& frame, size_t index) {
+  const std::string what = "exposure " + std::to_string(index + 1);
+  if (index >= static_cast<size_t>(kMaxExposures))
+    throw Error(ErrorCode::LimitExceeded, "at most " + std::to_string(kMaxExposures) + " exposures can be combined");
+  if (frame.width != out.width || frame.height != out.height)
+    throw Error(ErrorCode::FrameMismatch, what + " is " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                                              " but the series is " + std::to_string(out.width) + "x" +
+                                              std::to_string(out.height) + " (measurement pixels)");
+  if (index > 0 && (frame.meta.make != out.make || frame.meta.model != out.model))
+    throw Error(ErrorCode::FrameMismatch, what + " comes from " + frame.meta.make + " " + frame.meta.model +
+                                              " but the series from " + out.make + " " + out.model);
+  if (n.falloff && (n.falloff->width != frame.width || n.falloff->height != frame.height))
+    throw Error(ErrorCode::FrameMismatch, what + ": the fall-off fit was made on an image of another size");
+  if (frame.rgb.size() != static_cast<size_t>(frame.width) * frame.height * 3)
+    throw Error(ErrorCode::InvalidArgument, what + " has no pixel data");
+}
+
+void count_sources(FusedLuminance& out) {
+  out.dominant_pixels.assign(out.exposures.size(), 0);
+  bool any = false;
+  for (size_t p = 0; p < out.source.size(); ++p) {
+    if (out.source[p] != 255) out.dominant_pixels[out.source[p]]++;
+    if (out.contributors[p]) any = true;
+    else out.unreliable_pixels++;
+  }
+  if (!any)
+    throw Error(ErrorCode::NoUsableData, "no pixel has a reliable value in any exposure: every frame is "
+                                         "saturated or below the noise floor");
+}
+
+}  // namespace
+
+ExposureFusion::ExposureFusion(const Normalisation& normalisation, const LuminanceFit& fit, int width, int height)
+    : n_(normalisation), fit_(fit) {
+  n_.check();
+  if (width <= 0 || height <= 0) throw Error(ErrorCode::InvalidArgument, "fusion needs a positive image size");
+  out_.width = width;
+  out_.height = height;
+}
+
+void ExposureFusion::add(const RawImage& frame, const ExposureSettings& exposure) {
+  const size_t index = out_.exposures.size();
+  check_frame(out_, n_, frame, index);
+  if (!(exposure.factor(fit_.iso_reference) > 0))
+    throw Error(ErrorCode::MissingMetadata, "exposure " + std::to_string(index + 1) + " has no exposure time or f-number");
+  const size_t npix = static_cast<size_t>(out_.width) * out_.height;
+  if (index == 0) {
+    out_.make = frame.meta.make;
+    out_.model = frame.meta.model;
+    sum_wL_.assign(npix * 3, 0.0f);
+    sum_w_.assign(npix * 3, 0.0f);
+    best_.assign(npix, 0.0f);
+    out_.source.assign(npix, 255);
+    out_.contributors.assign(npix, 0);
+  }
+  out_.exposures.push_back(exposure);
+  const FrameKernel k(n_, fit_, exposure);
+  const double eps = exposure.factor(fit_.iso_reference), w = n_.w;
+  const std::uint16_t bit = static_cast<std::uint16_t>(1u << index);
+  const bool has_flags = !frame.saturated.empty();
+  for (int y = 0; y < out_.height; ++y)
+    for (int x = 0; x < out_.width; ++x) {
+      const size_t p = static_cast<size_t>(y) * out_.width + x;
+      const double f = n_.falloff_factor(x, y);
+      double reliability = 0;
+      for (int c = 0; c < 3; ++c) {
+        const double v = frame.rgb[p * 3 + c];
+        const Zone z = n_.zone(c, v, has_flags && (frame.saturated[p] >> c & 1));
+        if (z == Zone::Saturated) continue;
+        const double u = (v - k.floor[c]) * k.inv_range[c];
+        const double h = reliability_Guarnera2018(z, u, w, k.u_min[c]);
+        const double weight = std::max(h, 1e-6) * eps;
+        sum_wL_[p * 3 + c] += static_cast<float>(weight * k.luminance(c, u, f));
+        sum_w_[p * 3 + c] += static_cast<float>(weight);
+        reliability += h * eps;
+      }
+      if (reliability > 0) {
+        out_.contributors[p] |= bit;
+        if (reliability > best_[p]) {
+          best_[p] = static_cast<float>(reliability);
+          out_.source[p] = static_cast<std::uint8_t>(index);
+        }
+      }
+    }
+}
+
+FusedLuminance ExposureFusion::finish() {
+  if (out_.exposures.empty()) throw Error(ErrorCode::InvalidArgument, "no exposures were added");
+  const size_t npix = static_cast<size_t>(out_.width) * out_.height;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (size_t p = 0; p < npix; ++p) {
+    bool saturated = false;
+    for (int c = 0; c < 3; ++c) {
+      const float sw = sum_w_[p * 3 + c];
+      if (sw > 0) sum_wL_[p * 3 + c] /= sw;
+      else {
+        sum_wL_[p * 3 + c] = nan;
+        saturated = true;
+      }
+    }
+    out_.saturated_pixels += saturated;
+  }
+  std::vector<float>().swap(sum_w_);
+  std::vector<float>().swap(best_);
+  out_.L = std::move(sum_wL_);
+  count_sources(out_);
+  FusedLuminance r = std::move(out_);
+  out_ = FusedLuminance();
+  return r;
+}
+
+FusedLuminance select_exposures_Guarnera2018(const std::vector<const RawImage*>& frames,
+                                             const std::vector<ExposureSettings>& exposures,
+                                             const Normalisation& n, const LuminanceFit& fit, int guess) {
+  n.check();
+  if (frames.empty()) throw Error(ErrorCode::InvalidArgument, "no exposures were given");
+  if (exposures.size() != frames.size())
+    throw Error(ErrorCode::InvalidArgument, "one exposure setting per frame is needed");
+  FusedLuminance out;
+  out.width = frames[0]->width;
+  out.height = frames[0]->height;
+  out.make = frames[0]->meta.make;
+  out.model = frames[0]->meta.model;
+  out.exposures = exposures;
+  std::vector<FrameKernel> kernels;
+  for (size_t e = 0; e < frames.size(); ++e) {
+    check_frame(out, n, *frames[e], e);
+    if (!(exposures[e].factor(fit.iso_reference) > 0))
+      throw Error(ErrorCode::MissingMetadata, "exposure " + std::to_string(e + 1) + " has no exposure time or f-number");
+    kernels.emplace_back(n, fit, exposures[e]);
+  }
+  // The bracket in order of ε; the walk moves along it.
+  std::vector<int> order(frames.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return exposures[a].factor(fit.iso_reference) < exposures[b].factor(fit.iso_reference);
+  });
+  int start = static_cast<int>(order.size() - 1) / 2;  // median ε
+  if (guess >= 0) {
+    if (guess >= static_cast<int>(frames.size()))
+      throw Error(ErrorCode::InvalidArgument, "the initial exposure index is outside the series");
+    start = static_cast<int>(std::find(order.begin(), order.end(), guess) - order.begin());
+  }
+  const size_t npix = static_cast<size_t>(out.width) * out.height;
+  out.L.assign(npix * 3, 0.0f);
+  out.source.assign(npix, 255);
+  out.contributors.assign(npix, 0);
+  const int last = static_cast<int>(order.size()) - 1;
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      const size_t p = static_cast<size_t>(y) * out.width + x;
+      const double f = n.falloff_factor(x, y);
+      bool saturated = false;
+      for (int c = 0; c < 3; ++c) {
+        auto zone_at = [&](int k) {
+          const RawImage& fr = *frames[order[k]];
+          const bool flagged = !fr.saturated.empty() && (fr.saturated[p] >> c & 1);
+          return n.zone(c, fr.rgb[p * 3 + c], flagged);
+        };
+        // ESTLUMINANCE: Z_c -> use; Z_u -> longer; Z_o / saturated -> shorter (Algorithm 1).
+        int k = start, chosen = -1, dir = 0;
+        while (chosen < 0) {
+          const Zone z = zone_at(k);
+          if (z == Zone::Centre) chosen = k;
+          else if (z == Zone::Under) {
+            if (dir >= 0 && k < last) { dir = 1; ++k; }
+            else chosen = (dir < 0 && zone_at(k + 1) == Zone::Over) ? k + 1 : k;  // reversal: prefer Z_o
+          } else {
+            if (dir <= 0 && k > 0) { dir = -1; --k; }
+            else if (dir > 0) chosen = z == Zone::Over ? k : k - 1;  // reversal after Z_u
+            else chosen = z == Zone::Over ? k : -2;                   // shortest exposure saturated
+          }
+          if (chosen == -2) break;
+        }
+        if (chosen < 0) {
+          out.L[p * 3 + c] = std::numeric_limits<float>::quiet_NaN();
+          saturated = true;
+          continue;
+        }
+        const int e = order[chosen];
+        const FrameKernel& kern = kernels[e];
+        const double v = frames[e]->rgb[p * 3 + c];
+        out.L[p * 3 + c] = static_cast<float>(kern.luminance(c, (v - kern.floor[c]) * kern.inv_range[c], f));
+        if (reliability_Guarnera2018(zone_at(chosen), (v - kern.floor[c]) * kern.inv_range[c], n.w, kern.u_min[c]) > 0)
+          out.contributors[p] |= static_cast<std::uint16_t>(1u << e);
+        if (c == 1) out.source[p] = static_cast<std::uint8_t>(e);
+      }
+      out.saturated_pixels += saturated;
+    }
+  count_sources(out);
+  return out;
+}
+
+}  // namespace tristim

@@ -1,0 +1,178 @@
+// Writes a virtual bracketed series as DNG files for the `tristim absolute` / `sensitivities`
+// CLI checks and the example (examples/absolute): the virtual bracket camera (Canon EOS 5D
+// Mark II sensitivities, power-law OECF, shot and read noise, fall-off, clipping below the
+// metadata's white level) photographing
+//   cap_1.dng, cap_2.dng       lens cap (Y = 0)
+//   flat.dng                   equal-tristimulus projector light, 450 cd/m²
+//   train_1..5.dng             a training chart: 31 equal-tristimulus patches 0-890 cd/m² and the
+//                              24 ColorChecker colours (D65, white 700 cd/m²) made by the projector,
+//                              at 1/250 … 1/15 s, f/8
+//   scene_1..5.dng             a ColorChecker under D65 (white 600 cd/m²) on a grey ground, same bracket
+//   nometa.dng                 scene_3 without exposure tags;  other.dng  the same scene from another body
+//   stimuli.csv                the training stimuli (file, region, measured X, Y, Z in cd/m²)
+//   nonmonotonic.csv           the same with two luminances swapped
+//   scene_truth.csv            the scene's patches: id, centre x, y, X, Y, Z (cd/m²)
+//   patches_rgb.csv            linear camera RGB of a ColorChecker under D65 (for `sensitivities estimate`)
+// usage: absolute_fixture <output folder>
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <sys/stat.h>
+
+#include "dng_writer.hpp"
+#include "tristim/absolute/virtual_bracket.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+
+using namespace tristim;
+
+namespace {
+
+constexpr int W = 128, H = 112, kCols = 8, kCell = 16;
+const char* kCamera = "Canon_EOS_5D_Mark_II";
+
+void write(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  std::ofstream f(path, std::ios::binary);
+  f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (!f) throw std::runtime_error("cannot write " + path);
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream f(path);
+  f << text;
+}
+
+void dng(const std::string& path, const VirtualSensor& s, const VirtualScene& scene, const ExposureSettings& e,
+         std::uint64_t seed, bool tags = true) {
+  DngWriteOptions o;
+  o.make = s.make;
+  o.model = s.model;
+  o.white = static_cast<std::uint32_t>(s.reported_saturation);
+  if (tags) {
+    o.exposure_s = e.exposure_s;
+    o.f_number = e.f_number;
+  }
+  write(path, write_dng(capture_virtual_mosaic(s, scene, e, seed), 2 * scene.width, 2 * scene.height, o));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::cerr << "usage: absolute_fixture <output folder>\n";
+    return 2;
+  }
+  const std::string dir = std::string(argv[1]) + "/";
+  mkdir(argv[1], 0755);
+  try {
+    VirtualSensor s;
+    s.ssf = camera_ssf(kCamera);
+    s.model = std::string("Virtual ") + kCamera;
+    s.oecf_exponent = {1.03, 1.0, 0.97};
+    const std::vector<ExposureSettings> bracket = {{1.0 / 250, 8, 0}, {1.0 / 125, 8, 0}, {1.0 / 60, 8, 0},
+                                                   {1.0 / 30, 8, 0}, {1.0 / 15, 8, 0}};
+    const SpectralData E = projector_spectra({Vec3(1, 1, 1)}, {"E"});
+    dng(dir + "cap_1.dng", s, uniform_scene(W, H, E, 0), bracket[2], 1);
+    dng(dir + "cap_2.dng", s, uniform_scene(W, H, E, 0), bracket[2], 2);
+    dng(dir + "flat.dng", s, uniform_scene(W, H, E, 450), bracket[2], 3);
+
+    // The training chart: 31 equal-tristimulus patches, then 24 projected ColorChecker colours.
+    const ReferenceChart cc = reference_chart("cc24", "D65");
+    std::vector<Vec3> targets;
+    for (const auto& x : cc.XYZ) targets.push_back(x * 7.0);
+    const SpectralData proj = projector_spectra(targets, cc.ids);
+    VirtualScene train;
+    train.width = W;
+    train.height = H;
+    train.stimuli = E;
+    std::vector<std::string> ids;
+    for (int v = 0; v <= 870; v += 30) train.luminance.push_back(v);
+    train.luminance.push_back(890);
+    for (size_t k = 1; k < train.luminance.size(); ++k) {
+      train.stimuli.values.push_back(E.values[0]);
+      train.stimuli.names.push_back("E");
+    }
+    for (double y : train.luminance) ids.push_back("Y" + std::to_string(static_cast<int>(y)));
+    for (size_t k = 0; k < targets.size(); ++k) {
+      train.stimuli.values.push_back(proj.values[k]);
+      train.stimuli.names.push_back(cc.ids[k]);
+      train.luminance.push_back(targets[k][1]);
+      ids.push_back(cc.ids[k]);
+    }
+    const int n = static_cast<int>(ids.size());
+    train.label.resize(static_cast<size_t>(W) * H);
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) train.label[static_cast<size_t>(y) * W + x] = static_cast<std::uint16_t>(std::min(n - 1, (y / kCell) * kCols + x / kCell));
+    std::ostringstream csv;
+    csv << "id,set,file,x,y,w,h,X,Y,Z\n";
+    for (size_t e = 0; e < bracket.size(); ++e) {
+      const std::string file = "train_" + std::to_string(e + 1) + ".dng";
+      dng(dir + file, s, train, bracket[e], 10 + e);
+      for (int k = 0; k < n; ++k) {
+        const bool colour = k >= 31;
+        if (colour && e != 2) continue;  // colours: one shot at 1/60 s
+        const Vec3 xyz = virtual_XYZ(s, train, k);
+        csv << ids[k] << "@" << e + 1 << "," << (colour ? "colour" : "luminance") << "," << file << ","
+            << (k % kCols) * kCell + 4 << "," << (k / kCols) * kCell + 4 << ",8,8," << xyz[0] << "," << xyz[1] << ","
+            << xyz[2] << "\n";
+      }
+    }
+    write_text(dir + "stimuli.csv", csv.str());
+    // Two stimuli of the middle exposure with their luminances swapped.
+    std::string bad = csv.str();
+    const std::string a = "Y150@3,luminance", b = "Y450@3,luminance";
+    const auto pa = bad.find(a), pb = bad.find(b);
+    const auto la = bad.find('\n', pa), lb = bad.find('\n', pb);
+    std::string row_a = bad.substr(pa, la - pa), row_b = bad.substr(pb, lb - pb);
+    const auto xyz_a = row_a.substr(row_a.find(",8,8,")), xyz_b = row_b.substr(row_b.find(",8,8,"));
+    bad.replace(pb, lb - pb, row_b.substr(0, row_b.find(",8,8,")) + xyz_a);
+    bad.replace(pa, la - pa, row_a.substr(0, row_a.find(",8,8,")) + xyz_b);
+    write_text(dir + "nonmonotonic.csv", bad);
+
+    // The scene: a ColorChecker under D65 (patches 18 px, 2 px gaps) on a 20 % grey ground.
+    const SpectralData refl = chart_reflectances("cc24");
+    SpectralData spectra = reflected_spectra(refl, illuminant_spd("D65"));
+    const auto white = reflectances_to_XYZ(refl, illuminant_spd("D65"));
+    VirtualScene scene;
+    scene.width = W;
+    scene.height = H;
+    scene.stimuli = spectra;
+    for (const auto& x : white) scene.luminance.push_back(600.0 * x[1] / white[18][1]);
+    scene.stimuli.names.push_back("ground");
+    scene.stimuli.values.push_back(spectra.values[18]);  // the white patch's spectrum at 20 %
+    scene.luminance.push_back(0.2 * 600.0);
+    scene.label.assign(static_cast<size_t>(W) * H, 24);
+    const int ox = (W - 6 * 20) / 2, oy = (H - 4 * 20) / 2;
+    std::ostringstream truth;
+    truth << "id,x,y,X,Y,Z\n";
+    for (int k = 0; k < 24; ++k) {
+      const int x0 = ox + (k % 6) * 20 + 1, y0 = oy + (k / 6) * 20 + 1;
+      for (int y = y0; y < y0 + 18; ++y)
+        for (int x = x0; x < x0 + 18; ++x) scene.label[static_cast<size_t>(y) * W + x] = static_cast<std::uint16_t>(k);
+      const Vec3 xyz = virtual_XYZ(s, scene, k);
+      truth << refl.names[k] << "," << x0 + 9 << "," << y0 + 9 << "," << xyz[0] << "," << xyz[1] << "," << xyz[2] << "\n";
+    }
+    write_text(dir + "scene_truth.csv", truth.str());
+    for (size_t e = 0; e < bracket.size(); ++e)
+      dng(dir + "scene_" + std::to_string(e + 1) + ".dng", s, scene, bracket[e], 100 + e);
+    dng(dir + "nometa.dng", s, scene, bracket[2], 200, false);
+    VirtualSensor other = s;
+    other.model = "Another body";
+    dng(dir + "other.dng", other, scene, bracket[2], 201);
+
+    // Linear camera RGB of a ColorChecker under D65 (for sensitivities estimate).
+    const auto rgb = simulate_camera_RGB(s.ssf, refl, illuminant_spd("D65"));
+    std::ostringstream p;
+    p << "patch,R,G,B\n";
+    for (size_t k = 0; k < rgb.size(); ++k) p << refl.names[k] << "," << rgb[k][0] << "," << rgb[k][1] << "," << rgb[k][2] << "\n";
+    write_text(dir + "patches_rgb.csv", p.str());
+  } catch (const std::exception& e) {
+    std::cerr << "absolute_fixture: " << e.what() << "\n";
+    return 1;
+  }
+  std::cout << "wrote the virtual bracket to " << dir << "\n";
+  return 0;
+}

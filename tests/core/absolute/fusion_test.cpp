@@ -1,0 +1,181 @@
+// Exposure fusion and Algorithm 1 (Guarnera 2018 section 3.1): where each pixel's value comes
+// from, a scene of four decades of luminance, coded errors for bad series, the profile JSON.
+#include <cmath>
+#include <cstdio>
+
+#include "absolute_bench.hpp"
+#include "test_support.hpp"
+#include "dng_writer.hpp"
+#include "tristim/absolute/profile.hpp"
+
+using namespace tristim;
+
+namespace {
+
+/// Two stimuli side by side: a dim one (left) and one bright enough to clip the long exposures.
+VirtualScene two_level_scene(double dim, double bright) {
+  VirtualScene s = uniform_scene(40, 20, projector_spectra({Vec3(1, 1, 1)}, {"dim"}), dim);
+  s.stimuli.names.push_back("bright");
+  s.stimuli.values.push_back(s.stimuli.values[0]);
+  s.luminance = {dim, bright};
+  for (int y = 0; y < s.height; ++y)
+    for (int x = s.width / 2; x < s.width; ++x) s.label[static_cast<size_t>(y) * s.width + x] = 1;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("absolute: the reliability weights of the zones", "[absolute]") {
+  const double w = 10;
+  CHECK(reliability_Guarnera2018(Zone::Under, -0.01, w) == 0);
+  CHECK(reliability_Guarnera2018(Zone::Under, 0.05, w) == Approx(0.5));
+  CHECK(reliability_Guarnera2018(Zone::Centre, 0.5, w) == 1);
+  CHECK(reliability_Guarnera2018(Zone::Over, 0.95, w) == Approx(0.5));
+  CHECK(reliability_Guarnera2018(Zone::Saturated, 1.0, w) == 0);
+  Normalisation n;
+  n.noise_floor = {10, 10, 10};
+  n.saturation = {1010, 1010, 1010};
+  CHECK(n.zone(1, 50) == Zone::Under);     // u = 0.04 < 1/w
+  CHECK(n.zone(1, 510) == Zone::Centre);
+  CHECK(n.zone(1, 980) == Zone::Over);     // u = 0.97 > (w-1)/w
+  CHECK(n.zone(1, 1010) == Zone::Saturated);
+  CHECK(n.zone(1, 500, true) == Zone::Saturated);  // flagged by the decoder
+}
+
+TEST_CASE("absolute: a pixel saturated in the long exposure takes a shorter one's value", "[absolute]") {
+  const auto& b = test::bench();
+  const VirtualScene scene = two_level_scene(40, 2000);  // 2000 cd/m² clips 1/60 s and longer
+  const AbsoluteProfile p = test::profile_for(b, scene.width, scene.height);
+  std::vector<RawImage> frames;
+  for (int e : {4, 0}) frames.push_back(capture_virtual(b.sensor, scene, b.bracket[e], 70 + e));  // 1/15 s, 1/250 s
+  const size_t bright = static_cast<size_t>(10) * scene.width + 30, dim = static_cast<size_t>(10) * scene.width + 10;
+  REQUIRE(p.normalisation.zone(1, frames[0].rgb[bright * 3 + 1]) == Zone::Saturated);
+  for (FusionMode mode : {FusionMode::Weighted, FusionMode::Recursive}) {
+    AbsoluteProfile q = p;
+    q.fusion = mode;
+    const AbsoluteImage img = apply_absolute(q, {&frames[0], &frames[1]});
+    INFO(fusion_mode_id(mode));
+    CHECK(img.luminance.source[bright] == 1);                // the short exposure served it
+    CHECK((img.luminance.contributors[bright] & 1u) == 0);   // the clipped long one did not
+    CHECK(img.XYZ[bright * 3 + 1] == Approx(2000).epsilon(0.03));
+    CHECK(img.luminance.source[dim] == 0);                   // the dim side: the long exposure
+    CHECK(img.XYZ[dim * 3 + 1] == Approx(40).epsilon(0.03));
+  }
+  // Only the long exposure: the bright side cannot be measured (NaN), the rest can.
+  const AbsoluteImage only_long = apply_absolute(p, {&frames[0]});
+  CHECK(std::isnan(only_long.XYZ[bright * 3 + 1]));
+  CHECK(only_long.luminance.saturated_pixels == static_cast<size_t>(scene.width / 2 * scene.height));
+}
+
+TEST_CASE("absolute: a scene of four decades (0.1-1000 cd/m²) measured within 3 % per decade", "[absolute]") {
+  const auto& b = test::bench();
+  // A ramp along x, 0.1 → 1000 cd/m² on a log scale; equal-tristimulus light.
+  VirtualScene s = uniform_scene(400, 24, projector_spectra({Vec3(1, 1, 1)}, {"E"}), 1.0);
+  s.gain.resize(s.label.size());
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) s.gain[static_cast<size_t>(y) * s.width + x] = static_cast<float>(std::pow(10.0, -1 + 4.0 * (x + 0.5) / s.width));
+  const AbsoluteProfile p = test::profile_for(b, s.width, s.height);
+  // Three-stop bracket from 1/1000 s to 4 s at f/8 (covers the ramp at Z_c ≈ 3.2 stops per shot).
+  std::vector<ExposureSettings> bracket = {{1.0 / 1000, 8, 100}, {1.0 / 125, 8, 100}, {1.0 / 15, 8, 100},
+                                           {0.5, 8, 100}, {4.0, 8, 100}};
+  std::vector<RawImage> frames;
+  for (size_t e = 0; e < bracket.size(); ++e) frames.push_back(capture_virtual(b.sensor, s, bracket[e], 900 + e));
+  std::vector<const RawImage*> ptrs;
+  for (const auto& f : frames) ptrs.push_back(&f);
+  const AbsoluteImage img = apply_absolute(p, ptrs);
+  const double Y_E = virtual_XYZ(b.sensor, s, 0)[1];  // luminance of gain 1
+  std::printf("Four decades, fused 5 exposures (1/1000 s .. 4 s, f/8), per-pixel |relative Y error|:\n");
+  for (int d = 0; d < 4; ++d) {
+    std::vector<double> err;
+    std::vector<int> served(bracket.size(), 0);
+    for (int y = 0; y < s.height; ++y)
+      for (int x = d * s.width / 4; x < (d + 1) * s.width / 4; ++x) {
+        const size_t q = static_cast<size_t>(y) * s.width + x;
+        err.push_back(std::fabs(img.XYZ[q * 3 + 1] / (Y_E * s.gain[q]) - 1));
+        served[img.luminance.source[q]]++;
+      }
+    const Summary e = summarize(err);
+    std::printf("  %6.1f-%6.1f cd/m2: median %.4f mean %.4f p95 %.4f; dominant exposure counts", std::pow(10.0, d - 1),
+                std::pow(10.0, d), e.median, e.mean, e.p95);
+    for (int k : served) std::printf(" %d", k);
+    std::printf("\n");
+    INFO("decade " << d);
+    CHECK(e.median < 0.03);
+    CHECK(e.mean < 0.03);
+  }
+}
+
+TEST_CASE("absolute: bad series are refused with codes", "[absolute]") {
+  const auto& b = test::bench();
+  const VirtualScene scene = two_level_scene(40, 200);
+  const AbsoluteProfile p = test::profile_for(b, scene.width, scene.height);
+  const RawImage a = capture_virtual(b.sensor, scene, b.bracket[2], 1);
+  // Another camera in the series (and not the profile's).
+  VirtualSensor other = b.sensor;
+  other.model = "Another body";
+  const RawImage foreign = capture_virtual(other, scene, b.bracket[2], 2);
+  test::require_code([&] { apply_absolute(p, {&a, &foreign}); }, ErrorCode::FrameMismatch);
+  ExposureFusion fusion(p.normalisation, p.luminance, scene.width, scene.height);
+  fusion.add(a, b.bracket[2]);
+  test::require_code([&] { fusion.add(foreign, b.bracket[2]); }, ErrorCode::FrameMismatch);
+  // Another size.
+  VirtualScene big = uniform_scene(48, 20, scene.stimuli, 40);
+  const RawImage wide = capture_virtual(b.sensor, big, b.bracket[2], 3);
+  test::require_code([&] { apply_absolute(p, {&a, &wide}); }, ErrorCode::FrameMismatch);
+  // Missing exposure metadata.
+  RawImage no_meta = a;
+  no_meta.meta.shutter_s = 0;
+  test::require_code([&] { apply_absolute(p, {&no_meta}); }, ErrorCode::MissingMetadata);
+  // All saturated / all dark.
+  const RawImage white_out = capture_virtual(b.sensor, two_level_scene(50000, 90000), b.bracket[4], 4);
+  test::require_code([&] { apply_absolute(p, {&white_out}); }, ErrorCode::NoUsableData);
+  const RawImage black = capture_virtual(b.sensor, two_level_scene(0, 0), b.bracket[0], 5);
+  test::require_code([&] { apply_absolute(p, {&black}); }, ErrorCode::NoUsableData);
+  // More exposures than the contributor mask holds.
+  std::vector<const RawImage*> many(17, &a);
+  test::require_code([&] { apply_absolute(p, many); }, ErrorCode::LimitExceeded);
+}
+
+TEST_CASE("absolute: the profile JSON round trip is exact", "[absolute]") {
+  const auto& b = test::bench();
+  const VirtualScene scene = two_level_scene(40, 700);
+  AbsoluteProfile p = test::profile_for(b, scene.width, scene.height);
+  const std::string text = absolute_profile_to_json(p);
+  const AbsoluteProfile q = absolute_profile_from_json(text);
+  CHECK(absolute_profile_to_json(q) == text);
+  const RawImage f = capture_virtual(b.sensor, scene, b.bracket[2], 9);
+  const AbsoluteImage x = apply_absolute(p, {&f}), y = apply_absolute(q, {&f});
+  CHECK(x.XYZ == y.XYZ);
+  CHECK(q.linearisation_choice().method == "Guarnera2018");
+  test::require_code([&] { absolute_profile_from_json("{\"format\":\"tristim-absolute-profile\",\"version\":2}"); },
+                     ErrorCode::ProfileVersion);
+  test::require_code([&] { absolute_profile_from_json("{\"format\":\"tristim-profile\",\"version\":1}"); },
+                     ErrorCode::ProfileInvalid);
+  std::string broken = text;
+  broken.replace(broken.find("\"k\""), 3, "\"q\"");
+  test::require_code([&] { absolute_profile_from_json(broken); }, ErrorCode::ProfileInvalid);
+}
+
+TEST_CASE("absolute: a virtual bracket frame written as DNG decodes to the same image and exposure", "[absolute]") {
+  const auto& b = test::bench();
+  const VirtualScene scene = two_level_scene(40, 2000);
+  const ExposureSettings e{1.0 / 125, 5.6, 0};
+  const RawImage direct = capture_virtual(b.sensor, scene, e, 31);
+  DngWriteOptions o;
+  o.make = b.sensor.make;
+  o.model = b.sensor.model;
+  o.white = static_cast<std::uint32_t>(b.sensor.reported_saturation);
+  o.exposure_s = e.exposure_s;
+  o.f_number = e.f_number;
+  const RawImage decoded = decode_raw(write_dng(capture_virtual_mosaic(b.sensor, scene, e, 31), 2 * scene.width,
+                                                2 * scene.height, o));
+  CHECK(decoded.rgb == direct.rgb);
+  CHECK(decoded.saturated == direct.saturated);
+  CHECK(decoded.meta.make == direct.meta.make);
+  CHECK(decoded.meta.model == direct.meta.model);
+  const ExposureSettings read = exposure_from_metadata(decoded.meta, "virtual.dng");
+  CHECK(read.exposure_s == Approx(1.0 / 125));
+  CHECK(read.f_number == Approx(5.6));
+  CHECK(read.iso == 0);  // not written (see dng_writer.hpp): no ISO scaling
+  CHECK(decoded.meta.saturation[1] == b.sensor.reported_saturation);
+}

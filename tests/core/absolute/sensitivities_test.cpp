@@ -1,0 +1,87 @@
+// Spectral sensitivities estimated from one simulated ColorChecker photo under D65 (Jiang, Liu,
+// Gu & Süsstrunk 2013: PCA basis of the built-in cameras + smoothness-constrained solve),
+// leave-one-camera-out over the 52 built-in cameras; CSV output; coded errors.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "test_support.hpp"
+#include "tristim/absolute/normalisation.hpp"
+#include "tristim/absolute/sensitivities.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/evaluation/evaluation.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+
+using namespace tristim;
+
+TEST_CASE("absolute: sensitivities estimated leave-one-camera-out over the 52 cameras", "[absolute][sensitivities]") {
+  const SpectralData refl = chart_reflectances("cc24");
+  const SpectralData d65 = illuminant_spd("D65");
+  for (double noise : {0.0, 0.002}) {
+    std::vector<double> rms, err_R, err_B;
+    std::string worst_camera;
+    double worst = 0;
+    for (const auto& cam : camera_names()) {
+      const SpectralData truth = camera_ssf(cam);
+      SimulationOptions so;  // linear camera RGB, white patch G ≈ 0.9
+      so.noise_sigma = noise;
+      so.seed = 11;
+      const auto rgb = simulate_camera_RGB(truth, refl, d65, so);
+      SensitivityOptions o;
+      o.exclude_cameras = {cam};  // the held-out camera is not in the basis
+      const SensitivityEstimate e = estimate_sensitivities_Jiang2013(rgb, refl, d65, o);
+      CHECK(e.basis_cameras == 51);
+      rms.push_back(sensitivity_rms(e.ssf, truth));
+      const auto A = channel_areas(truth);
+      const double r = std::fabs((e.areas[0] / e.areas[1]) / (A[0] / A[1]) - 1);
+      const double b = std::fabs((e.areas[2] / e.areas[1]) / (A[2] / A[1]) - 1);
+      err_R.push_back(r);
+      err_B.push_back(b);
+      if (std::max(r, b) > worst) {
+        worst = std::max(r, b);
+        worst_camera = cam;
+      }
+      INFO(cam << " noise " << noise << ": A_R/A_G off by " << r << ", A_B/A_G by " << b << ", residual " << e.residual_rms);
+      CHECK(r < 0.02);
+      CHECK(b < 0.02);
+    }
+    const Summary s = summarize(rms), R = summarize(err_R), B = summarize(err_B);
+    std::printf("Sensitivities, leave-one-camera-out (52 cameras, ColorChecker under D65, noise %.3g, K = 4):\n"
+                "  RMS (each channel peak 1): median %.4f, p95 %.4f, max %.4f\n"
+                "  |A_R/A_G error| median %.4f max %.4f; |A_B/A_G error| median %.4f max %.4f (worst: %s)\n",
+                noise, s.median, s.p95, s.max, R.median, R.max, B.median, B.max, worst_camera.c_str());
+    CHECK(s.median < (noise > 0 ? 0.04 : 0.025));
+  }
+}
+
+TEST_CASE("absolute: a camera in the basis is recovered almost exactly; CSV keeps channel ratios", "[absolute][sensitivities]") {
+  const SpectralData refl = chart_reflectances("cc24");
+  const SpectralData d65 = illuminant_spd("D65");
+  const SpectralData truth = camera_ssf("Nikon_D850");
+  const SensitivityEstimate e = estimate_sensitivities_Jiang2013(simulate_camera_RGB(truth, refl, d65), refl, d65);
+  CHECK(e.residual_rms < 0.01);
+  const std::string csv = sensitivities_to_csv(e.ssf);
+  CHECK(csv.rfind("wavelength_nm,R,G,B\n380,", 0) == 0);
+  const SpectralData back = read_ssf_csv(csv, "estimate.csv");
+  double peak = 0;
+  for (const auto& v : back.values) peak = std::max(peak, *std::max_element(v.begin(), v.end()));
+  CHECK(peak == Approx(1.0));
+  const auto a = channel_areas(back), b = channel_areas(e.ssf);
+  CHECK(a[0] / a[1] == Approx(b[0] / b[1]).epsilon(1e-6));
+}
+
+TEST_CASE("absolute: sensitivity estimation refuses bad input with codes", "[absolute][sensitivities]") {
+  const SpectralData refl = chart_reflectances("cc24");
+  const SpectralData d65 = illuminant_spd("D65");
+  const auto rgb = simulate_camera_RGB(camera_ssf("Nikon_D850"), refl, d65);
+  test::require_code([&] { estimate_sensitivities_Jiang2013({rgb.begin(), rgb.begin() + 10}, refl, d65); }, ErrorCode::PatchMismatch);
+  SpectralData three = refl;
+  three.values.resize(3);
+  three.names.resize(3);
+  test::require_code([&] { estimate_sensitivities_Jiang2013({rgb.begin(), rgb.begin() + 3}, three, d65); }, ErrorCode::TooFewPatches);
+  SensitivityOptions o;
+  o.exclude_cameras = {"Leica M3"};
+  test::require_code([&] { estimate_sensitivities_Jiang2013(rgb, refl, d65, o); }, ErrorCode::UnknownId);
+  std::vector<Vec3> dark(rgb.size(), Vec3(0.1, 0, 0.1));
+  test::require_code([&] { estimate_sensitivities_Jiang2013(dark, refl, d65); }, ErrorCode::InvalidArgument);
+}
