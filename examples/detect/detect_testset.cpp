@@ -132,11 +132,11 @@ int main(int argc, char** argv) {
     }
     if (verbose)
       std::printf("  %3d %-8s %4dx%-4d area %5.1f%% tilt %4.1f rot %5.1f blur %.1f glare %d photo %d: %s err %.2f px "
-                  "(pitch %.1f) conf %.2f %.0f ms\n",
+                  "(pitch %.1f) conf %.2f %.0f ms %s %s\n",
                   i, chart.c_str(), w, h, 100 * scene.area_fraction, spec.tilt_deg, spec.rotation_deg, spec.blur_sigma,
                   spec.glare_patches, spec.photo_background ? 1 : 0,
                   !s.detected ? "MISS" : s.oriented ? "ok" : s.located ? "WRONG-ORIENTATION" : "MISPLACED",
-                  s.corner_error, s.pitch, s.confidence, ms);
+                  s.corner_error, s.pitch, s.confidence, ms, spec.illuminant.c_str(), spec.camera.c_str());
     if (truth) {
       char name[64];
       std::snprintf(name, sizeof name, "scene_%03d.ppm", i);

@@ -31,7 +31,7 @@ struct SceneSpec {
   double rotation_deg = 0;        ///< in-plane rotation, clockwise on screen
   double focal = 3;               ///< camera distance in chart heights (smaller = stronger perspective)
   double cx = 0.5, cy = 0.5;      ///< grid centre as a fraction of the image size
-  double gap = -1;                ///< gap / patch size; < 0: the layout's default
+  double gap = -1;                ///< gap / patch size; < 0: the layout's default (0 for the SG)
   double exposure = 0.4;          ///< white's G as a fraction of saturation
   double shot_gain = 1, read_noise = 3;  ///< noise: σ² = shot_gain·DN + read_noise²
   double blur_sigma = 0.7;        ///< Gaussian blur, px

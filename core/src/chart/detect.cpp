@@ -41,6 +41,11 @@ std::vector<Target> targets(const DetectOptions& o) {
       t.reference = o.custom_reference;
     } else {
       t.layout.chart = id;
+      // The detector starts from the printed charts' gaps (ArgyllCMS's ColorCheckerSG.cht:
+      // 12.675 mm patches at a 15.175 mm pitch; ColorCheckerPassport.cht: 12.4 at 15.0) and
+      // fits the gap anyway; chart_layout's defaults (0 and 0.14) only serve sampling.
+      if (id == "sg140" || id == "sg140-2005") t.layout.gap = 0.197;
+      if (id == "passport") t.layout.gap = 0.21;
       t.grid = chart_layout(t.layout);  // UnknownId for an unknown chart
       const ReferenceChart ref = reference_chart(id, "D50");
       for (const auto& cell : t.grid.patches) {
@@ -63,6 +68,28 @@ bool contains(const std::array<double, 8>& k, const Point& p) {
     if (c < 0) return false;
   }
   return true;
+}
+
+// Best score of the patches' colours against the reference read in another orientation that
+// maps the grid onto itself (180°, the two mirrors; and 90°/270° for a square grid).
+double symmetric_alternatives(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
+                              const std::vector<Point>& where, int R, int C) {
+  double best = 1e9;
+  for (int t = 1; t < 8; ++t) {
+    if (t % 2 == 1 && R != C) continue;  // 90° and 270° (and their mirrors) need a square grid
+    std::vector<Vec3> permuted(ref.size());
+    for (int r = 0; r < R; ++r)
+      for (int c = 0; c < C; ++c) {
+        const int mc = t >= 4 ? C - 1 - c : c;  // mirror first
+        int rr = r, cc = mc;
+        if (t % 4 == 1) rr = mc, cc = R - 1 - r;          // quarter turn (square grids)
+        if (t % 4 == 2) rr = R - 1 - r, cc = C - 1 - mc;  // half turn
+        if (t % 4 == 3) rr = C - 1 - mc, cc = r;          // three quarters (square grids)
+        permuted[size_t(r) * C + c] = ref[size_t(rr) * C + cc];
+      }
+    best = std::min(best, reference_fit_score(rgb, permuted, where));
+  }
+  return best;
 }
 
 Point centre_of(const std::array<double, 8>& k) {
@@ -90,11 +117,11 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
   std::string reasons;
   for (size_t gi = 0; gi < groups.size(); ++gi) {
     const GridGroup& group = groups[gi];
-    progress("orient", 0.4 + 0.5 * gi / groups.size());
     // A candidate per layout; the group keeps the best.
     ChartCandidate best;
     bool have = false;
     for (const Target& t : wanted) {
+      progress("orient", 0.4 + 0.55 * gi / groups.size());
       const std::vector<Placement> placements = place_layout(work, group, t.grid, t.reference);
       if (placements.empty()) continue;
       const Placement& p = placements.front();
@@ -140,15 +167,16 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
       const double pitch_w = std::sqrt(std::abs(
           (chosen->corners[4] - chosen->corners[0]) * (chosen->corners[7] - chosen->corners[3]) -
           (chosen->corners[5] - chosen->corners[1]) * (chosen->corners[6] - chosen->corners[2])) / 2 / N);
+      progress("refine", 0.4 + 0.55 * (gi + 0.5) / groups.size());
       Refinement ref;
       if (factor > 1) {
         ref = refine_corners(work, t.layout, chosen->corners, 0.3 * pitch_w, true);
         for (int i = 0; i < 8; ++i) corners[i] = ref.corners[i] * factor;
         LayoutOptions lo = t.layout;
         lo.gap = ref.gap;
-        ref = refine_corners(image, lo, corners, 1.5 * factor + 1, true, true);
+        ref = refine_corners(image, lo, corners, 1.5 * factor + 1, true);
       } else {
-        ref = refine_corners(image, t.layout, corners, 0.3 * pitch_w, true, true);
+        ref = refine_corners(image, t.layout, corners, 0.3 * pitch_w, true);
       }
       corners = ref.corners;
       ChartCandidate c;
@@ -160,6 +188,7 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
       c.orientation_resolved = !t.reference.empty();
       c.coverage = double(chosen->found) / N;
       c.runner_up_residual = runner_up;
+      double final_score = 0, alternative_score = 1e9;
       try {
         check_corners(corners, image.width, image.height);
         LayoutOptions lo = t.layout;
@@ -168,7 +197,13 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
         if (!t.reference.empty()) {
           std::vector<Vec3> rgb;
           for (const auto& ps : s.patches) rgb.emplace_back(ps.mean[0], ps.mean[1], ps.mean[2]);
-          const std::vector<double> e = reference_fit_residuals(rgb, t.reference);
+          std::vector<Point> where;
+          for (const auto& cell : t.grid.patches)
+            where.emplace_back(t.grid.columns > 1 ? cell.column / (t.grid.columns - 1.0) : 0.5,
+                               t.grid.rows > 1 ? cell.row / (t.grid.rows - 1.0) : 0.5);
+          final_score = reference_fit_score(rgb, t.reference, where);
+          alternative_score = symmetric_alternatives(rgb, t.reference, where, t.grid.rows, t.grid.columns);
+          const std::vector<double> e = reference_fit_residuals(rgb, t.reference, where);
           for (size_t k = 0; k < e.size(); ++k) c.patches.push_back({s.patches[k].id, e[k]});
           std::vector<double> sorted = e;
           std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
@@ -180,13 +215,24 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
         reasons = std::string("a ") + t.id + " grid was found but its corners are unusable: " + e.what();
         continue;
       }
-      // Confidence: the colours agree (median residual), no other placement comes close,
-      // enough of the grid was seen as patches, and the edges agree with the fitted grid.
-      const double fit = clamp01((0.3 - c.residual) / 0.2);
-      const double margin = t.reference.empty() ? 0.6 : clamp01((runner_up / std::max(p.residual, 1e-6) - 1.5) / 1.5);
-      const double cover = clamp01(0.5 + c.coverage);
-      const double edges = ref.edges >= 8 ? 1.0 : 0.7;
-      c.confidence = (t.reference.empty() ? clamp01(c.coverage + 0.2) : fit) * margin * cover * edges;
+      // Confidence: the colours agree (median residual) and no other orientation of the chart
+      // comes close at the final corners (nor did another placement on the lattice), and the
+      // patch edges were seen around most patches.
+      c.supported = ref.supported;
+      double margin = 0.6;
+      if (!t.reference.empty()) {
+        const double best_score = final_score;
+        c.alternative_residual = alternative_score;
+        const double ratio = std::min(alternative_score, runner_up / std::max(chosen->residual, 1e-6) * best_score) /
+                             std::max(best_score, 1e-6);
+        margin = clamp01((ratio - 1.5) / 1.5);
+      }
+      const double fit = t.reference.empty() ? clamp01(c.coverage + c.supported) : clamp01((0.3 - c.residual) / 0.2);
+      const double support = clamp01(0.3 + c.supported);
+      c.confidence = fit * margin * support;
+      if (std::getenv("TRISTIM_DETECT_DEBUG"))
+        std::fprintf(stderr, "CANDIDATE %s residual %.4f score %.4f alternative %.4f runner-up %.4f/%.4f supported %.2f conf %.3f\n",
+                     t.id.c_str(), c.residual, final_score, alternative_score, runner_up, chosen->residual, c.supported, c.confidence);
       const double dx = corners[2] - corners[0], dy = corners[3] - corners[1];
       c.angle = std::fmod(std::atan2(dy, dx) * 180 / kPi + 360.0, 360.0);
       c.orientation = static_cast<int>(std::lround(c.angle / 90.0)) % 4 * 90;
@@ -197,7 +243,6 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
     }
     if (have) found.push_back(best);
   }
-  progress("refine", 0.95);
   std::stable_sort(found.begin(), found.end(),
                    [](const ChartCandidate& a, const ChartCandidate& b) { return a.confidence > b.confidence; });
   // One candidate per chart: drop any whose centre lies inside a better one.

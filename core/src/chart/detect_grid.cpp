@@ -144,12 +144,13 @@ std::vector<GridGroup> group_grids(const std::vector<PatchQuad>& quads, int min_
         }
       }
     }
-    const int score = dir[0] + dir[1] + dir[2] + dir[3];
+    // A seed is a single patch when its sides fill similar fractions of both pitches (a blob of
+    // two merged patches does not); rank those first, then by the neighbours seen.
+    int score = dir[0] + dir[1] + dir[2] + dir[3];
+    if (bestP < 1e9 && bestQ < 1e9 && std::max(bestP, bestQ) < 1.3 * std::min(bestP, bestQ)) score += 4;
     if ((dir[0] || dir[1]) && (dir[2] || dir[3])) seeds.push_back({i, score, P, Q});
   }
-  std::stable_sort(seeds.begin(), seeds.end(), [&](const Seed& a, const Seed& b) {
-    return a.score != b.score ? a.score > b.score : quads[a.quad].area > quads[b.quad].area;
-  });
+  std::stable_sort(seeds.begin(), seeds.end(), [&](const Seed& a, const Seed& b) { return a.score > b.score; });
 
   std::vector<char> used(n, 0);
   std::vector<GridGroup> groups;
@@ -161,6 +162,10 @@ std::vector<GridGroup> group_grids(const std::vector<PatchQuad>& quads, int min_
     std::set<int> members = {seed.quad};
     for (int round = 0; round < 400; ++round) {
       const Eigen::Matrix3d Hi = g.H.inverse();
+      std::vector<double> areas;
+      for (int m : members) areas.push_back(quads[m].area);
+      std::nth_element(areas.begin(), areas.begin() + areas.size() / 2, areas.end());
+      const double median_area = areas[areas.size() / 2];
       std::map<std::array<int, 2>, std::pair<double, int>> offers;  // cell -> (residual, quad)
       std::set<int> pool;
       for (int m : members)
@@ -190,7 +195,9 @@ std::vector<GridGroup> group_grids(const std::vector<PatchQuad>& quads, int min_
         const Point& sq = a_on_P ? q.side_b : q.side_a;
         if (parallel(sp, P) < 0.94 || parallel(sq, Q) < 0.94) continue;
         const double fp = sp.norm() / P.norm(), fq = sq.norm() / Q.norm();
-        if (fp < 0.3 || fp > 1.1 || fq < 0.3 || fq > 1.1) continue;
+        if (fp < 0.3 || fp > 1.1 || fq < 0.3 || fq > 1.1 || std::max(fp, fq) > 1.5 * std::min(fp, fq)) continue;
+        // ... and its size matches the members' (not two patches run together).
+        if (q.area > 1.7 * median_area || q.area < 0.45 * median_area) continue;
         auto it = offers.find(cell);
         if (it == offers.end() || res < it->second.first) offers[cell] = {res, j};
       }

@@ -38,10 +38,10 @@ std::vector<double> relative_residuals(const std::vector<Vec3>& rgb, const std::
   return e;
 }
 
-// Mean of the smallest 85 % of the residuals.
+// Mean of the smallest 75 % of the residuals.
 double trimmed_mean(std::vector<double> e) {
   std::sort(e.begin(), e.end());
-  const size_t keep = std::max<size_t>(1, static_cast<size_t>(std::ceil(0.85 * e.size())));
+  const size_t keep = std::max<size_t>(1, static_cast<size_t>(std::ceil(0.75 * e.size())));
   return std::accumulate(e.begin(), e.begin() + static_cast<std::ptrdiff_t>(keep), 0.0) / double(keep);
 }
 
@@ -59,24 +59,58 @@ std::array<int, 2> dihedral(int t, int c, int r) {
 
 }  // namespace
 
-std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref) {
-  if (rgb.size() != ref.size() || rgb.size() < 4)
+std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
+                                            const std::vector<Eigen::Vector2d>& positions) {
+  const size_t n = rgb.size();
+  if (ref.size() != n || n < 4 || (!positions.empty() && positions.size() != n))
     throw Error(ErrorCode::InvalidArgument, "the 3x3 reference fit needs 4 or more camera/reference pairs");
   // Relative errors: weight 1/|ref|² (the camera scale is unknown, the reference sets the level).
   double brightest = 0;
   for (const auto& r : ref) brightest = std::max(brightest, r.squaredNorm());
-  std::vector<double> w(rgb.size());
-  for (size_t k = 0; k < rgb.size(); ++k) w[k] = 1.0 / (ref[k].squaredNorm() + 4e-4 * brightest + 1e-30);
-  Mat3 M = fit_matrix(rgb, ref, w);
-  std::vector<double> e = relative_residuals(rgb, ref, M);
-  // Refit without the worst 15 % (glare, a shadow, a missing patch).
-  std::vector<double> sorted = e;
-  std::sort(sorted.begin(), sorted.end());
-  const double cut = sorted[static_cast<size_t>(std::floor(0.85 * (sorted.size() - 1)))];
-  for (size_t k = 0; k < e.size(); ++k)
-    if (e[k] > cut) w[k] = 0;
-  M = fit_matrix(rgb, ref, w);
-  return relative_residuals(rgb, ref, M);
+  std::vector<double> w0(n), w(n);
+  for (size_t k = 0; k < n; ++k) w0[k] = w[k] = 1.0 / (ref[k].squaredNorm() + 4e-4 * brightest + 1e-30);
+  // Light across the chart: log L = β · (1, u, v[, u², v², uv]) (linear from 12 patches,
+  // quadratic from 24), each factor within 0.5..2 of 1.
+  const int terms = positions.empty() || n < 12 ? 0 : n < 24 ? 3 : 6;
+  std::vector<double> light(n, 1.0);
+  std::vector<Vec3> lit = ref;
+  std::vector<double> e;
+  for (int it = 0; it < (terms ? 4 : 2); ++it) {
+    for (size_t k = 0; k < n; ++k) lit[k] = light[k] * ref[k];
+    const Mat3 M = fit_matrix(rgb, lit, w);
+    e = relative_residuals(rgb, lit, M);
+    // Refit without the worst 25 % (glare, a shadow, a missing patch).
+    std::vector<double> sorted = e;
+    std::sort(sorted.begin(), sorted.end());
+    const double cut = sorted[static_cast<size_t>(std::floor(0.75 * (sorted.size() - 1)))];
+    for (size_t k = 0; k < n; ++k) w[k] = e[k] > cut ? 0 : w0[k];
+    if (!terms) continue;
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), terms);
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+    for (size_t k = 0; k < n; ++k) {
+      const Vec3 p = M * ref[k];
+      const double rho = rgb[k].dot(p) / (p.squaredNorm() + 1e-300);
+      if (!(w[k] > 0) || !(rho > 0) || p.squaredNorm() < 4e-3 * brightest * M.squaredNorm() / 3) continue;
+      const double u = positions[k].x() - 0.5, v = positions[k].y() - 0.5;
+      const double phi[6] = {1, u, v, u * u, v * v, u * v};
+      for (int j = 0; j < terms; ++j) A(static_cast<Eigen::Index>(k), j) = phi[j];
+      b(static_cast<Eigen::Index>(k)) = std::log(rho);
+    }
+    const Eigen::VectorXd beta = A.colPivHouseholderQr().solve(b);
+    for (size_t k = 0; k < n; ++k) {
+      const double u = positions[k].x() - 0.5, v = positions[k].y() - 0.5;
+      const double phi[6] = {0, u, v, u * u, v * v, u * v};  // the constant stays in M
+      double l = 0;
+      for (int j = 1; j < terms; ++j) l += beta(j) * phi[j];
+      light[k] = std::exp(std::min(std::log(2.0), std::max(-std::log(2.0), l)));
+    }
+  }
+  return e;
+}
+
+double reference_fit_score(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
+                           const std::vector<Eigen::Vector2d>& positions) {
+  return trimmed_mean(reference_fit_residuals(rgb, ref, positions));
 }
 
 std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group, const ChartLayout& layout,
@@ -138,6 +172,7 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
         pl.offset = {op, oq};
         pl.found = covered;
         std::vector<Vec3> rgb, ref;
+        std::vector<Point> where;
         int outside = 0;
         for (int k = 0; k < N; ++k) {
           const auto& cell = layout.patches[k];
@@ -148,11 +183,12 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
             continue;
           }
           rgb.push_back(s.second);
+          where.emplace_back(C > 1 ? cell.column / (C - 1.0) : 0.5, R > 1 ? cell.row / (R - 1.0) : 0.5);
           if (!reference.empty()) ref.push_back(reference[k]);
         }
         pl.inside = outside == 0;
         if (rgb.size() < std::max<size_t>(6, N / 2)) continue;
-        pl.residual = reference.empty() ? 0.0 : trimmed_mean(reference_fit_residuals(rgb, ref));
+        pl.residual = reference.empty() ? 0.0 : reference_fit_score(rgb, ref, where);
         // Corners: chart (u, v) -> layout (c, r) -> lattice -> image.
         const double us[4] = {0, 1, 1, 0}, vs[4] = {0, 0, 1, 1};
         std::vector<Point> k(4);

@@ -11,8 +11,6 @@
 #include <cmath>
 #include <functional>
 #include <vector>
-#include <cstdio>
-#include <cstdlib>
 
 #include "tristim/chart/detect.hpp"
 #include "tristim/error.hpp"
@@ -38,6 +36,8 @@ struct EdgeObs {
   int axis = 0;     // 0: a vertical chart line u = const; 1: horizontal v = const
   int index = 0;    // column (axis 0) or row (axis 1)
   int side = 0;     // 0: the cell's leading edge (u0 / v0), 1: trailing (u1 / v1)
+  int patch = 0;    // row-major patch index, side 0-3 (top, right, bottom, left)
+  int patch_side = 0;
 };
 
 Eigen::Matrix3d H_of(const std::array<double, 8>& corners) {
@@ -206,6 +206,8 @@ std::vector<EdgeObs> measure_edges(const RawImage& img, const GridModel& m, doub
           o.axis = (s % 2 == 1) ? 0 : 1;  // left/right sides are vertical chart lines
           o.index = o.axis == 0 ? c : r;
           o.side = (s == 1 || s == 2) ? 1 : 0;
+          o.patch = r * m.C + c;
+          o.patch_side = s;
           out.push_back(o);
         }
       }
@@ -213,23 +215,10 @@ std::vector<EdgeObs> measure_edges(const RawImage& img, const GridModel& m, doub
   return out;
 }
 
-// The fitted model: the corners of the patch grid in the undistorted image, the gap and one
-// radial term k about the image centre c (p_u = c + (p_d - c)(1 + k |p_d - c|² / R²), R the
-// half diagonal): enough for the slight barrel of a kit lens, 0 unless fitted.
+// The fitted model: the corners of the patch grid and the gap.
 struct GridState {
   std::array<double, 8> corners{};
-  double gap = 0, k = 0;
-};
-
-struct Radial {
-  Point c;
-  double R2 = 1;
-  Point undistort(const Point& p, double k) const { return c + (p - c) * (1 + k * (p - c).squaredNorm() / R2); }
-  Point distort(const Point& u, double k) const {
-    Point d = u;
-    for (int i = 0; i < 6; ++i) d = c + (u - c) / (1 + k * (d - c).squaredNorm() / R2);
-    return d;
-  }
+  double gap = 0;
 };
 
 struct FitResult {
@@ -239,36 +228,26 @@ struct FitResult {
 };
 
 // Robust Gauss-Newton (Levenberg-Marquardt damping, Huber weights at 1.5 MAD-σ) over the
-// corners and, when free, the gap and k. A weak prior keeps k near 0 (k = 0.01, a 1 % shift at
-// the image corner, costs as much as one edge point 0.5 px off).
-FitResult fit_edges(const GridModel& m, const std::vector<EdgeObs>& obs, const GridState& start, bool fit_gap,
-                    bool fit_k, const Radial& radial) {
+// corners and, when free, the gap.
+FitResult fit_edges(const GridModel& m, const std::vector<EdgeObs>& obs, const GridState& start, bool fit_gap) {
   std::vector<int> free = {0, 1, 2, 3, 4, 5, 6, 7};
   if (fit_gap) free.push_back(8);
-  if (fit_k) free.push_back(9);
   const int P = static_cast<int>(free.size());
   auto unpack = [&](const Eigen::VectorXd& th) {
     GridState s = start;
     for (int i = 0; i < P; ++i) {
       if (free[i] < 8) s.corners[free[i]] = th[i];
-      else if (free[i] == 8) s.gap = std::min(std::max(th[i], 0.0), 1.5);
-      else s.k = th[i];
+      else s.gap = std::min(std::max(th[i], 0.0), 1.5);
     }
     return s;
   };
   Eigen::VectorXd theta(P);
-  for (int i = 0; i < P; ++i) theta[i] = free[i] < 8 ? start.corners[free[i]] : free[i] == 8 ? start.gap : start.k;
-  std::vector<Point> undistorted(obs.size());
+  for (int i = 0; i < P; ++i) theta[i] = free[i] < 8 ? start.corners[free[i]] : start.gap;
   auto residuals = [&](const Eigen::VectorXd& th) {
     const GridState s = unpack(th);
     const Eigen::Matrix3d H = H_of(s.corners);
-    Eigen::VectorXd r(obs.size() + (fit_k ? 1 : 0));
-    for (size_t i = 0; i < obs.size(); ++i) {
-      EdgeObs o = obs[i];
-      o.p = radial.undistort(o.p, s.k);
-      r[i] = residual(m, H, s.gap, o);
-    }
-    if (fit_k) r[obs.size()] = 50 * s.k;
+    Eigen::VectorXd r(obs.size());
+    for (size_t i = 0; i < obs.size(); ++i) r[i] = residual(m, H, s.gap, obs[i]);
     return r;
   };
   Eigen::VectorXd r = residuals(theta), wts = Eigen::VectorXd::Ones(r.size());
@@ -326,7 +305,7 @@ FitResult fit_edges(const GridModel& m, const std::vector<EdgeObs>& obs, const G
 }  // namespace
 
 Refinement refine_corners(const RawImage& image, const LayoutOptions& lo, const std::array<double, 8>& corners,
-                          double search_px, bool fit_gap, bool fit_distortion) {
+                          double search_px, bool fit_gap) {
   const ChartLayout layout = chart_layout(lo);
   GridModel m;
   m.R = layout.rows;
@@ -337,9 +316,6 @@ Refinement refine_corners(const RawImage& image, const LayoutOptions& lo, const 
     m.mr = lo.margin_right;
     m.mb = lo.margin_bottom;
   }
-  Radial radial;
-  radial.c = Point(image.width / 2.0, image.height / 2.0);
-  radial.R2 = radial.c.squaredNorm();
   GridState state;
   state.corners = corners;
   state.gap = layout.gap;
@@ -349,50 +325,27 @@ Refinement refine_corners(const RawImage& image, const LayoutOptions& lo, const 
   double search = search_px;
   for (int round = 0; round < 4; ++round) {
     const Eigen::Matrix3d H = H_of(state.corners);
-    const double k = state.k;
-    const auto map = [&](double u, double v) { return radial.distort(apply_homography(H, Point(u, v)), k); };
+    const auto map = [&](double u, double v) { return apply_homography(H, Point(u, v)); };
     const std::vector<EdgeObs> obs = measure_edges(image, m, state.gap, map, search);
     if (obs.size() < 8) break;
     int inner_edges = 0;  // edges that tell the gap from the scale: not on the grid's outline
-    std::array<int, 2> lines_seen{0, 0};
-    std::vector<char> seen(size_t(2) * (std::max(m.R, m.C) + 1) * 2, 0);
-    for (const auto& o : obs) {
+    for (const auto& o : obs)
       inner_edges += !((o.side == 0 && o.index == 0) || (o.side == 1 && o.index == (o.axis == 0 ? m.C : m.R) - 1));
-      char& f = seen[(size_t(o.axis) * (std::max(m.R, m.C) + 1) + o.index) * 2 + o.side];
-      if (!f) ++lines_seen[o.axis];
-      f = 1;
-    }
     const bool with_gap = fit_gap && layout.gap > 0 && inner_edges >= 8;
-    // Bending needs edges on 3+ lines each way (a curve, not a slant).
-    const bool with_k = fit_distortion && lines_seen[0] >= 6 && lines_seen[1] >= 6 && obs.size() >= 60;
-    const FitResult f = fit_edges(m, obs, state, with_gap, with_k, radial);
-    if (std::getenv("TRISTIM_DETECT_DEBUG"))
-      for (const auto& o : obs) {
-        EdgeObs u = o;
-        u.p = radial.undistort(o.p, f.state.k);
-        std::fprintf(stderr, "EDGE %d %d %d %.2f %.2f %.3f\n", o.axis, o.index, o.side, o.p.x(), o.p.y(),
-                     residual(m, H_of(f.state.corners), f.state.gap, u));
-      }
-    if (std::getenv("TRISTIM_DETECT_DEBUG"))
-      std::fprintf(stderr, "ROUND %d search %.2f gap %.4f k %.5f rms %.3f n %zu\n", round, search, f.state.gap,
-                   f.state.k, f.rms, obs.size());
-    std::array<double, 8> image_corners;
-    const Eigen::Matrix3d Hf = H_of(f.state.corners);
-    const double us[4] = {0, 1, 1, 0}, vs[4] = {0, 0, 1, 1};
-    for (int i = 0; i < 4; ++i) {
-      const Point p = radial.distort(apply_homography(Hf, Point(us[i], vs[i])), f.state.k);
-      image_corners[2 * i] = p.x();
-      image_corners[2 * i + 1] = p.y();
-    }
+    const FitResult f = fit_edges(m, obs, state, with_gap);
     double moved = 0;
-    for (int i = 0; i < 8; ++i) moved = std::max(moved, std::abs(image_corners[i] - out.corners[i]));
+    for (int i = 0; i < 8; ++i) moved = std::max(moved, std::abs(f.state.corners[i] - state.corners[i]));
     state = f.state;
-    out.corners = image_corners;
+    out.corners = f.state.corners;
     out.gap = f.state.gap;
-    out.distortion = f.state.k;
     out.rms = f.rms;
     out.edges = static_cast<int>(obs.size());
     out.inliers = f.inliers;
+    std::vector<int> sides(size_t(m.R) * m.C, 0);
+    for (const auto& o : obs) sides[o.patch] |= 1 << o.patch_side;
+    int supported = 0;
+    for (int bits : sides) supported += ((bits & 1) + ((bits >> 1) & 1) + ((bits >> 2) & 1) + ((bits >> 3) & 1)) >= 2;
+    out.supported = double(supported) / sides.size();
     search = std::max(1.0, std::min(search, 3 * f.rms + 1.0));
     if (moved < 0.02) break;
   }

@@ -1,4 +1,5 @@
 // Chart detection, steps 1-3: working image, flat regions, patch quadrilaterals (detect.hpp).
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -120,6 +121,53 @@ RawImage working_image(const RawImage& image, int working_side, int* factor_out)
   return out;
 }
 
+NoiseModel estimate_noise(const RawImage& img) {
+  NoiseModel model;
+  const int w = img.width, h = img.height;
+  if (w < 8 || h < 8) return model;
+  for (int c = 0; c < 3; ++c) {
+    // d = I(x) - (I(x-1) + I(x+1)) / 2 has variance 1.5 σ² where the image is flat.
+    std::vector<std::pair<float, float>> sd;
+    sd.reserve(size_t(w) * h / 4);
+    for (int y = 1; y < h - 1; y += 2)
+      for (int x = 1; x < w - 1; x += 2) {
+        const float i = img.at(x, y, c);
+        sd.emplace_back(i, i - 0.5f * (img.at(x - 1, y, c) + img.at(x + 1, y, c)));
+      }
+    std::sort(sd.begin(), sd.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    // 24 bins of equal count: the median level and the MAD-based variance of each.
+    constexpr int kBins = 24;
+    Eigen::MatrixXd A(kBins, 2);
+    Eigen::VectorXd b(kBins), wt(kBins);
+    for (int k = 0; k < kBins; ++k) {
+      const size_t lo = sd.size() * k / kBins, hi = sd.size() * (k + 1) / kBins;
+      std::vector<float> level, dev;
+      for (size_t i = lo; i < hi; ++i) {
+        level.push_back(sd[i].first);
+        dev.push_back(std::abs(sd[i].second));
+      }
+      const double I = std::max(0.f, percentile(level, 0.5)), mad = percentile(dev, 0.5);
+      A(k, 0) = I;
+      A(k, 1) = 1;
+      b(k) = (1.4826 * mad) * (1.4826 * mad) / 1.5;
+      wt(k) = 1;
+    }
+    // σ² = a·I + b, least squares with textured bins (far above the line) down-weighted.
+    Eigen::Vector2d ab(0, b.minCoeff());
+    for (int it = 0; it < 4; ++it) {
+      const Eigen::MatrixXd Aw = wt.asDiagonal() * A;
+      ab = (Aw.transpose() * A).ldlt().solve(Aw.transpose() * b);
+      for (int k = 0; k < kBins; ++k) {
+        const double fit = std::max(1e-30, ab[0] * A(k, 0) + ab[1]);
+        wt(k) = b(k) > 2 * fit ? 0.05 : 1.0;
+      }
+    }
+    model.gain[c] = std::max(0.0, ab[0]);
+    model.floor[c] = std::max(ab[1], 1e-4 * b.maxCoeff() + 1e-30);
+  }
+  return model;
+}
+
 RegionLabels flat_regions(const RawImage& img, const FlatRegionOptions& options) {
   const int w = img.width, h = img.height;
   RegionLabels out;
@@ -127,63 +175,39 @@ RegionLabels flat_regions(const RawImage& img, const FlatRegionOptions& options)
   out.height = h;
   out.label.assign(size_t(w) * h, -1);
   if (w < 5 || h < 5) return out;
+  const NoiseModel noise = estimate_noise(img);
   const std::vector<float> smooth = box3(img.rgb, w, h);
   // log(RGB + eps): ratio edges count the same in light and shade (vignetting, uneven light).
-  std::vector<float> logs(smooth.size());
+  std::vector<float> logs(smooth.size()), sigma(smooth.size());
   float eps[3];
   for (int c = 0; c < 3; ++c) {
     std::vector<float> v;
     v.reserve(smooth.size() / 3 / 7 + 1);
     for (size_t i = c; i < smooth.size(); i += 3 * 7) v.push_back(smooth[i]);
-    eps[c] = std::max(1e-6f, 0.005f * percentile(v, 0.99));
+    eps[c] = std::max(1e-6f, 0.002f * percentile(v, 0.99));
   }
-  std::vector<float> bright(size_t(w) * h);
-  for (size_t i = 0; i < size_t(w) * h; ++i) {
-    float s = 0;
-    for (int c = 0; c < 3; ++c) {
-      const float v = std::max(0.f, smooth[i * 3 + c]) + eps[c];
-      logs[i * 3 + c] = std::log(v);
-      s += v;
-    }
-    bright[i] = std::log(s);
+  // Noise of half a central difference of log(3×3 mean): σ(I)/3 · √2 / 2 / (I + eps).
+  for (size_t i = 0; i < smooth.size(); ++i) {
+    const int c = static_cast<int>(i % 3);
+    const float v = std::max(0.f, smooth[i]) + eps[c];
+    logs[i] = std::log(v);
+    sigma[i] = static_cast<float>(std::sqrt(noise.gain[c] * std::max(0.f, smooth[i]) + noise.floor[c]) / 3 * 0.7071 / v);
   }
-  // Largest central difference over the channels and both axes (half the step, log units).
-  std::vector<float> grad(size_t(w) * h, std::numeric_limits<float>::infinity());
+  // Flat: in every channel both half central differences stay below noise_multiple σ (and the
+  // min_step floor).
+  std::vector<std::uint8_t> flat(size_t(w) * h, 0);
+  const float k = static_cast<float>(options.noise_multiple), floor = static_cast<float>(options.min_step);
   for (int y = 1; y < h - 1; ++y)
     for (int x = 1; x < w - 1; ++x) {
       const size_t i = size_t(y) * w + x;
-      float g = 0;
-      for (int c = 0; c < 3; ++c) {
-        g = std::max(g, std::abs(logs[(i + 1) * 3 + c] - logs[(i - 1) * 3 + c]));
-        g = std::max(g, std::abs(logs[(i + w) * 3 + c] - logs[(i - w) * 3 + c]));
+      bool ok = true;
+      for (int c = 0; c < 3 && ok; ++c) {
+        const float g = 0.5f * std::max(std::abs(logs[(i + 1) * 3 + c] - logs[(i - 1) * 3 + c]),
+                                        std::abs(logs[(i + w) * 3 + c] - logs[(i - w) * 3 + c]));
+        ok = g < std::max(floor, k * sigma[i * 3 + c]);
       }
-      grad[i] = g / 2;
+      flat[i] = ok;
     }
-  // Noise level per brightness band: the 30th percentile of the gradient there.
-  constexpr int kBands = 16;
-  float bmin = std::numeric_limits<float>::infinity(), bmax = -bmin;
-  for (float b : bright) {
-    bmin = std::min(bmin, b);
-    bmax = std::max(bmax, b);
-  }
-  const float bstep = std::max(1e-6f, (bmax - bmin) / kBands);
-  auto band_of = [&](size_t i) { return std::min(kBands - 1, static_cast<int>((bright[i] - bmin) / bstep)); };
-  std::vector<std::vector<float>> per_band(kBands);
-  for (int y = 1; y < h - 1; y += 2)
-    for (int x = 1; x < w - 1; x += 2) {
-      const size_t i = size_t(y) * w + x;
-      per_band[band_of(i)].push_back(grad[i]);
-    }
-  std::vector<float> all;
-  for (auto& b : per_band) all.insert(all.end(), b.begin(), b.end());
-  const float global = percentile(all, 0.3);
-  float threshold[kBands];
-  for (int b = 0; b < kBands; ++b) {
-    const float noise = per_band[b].size() >= 50 ? percentile(per_band[b], 0.3) : global;
-    threshold[b] = std::max(static_cast<float>(options.min_step), static_cast<float>(options.noise_multiple) * noise);
-  }
-  std::vector<std::uint8_t> flat(size_t(w) * h, 0);
-  for (size_t i = 0; i < flat.size(); ++i) flat[i] = grad[i] < threshold[band_of(i)];
   // Erode once (3×3): thin bridges between neighbouring patches break.
   std::vector<std::uint8_t> core(flat.size(), 0);
   for (int y = 1; y < h - 1; ++y)

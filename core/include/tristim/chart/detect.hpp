@@ -51,7 +51,7 @@ struct DetectOptions {
   /// and `orientation_resolved` false.
   std::vector<Vec3> custom_reference;
   /// Longer side of the working image of steps 1-5 (the refinement uses the full image).
-  int working_side = 1000;
+  int working_side = 1600;
   /// Candidates below this confidence are dropped.
   double min_confidence = 0.5;
   int max_candidates = 8;
@@ -82,6 +82,8 @@ struct ChartCandidate {
   double edge_rms = 0;               ///< RMS distance of the edge points to the fitted grid, px
   int edges = 0;                     ///< edge points used by the refinement
   double coverage = 0;               ///< fraction of the layout's patches found as quads
+  double supported = 0;              ///< fraction of the patches with edges on 2+ sides (refinement)
+  double alternative_residual = 0;   ///< best score of the chart's other symmetric orientations at the final corners
   std::vector<PatchAgreement> patches;
 };
 
@@ -103,10 +105,17 @@ std::string candidates_to_json(const std::vector<ChartCandidate>& candidates);
 /// covers [x·f, (x+1)·f) of the input.
 RawImage working_image(const RawImage& image, int working_side, int* factor = nullptr);
 
-/// Step 2. Connected regions (4-connected) of "flat" pixels: the largest central difference of
-/// log(RGB + ε) over the three channels of the 3×3-box-smoothed image is below a threshold of
-/// `noise_multiple` times the noise level of the pixel's brightness band (16 bands, noise = the
-/// 30th percentile of the gradient in the band), and at least `min_step` (log units). The mask
+/// Step 2a. Pixel noise of the working image per channel, σ² = gain·I + floor (shot and read
+/// noise), fitted to the MAD of I(x) - (I(x-1) + I(x+1))/2 in 24 brightness bins of equal count
+/// (bins dominated by texture are down-weighted).
+struct NoiseModel {
+  std::array<double, 3> gain{}, floor{};
+};
+NoiseModel estimate_noise(const RawImage& working);
+
+/// Step 2. Connected regions (4-connected) of "flat" pixels: in every channel, half the central
+/// differences of log(RGB + ε) of the 3×3-box-smoothed image stay below `noise_multiple` times
+/// their noise (from estimate_noise) or `min_step` (log units), whichever is larger. The mask
 /// is eroded once (3×3) so neighbours joined by a thin bridge come apart.
 struct RegionLabels {
   int width = 0, height = 0;
@@ -115,7 +124,7 @@ struct RegionLabels {
 };
 struct FlatRegionOptions {
   double noise_multiple = 4.0;
-  double min_step = 0.04;
+  double min_step = 0.01;
 };
 RegionLabels flat_regions(const RawImage& working, const FlatRegionOptions& options = {});
 
@@ -167,26 +176,30 @@ std::vector<Placement> place_layout(const RawImage& working, const GridGroup& gr
 /// Step 6. Sub-pixel corners by fitting the layout's patch edges. `corners` is the initial
 /// estimate (layout convention), `search_px` how far from the predicted edge to look. With
 /// `fit_gap` the gap between patches (fraction of the patch size) is fitted too, starting from
-/// layout.gap. With `fit_distortion` one radial term k about the image centre is fitted too
-/// (p_undistorted = c + (p - c)(1 + k |p - c|² / R²), R = half the diagonal), when edges lie on 6+
-/// grid lines each way: the corners are then where the bent edges meet. Corners are unchanged
-/// when too few edges are found (edges < 8).
+/// layout.gap. Corners are unchanged when too few edges are found (edges < 8).
 struct Refinement {
   std::array<double, 8> corners{};
   double gap = 0;
-  double distortion = 0;  ///< k
   double rms = 0;     ///< RMS distance of the inlier edge points to their fitted edges, px
   int edges = 0;      ///< edge points used
   int inliers = 0;    ///< of which within 3 robust σ
+  double supported = 0;  ///< fraction of the patches with edge points on 2 or more sides
 };
 Refinement refine_corners(const RawImage& image, const LayoutOptions& layout,
-                          const std::array<double, 8>& corners, double search_px, bool fit_gap,
-                          bool fit_distortion = false);
+                          const std::array<double, 8>& corners, double search_px, bool fit_gap);
 
-/// Step 7. Robust 3×3 fit camera_RGB ≈ M · reference (least squares weighted to relative
-/// errors, then refitted without the worst 15 %): the per-patch relative residuals (see
-/// PatchAgreement), same order as the inputs. Needs ≥ 4 pairs.
-std::vector<double> reference_fit_residuals(const std::vector<Vec3>& camera_RGB, const std::vector<Vec3>& reference);
+/// Step 7. Robust 3×3 fit camera_RGB ≈ L · M · reference (least squares weighted to relative
+/// errors, refitted without the worst 25 %): the per-patch relative residuals (see
+/// PatchAgreement), same order as the inputs. With `positions` (each patch's centre in the
+/// chart, 0..1 across the grid) the light L may vary smoothly over the chart — vignetting, a
+/// lamp to one side: log L linear in (u, v) from 12 patches, quadratic from 24, each factor
+/// within 0.5..2 — fitted alternately with M. Needs ≥ 4 pairs.
+std::vector<double> reference_fit_residuals(const std::vector<Vec3>& camera_RGB, const std::vector<Vec3>& reference,
+                                            const std::vector<Eigen::Vector2d>& positions = {});
+
+/// The same fit summarised: mean of the smallest 75 % of the residuals (Placement::residual).
+double reference_fit_score(const std::vector<Vec3>& camera_RGB, const std::vector<Vec3>& reference,
+                           const std::vector<Eigen::Vector2d>& positions = {});
 
 /// Helpers shared by the steps: a DLT homography (Hartley-normalised, Eigen SVD) mapping
 /// src[i] -> dst[i] (≥ 4 points), and applying one.
