@@ -11,6 +11,8 @@
 #include "tristim/io/patch_files.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 #include "tristim/colorimetry/spectra.hpp"
+#include "tristim/methods.hpp"
+#include "tristim/surface/surface.hpp"
 
 namespace tristim::cli {
 
@@ -60,11 +62,13 @@ void set_precision(const Args& args) {
 }
 
 int run_reference(const Args& args, std::ostream& out) {
-  args.allow_only({"chart", "illuminant", "observer", "precision"});
+  args.allow_only({"chart", "illuminant", "observer", "precision", "surface"});
   set_precision(args);
   const std::string chart = args.get("chart");
   const Observer observer = parse_observer(args.get("observer", "1931"));
-  const ReferenceChart r = reference_from_spectra(chart_reflectances(chart), illuminant_arg(args.get("illuminant", "D65")), observer);
+  SpectralData reflectances = chart_reflectances(chart);
+  if (args.has("surface")) reflectances = correct_surface(parse_choice(args.get("surface")), reflectances);
+  const ReferenceChart r = reference_from_spectra(reflectances, illuminant_arg(args.get("illuminant", "D65")), observer);
   out << "patch,X,Y,Z,L,a,b\n";
   for (size_t i = 0; i < r.ids.size(); ++i)
     out << r.ids[i] << ',' << num(r.XYZ[i][0]) << ',' << num(r.XYZ[i][1]) << ',' << num(r.XYZ[i][2]) << ',' << num(r.Lab[i][0])
@@ -185,7 +189,10 @@ CommandRegistration reg_reference({"reference", "reference XYZ and Lab of a buil
                                    "                  [--illuminant D65|A|D50|D55|D75|E|F2|F11|D<CCT>|spd.csv] [--observer 1931|1964]\n"
                                    "Prints CSV patch,X,Y,Z,L,a,b: XYZ with the perfect diffuser at Y = 100, Lab relative to the\n"
                                    "illuminant's white; computed from the chart's spectra (1 nm integration, CIE 15).\n"
-                                   "--precision 17 prints every number with 17 significant digits (round-trip exact).",
+                                   "--precision 17 prints every number with 17 significant digits (round-trip exact).\n"
+                                   "--surface <method>:<name>=<value>,... corrects the chart's reflectances for the capture\n"
+                                   "geometry first (Abed 2013; `tristim surface methods`, or the '# surface:' line of\n"
+                                   "`tristim surface fit`), e.g. --surface scaler-offset:mu=0.98,rho=-0.012",
                                    run_reference});
 CommandRegistration reg_difference({"difference", "colour differences of Lab pairs (CSV)",
                                     "tristim difference [--method CIE2000|CIE1994|CIE1976] --in pairs.csv\n"

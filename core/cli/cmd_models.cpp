@@ -1,4 +1,4 @@
-// CLI: fit, evaluate, compare, apply, export (characterisation models and profiles).
+// CLI: evaluate, compare, apply, export, models (characterisation models and profiles; fit: cmd_fit.cpp).
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "patch_args.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/evaluation/evaluation.hpp"
@@ -23,178 +24,6 @@
 
 namespace tristim::cli {
 namespace {
-
-// ---- patch tables -----------------------------------------------------------------------
-// Read with the shared readers (tristim/io.hpp: CSV or CGATS, ids normalised) and paired by id
-// strictly: every patch of one file must be in the other.
-
-Vec3 parse_white(const Args& args, const std::string& key, const Vec3& fallback) {
-  if (!args.has(key)) return fallback;
-  const std::string s = args.get(key);
-  std::string l = s;
-  for (auto& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (l == "d50") return whites::D50();
-  if (l == "d65") return whites::D65();
-  std::vector<std::string> parts;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) parts.push_back(item);
-  if (parts.size() != 3) throw Error(ErrorCode::InvalidArgument, "--" + key + " expects D50, D65 or X,Y,Z");
-  Vec3 w;
-  for (int c = 0; c < 3; ++c) {
-    char* end = nullptr;
-    w[c] = std::strtod(parts[c].c_str(), &end);
-    if (parts[c].empty() || *end != '\0' || !(w[c] > 0))
-      throw Error(ErrorCode::InvalidArgument, "--" + key + ": '" + parts[c] + "' is not a positive number");
-  }
-  return w;
-}
-
-std::vector<std::string> split_list(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const auto b = item.find_first_not_of(' '), e = item.find_last_not_of(' ');
-    if (b != std::string::npos) out.push_back(item.substr(b, e - b + 1));
-  }
-  return out;
-}
-
-std::string lower(std::string s) {
-  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-struct PatchData {
-  std::vector<std::string> ids;
-  PatchMatrix rgb, xyz;
-};
-
-PatchMatrix to_matrix(const std::vector<Vec3>& v) {
-  PatchMatrix m(v.size(), 3);
-  for (size_t i = 0; i < v.size(); ++i) m.row(i) = v[i].transpose();
-  return m;
-}
-
-// Pairs camera RGB with reference XYZ (or L*a*b*, converted with ref_white) by patch id.
-PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, const Vec3& ref_white) {
-  const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
-  const PatchTable ref = read_patch_file(read_file(xyz_path), xyz_path);
-  if (!rgb.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
-  std::vector<Vec3> ref_xyz;
-  if (ref.has_XYZ) {
-    ref_xyz = ref.XYZ;
-  } else if (ref.has_Lab) {
-    for (const auto& lab : ref.Lab) ref_xyz.push_back(Lab_to_XYZ(lab, ref_white));
-  } else {
-    throw Error(ErrorCode::MissingColumn, xyz_path + ": needs X, Y, Z or L, a, b columns");
-  }
-  if (rgb.ids.size() != ref.ids.size())
-    throw Error(ErrorCode::PatchMismatch, rgb_path + " has " + std::to_string(rgb.ids.size()) + " patches but " +
-                                              xyz_path + " has " + std::to_string(ref.ids.size()));
-  const PatchPairs pairs = pair_by_id(ref.ids, ref_xyz, rgb.ids, rgb.RGB);
-  if (!pairs.missing_in_measured.empty())
-    throw Error(ErrorCode::PatchMismatch,
-                "patch '" + pairs.missing_in_measured.front() + "' of " + xyz_path + " is not in " + rgb_path);
-  if (!pairs.missing_in_reference.empty())
-    throw Error(ErrorCode::PatchMismatch,
-                "patch '" + pairs.missing_in_reference.front() + "' of " + rgb_path + " is not in " + xyz_path);
-  PatchData d;
-  d.ids = pairs.ids;
-  d.rgb = to_matrix(pairs.measured);
-  d.xyz = to_matrix(pairs.reference);
-  return d;
-}
-
-int patch_index(const std::vector<std::string>& ids, const std::string& id) {
-  const std::string n = normalise_patch_id(id);
-  for (size_t i = 0; i < ids.size(); ++i)
-    if (ids[i] == n) return static_cast<int>(i);
-  throw Error(ErrorCode::UnknownId, "--white: no patch '" + id + "' in the RGB table");
-}
-
-FitOptions fit_options(const Args& args, const PatchData& d, int& white_index) {
-  FitOptions o;
-  o.objective = objective_from_id(args.get("objective", "ls"));
-  o.white = parse_white(args, "lab-white", whites::D50());
-  white_index = -1;
-  if (args.has("white")) {
-    white_index = patch_index(d.ids, args.get("white"));
-    o.preserve_white = true;
-    o.white_RGB = d.rgb.row(white_index).transpose();
-    o.white_XYZ = d.xyz.row(white_index).transpose();
-  }
-  if (args.has("psm-max-iterations")) o.psm.max_iterations = static_cast<int>(args.get_double("psm-max-iterations", 0));
-  if (args.has("psm-threshold")) o.psm.step_threshold = args.get_double("psm-threshold", 1e-6);
-  if (args.has("de-algorithm")) o.de2000.algorithm = args.get("de-algorithm");
-  o.de2000.rms = args.has("de-rms");
-  o.de2000.initial_step = args.get_double("de-step", o.de2000.initial_step);
-  o.de2000.xtol_rel = args.get_double("de-xtol", o.de2000.xtol_rel);
-  o.de2000.ftol_rel = args.get_double("de-ftol", o.de2000.ftol_rel);
-  o.de2000.max_evaluations = static_cast<int>(args.get_double("de-max-evaluations", o.de2000.max_evaluations));
-  return o;
-}
-
-void write_bytes(const std::string& path, const void* data, size_t n) {
-  std::ofstream f(path, std::ios::binary);
-  if (!f) throw Error(ErrorCode::InvalidArgument, "cannot write '" + path + "'");
-  f.write(static_cast<const char*>(data), static_cast<std::streamsize>(n));
-  if (!f) throw Error(ErrorCode::ExportFailed, "writing '" + path + "' failed");
-}
-
-std::string ext_of(const std::string& path) {
-  const auto dot = path.rfind('.');
-  return dot == std::string::npos ? "" : lower(path.substr(dot + 1));
-}
-
-std::string fmt(double v, int prec = 3) {
-  if (!std::isfinite(v)) return "-";
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(prec) << v;
-  return s.str();
-}
-
-// ---- commands -----------------------------------------------------------------------------
-
-const char* kFitUsage =
-    "tristim fit --rgb patches.csv --xyz reference.csv --model <id> [--objective ls|psm|de2000]\n"
-    "            [--white <patch id>] [--lab-white D50|D65|X,Y,Z] [--ref-white D50|D65|X,Y,Z]\n"
-    "            [--out profile.json] [--csv patches_out.csv] [--no-loo]\n"
-    "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm auto|lm|bobyqa|sbplx]\n"
-    "            [--de-xtol X] [--de-ftol F] [--de-max-evaluations N] [--de-step S]\n"
-    "  Fits camera RGB -> XYZ and prints (or writes) the profile JSON with training and\n"
-    "  leave-one-out metrics. --white preserves that patch exactly. Reference tables may be\n"
-    "  XYZ (Y = 100 for the perfect diffuser) or L*a*b* (converted with --ref-white, default D50).\n"
-    "  --lab-white is the white of the CIELAB errors and of the de2000 objective (default D50).\n"
-    "  --de-rms minimises the RMS instead of the mean CIEDE2000. Models: tristim models";
-
-int run_fit(const Args& args, std::ostream& out) {
-  args.allow_only({"rgb", "xyz", "model", "objective", "white", "lab-white", "ref-white", "out", "csv",
-                   "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol", "de-ftol", "de-max-evaluations", "de-rms", "de-step", "no-loo"});
-  const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
-  int white_index = -1;
-  const FitOptions o = fit_options(args, d, white_index);
-  const std::string model = args.get("model");
-  const ModelEvaluation ev = evaluate_model(model, d.rgb, d.xyz, o, white_index, !args.has("no-loo"));
-  const Profile p = make_profile(ev, o, d.ids, d.rgb, d.xyz, white_index >= 0 ? d.ids[white_index] : "");
-  const std::string text = profile_to_json(p);
-  if (args.has("csv")) {
-    const std::string csv = patch_csv(d.ids, d.rgb, d.xyz, ev.fit.fitted, o.white, ev.has_loo ? ev.loo_XYZ : PatchMatrix());
-    write_bytes(args.get("csv"), csv.data(), csv.size());
-  }
-  if (args.has("out")) {
-    write_bytes(args.get("out"), text.data(), text.size());
-    std::cerr << "tristim fit: " << model << " (" << objective_id(o.objective) << ") training mean dE00 "
-              << fmt(ev.training.dE00.mean) << ", leave-one-out mean dE00 "
-              << (ev.has_loo ? fmt(ev.loo.dE00.mean) : std::string("-")) << ", status " << fit_status_name(ev.fit.status)
-              << (ev.fit.message.empty() ? "" : " (" + ev.fit.message + ")") << "\n";
-  } else {
-    out << text;
-  }
-  return 0;
-}
-
 const char* kEvaluateUsage =
     "tristim evaluate --profile p.json --rgb test.csv --xyz ref.csv [--ref-white ...] [--csv out.csv]\n"
     "  Applies the profile to the test patches and prints JSON metrics (per patch and summaries).";
@@ -424,7 +253,6 @@ int run_models(const Args& args, std::ostream& out) {
   return 0;
 }
 
-const CommandRegistration reg_fit({"fit", "fit a camera characterisation model -> profile JSON", kFitUsage, run_fit});
 const CommandRegistration reg_eval({"evaluate", "evaluate a profile on test patches (JSON)", kEvaluateUsage, run_evaluate});
 const CommandRegistration reg_cmp({"compare", "every model x objective, sorted by held-out error", kCompareUsage, run_compare});
 const CommandRegistration reg_apply({"apply", "apply a profile to a linear image -> float XYZ TIFF/PFM", kApplyUsage, run_apply});

@@ -217,6 +217,8 @@ void FrameCalibration::dark_subtracted(const RawImage& image, int x, int y, floa
 
 void FrameCalibration::calibrated(const RawImage& image, int x, int y, float out[3]) const {
   dark_subtracted(image, x, y, out);
+  if (flare)
+    for (int c = 0; c < 3; ++c) out[c] -= static_cast<float>((*flare)[c]);
   const size_t i = (static_cast<size_t>(y) * image.width + x) * 3;
   if (flat)
     for (int c = 0; c < 3; ++c) out[c] *= flat->gain[i + c];

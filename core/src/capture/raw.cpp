@@ -10,7 +10,9 @@
 #include <memory>
 #include <sstream>
 
+#include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/json.hpp"
 
 namespace tristim {
 
@@ -415,35 +417,6 @@ RawImage build_image(LibRaw& p, const DecodeOptions& options) {
   return img;
 }
 
-void json_string(std::ostream& o, const std::string& s) {
-  o << '"';
-  for (unsigned char c : s) {
-    if (c == '"' || c == '\\') o << '\\' << c;
-    else if (c < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      o << buf;
-    } else o << c;
-  }
-  o << '"';
-}
-
-/// A JSON number; NaN and infinities (never valid JSON) become null.
-void json_number(std::ostream& o, double v) {
-  if (std::isfinite(v)) o << v;
-  else o << "null";
-}
-
-template <size_t N>
-void json_array(std::ostream& o, const std::array<double, N>& a) {
-  o << '[';
-  for (size_t i = 0; i < N; ++i) {
-    if (i) o << ',';
-    json_number(o, a[i]);
-  }
-  o << ']';
-}
-
 }  // namespace
 
 RawImage decode_raw(const std::uint8_t* data, std::size_t size, const DecodeOptions& options) {
@@ -459,38 +432,39 @@ RawMetadata inspect_raw(const std::uint8_t* data, std::size_t size, const Decode
 }
 
 std::string metadata_to_json(const RawMetadata& m) {
-  std::ostringstream o;
-  o.precision(10);
-  o << "{";
-  o << "\"make\":"; json_string(o, m.make);
-  o << ",\"model\":"; json_string(o, m.model);
-  o << ",\"lens\":"; json_string(o, m.lens);
-  o << ",\"iso\":";
-  json_number(o, m.iso);
-  o << ",\"shutter_s\":";
-  json_number(o, m.shutter_s);
-  o << ",\"f_number\":";
-  json_number(o, m.f_number);
-  o << ",\"timestamp\":" << m.timestamp << ",\"timestamp_iso\":"; json_string(o, m.timestamp_iso);
-  o << ",\"layout\":"; json_string(o, m.layout);
-  o << ",\"cfa_pattern\":"; json_string(o, m.cfa_pattern);
-  o << ",\"cfa_width\":" << m.cfa_width << ",\"cfa_height\":" << m.cfa_height;
-  o << ",\"block\":" << m.block << ",\"sensor_width\":" << m.sensor_width
-    << ",\"sensor_height\":" << m.sensor_height << ",\"raw_width\":" << m.raw_width
-    << ",\"raw_height\":" << m.raw_height << ",\"width\":" << m.width << ",\"height\":" << m.height
-    << ",\"bits\":" << m.bits << ",\"flip\":" << m.flip;
-  o << ",\"cfa_black\":"; json_array(o, m.cfa_black);
-  o << ",\"black_level\":"; json_array(o, m.black_level);
-  o << ",\"white_level\":";
-  json_number(o, m.white_level);
-  o << ",\"saturation\":"; json_array(o, m.saturation);
-  o << ",\"rgb_cam\":"; json_array(o, m.rgb_cam);
-  o << ",\"cam_xyz\":"; json_array(o, m.cam_xyz);
-  o << ",\"as_shot_wb\":"; json_array(o, m.as_shot_wb);
-  o << ",\"daylight_wb\":"; json_array(o, m.daylight_wb);
-  o << ",\"decoder\":"; json_string(o, m.decoder);
-  o << "}";
-  return o.str();
+  auto arr = [](const auto& a) { return json::Value(std::vector<double>(a.begin(), a.end())); };
+  json::Value o = json::Value::object();
+  o.set("make", m.make);
+  o.set("model", m.model);
+  o.set("lens", m.lens);
+  o.set("iso", m.iso);
+  o.set("shutter_s", m.shutter_s);
+  o.set("f_number", m.f_number);
+  o.set("timestamp", static_cast<long long>(m.timestamp));
+  o.set("timestamp_iso", m.timestamp_iso);
+  o.set("layout", m.layout);
+  o.set("cfa_pattern", m.cfa_pattern);
+  o.set("cfa_width", m.cfa_width);
+  o.set("cfa_height", m.cfa_height);
+  o.set("block", m.block);
+  o.set("sensor_width", m.sensor_width);
+  o.set("sensor_height", m.sensor_height);
+  o.set("raw_width", m.raw_width);
+  o.set("raw_height", m.raw_height);
+  o.set("width", m.width);
+  o.set("height", m.height);
+  o.set("bits", m.bits);
+  o.set("flip", m.flip);
+  o.set("cfa_black", arr(m.cfa_black));
+  o.set("black_level", arr(m.black_level));
+  o.set("white_level", m.white_level);
+  o.set("saturation", arr(m.saturation));
+  o.set("rgb_cam", arr(m.rgb_cam));
+  o.set("cam_xyz", arr(m.cam_xyz));
+  o.set("as_shot_wb", arr(m.as_shot_wb));
+  o.set("daylight_wb", arr(m.daylight_wb));
+  o.set("decoder", m.decoder);
+  return o.dump();
 }
 
 Preview render_preview(const RawImage& image, int max_side) {
@@ -535,8 +509,7 @@ Preview render_preview(const RawImage& image, int max_side) {
   pv.rgba.resize(n * 4);
   for (size_t k = 0; k < n; ++k) {
     for (int c = 0; c < 3; ++c) {
-      double v = std::min(1.0, std::max(0.0, lin[k * 3 + c] * gain));
-      v = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+      const double v = sRGB_encode(lin[k * 3 + c] * gain);
       pv.rgba[k * 4 + c] = static_cast<std::uint8_t>(std::lround(v * 255.0));
     }
     pv.rgba[k * 4 + 3] = 255;

@@ -553,7 +553,62 @@ FitResult fit_info(const ModelInfo& info, const PatchMatrix& rgb, const PatchMat
   return r;
 }
 
+// A fold that leaves out row k must refuse what a refit would refuse: a camera channel that is
+// constant over the remaining patches (make_problem's check).
+void check_fold_channels(const PatchMatrix& rgb, Eigen::Index k) {
+  static const char* names[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; ++c) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (Eigen::Index i = 0; i < rgb.rows(); ++i)
+      if (i != k) lo = std::min(lo, rgb(i, c)), hi = std::max(hi, rgb(i, c));
+    const double mag = std::max(std::fabs(lo), std::fabs(hi));
+    if (hi - lo <= 1e-12 * std::max(mag, 1e-300))
+      throw Error(ErrorCode::IllConditioned, std::string("leaving out patch ") + std::to_string(k + 1) +
+                                                 " makes camera channel " + names[c] + " constant");
+  }
+}
+
 }  // namespace
+
+PatchMatrix leave_one_out_least_squares(const std::string& model_id, const PatchMatrix& rgb, const PatchMatrix& xyz,
+                                        const FitOptions& options, int white_patch_index) {
+  const ModelInfo& info = model_info(model_id);
+  FitOptions o = options;
+  o.objective = Objective::LeastSquares;
+  const Problem pr = make_problem(info, rgb, xyz, o);
+  if (pr.n - 1 < std::max(pr.q, 1))
+    throw Error(ErrorCode::TooFewPatches, "leave-one-out: " + std::to_string(pr.n - 1) + " patches cannot fit '" +
+                                              info.id + "' (" + std::to_string(pr.q) + " free coefficients)");
+  double cond = 0;
+  const Eigen::MatrixXd z = solve_ls(pr, o, cond);
+  const Eigen::MatrixXd E = pr.Y - pr.predictions(z);  // N × 3 training residuals
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(pr.B);
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(pr.n, pr.q);  // thin Q: H = Q·Qᵀ
+  PatchMatrix out(pr.n, 3);
+  for (Eigen::Index k = 0; k < pr.n; ++k) {
+    check_fold_channels(rgb, k);
+    if (k == white_patch_index && o.preserve_white) {
+      // The white patch's own fold is fitted without the constraint (it may not see its patch).
+      FitOptions u = o;
+      u.preserve_white = false;
+      u.warn_condition = INFINITY;
+      PatchMatrix r(pr.n - 1, 3), x(pr.n - 1, 3);
+      for (Eigen::Index i = 0, j = 0; i < pr.n; ++i)
+        if (i != k) r.row(j) = rgb.row(i), x.row(j++) = xyz.row(i);
+      out.row(k) = predict(fit_info(info, r, x, u).model, Vec3(rgb.row(k).transpose())).transpose();
+      continue;
+    }
+    // PRESS residual (Allen 1974): the fold without patch k predicts y_k − e_k / (1 − h_kk). With the
+    // white constraint the fit is unconstrained least squares in the null-space coordinates (B, z),
+    // so the same identity holds there.
+    const double leverage = Q.row(k).squaredNorm();
+    if (!(1 - leverage > 1e-10))
+      throw Error(ErrorCode::IllConditioned, "leaving out patch " + std::to_string(k + 1) +
+                                                 " leaves model '" + info.id + "' undetermined (leverage 1)");
+    out.row(k) = pr.Y.row(k) - E.row(k) / (1 - leverage);
+  }
+  return out;
+}
 
 FitResult fit(const std::string& model_id, const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ,
               const FitOptions& options) {

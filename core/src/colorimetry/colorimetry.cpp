@@ -161,13 +161,13 @@ Mat3 sRGB_to_XYZ_matrix() {
   return P * S.asDiagonal();
 }
 
+double sRGB_encode(double linear) {
+  const double c = std::clamp(linear, 0.0, 1.0);
+  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
+
 Vec3 sRGB_encode(const Vec3& linear_RGB) {
-  Vec3 rgb;
-  for (int i = 0; i < 3; ++i) {
-    const double c = std::clamp(linear_RGB[i], 0.0, 1.0);
-    rgb[i] = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-  }
-  return rgb;
+  return Vec3(sRGB_encode(linear_RGB[0]), sRGB_encode(linear_RGB[1]), sRGB_encode(linear_RGB[2]));
 }
 
 Vec3 XYZ_to_sRGB(const Vec3& XYZ, bool encode) {

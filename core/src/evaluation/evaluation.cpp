@@ -97,6 +97,8 @@ PatchMatrix leave_one_out(const std::string& model_id, const PatchMatrix& rgb, c
   validate_patches(rgb, xyz);
   const Eigen::Index n = rgb.rows();
   if (n < 2) throw Error(ErrorCode::TooFewPatches, "leave-one-out needs at least 2 patches");
+  if (options.objective == Objective::LeastSquares)
+    return leave_one_out_least_squares(model_id, rgb, xyz, options, white_patch_index);
   PatchMatrix out(n, 3);
   for (Eigen::Index k = 0; k < n; ++k) {
     FitOptions o = options;

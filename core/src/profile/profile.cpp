@@ -22,6 +22,11 @@ struct Fnv1a64 {
       h *= 0x100000001b3ULL;
     }
   }
+  std::string text() const {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "fnv1a64:%016llx", static_cast<unsigned long long>(h));
+    return buf;
+  }
   void f64(double d) {
     uint64_t u;
     std::memcpy(&u, &d, 8);
@@ -68,9 +73,13 @@ std::string training_digest(const std::vector<std::string>& ids, const PatchMatr
     for (int c = 0; c < 3; ++c) f.f64(rgb(i, c));
     for (int c = 0; c < 3; ++c) f.f64(xyz(i, c));
   }
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "fnv1a64:%016llx", static_cast<unsigned long long>(f.h));
-  return buf;
+  return f.text();
+}
+
+std::string bytes_digest(const std::string& bytes) {
+  Fnv1a64 f;
+  f.bytes(bytes.data(), bytes.size());
+  return f.text();
 }
 
 json::Value summary_json(const Summary& s) {
@@ -186,6 +195,7 @@ std::string profile_to_json(const Profile& p) {
   f.set("objective_value", p.objective_value);
   o.set("fit", f);
   o.set("metrics", p.metrics.is_object() ? p.metrics : json::Value::object());
+  if (p.has_recipe) o.set("recipe", recipe_json(p.recipe));
   return o.dump(2) + "\n";
 }
 
@@ -261,6 +271,10 @@ Profile profile_from_json(const std::string& text) {
   }
   if (const auto* m = o.find("metrics"); m && m->is_object()) p.metrics = *m;
   else p.metrics = json::Value::object();
+  if (const auto* r = o.find("recipe")) {
+    p.recipe = recipe_from_json(*r);
+    p.has_recipe = true;
+  }
   return p;
 }
 

@@ -7,6 +7,7 @@
 #include "tristim/evaluation/evaluation.hpp"
 
 using namespace tristim;
+using tristim::test::require_code;
 
 namespace {
 PatchMatrix rgb_grid(int n, unsigned seed) {
@@ -104,4 +105,48 @@ TEST_CASE("transfer table: train on one set, test on another (Abed 2013 Table IV
     CHECK(c.ok);
     CHECK(c.dE00.max < 1e-6);
   }
+}
+
+TEST_CASE("least-squares leave-one-out in closed form equals N refits", "[evaluation][loo]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.02, 1.0);
+  std::normal_distribution<double> noise(0, 0.3);
+  const int n = 30;
+  PatchMatrix rgb(n, 3), xyz(n, 3);
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) rgb(i, c) = 1000 * u(rng);
+    xyz(i, 0) = 0.04 * rgb(i, 0) + 0.03 * rgb(i, 1) + 0.01 * rgb(i, 2) + std::sqrt(rgb(i, 0) * rgb(i, 1)) * 0.01 + 2 + noise(rng);
+    xyz(i, 1) = 0.02 * rgb(i, 0) + 0.06 * rgb(i, 1) + 0.01 * rgb(i, 2) + 1 + noise(rng);
+    xyz(i, 2) = 0.01 * rgb(i, 0) + 0.01 * rgb(i, 1) + 0.08 * rgb(i, 2) + 3 + noise(rng);
+  }
+  for (const char* id : {"matrix-3x3", "matrix-3x4", "Finlayson2015-2", "Shen2008", "Cheung2004-10"}) {
+    for (int white : {-1, 7}) {
+      FitOptions o;
+      if (white >= 0) {
+        o.preserve_white = true;
+        o.white_RGB = rgb.row(white).transpose();
+        o.white_XYZ = xyz.row(white).transpose();
+      }
+      const PatchMatrix closed = leave_one_out_least_squares(id, rgb, xyz, o, white);
+      double worst = 0;
+      int at = -1;
+      for (int k = 0; k < n; ++k) {
+        PatchMatrix r(n - 1, 3), x(n - 1, 3);
+        for (int i = 0, j = 0; i < n; ++i)
+          if (i != k) r.row(j) = rgb.row(i), x.row(j++) = xyz.row(i);
+        FitOptions f = o;
+        if (k == white) f.preserve_white = false;
+        const Vec3 refit = predict(fit(id, r, x, f).model, Vec3(rgb.row(k).transpose()));
+        const double d = (refit - Vec3(closed.row(k).transpose())).cwiseAbs().maxCoeff() / refit.cwiseAbs().maxCoeff();
+        if (d > worst) worst = d, at = k;
+      }
+      INFO(id << (white >= 0 ? " with white" : "") << ": worst relative difference " << worst << " at patch " << at + 1
+              << " (tolerance 1e-9)");
+      CHECK(worst < 1e-9);
+    }
+  }
+  // The folds a refit refuses are refused: a channel that only one patch makes vary.
+  PatchMatrix flat = rgb;
+  for (int i = 1; i < n; ++i) flat(i, 2) = 500;
+  require_code([&] { leave_one_out_least_squares("matrix-3x4", flat, xyz); }, ErrorCode::IllConditioned);
 }

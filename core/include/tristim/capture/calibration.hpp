@@ -1,8 +1,10 @@
 // tristim — frame calibration of linear RAW images: dark frames, flat field, radial fall-off.
 //
 // Order applied to each measurement pixel (x, y), channel c (values in black-subtracted DN):
-//   v = (raw(x,y,c) - dark(x,y,c)) * flat_gain(x,y,c) * f(r(x,y))
+//   v = (raw(x,y,c) - dark(x,y,c) - flare_c) * flat_gain(x,y,c) * f(r(x,y))
 // dark: Abed et al. 2013, App. C step 1 (light trap / lens cap, average of N frames);
+// flare_c: App. C step 1 with the light trap in the scene (chart/light_trap.hpp): the per-channel
+//   mean of the trap, measured on the dark-subtracted image, removes this scene's optical flare;
 // flat_gain: App. C step 2 (multiply by R_w / RGB_fl per pixel);
 // f(r): Guarnera et al. 2018, eq (7) (radial fall-off, f = p1 r² + p2 r + p3, f(centre) = 1).
 // The per-pixel flat already contains the lens fall-off, so use either a flat or a fall-off fit,
@@ -83,12 +85,15 @@ struct FrameCalibration {
   DarkMode dark_mode = DarkMode::PerPixel;
   std::optional<FlatField> flat;
   std::optional<FalloffFit> falloff;
+  /// Per-channel level subtracted from every pixel after the dark frame: the mean of an in-scene
+  /// light trap (Abed 2013 App. C step 1; measure_light_trap in chart/light_trap.hpp), DN.
+  std::optional<std::array<double, 3>> flare;
 
   /// FrameMismatch if a frame's size or camera (make, model) differs from the image's.
   void check_compatible(const RawImage& image) const;
   /// Dark-subtracted value (DN) of pixel (x, y): used for the noise-floor ("dark") test.
   void dark_subtracted(const RawImage& image, int x, int y, float out[3]) const;
-  /// Fully calibrated value of pixel (x, y) (dark, flat gain, fall-off).
+  /// Fully calibrated value of pixel (x, y) (dark, flare, flat gain, fall-off).
   void calibrated(const RawImage& image, int x, int y, float out[3]) const;
   /// Noise floor per channel (std of the dark frame), 0 without a dark frame.
   std::array<double, 3> noise_floor() const;

@@ -176,6 +176,17 @@ void validate_patches(const PatchMatrix& camera_RGB, const PatchMatrix& referenc
 FitResult fit(const std::string& model_id, const PatchMatrix& camera_RGB,
               const PatchMatrix& reference_XYZ, const FitOptions& options = {});
 
+/// Leave-one-out predictions of the least-squares fit in closed form: row k is what the fit
+/// without patch k predicts for patch k, y_k − e_k/(1 − h_kk) (the PRESS residual, h the hat
+/// matrix of the equilibrated design; with white preservation, of the null-space design), except
+/// the white patch's own fold (white_patch_index), which is refitted without the constraint.
+/// Equal to N refits up to rounding (the refits re-equilibrate each fold's columns).
+/// Errors as a refit's: TooFewPatches, IllConditioned (a fold with a constant channel or
+/// leverage 1).
+PatchMatrix leave_one_out_least_squares(const std::string& model_id, const PatchMatrix& camera_RGB,
+                                        const PatchMatrix& reference_XYZ, const FitOptions& options = {},
+                                        int white_patch_index = -1);
+
 /// Linear 3×3 matrix, XYZ = M·RGB (Abed 2013 eq 7 without offsets; Guarnera 2018 T1 eq 13).
 FitResult fit_matrix_3x3(const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ,
                          const FitOptions& options = {});

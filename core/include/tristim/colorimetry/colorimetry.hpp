@@ -62,7 +62,10 @@ Mat3 chromatic_adaptation_matrix(const Vec3& src_white, const Vec3& dst_white,
 /// result is gamma-encoded (0..1, values outside the gamut are clipped); otherwise linear,
 /// unclipped.
 Vec3 XYZ_to_sRGB(const Vec3& XYZ, bool encode = true);
-/// IEC 61966-2-1 encoding of linear sRGB, clipped to 0..1.
+/// IEC 61966-2-1 encoding of one linear value, clipped to [0, 1] first (the one sRGB encoder:
+/// swatches, previews and renderings all use it).
+double sRGB_encode(double linear);
+/// The same per component of linear sRGB.
 Vec3 sRGB_encode(const Vec3& linear_RGB);
 /// The sRGB linear primaries' matrix (XYZ from linear sRGB, D65, Y = 1).
 Mat3 sRGB_to_XYZ_matrix();

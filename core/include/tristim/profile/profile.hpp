@@ -12,7 +12,8 @@
 //   "training": {"patches": 24, "digest": "fnv1a64:<16 hex digits>", "rgb_max": 13000},
 //   "fit": {"status": "ok", "message": "", "condition_number": ..., "iterations": ...,
 //           "objective_value": ...},
-//   "metrics": {"training": {...}, "loo": {...}}                   // summaries (optional)
+//   "metrics": {"training": {...}, "loo": {...}},                  // summaries (optional)
+//   "recipe": {...}                                                // how it was made (recipe.hpp; optional)
 // }
 // The training digest is FNV-1a 64-bit (not cryptographic: it identifies the data, it does
 // not authenticate it) over "tristim-training-v1\n" followed, per patch, by the id bytes, a
@@ -24,6 +25,7 @@
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/io/json.hpp"
 #include "tristim/characterisation/models.hpp"
+#include "tristim/profile/recipe.hpp"
 
 namespace tristim {
 
@@ -49,6 +51,8 @@ struct Profile {
   int iterations = 0;
   double objective_value = 0;
   json::Value metrics;  ///< object; empty object when not computed
+  bool has_recipe = false;  ///< profiles written before recipes existed have none
+  Recipe recipe;            ///< how the profile was made (profile/recipe.hpp)
 };
 
 /// "fnv1a64:xxxxxxxxxxxxxxxx" of the training data (see the header comment).
@@ -62,9 +66,13 @@ Profile make_profile(const ModelEvaluation& evaluation, const FitOptions& option
                      const PatchMatrix& reference_XYZ, const std::string& white_patch = "",
                      const std::string& illuminant = "");
 
+/// "fnv1a64:xxxxxxxxxxxxxxxx" of arbitrary bytes (an uploaded reference file, a held-out set).
+std::string bytes_digest(const std::string& bytes);
+
 std::string profile_to_json(const Profile& profile);
 /// Error(ProfileVersion) for another version, Error(ProfileInvalid) for text that is not
-/// JSON, not a tristim profile, missing fields, an unknown model or a wrong coefficient shape.
+/// JSON, not a tristim profile, missing fields, an unknown model or a wrong coefficient shape;
+/// an embedded recipe is read strictly (recipe_from_json's codes).
 Profile profile_from_json(const std::string& text);
 
 /// Summaries (and, with per_patch, the per-patch arrays) as a JSON object.

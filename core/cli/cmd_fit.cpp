@@ -1,0 +1,145 @@
+// CLI: `tristim fit` — a profile from a recipe (given, or made from the flags) and its inputs.
+#include <array>
+#include <iostream>
+
+#include "cli.hpp"
+#include "patch_args.hpp"
+#include "tristim/capture/raw.hpp"
+#include "tristim/characterisation/objectives.hpp"
+#include "tristim/error.hpp"
+#include "tristim/io/patch_files.hpp"
+#include "tristim/profile/characterise.hpp"
+#include "tristim/profile/export.hpp"
+
+namespace tristim::cli {
+namespace {
+
+const char* kFitUsage =
+    "tristim fit --rgb patches.csv --xyz reference.csv --model <id> [--objective ls|psm|de2000]\n"
+    "            [--white <patch id>] [--lab-white D50|D65|X,Y,Z] [--ref-white D50|D65|X,Y,Z]\n"
+    "            [--out profile.json] [--csv patches_out.csv] [--no-loo] [--recipe-out recipe.json]\n"
+    "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm auto|lm|bobyqa|sbplx]\n"
+    "            [--de-xtol X] [--de-ftol F] [--de-max-evaluations N] [--de-step S]\n"
+    "tristim fit --recipe recipe.json (--rgb patches.csv | --raw chart.dng) [--xyz reference.csv]\n"
+    "            [--out profile.json] [--csv patches_out.csv] [--recipe-out recipe.json]\n"
+    "  Fits camera RGB -> XYZ and prints (or writes) the profile JSON with training and\n"
+    "  leave-one-out metrics; the profile embeds the recipe it was made with.\n"
+    "  --white preserves that patch exactly. Reference tables may be XYZ (Y = 100 for the perfect\n"
+    "  diffuser) or L*a*b* (converted with --ref-white, default D50). --lab-white is the white of\n"
+    "  the CIELAB errors and of the de2000 objective (default D50). --de-rms minimises the RMS\n"
+    "  instead of the mean CIEDE2000. Models: tristim models\n"
+    "  With --recipe every setting comes from the recipe (a profile's \"recipe\" or one the page\n"
+    "  saved): --raw samples the chart with the recipe's layout and corners; without --xyz the\n"
+    "  reference is the recipe's built-in chart under its illuminant and observer (after its surface\n"
+    "  stage). The same recipe and inputs give the same coefficients as the page.";
+
+/// A recipe from the flags of the classic form (every stage but characterisation at its default).
+Recipe recipe_from_flags(const Args& args, const PatchData& d, const std::string& xyz_bytes) {
+  int white_index = -1;
+  const FitOptions o = fit_options(args, d, white_index);
+  Recipe r;
+  r.reference.chart = "file";
+  r.reference.data_digest = bytes_digest(xyz_bytes);
+  r.characterisation.model = args.get("model");
+  r.characterisation.objective = objective_choice(o);
+  r.characterisation.white_patch = white_index >= 0 ? d.ids[white_index] : "";
+  r.characterisation.lab_white = o.white;
+  r.evaluation.leave_one_out = !args.has("no-loo");
+  return complete_recipe(r);
+}
+
+/// Camera RGB paired with the recipe's built-in reference by id (every RGB patch must be in it).
+PatchData pair_with_reference(const PatchTable& rgb, const ReferenceChart& ref, const std::string& rgb_path) {
+  const PatchPairs pairs = pair_by_id(ref.ids, ref.XYZ, rgb.ids, rgb.RGB);
+  if (!pairs.missing_in_reference.empty())
+    throw Error(ErrorCode::PatchMismatch, "patch '" + pairs.missing_in_reference.front() + "' of " + rgb_path +
+                                              " is not in the recipe's chart '" + ref.chart_id + "'");
+  PatchData d;
+  d.ids = pairs.ids;
+  d.rgb = to_matrix(pairs.measured);
+  d.xyz = to_matrix(pairs.reference);
+  return d;
+}
+
+TrainingSet training_from_recipe(const Args& args, const Recipe& recipe) {
+  if (args.has("raw") == args.has("rgb"))
+    throw Error(ErrorCode::InvalidArgument, "fit --recipe takes one of --rgb patches.csv or --raw chart image");
+  const bool builtin = recipe.reference.chart != "file";
+  if (!builtin && !args.has("xyz"))
+    throw Error(ErrorCode::InvalidArgument, "the recipe's reference is a file: give it with --xyz");
+  if (args.has("raw")) {
+    const std::string path = args.get("raw"), bytes = read_file(path);
+    RawImage image;
+    try {
+      image = decode_raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+    } catch (const Error& e) {
+      throw Error(e.code(), "'" + path + "': " + e.what());
+    }
+    const std::array<double, 8>& c = recipe.sampling.corners;
+    if (std::all_of(c.begin(), c.end(), [](double v) { return v == 0; }))
+      throw Error(ErrorCode::InvalidArgument, "the recipe has no chart corners to sample --raw with");
+    SampleOptions so;
+    so.area = recipe.sampling.area;
+    const ChartSample sample = sample_chart(image, recipe.sampling.layout, c, so);
+    if (builtin && !args.has("xyz")) return training_set(recipe, sample, recipe_reference(recipe));
+    const std::string xyz_path = args.get("xyz");
+    const PatchTable t = read_patch_file(read_file(xyz_path), xyz_path);
+    const ReferenceChart ref = reference_from_table(t, illuminant_spd(recipe.reference.illuminant),
+                                                    parse_observer(recipe.reference.observer));
+    return training_set(recipe, sample, ref);
+  }
+  const std::string rgb_path = args.get("rgb");
+  if (args.has("xyz")) {
+    const PatchData d = load_pairs(rgb_path, args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
+    return training_set(recipe, d.ids, d.rgb, d.xyz);
+  }
+  const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
+  if (!rgb.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
+  const PatchData d = pair_with_reference(rgb, recipe_reference(recipe), rgb_path);
+  return training_set(recipe, d.ids, d.rgb, d.xyz);
+}
+
+int run_fit(const Args& args, std::ostream& out) {
+  TrainingSet training;
+  Recipe recipe;
+  if (args.has("recipe")) {
+    args.allow_only({"recipe", "rgb", "raw", "xyz", "ref-white", "out", "csv", "recipe-out"});
+    recipe = recipe_from_json(read_file(args.get("recipe")));
+    training = training_from_recipe(args, recipe);
+  } else {
+    args.allow_only({"rgb", "xyz", "model", "objective", "white", "lab-white", "ref-white", "out", "csv",
+                     "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol", "de-ftol",
+                     "de-max-evaluations", "de-rms", "de-step", "no-loo", "recipe-out"});
+    const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
+    recipe = recipe_from_flags(args, d, read_file(args.get("xyz")));
+    training = training_set(recipe, d.ids, d.rgb, d.xyz);
+  }
+  for (const auto& e : training.excluded) std::cerr << "tristim fit: left out " << e << "\n";
+  const Characterisation c = characterise(recipe, training);
+  const ModelEvaluation& ev = c.evaluation;
+  const std::string text = profile_to_json(c.profile);
+  if (args.has("recipe-out")) {
+    const std::string r = recipe_to_json(c.recipe);
+    write_bytes(args.get("recipe-out"), r.data(), r.size());
+  }
+  if (args.has("csv")) {
+    const std::string csv = patch_csv(training.ids, c.linear_RGB, training.reference_XYZ, ev.fit.fitted,
+                                      c.recipe.characterisation.lab_white, ev.has_loo ? ev.loo_XYZ : PatchMatrix());
+    write_bytes(args.get("csv"), csv.data(), csv.size());
+  }
+  if (args.has("out")) {
+    write_bytes(args.get("out"), text.data(), text.size());
+    std::cerr << "tristim fit: " << c.recipe.characterisation.model << " (" << objective_id(ev.fit.objective)
+              << ") training mean dE00 " << fmt(ev.training.dE00.mean) << ", leave-one-out mean dE00 "
+              << (ev.has_loo ? fmt(ev.loo.dE00.mean) : std::string("-")) << ", status "
+              << fit_status_name(ev.fit.status) << (ev.fit.message.empty() ? "" : " (" + ev.fit.message + ")") << "\n";
+  } else {
+    out << text;
+  }
+  return 0;
+}
+
+const CommandRegistration reg_fit({"fit", "fit a camera characterisation model -> profile JSON", kFitUsage, run_fit});
+
+}  // namespace
+}  // namespace tristim::cli

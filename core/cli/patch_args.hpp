@@ -1,0 +1,37 @@
+// CLI helpers shared by the model commands (patch_args.cpp).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "tristim/characterisation/models.hpp"
+
+namespace tristim::cli {
+
+/// --key as D50, D65 or X,Y,Z (positive); `fallback` when absent.
+Vec3 parse_white(const Args& args, const std::string& key, const Vec3& fallback);
+/// "a, b,c" -> {"a","b","c"} (blanks trimmed, empty items dropped).
+std::vector<std::string> split_list(const std::string& s);
+std::string lower(std::string s);
+
+/// Camera RGB and reference XYZ paired by patch id.
+struct PatchData {
+  std::vector<std::string> ids;
+  PatchMatrix rgb, xyz;
+};
+PatchMatrix to_matrix(const std::vector<Vec3>& v);
+/// Reads both tables (CSV or CGATS) and pairs them strictly by id: every patch of one file must
+/// be in the other (PatchMismatch). Reference L*a*b* is converted with ref_white.
+PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, const Vec3& ref_white);
+/// Row of `id` in ids (normalised); Error(UnknownId) naming --white otherwise.
+int patch_index(const std::vector<std::string>& ids, const std::string& id);
+/// FitOptions from --objective, --lab-white, --white and the --psm-* / --de-* flags.
+FitOptions fit_options(const Args& args, const PatchData& d, int& white_index);
+
+void write_bytes(const std::string& path, const void* data, size_t n);
+/// Lower-case extension without the dot ("" when none).
+std::string ext_of(const std::string& path);
+/// Fixed-point text; "-" for non-finite values.
+std::string fmt(double v, int prec = 3);
+
+}  // namespace tristim::cli

@@ -1,0 +1,115 @@
+// A Recipe: everything that decides how a characterisation is made, stage by stage, as a value.
+//
+//   reference → capture → sampling → linearisation → surface → characterisation → evaluation
+//
+// Same recipe + same input data (the chart image or patch tables, the reference data) → the same
+// profile, natively and in wasm. The profile JSON embeds the recipe it was made with; the CLI
+// (`tristim fit --recipe r.json`) and the page's session both hold one.
+//
+// JSON (version 1), every double with 17 significant digits (exact round trip):
+// {
+//   "format": "tristim-recipe", "version": 1,
+//   "reference": {"chart": "passport", "data_digest": "", "illuminant": "D50", "observer": "1931"},
+//   "capture": {"dark_frames": 0, "dark_mode": "per_pixel", "flat_field": false,
+//               "falloff": false, "saturation": 0, "noise_floor": 0},
+//   "sampling": {"layout": {"chart": "passport", "rows": 0, "columns": 0, "margins": [l, t, r, b],
+//                           "gap": -1},
+//                "corners": [x1, y1, ... x4, y4], "area": 0.5, "exclude": ["A3"],
+//                "exclude_flagged": false},
+//   "linearisation": {"method": "identity", "parameters": {}, "settings": {}},
+//   "surface": {"method": "none", "parameters": {}, "settings": {}},
+//   "characterisation": {"model": "Finlayson2015-2",
+//                        "objective": {"method": "psm", "parameters": {...}, "settings": {}},
+//                        "white_patch": "D1", "lab_white": [X, Y, Z]},
+//   "evaluation": {"leave_one_out": true, "held_out_digest": ""}
+// }
+// Unknown fields, a wrong type, an unknown method id or option, or another version are refused
+// with RecipeInvalid / RecipeVersion / UnknownId naming the field.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "tristim/characterisation/models.hpp"
+#include "tristim/chart/layout.hpp"
+#include "tristim/io/json.hpp"
+#include "tristim/methods.hpp"
+
+namespace tristim {
+
+constexpr int kRecipeVersion = 1;
+
+/// Where the reference colours come from.
+struct ReferenceStage {
+  std::string chart = "cc24";      ///< a built-in chart id (list_charts()), or "file" for uploaded data
+  std::string data_digest;         ///< "fnv1a64:…" of uploaded reference data ("" for a built-in chart)
+  std::string illuminant = "D50";  ///< illuminant_spd() id (A, D50, D65, F11, D4000, …)
+  std::string observer = "1931";   ///< "1931" | "1964"
+};
+
+/// Frame calibration settings (capture/calibration.hpp). The frames themselves are inputs.
+struct CaptureStage {
+  int dark_frames = 0;                   ///< how many dark frames were averaged (0: none)
+  std::string dark_mode = "per_pixel";   ///< "per_pixel" | "per_channel"
+  bool flat_field = false;               ///< a flat field was applied
+  bool falloff = false;                  ///< the radial fall-off fit (Guarnera eq 7) replaced the flat
+  double saturation = 0;                 ///< clip level in DN; 0: LibRaw's maximum
+  double noise_floor = 0;                ///< DN; 0: from the dark frames (or none)
+};
+
+/// How patches were read from the image.
+struct SamplingStage {
+  LayoutOptions layout;                  ///< chart grid (chart/layout.hpp)
+  std::array<double, 8> corners{};       ///< x1,y1 … x4,y4 clockwise from A1 (all 0: not from an image)
+  double area = 0.5;                     ///< sampled fraction of each patch side
+  std::vector<std::string> exclude;      ///< patch ids left out of the fit
+  bool exclude_flagged = false;          ///< also leave out every flagged patch (saturated, dark, nonuniform)
+};
+
+/// Model, objective and their options.
+struct CharacterisationStage {
+  std::string model = "matrix-3x3";      ///< model_table() id
+  MethodChoice objective{"ls", {}, {}};  ///< objective_table() row and its options
+  std::string white_patch;               ///< preserved exactly when set (e.g. "D1")
+  Vec3 lab_white = whites::D50();        ///< white of the CIELAB errors and the de2000 objective
+};
+
+/// What is reported next to the fit.
+struct EvaluationStage {
+  bool leave_one_out = true;
+  std::string held_out_digest;           ///< training_digest() of a held-out patch set ("" none)
+};
+
+struct Recipe {
+  int version = kRecipeVersion;
+  ReferenceStage reference;
+  CaptureStage capture;
+  SamplingStage sampling;
+  MethodChoice linearisation{"identity", {}, {}};
+  MethodChoice surface{"none", {}, {}};
+  CharacterisationStage characterisation;
+  EvaluationStage evaluation;
+};
+
+/// The recipe as a JSON value / text (see the header comment). Method choices are written
+/// complete (every option with its value), so a recipe never depends on a later default.
+json::Value recipe_json(const Recipe& recipe);
+std::string recipe_to_json(const Recipe& recipe);
+/// Strict reader: RecipeVersion, RecipeInvalid (not JSON, unknown or missing field, wrong
+/// type), UnknownId (unknown chart layout, model or method id or option), InvalidArgument
+/// (an option out of bounds).
+Recipe recipe_from_json(const json::Value& value);
+Recipe recipe_from_json(const std::string& text);
+
+/// Checks every stage's ids and options against the tables and returns the recipe with every
+/// method choice completed (defaults filled in).
+Recipe complete_recipe(const Recipe& recipe);
+
+/// FitOptions for the characterisation stage: objective and options, lab white, and (when
+/// white_patch is set) the white pair taken from the patch with that id in `ids`
+/// (Error(UnknownId) if absent). white_index is set to that row, or -1.
+FitOptions recipe_fit_options(const Recipe& recipe, const std::vector<std::string>& ids,
+                              const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ,
+                              int& white_index);
+
+}  // namespace tristim
