@@ -6,6 +6,11 @@
 #include <string>
 #include <vector>
 
+namespace tristim {
+struct RawImage;
+struct LayoutOptions;
+}
+
 namespace tristim::cli {
 
 /// Parsed `--key value` / `--flag` options and positional arguments.
@@ -39,5 +44,14 @@ struct CommandRegistration {
 
 /// Reads a whole file as bytes/text; Error(InvalidArgument) naming the path if unreadable.
 std::string read_file(const std::string& path);
+
+/// Decodes a RAW file (cmd_raw.cpp); errors name the path.
+RawImage load_raw(const std::string& path);
+
+/// --chart, --rows, --columns, --margins l,t,r,b as chart layout options (cmd_raw.cpp).
+LayoutOptions layout_options(const Args& args);
+
+/// Comma-separated numbers of option --`option`; Error(InvalidArgument) naming it otherwise.
+std::vector<double> numbers(const std::string& text, const std::string& option);
 
 }  // namespace tristim::cli

@@ -1,6 +1,7 @@
 // CLI: `tristim inspect <file>` and `tristim sample <file> --chart ... --corners ...`: camera RAW,
 // TIFF, PNG or JPEG (capture/image.hpp decode_any: by the file's bytes, not its name).
 #include <array>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -9,13 +10,13 @@
 
 #include "cli.hpp"
 #include "tristim/capture/calibration.hpp"
+#include "tristim/chart/detect.hpp"
 #include "tristim/chart/layout.hpp"
 #include "tristim/error.hpp"
 #include "tristim/capture/image.hpp"
 #include "tristim/capture/raw.hpp"
 
 namespace tristim::cli {
-namespace {
 
 RawImage load_raw(const std::string& path) {
   const std::string bytes = read_file(path);
@@ -40,6 +41,24 @@ std::vector<double> numbers(const std::string& text, const std::string& option) 
   return v;
 }
 
+LayoutOptions layout_options(const Args& args) {
+  LayoutOptions layout;
+  layout.chart = args.get("chart");
+  layout.rows = static_cast<int>(args.get_double("rows", 0));
+  layout.columns = static_cast<int>(args.get_double("columns", 0));
+  if (args.has("margins")) {
+    const auto m = numbers(args.get("margins"), "margins");
+    if (m.size() != 4) throw Error(ErrorCode::InvalidArgument, "--margins needs 4 numbers: left,top,right,bottom");
+    layout.margin_left = m[0];
+    layout.margin_top = m[1];
+    layout.margin_right = m[2];
+    layout.margin_bottom = m[3];
+  }
+  return layout;
+}
+
+namespace {
+
 int run_inspect(const Args& args, std::ostream& out) {
   args.allow_only({});
   if (args.positional.size() != 1)
@@ -56,26 +75,28 @@ int run_sample(const Args& args, std::ostream& out) {
                    "area", "rows", "columns", "margins"});
   if (args.positional.size() != 1)
     throw Error(ErrorCode::InvalidArgument, "sample takes exactly one RAW, TIFF, PNG or JPEG file");
-  LayoutOptions layout;
-  layout.chart = args.get("chart");
-  layout.rows = static_cast<int>(args.get_double("rows", 0));
-  layout.columns = static_cast<int>(args.get_double("columns", 0));
-  if (args.has("margins")) {
-    const auto m = numbers(args.get("margins"), "margins");
-    if (m.size() != 4) throw Error(ErrorCode::InvalidArgument, "--margins needs 4 numbers: left,top,right,bottom");
-    layout.margin_left = m[0];
-    layout.margin_top = m[1];
-    layout.margin_right = m[2];
-    layout.margin_bottom = m[3];
-  }
-  const auto c = numbers(args.get("corners"), "corners");
-  if (c.size() != 8) throw Error(ErrorCode::InvalidArgument, "--corners needs 8 numbers: x1,y1,...,x4,y4");
+  const LayoutOptions layout = layout_options(args);
   std::array<double, 8> corners;
-  std::copy(c.begin(), c.end(), corners.begin());
+  if (args.has("corners")) {
+    const auto c = numbers(args.get("corners"), "corners");
+    if (c.size() != 8) throw Error(ErrorCode::InvalidArgument, "--corners needs 8 numbers: x1,y1,...,x4,y4");
+    std::copy(c.begin(), c.end(), corners.begin());
+  }
   SampleOptions options;
   options.area = args.get_double("area", 0.5);
 
   const RawImage image = load_raw(args.positional[0]);
+  if (!args.has("corners")) {  // detect the chart (issue 12) and say so
+    DetectOptions detect;
+    detect.charts = {layout.chart};
+    detect.custom = layout;
+    const ChartCandidate best = detect_charts(image, detect).front();
+    corners = best.corners;
+    std::cerr << "tristim sample: no --corners given, using the detected " << best.chart << " (confidence "
+              << best.confidence << ", orientation " << best.orientation << "): --corners ";
+    for (int i = 0; i < 8; ++i) std::cerr << (i ? "," : "") << std::lround(corners[i] * 100) / 100.0;
+    std::cerr << "\n";
+  }
   FrameCalibration cal;
   const std::string dark_mode = args.get("dark-mode", "pixel");
   if (dark_mode != "pixel" && dark_mode != "channel")
@@ -128,7 +149,7 @@ const CommandRegistration inspect_cmd{Command{
 
 const CommandRegistration sample_cmd{Command{
     "sample", "per-patch camera RGB of a chart in a RAW, TIFF, PNG or JPEG file (CSV)",
-    "usage: tristim sample <file> --chart <id> --corners x1,y1,x2,y2,x3,y3,x4,y4\n"
+    "usage: tristim sample <file> --chart <id> [--corners x1,y1,x2,y2,x3,y3,x4,y4]\n"
     "                      [--dark f ...] [--dark-mode pixel|channel]\n"
     "                      [--flat f] [--flat-mode pixel|radial] [--white-reflectance r | r,g,b]\n"
     "                      [--area 0.5] [--rows N --columns M --margins l,t,r,b]\n"
@@ -138,6 +159,8 @@ const CommandRegistration sample_cmd{Command{
     "  corner at patch A1), in HALF-RESOLUTION image coordinates for Bayer sensors (the\n"
     "  measurement image of `tristim inspect`: width x height; pixel (x, y) covers [x, x+1));\n"
     "  full-resolution pixel coordinates for TIFF, PNG and JPEG images.\n"
+    "  Without --corners the chart is detected (`tristim detect`) and the corners used are\n"
+    "  printed on stderr; CHART_NOT_FOUND when there is none.\n"
     "--dark: dark frames (repeat the option), averaged, subtracted per pixel or per channel.\n"
     "--flat: flat-field frame: per-pixel gains (Abed 2013 App. C) or a radial fall-off fit\n"
     "  (Guarnera 2018 eq 7; coefficients printed on stderr).\n"

@@ -1,0 +1,234 @@
+// Chart detection, step 4: lattices of equal-pitch patch quads (detect.hpp).
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <set>
+
+#include "tristim/chart/detect.hpp"
+#include "tristim/error.hpp"
+
+namespace tristim {
+
+using Point = Eigen::Vector2d;
+
+Eigen::Matrix3d fit_homography(const std::vector<Point>& src, const std::vector<Point>& dst) {
+  const size_t n = src.size();
+  if (n < 4 || dst.size() != n) throw Error(ErrorCode::InvalidArgument, "a homography needs 4 or more point pairs");
+  // Hartley normalisation of both point sets: centroid 0, mean distance sqrt(2).
+  auto normaliser = [](const std::vector<Point>& p) {
+    Point c = Point::Zero();
+    for (const auto& q : p) c += q;
+    c /= double(p.size());
+    double d = 0;
+    for (const auto& q : p) d += (q - c).norm();
+    d /= double(p.size());
+    const double s = d > 0 ? std::sqrt(2.0) / d : 1.0;
+    Eigen::Matrix3d T;
+    T << s, 0, -s * c.x(), 0, s, -s * c.y(), 0, 0, 1;
+    return T;
+  };
+  const Eigen::Matrix3d Ts = normaliser(src), Td = normaliser(dst);
+  Eigen::MatrixXd A(2 * n, 9);
+  for (size_t i = 0; i < n; ++i) {
+    const Point u = apply_homography(Ts, src[i]), x = apply_homography(Td, dst[i]);
+    A.row(2 * i) << -u.x(), -u.y(), -1, 0, 0, 0, x.x() * u.x(), x.x() * u.y(), x.x();
+    A.row(2 * i + 1) << 0, 0, 0, -u.x(), -u.y(), -1, x.y() * u.x(), x.y() * u.y(), x.y();
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  const Eigen::VectorXd h = svd.matrixV().col(8);
+  Eigen::Matrix3d Hn;
+  Hn << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8);
+  Eigen::Matrix3d H = Td.inverse() * Hn * Ts;
+  return H / H(2, 2);
+}
+
+namespace {
+
+// Affine least squares lattice -> image (3 or more non-collinear cells), as a homography.
+Eigen::Matrix3d fit_affine(const std::vector<Point>& src, const std::vector<Point>& dst) {
+  Eigen::MatrixXd A(src.size(), 3);
+  Eigen::MatrixXd B(src.size(), 2);
+  for (size_t i = 0; i < src.size(); ++i) {
+    A.row(i) << src[i].x(), src[i].y(), 1;
+    B.row(i) << dst[i].x(), dst[i].y();
+  }
+  const Eigen::MatrixXd X = A.colPivHouseholderQr().solve(B);  // 3 x 2
+  Eigen::Matrix3d H = Eigen::Matrix3d::Identity();
+  H.block<2, 3>(0, 0) = X.transpose();
+  return H;
+}
+
+struct Growth {
+  std::map<std::array<int, 2>, int> cell_quad;  // lattice cell -> quad
+  Eigen::Matrix3d H = Eigen::Matrix3d::Identity();
+};
+
+// Refits the lattice -> image map to the members' centres: a homography once both axes have
+// 2+ distinct values and 5+ members (the DLT is then well posed), an affine map before.
+void refit(Growth& g, const std::vector<PatchQuad>& quads) {
+  std::vector<Point> src, dst;
+  std::set<int> ps, qs;
+  for (const auto& kv : g.cell_quad) {
+    src.emplace_back(kv.first[0], kv.first[1]);
+    dst.push_back(quads[kv.second].centre);
+    ps.insert(kv.first[0]);
+    qs.insert(kv.first[1]);
+  }
+  if (ps.size() < 2 || qs.size() < 2) return;
+  if (src.size() >= 6 && ps.size() >= 3 && qs.size() >= 3) g.H = fit_homography(src, dst);
+  else if (src.size() >= 3) g.H = fit_affine(src, dst);
+}
+
+// |cos| of the angle between two vectors.
+double parallel(const Point& a, const Point& b) { return std::abs(a.dot(b)) / (a.norm() * b.norm() + 1e-12); }
+
+}  // namespace
+
+std::vector<GridGroup> group_grids(const std::vector<PatchQuad>& quads, int min_cells) {
+  const int n = static_cast<int>(quads.size());
+  // Neighbour lists: centres within 2.8 patch sizes, areas within a factor 2.2 (sweep over x).
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return quads[a].centre.x() < quads[b].centre.x(); });
+  std::vector<double> reach(n);
+  double max_reach = 0;
+  for (int i = 0; i < n; ++i) {
+    reach[i] = 2.8 * std::max(quads[i].side_a.norm(), quads[i].side_b.norm());
+    max_reach = std::max(max_reach, reach[i]);
+  }
+  std::vector<std::vector<int>> near(n);
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      const int i = order[a], j = order[b];
+      if (quads[j].centre.x() - quads[i].centre.x() > max_reach) break;
+      const double d = (quads[j].centre - quads[i].centre).norm();
+      const double ratio = quads[i].area / quads[j].area;
+      if (ratio > 2.2 || ratio < 1 / 2.2) continue;
+      if (d < std::max(reach[i], reach[j])) {
+        near[i].push_back(j);
+        near[j].push_back(i);
+      }
+    }
+  // Axis neighbours in a quad's own frame: d = alpha·side_a + beta·side_b.
+  struct Seed {
+    int quad, score;
+    Point P, Q;  // pitch vectors along side_a and side_b
+  };
+  std::vector<Seed> seeds;
+  for (int i = 0; i < n; ++i) {
+    Eigen::Matrix2d B;
+    B.col(0) = quads[i].side_a;
+    B.col(1) = quads[i].side_b;
+    if (std::abs(B.determinant()) < 1e-9) continue;
+    const Eigen::Matrix2d Bi = B.inverse();
+    bool dir[4] = {false, false, false, false};
+    Point P(0, 0), Q(0, 0);
+    double bestP = 1e9, bestQ = 1e9;
+    for (int j : near[i]) {
+      const Point d = quads[j].centre - quads[i].centre;
+      const Point ab = Bi * d;
+      for (int axis = 0; axis < 2; ++axis) {
+        const double along = ab[axis], across = ab[1 - axis];
+        if (std::abs(along) < 0.9 || std::abs(along) > 2.6 || std::abs(across) > 0.2 * std::abs(along) + 0.15) continue;
+        dir[axis * 2 + (along > 0 ? 0 : 1)] = true;
+        const Point step = along > 0 ? d : Point(-d);
+        if (axis == 0 && std::abs(along) < bestP) {
+          bestP = std::abs(along);
+          P = step;
+        }
+        if (axis == 1 && std::abs(along) < bestQ) {
+          bestQ = std::abs(along);
+          Q = step;
+        }
+      }
+    }
+    // A seed is a single patch when its sides fill similar fractions of both pitches (a blob of
+    // two merged patches does not); rank those first, then by the neighbours seen.
+    int score = dir[0] + dir[1] + dir[2] + dir[3];
+    if (bestP < 1e9 && bestQ < 1e9 && std::max(bestP, bestQ) < 1.3 * std::min(bestP, bestQ)) score += 4;
+    if ((dir[0] || dir[1]) && (dir[2] || dir[3])) seeds.push_back({i, score, P, Q});
+  }
+  std::stable_sort(seeds.begin(), seeds.end(), [&](const Seed& a, const Seed& b) { return a.score > b.score; });
+
+  std::vector<char> used(n, 0);
+  std::vector<GridGroup> groups;
+  for (const Seed& seed : seeds) {
+    if (used[seed.quad]) continue;
+    Growth g;
+    g.cell_quad[{0, 0}] = seed.quad;
+    g.H << seed.P.x(), seed.Q.x(), quads[seed.quad].centre.x(), seed.P.y(), seed.Q.y(), quads[seed.quad].centre.y(), 0, 0, 1;
+    std::set<int> members = {seed.quad};
+    for (int round = 0; round < 400; ++round) {
+      const Eigen::Matrix3d Hi = g.H.inverse();
+      std::vector<double> areas;
+      for (int m : members) areas.push_back(quads[m].area);
+      std::nth_element(areas.begin(), areas.begin() + areas.size() / 2, areas.end());
+      const double median_area = areas[areas.size() / 2];
+      std::map<std::array<int, 2>, std::pair<double, int>> offers;  // cell -> (residual, quad)
+      std::set<int> pool;
+      for (int m : members)
+        for (int j : near[m])
+          if (!used[j] && !members.count(j)) pool.insert(j);
+      for (int j : pool) {
+        const Point l = apply_homography(Hi, quads[j].centre);
+        const std::array<int, 2> cell = {static_cast<int>(std::lround(l.x())), static_cast<int>(std::lround(l.y()))};
+        const double res = std::abs(l.x() - cell[0]) + std::abs(l.y() - cell[1]);
+        if (std::abs(l.x() - cell[0]) > 0.3 || std::abs(l.y() - cell[1]) > 0.3 || g.cell_quad.count(cell)) continue;
+        bool adjacent = false;  // within two cells of a member: a missing patch may lie between
+        for (int dp = -2; dp <= 2 && !adjacent; ++dp)
+          for (int dq = -2; dq <= 2; ++dq)
+            if (g.cell_quad.count({cell[0] + dp, cell[1] + dq})) {
+              adjacent = true;
+              break;
+            }
+        if (!adjacent) continue;
+        // The quad's sides follow the local lattice axes and fit inside one pitch.
+        const Point c = apply_homography(g.H, Point(cell[0], cell[1]));
+        const Point P = apply_homography(g.H, Point(cell[0] + 0.5, cell[1])) - apply_homography(g.H, Point(cell[0] - 0.5, cell[1]));
+        const Point Q = apply_homography(g.H, Point(cell[0], cell[1] + 0.5)) - apply_homography(g.H, Point(cell[0], cell[1] - 0.5));
+        (void)c;
+        const PatchQuad& q = quads[j];
+        const bool a_on_P = parallel(q.side_a, P) >= parallel(q.side_a, Q);
+        const Point& sp = a_on_P ? q.side_a : q.side_b;
+        const Point& sq = a_on_P ? q.side_b : q.side_a;
+        if (parallel(sp, P) < 0.94 || parallel(sq, Q) < 0.94) continue;
+        const double fp = sp.norm() / P.norm(), fq = sq.norm() / Q.norm();
+        if (fp < 0.3 || fp > 1.1 || fq < 0.3 || fq > 1.1 || std::max(fp, fq) > 1.5 * std::min(fp, fq)) continue;
+        // ... and its size matches the members' (not two patches run together).
+        if (q.area > 1.7 * median_area || q.area < 0.45 * median_area) continue;
+        auto it = offers.find(cell);
+        if (it == offers.end() || res < it->second.first) offers[cell] = {res, j};
+      }
+      if (offers.empty()) break;
+      for (const auto& kv : offers) {
+        g.cell_quad[kv.first] = kv.second.second;
+        members.insert(kv.second.second);
+      }
+      refit(g, quads);
+    }
+    std::set<int> ps, qs;
+    for (const auto& kv : g.cell_quad) {
+      ps.insert(kv.first[0]);
+      qs.insert(kv.first[1]);
+    }
+    if (static_cast<int>(g.cell_quad.size()) < min_cells || ps.size() < 2 || qs.size() < 2) continue;
+    GridGroup group;
+    group.lattice_to_image = g.H;
+    group.p_min = *ps.begin();
+    group.p_max = *ps.rbegin();
+    group.q_min = *qs.begin();
+    group.q_max = *qs.rbegin();
+    for (const auto& kv : g.cell_quad) {
+      group.cells.push_back(kv.first);
+      group.quads.push_back(kv.second);
+      used[kv.second] = 1;
+    }
+    groups.push_back(std::move(group));
+  }
+  std::stable_sort(groups.begin(), groups.end(), [](const GridGroup& a, const GridGroup& b) { return a.cells.size() > b.cells.size(); });
+  return groups;
+}
+
+}  // namespace tristim

@@ -1,0 +1,168 @@
+// The detection test set (issue 12): synthetic photographs of ColorChecker Classic, Passport and
+// Digital SG charts made by the virtual camera from a seed (tests/support/chart_scene.hpp), each
+// run through tristim's detector; prints the detection rate, the median and 95th-percentile
+// corner error and the rate of wrong orientations among accepted detections, per chart and in
+// all. With --write DIR it also writes every scene as an 8-bit sRGB PPM (white balanced on the
+// true white, for detectors that expect display images, e.g. OpenCV's mcc) and DIR/truth.csv
+// with the true corners and tristim's result per image (read by compare_mcc.py).
+//
+//   detect_testset [--count 300] [--seed 1] [--shared ../shared/data] [--write DIR] [--verbose]
+//                  [--only i]   (one scene, verbose: for debugging)
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "chart_scene.hpp"
+#include "tristim/chart/detect.hpp"
+#include "tristim/error.hpp"
+
+using namespace tristim;
+
+namespace {
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
+}
+
+void write_ppm(const std::string& path, const ChartScene& s) {
+  FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) {
+    std::fprintf(stderr, "cannot write %s\n", path.c_str());
+    std::exit(2);
+  }
+  std::fprintf(f, "P6\n%d %d\n255\n", s.image.width, s.image.height);
+  std::vector<unsigned char> row(size_t(s.image.width) * 3);
+  for (int y = 0; y < s.image.height; ++y) {
+    for (int x = 0; x < s.image.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double v = std::min(1.0, std::max(0.0, 0.9 * s.image.at(x, y, c) / s.white[c]));
+        const double e = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;  // sRGB
+        row[size_t(x) * 3 + c] = static_cast<unsigned char>(std::lround(255 * e));
+      }
+    std::fwrite(row.data(), 1, row.size(), f);
+  }
+  std::fclose(f);
+}
+
+struct Tally {
+  int n = 0, detected = 0, correct = 0, wrong_orientation = 0, misplaced = 0;
+  std::vector<double> errors, ms;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int count = 300;
+  std::uint64_t seed = 1;
+  std::string shared = TRISTIM_SHARED_DATA_DIR, write_dir;
+  bool verbose = false;
+  int only = -1;
+  if (const char* env = std::getenv("TRISTIM_SHARED_DATA")) shared = env;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--count" && i + 1 < argc) count = std::atoi(argv[++i]);
+    else if (a == "--seed" && i + 1 < argc) seed = std::strtoull(argv[++i], nullptr, 10);
+    else if (a == "--shared" && i + 1 < argc) shared = argv[++i];
+    else if (a == "--write" && i + 1 < argc) write_dir = argv[++i];
+    else if (a == "--verbose") verbose = true;
+    else if (a == "--only" && i + 1 < argc) only = std::atoi(argv[++i]), verbose = true;
+    else {
+      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--shared DIR] [--write DIR] [--verbose]\n");
+      return 2;
+    }
+  }
+  const std::vector<RawImage> photos = background_photos(shared);
+  std::vector<const RawImage*> photo_ptrs;
+  for (const auto& p : photos) photo_ptrs.push_back(&p);
+  if (photos.empty()) std::printf("note: no real photos found under %s: synthetic backgrounds only\n", shared.c_str());
+  FILE* truth = nullptr;
+  if (!write_dir.empty()) {
+    truth = std::fopen((write_dir + "/truth.csv").c_str(), "w");
+    if (!truth) {
+      std::fprintf(stderr, "cannot write %s/truth.csv\n", write_dir.c_str());
+      return 2;
+    }
+    std::fprintf(truth, "file,chart,width,height,x1,y1,x2,y2,x3,y3,x4,y4,gap,pitch,area,tristim_detected,tristim_located,"
+                        "tristim_oriented,tristim_error,tristim_confidence,tristim_ms,tx1,ty1,tx2,ty2,tx3,ty3,tx4,ty4,"
+                        "tristim_gap\n");
+  }
+  const char* charts[3] = {"cc24", "passport", "sg140"};
+  const int widths[3] = {900, 1200, 1600};
+  std::map<std::string, Tally> tally;
+  for (int i = only >= 0 ? only : 0; i < (only >= 0 ? only + 1 : count); ++i) {
+    const std::string chart = charts[i % 3];
+    SceneRandom pick(seed * 7919 + static_cast<std::uint64_t>(i));
+    const int w = widths[pick.integer(3)], h = w * 2 / 3;
+    const SceneSpec spec = random_scene_spec(chart, seed * 100003 + static_cast<std::uint64_t>(i), w, h, !photos.empty());
+    const ChartScene scene = render_chart_scene(spec, photo_ptrs);
+    LayoutOptions layout;
+    layout.chart = chart;
+    layout.gap = spec.gap;
+    const double gap = chart_layout(layout).gap;
+    DetectOptions options;
+    options.charts = {chart};
+    std::vector<ChartCandidate> found;
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      found = detect_charts(scene.image, options);
+    } catch (const Error& e) {
+      if (e.code() != ErrorCode::ChartNotFound) throw;
+      if (verbose) std::printf("  %3d %-8s not found: %s\n", i, chart.c_str(), e.what());
+    }
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const DetectionScore s = score_detection(scene, found.empty() ? nullptr : &found[0].corners,
+                                             found.empty() ? 0.0 : found[0].confidence);
+    for (const std::string key : {chart, std::string("all")}) {
+      Tally& t = tally[key];
+      ++t.n;
+      t.ms.push_back(ms);
+      t.detected += s.detected;
+      t.correct += s.oriented;
+      t.wrong_orientation += s.located && !s.oriented;
+      t.misplaced += s.detected && !s.located;
+      if (s.oriented) t.errors.push_back(s.corner_error);
+    }
+    if (verbose)
+      std::printf("  %3d %-8s %4dx%-4d area %5.1f%% tilt %4.1f rot %5.1f blur %.1f glare %d photo %d: %s err %.2f px "
+                  "(pitch %.1f) conf %.2f %.0f ms %s %s\n",
+                  i, chart.c_str(), w, h, 100 * scene.area_fraction, spec.tilt_deg, spec.rotation_deg, spec.blur_sigma,
+                  spec.glare_patches, spec.photo_background ? 1 : 0,
+                  !s.detected ? "MISS" : s.oriented ? "ok" : s.located ? "WRONG-ORIENTATION" : "MISPLACED",
+                  s.corner_error, s.pitch, s.confidence, ms, spec.illuminant.c_str(), spec.camera.c_str());
+    if (truth) {
+      char name[64];
+      std::snprintf(name, sizeof name, "scene_%03d.ppm", i);
+      write_ppm(write_dir + "/" + name, scene);
+      std::fprintf(truth, "%s,%s,%d,%d", name, chart.c_str(), w, h);
+      for (double v : scene.corners) std::fprintf(truth, ",%.3f", v);
+      std::fprintf(truth, ",%.4f,%.3f,%.5f,%d,%d,%d,%.4f,%.4f,%.1f", gap, s.pitch, scene.area_fraction, s.detected,
+                   s.located, s.oriented, s.detected ? s.corner_error : NAN, s.confidence, ms);
+      for (int k = 0; k < 8; ++k) std::fprintf(truth, ",%.3f", found.empty() ? NAN : found[0].corners[k]);
+      std::fprintf(truth, ",%.4f\n", found.empty() ? NAN : found[0].gap);
+    }
+  }
+  if (truth) std::fclose(truth);
+  std::printf("tristim chart detection, %d synthetic scenes (seed %llu)\n", count, static_cast<unsigned long long>(seed));
+  std::printf("%-9s %4s %9s %9s %12s %10s %11s %11s %9s\n", "chart", "n", "detected", "correct", "wrong-orient",
+              "misplaced", "median px", "p95 px", "median ms");
+  for (const std::string key : {"cc24", "passport", "sg140", "all"}) {
+    const Tally& t = tally[key];
+    if (!t.n) continue;
+    std::printf("%-9s %4d %8.1f%% %8.1f%% %12d %10d %11.3f %11.3f %9.1f\n", key.c_str(), t.n, 100.0 * t.detected / t.n,
+                100.0 * t.correct / t.n, t.wrong_orientation, t.misplaced, percentile(t.errors, 0.5),
+                percentile(t.errors, 0.95), percentile(t.ms, 0.5));
+  }
+  const Tally& all = tally["all"];
+  std::printf("RESULT rate=%.4f median_px=%.4f p95_px=%.4f wrong_orientation=%d misplaced=%d\n",
+              double(all.correct) / std::max(1, all.n), percentile(all.errors, 0.5), percentile(all.errors, 0.95),
+              all.wrong_orientation, all.misplaced);
+  return 0;
+}

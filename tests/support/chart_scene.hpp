@@ -1,0 +1,95 @@
+// tristim — synthetic photographs of colour charts for the detection tests (issue 12).
+//
+// A chart's patches are rendered by the virtual camera (simulate/virtual_camera.hpp: real camera
+// sensitivities × the chart's measured reflectances × an illuminant), placed on a plane tilted
+// in 3D and projected with a pinhole camera (so the chart -> image map is an exact homography),
+// drawn over a background (a synthetic one with distracting shapes, or a crop of a real photo),
+// then lit unevenly (vignetting, a gradient, glare on some patches), blurred, exposed to a
+// 14-bit-like range with shot and read noise, and clipped. The truth — the patch grid's four
+// corners in the convention of chart/layout.hpp — comes with every image. Everything is drawn
+// from one seed with a portable generator (mt19937_64 bits, no std distributions), so native and
+// wasm builds make the same images.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "tristim/capture/raw.hpp"
+
+namespace tristim {
+
+struct SceneSpec {
+  std::string chart = "cc24";     ///< "cc24", "passport" (with the creative side above) or "sg140"
+  int width = 1200, height = 800;
+  std::string camera = "Canon_EOS_5D_Mark_II";
+  std::string illuminant = "D65";
+  double area_fraction = 0.2;     ///< patch-grid area / image area (before fitting it in)
+  double tilt_deg = 0;            ///< tilt of the chart plane away from the camera
+  double tilt_axis_deg = 0;       ///< direction of the tilt axis in the chart plane
+  double rotation_deg = 0;        ///< in-plane rotation, clockwise on screen
+  double focal = 3;               ///< camera distance in chart heights (smaller = stronger perspective)
+  double cx = 0.5, cy = 0.5;      ///< grid centre as a fraction of the image size
+  double gap = -1;                ///< gap / patch size; < 0: the layout's default (0 for the SG)
+  double exposure = 0.4;          ///< white's G as a fraction of saturation
+  double shot_gain = 1, read_noise = 3;  ///< noise: σ² = shot_gain·DN + read_noise²
+  double blur_sigma = 0.7;        ///< Gaussian blur, px
+  double vignetting = 0.2;        ///< light fall-off at the image corners (fraction)
+  double gradient = 0.1;          ///< linear light gradient across the image (fraction)
+  int glare_patches = 0;          ///< patches with a specular highlight
+  double glare_strength = 1;      ///< highlight peak in units of the white patch
+  bool photo_background = false;  ///< background from `photos` (else synthetic)
+  bool allow_cut = false;         ///< do not shrink the chart into the frame
+  std::uint64_t seed = 1;         ///< texture, shapes, glare positions and noise
+};
+
+struct ChartScene {
+  RawImage image;
+  std::array<double, 8> corners{};  ///< truth: patch grid corners, A1's first, clockwise
+  SceneSpec spec;
+  double area_fraction = 0;         ///< the grid's area / image area as rendered
+  bool cut = false;                 ///< a grid corner lies outside the image
+  std::array<double, 3> white{};    ///< DN of a perfect white at the image centre (for display)
+};
+
+/// Renders one scene. `photos`: linear images to crop backgrounds from (used when
+/// spec.photo_background; any empty image is skipped).
+ChartScene render_chart_scene(const SceneSpec& spec, const std::vector<const RawImage*>& photos = {});
+
+/// Draws every parameter of SceneSpec at random from `seed` (chart and size given): grid area
+/// 3 %-90 % of the frame (log-uniform), tilt up to 45°, any rotation, perspective, one of 52
+/// cameras and six illuminants, exposure 5-80 %, noise, blur 0.3-2 px, vignetting up to 50 %,
+/// glare on up to two patches (40 % of scenes), a photo background in half the scenes.
+SceneSpec random_scene_spec(const std::string& chart, std::uint64_t seed, int width, int height, bool photos);
+
+/// The real photos of ../shared/data/raw-images decoded (LibRaw) for backgrounds: the Canon 30D
+/// landscape, the Kodak DC50 city, and the Passport DNG's top rows (its creative side, without the
+/// classic side). Files that are missing are skipped.
+std::vector<RawImage> background_photos(const std::string& shared_data_dir);
+
+/// How a detection compares with a scene's truth. Corner error: mean distance of the four
+/// corners in the reported order; `located`: some cyclic order of the corners is within a
+/// quarter of a patch pitch of the truth (the right place); `oriented`: that order is the
+/// reported one (A1 where it should be).
+struct DetectionScore {
+  bool detected = false, located = false, oriented = false;
+  double corner_error = 0;   ///< px, reported order
+  double pitch = 0;          ///< px, mean patch pitch of the truth
+  double confidence = 0;
+};
+DetectionScore score_detection(const ChartScene& scene, const std::array<double, 8>* corners, double confidence);
+
+/// Portable uniform [0, 1) from mt19937_64 (53 bits).
+class SceneRandom {
+ public:
+  explicit SceneRandom(std::uint64_t seed);
+  double uniform();
+  double uniform(double a, double b) { return a + (b - a) * uniform(); }
+  int integer(int n);  ///< 0..n-1
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+}  // namespace tristim
