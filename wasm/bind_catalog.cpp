@@ -5,7 +5,6 @@
 #include "tristim/chart/layout.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/data.hpp"
-#include "tristim/linearisation/linearisation.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 #include "tristim/surface/surface.hpp"
 #include "tristim/version.hpp"
@@ -24,7 +23,6 @@ std::vector<MethodInfo> infos(const std::vector<Row>& rows) {
   return out;
 }
 std::vector<MethodInfo> objectives() { return infos(objective_table()); }
-std::vector<MethodInfo> linearisations() { return infos(linearisation_table()); }
 std::vector<MethodInfo> surfaces() { return infos(surface_table()); }
 }  // namespace
 
@@ -51,7 +49,6 @@ EMSCRIPTEN_BINDINGS(tristim_catalog) {
   def<&camera_names>("cameraNames");
   def<&model_table>("listModels");
   def<&objectives>("listObjectives");
-  def<&linearisations>("listLinearisations");
   def<&surfaces>("listSurfaceCorrections");
   def<&complete_choice>("completeChoice");
   def<&parse_choice>("parseChoice");

@@ -28,7 +28,7 @@ TEST_CASE("linearisation table: ids in the issue's order, options complete, choi
   std::vector<std::string> ids;
   for (const auto& m : linearisation_table()) ids.push_back(m.info.id);
   const std::vector<std::string> expected{"identity", "gamma", "sRGB", "grey-polynomial", "grey-log-polynomial",
-                                          "colour-polynomial", "colour-log-polynomial", "Shen2008"};
+                                          "colour-polynomial", "colour-log-polynomial", "Guarnera2018", "Shen2008"};
   CHECK(ids == expected);
   const MethodChoice c = complete_choice(linearisation_method("Shen2008").info, parse_choice("Shen2008:J=6,grey=D1;D2;D3"));
   CHECK(choice_number(c, "J") == 6);
