@@ -9,10 +9,9 @@
 // linearRGB() -> Float32Array(3·w·h) with the dark/flat set on this image applied.
 #include <optional>
 
-#include "tristim/capture/calibration.hpp"
 #include "tristim/chart/layout.hpp"
-#include "tristim/capture/raw.hpp"
 #include "tristim/profile/export.hpp"
+#include "raw_handle.hpp"
 #include "types.hpp"
 
 using namespace tristim;
@@ -21,23 +20,8 @@ using emscripten::value_object;
 using wasm::Conv;
 using wasm::def;
 using wasm::guard;
-
-namespace {
-
-struct RawHandle {
-  RawImage image;
-  FrameCalibration calibration;
-};
-
-}  // namespace
-
-template <>
-struct tristim::wasm::Conv<const RawHandle*> {
-  static const RawHandle* from(const val& v) {
-    if (absent(v) || !v.instanceof(val::module_property("RawImage"))) refuse("expected a RawImage from decodeRaw");
-    return v.as<RawHandle*>(emscripten::allow_raw_pointers());
-  }
-};
+using wasm::RawHandle;
+using wasm::with_calibrated;
 
 namespace {
 
@@ -88,13 +72,6 @@ val set_flat(RawHandle& h, val flat, val mode, val reflectance) {
     set_calibration(h, next);
     return val(*h.calibration.flat);
   });
-}
-
-/// f(the image with its dark/flat applied), without a copy when there is no calibration.
-template <class F>
-auto with_calibrated(const RawHandle& h, F f) {
-  const auto& c = h.calibration;
-  return c.dark || c.flat || c.falloff ? f(apply_calibration(h.image, c)) : f(h.image);
 }
 
 RawHandle decode(val bytes) {
