@@ -6,11 +6,12 @@ import createTristim from './tristim.mjs';
 import { reply } from './lib/reply.js';
 import * as reference from './reference/handlers.js';
 import * as images from './images/handlers.js';
+import * as detect from './images/detect.js';
 import * as fit from './fit/handlers.js';
 import * as apply from './apply/handlers.js';
 import * as exporter from './export/handlers.js';
 
-const FEATURES = [reference, images, fit, apply, exporter];
+const FEATURES = [reference, images, detect, fit, apply, exporter];
 
 const handlers = {
   hello: (T) => ({ result: { version: T.version() } }),

@@ -1,7 +1,9 @@
 // The preview with four draggable corner handles (pointer and keyboard) and the patch grid drawn
 // over it. Coordinates are those of the measurement image (half resolution), as sampleChart wants.
 // The grid is the engine's: its chart layout placed by its homography while the corners move,
-// then the sampled areas of the engine's sampling once it belongs to these corners.
+// then the sampled areas of the engine's sampling once it belongs to these corners. A detected
+// chart (setDetected) is drawn as a dashed proposal with its own patch grid until it is used,
+// and labelled with its confidence.
 
 const NS = 'http://www.w3.org/2000/svg';
 const svgEl = (tag, attrs = {}) => {
@@ -10,6 +12,13 @@ const svgEl = (tag, attrs = {}) => {
   return e;
 };
 const CORNER_NAMES = ['top-left (first patch)', 'top-right', 'bottom-right (last patch)', 'bottom-left'];
+
+/// The patch cells of a layout placed by a homography (row-major 3 × 3, unit square -> image): [{id, quad}].
+export function gridCells({ layout, homography: H }) {
+  const map = (u, v) => { const w = H[6] * u + H[7] * v + H[8]; return [(H[0] * u + H[1] * v + H[2]) / w, (H[3] * u + H[4] * v + H[5]) / w]; };
+  return layout.patches.map((p) => ({ id: p.id, quad: [[p.u0, p.v0], [p.u1, p.v0], [p.u1, p.v1], [p.u0, p.v1]].map(([u, v]) => map(u, v)) }));
+}
+const cornersText = (c) => [0, 1, 2, 3].map((i) => `${c[2 * i]},${c[2 * i + 1]}`).join(' ');
 
 export class CornerEditor {
   /// onChange(corners, final); grid(layout, corners) -> Promise<{layout: ChartLayout, homography}>.
@@ -22,6 +31,7 @@ export class CornerEditor {
     this.grid = null;          // {layout, homography, key} of the last placed grid
     this.sample = null;
     this.refused = null;       // the code of the last refused sampling of these corners
+    this.detected = null;      // {candidate, proposal}: a detected chart, drawn as a proposal or labelled in use
     this.el = document.createElement('div');
     this.el.className = 'corner-editor';
     this.el.tabIndex = -1;
@@ -36,7 +46,9 @@ export class CornerEditor {
     defs.append(clip);
     this.outline = svgEl('polygon', { class: 'outline' });
     this.handleLayer = svgEl('g', { class: 'handles' });
-    this.svg.append(defs, this.outline, this.gridLayer, this.handleLayer);
+    this.detectLayer = svgEl('g', { class: 'detected', 'clip-path': 'url(#image-clip)' });
+    this.detectLabel = svgEl('text', { class: 'detect-label' });
+    this.svg.append(defs, this.detectLayer, this.outline, this.gridLayer, this.detectLabel, this.handleLayer);
     this.el.append(this.canvas, this.svg);
     this.el.hidden = true;
     this.handles = CORNER_NAMES.map((name, i) => this.makeHandle(i, name));
@@ -129,16 +141,44 @@ export class CornerEditor {
       .finally(() => { this.placing = null; this.draw(); });
   }
 
-  /// The patch cells of the placed grid, mapped through the homography: [{id, quad}].
-  gridCells() {
-    const H = this.grid.homography;
-    const map = (u, v) => { const w = H[6] * u + H[7] * v + H[8]; return [(H[0] * u + H[1] * v + H[2]) / w, (H[3] * u + H[4] * v + H[5]) / w]; };
-    return this.grid.layout.patches.map((p) => ({ id: p.id, quad: [[p.u0, p.v0], [p.u1, p.v0], [p.u1, p.v1], [p.u0, p.v1]].map(([u, v]) => map(u, v)) }));
+  /// A detected chart (ChartCandidate with its `grid` {layout, homography}) drawn as a proposal
+  /// (dashed outline and patch grid) or, once its corners are used, only its confidence label.
+  /// null: nothing detected.
+  setDetected(candidate, { proposal = false } = {}) {
+    this.detected = candidate ? { candidate, proposal } : null;
+    this.draw();
+  }
+
+  drawDetected(scale) {
+    const d = this.detected;
+    this.detectLabel.style.display = d ? '' : 'none';   // (SVG elements have no `hidden`)
+    this.detectLayer.replaceChildren();
+    if (!d) return;
+    const c = d.candidate;
+    if (d.proposal) {
+      const residual = new Map(c.patches.map((p) => [p.id, p.residual]));
+      const outline = svgEl('polygon', { class: 'detected-outline', points: cornersText(c.corners) });
+      this.detectLayer.append(outline, ...gridCells(c.grid).map((cell) => {
+        const r = residual.get(cell.id);
+        const poly = svgEl('polygon', { points: cell.quad.map((p) => p.join(',')).join(' '), class: `detected-cell${r > 0.1 ? ' poor' : ''}` });
+        const t = svgEl('title');
+        t.textContent = `${cell.id} (detected): ${Number.isFinite(r) ? `${(100 * r).toFixed(1)} % from the reference after a 3×3 fit` : ''}`;
+        poly.append(t);
+        poly.dataset.id = cell.id;
+        return poly;
+      }));
+    }
+    // The label sits above the chart's top edge (the edge nearer the image's top).
+    const xs = [0, 1, 2, 3].map((i) => c.corners[2 * i]), ys = [0, 1, 2, 3].map((i) => c.corners[2 * i + 1]);
+    this.detectLabel.setAttribute('x', Math.min(...xs));
+    this.detectLabel.setAttribute('y', Math.max(14 * scale, Math.min(...ys) - 22 * scale));
+    this.detectLabel.setAttribute('font-size', 13 * scale);
+    this.detectLabel.textContent = `${d.proposal ? 'detected' : 'in use: detected'} ${c.chart} · confidence ${c.confidence.toFixed(2)}`;
   }
 
   draw() {
     const c = this.corners;
-    this.outline.setAttribute('points', [0, 1, 2, 3].map((i) => `${c[2 * i]},${c[2 * i + 1]}`).join(' '));
+    this.outline.setAttribute('points', cornersText(c));
     this.outline.classList.toggle('crossed', this.refused === 'CORNERS_CROSSED');
     this.clipRect.setAttribute('width', this.width);
     this.clipRect.setAttribute('height', this.height);
@@ -155,7 +195,7 @@ export class CornerEditor {
     const key = JSON.stringify([this.layout, Array.from(c)]);
     if (!s && this.grid?.key !== key && this.width) this.placeGrid(key);
     const cells = s ? s.ids.map((id, i) => ({ id, quad: [0, 1, 2, 3].map((k) => [s.sample_quads[8 * i + 2 * k], s.sample_quads[8 * i + 2 * k + 1]]) }))
-      : this.refused || !this.grid ? [] : this.gridCells();
+      : this.refused || !this.grid ? [] : gridCells(this.grid);
     this.gridLayer.replaceChildren(...cells.map((cell) => {
       const id = cell.id;
       const flags = flagsById.get(id);
@@ -166,6 +206,7 @@ export class CornerEditor {
       poly.dataset.id = id;
       return poly;
     }));
+    this.drawDetected(scale);
     for (const g of this.handles) {
       g.querySelector('circle.ring').setAttribute('r', 9 * scale);
       g.querySelector('circle.hit').setAttribute('r', 16 * scale);

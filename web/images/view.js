@@ -1,7 +1,9 @@
 // Step 2: the chart RAW (plus optional dark frame and flat field), decoded in the worker; the
 // preview with four draggable corner handles and the patch grid; the per-patch table with flags,
-// re-sampled as the corners move. Emits 'sample'.
-import { h, field, select, showError, clearError, progressBar, fmt, fileBytes } from '../lib/ui.js';
+// re-sampled as the corners move; automatic chart detection (a new image takes the detected
+// corners; an image that already has corners gets the detected chart as a proposal to use or
+// ignore; "Detect again"). Emits 'sample'.
+import { h, field, select, showError, clearError, errorSlot, progressBar, fmt, fileBytes } from '../lib/ui.js';
 import { CornerEditor } from './corners.js';
 import { patchTable } from './patch_table.js';
 
@@ -53,6 +55,14 @@ export function mount(section, app) {
   editor.el.setAttribute('aria-describedby', 'corners-error');
   editor.el._errorSlot = cornerErr;
   const resetCorners = h('button', { type: 'button', onclick: () => { editor.reset(); } }, 'Reset corners');
+  // Automatic detection: what was found, and the buttons to use it or look again.
+  const detectText = h('p', { class: 'detect-text', 'aria-live': 'polite' });
+  const acceptBtn = h('button', { type: 'button', class: 'primary', hidden: true, onclick: () => useDetected() }, 'Use the detected corners');
+  const againBtn = h('button', { type: 'button', disabled: true, onclick: () => detect() }, 'Detect again');
+  const detectErr = errorSlot(againBtn);
+  const detectProgress = progressBar('Finding the chart');
+  const detectPanel = h('div', { class: 'detect-panel', dataset: { state: 'idle' } }, detectText, acceptBtn, againBtn, detectProgress.el);
+  let detection = null;  // {candidate, state: 'proposal' | 'in-use' | 'adjusted'}
   const tableBox = h('div', { class: 'table-box' });
   const sampleSummary = h('p', { class: 'summary', 'aria-live': 'polite' });
 
@@ -63,7 +73,7 @@ export function mount(section, app) {
       field('Sampled area per patch', areaIn, 'Fraction of each patch averaged (Abed et al.: central 50 %)'), resetCorners),
     h('p', { class: 'hint' }, 'Drag the four corner handles onto the chart\'s outer patch corners (A1 top-left). '
       + 'With the keyboard: Tab to a handle, arrow keys move it 1 pixel (Shift: 10).'),
-    h('div', { class: 'images-layout' }, h('div', {}, editor.el, cornerErr), h('div', {}, sampleSummary, tableBox)));
+    h('div', { class: 'images-layout' }, h('div', {}, detectPanel, detectErr, editor.el, cornerErr), h('div', {}, sampleSummary, tableBox)));
 
   // Drag and drop onto the zone (or anywhere on this step) sets the chart RAW.
   for (const ev of ['dragover', 'dragenter']) section.addEventListener(ev, (e) => { e.preventDefault(); drop.classList.add('over'); });
@@ -89,6 +99,7 @@ export function mount(section, app) {
     el.addEventListener('change', () => {
       syncLayout();
       editor.setSample(null);
+      if (detection) setDetection(null, 'idle', 'The layout changed: press “Detect again” to look for it.');
       app.save('layout', layoutOptions());
       app.save('sampleOptions', { area: Number(areaIn.value) });
       resample();
@@ -105,10 +116,12 @@ export function mount(section, app) {
       if (slot === 'chart') await app.save('example', undefined);
       // A new chart image of another size gets fresh corners; same size keeps them (same set-up).
       const img = app.derived.image;
-      if (slot === 'chart' && !(before && img.width === before.width && img.height === before.height && app.session.corners)) {
+      const fresh = slot === 'chart' && !(before && img.width === before.width && img.height === before.height && app.session.corners);
+      if (fresh) {
         await app.save('corners', undefined);
         editor.reset();
       }
+      if (slot === 'chart') await detect({ apply: fresh });
       await resample();
     }
   }
@@ -148,6 +161,7 @@ export function mount(section, app) {
         + calibrationText(slot, r.calibration);
       if (slot === 'chart') {
         app.derived.image = r;
+        againBtn.disabled = detectPanel.dataset.state === 'running';
         const m = r.metadata ?? {};
         const bits = [m.make, m.model, m.lens, m.iso && `ISO ${m.iso}`, m.shutter_s && `${fmtShutter(m.shutter_s)} s`,
           m.f_number && `f/${m.f_number}`, m.cfa_pattern && `${m.layout ?? ''} ${m.cfa_pattern}`, m.bits && `${m.bits} bit`, m.timestamp_iso].filter(Boolean);
@@ -190,9 +204,74 @@ export function mount(section, app) {
     return ensuring;
   }
 
+  // ---- automatic detection (worker handler: images/detect.js)
+  const TURN = { 0: 'upright', 90: 'turned 90° clockwise', 180: 'upside down', 270: 'turned 90° anticlockwise' };
+  const describe = (c) => `${chartName(c.chart)}, confidence ${fmt(c.confidence)}, `
+    + (c.orientation_resolved ? TURN[c.orientation] ?? `${c.orientation}°` : 'orientation unknown (check that handle 1 is on A1)');
+  const sameCorners = (a, b) => a.length === 8 && Array.from(a).every((v, i) => Math.abs(v - b[i]) < 1e-6);
+
+  /// Shows the detection state: the panel's text and buttons, the proposal on the editor.
+  function setDetection(candidate, state, text) {
+    detection = candidate ? { candidate, state } : null;
+    detectPanel.dataset.state = state;
+    if (candidate) detectPanel.dataset.confidence = candidate.confidence.toFixed(3); else delete detectPanel.dataset.confidence;
+    acceptBtn.hidden = state !== 'proposal';
+    againBtn.disabled = state === 'running' || !app.derived.image;
+    editor.setDetected(state === 'adjusted' ? null : candidate, { proposal: state === 'proposal' });
+    detectText.textContent = text ?? {
+      proposal: `Detected: ${candidate && describe(candidate)} — drawn dashed over the image. Use its corners, or keep yours.`,
+      'in-use': `Corners found automatically: ${candidate && describe(candidate)}. Drag the handles to correct them.`,
+      adjusted: `Corners found automatically (confidence ${candidate && fmt(candidate.confidence)}), then adjusted by hand.`,
+      running: 'Looking for the chart…',
+    }[state] ?? '';
+  }
+
+  /// Looks for the chosen layout in the chart image. apply: take the corners found (a new image);
+  /// otherwise they are shown as a proposal unless they are the corners in use. When nothing is
+  /// found the corners stay where they were and the reason is shown next to "Detect again".
+  let detectSeq = 0;
+  async function detect({ apply = false } = {}) {
+    const seq = ++detectSeq;
+    clearError(againBtn);
+    setDetection(null, 'running');
+    if (!(await ensureDecoded())) {
+      if (seq === detectSeq) setDetection(null, 'idle');
+      return null;
+    }
+    detectProgress.start('Finding the chart…');
+    try {
+      const { candidates } = await engine.call('detect', { layout: layoutOptions() }, { onProgress: detectProgress.update });
+      if (seq !== detectSeq) return null;
+      const c = candidates[0];
+      if (apply || sameCorners(editor.corners, c.corners)) useDetected(c);
+      else setDetection(c, 'proposal');
+      return c;
+    } catch (e) {
+      if (seq !== detectSeq || e.code === 'CANCELLED') return null;
+      setDetection(null, 'none', e.code === 'CHART_NOT_FOUND'
+        ? `No ${chartName(layoutSel.value)} found in this image; the corners were left where they were: drag them onto the chart.`
+        : 'Chart detection failed; the corners were left where they were.');
+      showError(againBtn, e, 'Chart detection');
+      return null;
+    } finally {
+      if (seq === detectSeq) {
+        detectProgress.done();
+        detectPanel.dataset.runs = Number(detectPanel.dataset.runs ?? 0) + 1;   // finished detections (for tests)
+      }
+    }
+  }
+  /// Takes the detected corners (the proposal's, or c's).
+  function useDetected(c = detection?.candidate) {
+    if (!c) return;
+    editor.setCorners(c.corners);
+    setDetection(c, 'in-use');
+    cornersChanged(editor.corners, true);
+  }
+
   let sampleSeq = 0;
   let timer = null;
   function cornersChanged(c, final) {
+    if (detection?.state === 'in-use' && !sameCorners(c, detection.candidate.corners)) setDetection(detection.candidate, 'adjusted');
     clearTimeout(timer);
     timer = setTimeout(() => { app.save('corners', Array.from(c)); resample(); }, final ? 0 : 120);
   }
@@ -254,7 +333,10 @@ export function mount(section, app) {
       if (f && slot !== 'chart') names[slot].textContent = `${f.name}`;
     }
     if (app.session['files.chart']) {
-      if (await ensureDecoded()) await resample();
+      if (await ensureDecoded()) {
+        await resample();
+        detect();   // a proposal (or the corners' own detection); runs in the worker's queue
+      }
     }
   }
 
@@ -280,5 +362,5 @@ export function mount(section, app) {
   engine.addEventListener('restart', () => { /* decodedGen is now stale; ensureDecoded() re-sends */ });
   syncLayout();
 
-  return { restore, resample, ensureDecoded, setFile, editor, inputs };
+  return { restore, resample, ensureDecoded, setFile, detect, editor, inputs };
 }

@@ -1,0 +1,20 @@
+// Worker handler of step 2: automatic chart detection (issue 12) in the decoded chart image
+// (state.raw.chart, its dark/flat applied). Reports the detector's stages as progress.
+import { reply, coded } from '../lib/reply.js';
+
+const STAGES = { segment: 'finding flat patches', group: 'grouping patches into grids', orient: 'placing the chart', refine: 'refining the corners' };
+
+export const handlers = {
+  /// detect({layout}) -> {candidates: [ChartCandidate + grid {layout, homography}]}, best first, for
+  /// the chosen layout (a custom grid: its geometry). Throws CHART_NOT_FOUND when there is none.
+  detect: (T, { layout = { chart: 'passport' } }, { state, progress }) => {
+    if (!state.raw?.chart) throw coded('no image decoded yet', 'NO_IMAGE');
+    const options = { charts: [layout.chart] };
+    if (layout.chart === 'custom') options.custom = layout;
+    progress(0, 'finding the chart');
+    const found = T.detectCharts(state.raw.chart, options, (stage, fraction) => progress(fraction, `finding the chart: ${STAGES[stage] ?? stage}`));
+    const grid = T.chartLayout(layout);
+    const candidates = found.map((c) => ({ ...c, corners: Array.from(c.corners), grid: { layout: grid, homography: T.homographyUnitSquare(c.corners) } }));
+    return reply({ candidates });
+  },
+};
