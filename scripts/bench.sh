@@ -4,11 +4,16 @@
 # Builds only the benchmark targets (assumes build/native and build/wasm were configured, e.g.
 # by scripts/build.sh). Figures are printed, never asserted. Optional: dcraw_emu (Debian package
 # libraw-bin) timings on the real RAW files, for scale.
+# usage: scripts/bench.sh [topic...]   e.g. `scripts/bench.sh detect` runs only bench_detect.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 export NODE_PATH=/usr/share/nodejs
 shared=${TRISTIM_SHARED_DATA:-$(cd .. && pwd)/shared/data}
 names=$(ls tests/bench/bench_*.cpp 2>/dev/null | xargs -n1 basename | sed 's/\.cpp$//')
+if [ $# -gt 0 ]; then
+  wanted=$(printf 'bench_%s\n' "${@#bench_}")
+  names=$(printf '%s\n' $names | grep -Fx "$wanted")
+fi
 [ -n "$names" ] || { echo "[bench] no tests/bench/bench_*.cpp"; exit 0; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
