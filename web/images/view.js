@@ -73,7 +73,7 @@ export function mount(section, app) {
       field('Sampled area per patch', areaIn, 'Fraction of each patch averaged (Abed et al.: central 50 %)'), resetCorners),
     h('p', { class: 'hint' }, 'Drag the four corner handles onto the chart\'s outer patch corners (A1 top-left). '
       + 'With the keyboard: Tab to a handle, arrow keys move it 1 pixel (Shift: 10).'),
-    h('div', { class: 'images-layout' }, h('div', {}, detectPanel, detectErr, editor.el, cornerErr), h('div', {}, sampleSummary, tableBox)));
+    h('div', { class: 'images-layout' }, h('div', {}, editor.el, cornerErr, detectPanel, detectErr), h('div', {}, sampleSummary, tableBox)));
 
   // Drag and drop onto the zone (or anywhere on this step) sets the chart RAW.
   for (const ev of ['dragover', 'dragenter']) section.addEventListener(ev, (e) => { e.preventDefault(); drop.classList.add('over'); });
