@@ -8,6 +8,7 @@
 #include "types.hpp"
 
 using namespace tristim;
+using emscripten::val;
 using emscripten::value_object;
 using wasm::def;
 

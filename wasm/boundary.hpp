@@ -164,9 +164,15 @@ struct Conv<std::array<T, N>> {
   static std::array<T, N> from(const val& v) {
     std::array<T, N> out{};
     if (absent(v)) return out;
-    const auto d = vector_from<double>(v);
-    if (d.size() != N) refuse("expected " + std::to_string(N) + " numbers, got " + std::to_string(d.size()));
-    for (size_t i = 0; i < N; ++i) out[i] = static_cast<T>(d[i]);
+    if constexpr (std::is_arithmetic_v<T>) {
+      const auto d = vector_from<double>(v);
+      if (d.size() != N) refuse("expected " + std::to_string(N) + " numbers, got " + std::to_string(d.size()));
+      for (size_t i = 0; i < N; ++i) out[i] = static_cast<T>(d[i]);
+    } else {  // an Array of N elements, each converted as a T (per-channel curves, ranges)
+      if (type_of(v) != "object" || v["length"].isUndefined() || v["length"].as<size_t>() != N)
+        refuse("expected an array of " + std::to_string(N) + " elements");
+      for (size_t i = 0; i < N; ++i) out[i] = Conv<T>::from(v[i]);
+    }
     return out;
   }
 };
