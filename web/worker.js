@@ -5,12 +5,13 @@
 import createTristim from './tristim.mjs';
 import { reply } from './lib/reply.js';
 import * as reference from './reference/handlers.js';
+import * as surface from './surface/handlers.js';
 import * as images from './images/handlers.js';
 import * as fit from './fit/handlers.js';
 import * as apply from './apply/handlers.js';
 import * as exporter from './export/handlers.js';
 
-const FEATURES = [reference, images, fit, apply, exporter];
+const FEATURES = [reference, surface, images, fit, apply, exporter];
 
 const handlers = {
   hello: (T) => ({ result: { version: T.version() } }),
@@ -18,6 +19,7 @@ const handlers = {
   catalog: (T) => reply({
     charts: T.listCharts(), illuminants: T.listIlluminants(), cameras: T.listCameras(), models: T.listModels(),
     objectives: T.listObjectives(), linearisations: T.listLinearisations(), surfaces: T.listSurfaceCorrections(),
+    surfacePresets: T.listSurfacePresets(),
     layouts: Object.fromEntries(T.listChartLayouts().map((id) => [id, id === 'custom' ? null : T.chartLayout({ chart: id })])),
   }),
 };
