@@ -331,7 +331,8 @@ export function mount(section, app) {
   }
 
   renderForm();
-  const ready = (async () => {
+  const ready = (async () => {   // a kept second measurement is compared again once the reference is back
+    await app.views.reference?.ready;
     if (app.session.surfaceCompare) await runCompare(app.session.surfaceCompare);
   })();
   return { preview, runCompare, loadExample, runTable4, ready, choice: () => choice, controls: { methodSel, measSel, capSel, fileInput, exampleBtn, patchInput } };
