@@ -18,10 +18,13 @@ struct FitOutcome {
   PatchMatrix linear_RGB, reference_XYZ;
   ModelEvaluation evaluation;
   std::string profile;
+  MethodChoice surface;          // the correction the reference went through (Phase II: the fitted one)
+  std::string surface_status;
 };
 FitOutcome outcome(const Recipe& recipe, const TrainingSet& training) {
   const Characterisation c = characterise(recipe, training);
-  return {c.recipe, training.ids, training.excluded, c.linear_RGB, training.reference_XYZ, c.evaluation, profile_to_json(c.profile)};
+  return {c.recipe, training.ids, training.excluded, c.linear_RGB, c.reference_XYZ, c.evaluation, profile_to_json(c.profile),
+          c.surface, c.surface_status};
 }
 /// fitSample(recipe, sample, reference): a chart sample paired with a reference by patch id.
 FitOutcome fit_sample(const Recipe& recipe, const ChartSample& sample, const ReferenceChart& reference) {
@@ -46,7 +49,7 @@ EMSCRIPTEN_BINDINGS(tristim_recipe) {
   { using S = Recipe; value_object<S>("Recipe") FIELD(version) FIELD(reference) FIELD(capture) FIELD(sampling)
       FIELD(linearisation) FIELD(surface) FIELD(characterisation) FIELD(evaluation); }
   { using S = FitOutcome; value_object<S>("FitOutcome") FIELD(recipe) FIELD(ids) FIELD(excluded) FIELD(linear_RGB)
-      FIELD(reference_XYZ) FIELD(evaluation) FIELD(profile); }
+      FIELD(reference_XYZ) FIELD(evaluation) FIELD(profile) FIELD(surface) FIELD(surface_status); }
 
   def<&fit_sample>("fitSample");
   def<&fit_tables>("fitTables");

@@ -5,13 +5,14 @@
 import createTristim from './tristim.mjs';
 import { reply } from './lib/reply.js';
 import * as reference from './reference/handlers.js';
+import * as surface from './surface/handlers.js';
 import * as images from './images/handlers.js';
 import * as detect from './images/detect.js';
 import * as fit from './fit/handlers.js';
 import * as apply from './apply/handlers.js';
 import * as exporter from './export/handlers.js';
 
-const FEATURES = [reference, images, detect, fit, apply, exporter];
+const FEATURES = [reference, surface, images, detect, fit, apply, exporter];
 
 const handlers = {
   hello: (T) => ({ result: { version: T.version() } }),
@@ -19,6 +20,7 @@ const handlers = {
   catalog: (T) => reply({
     charts: T.listCharts(), illuminants: T.listIlluminants(), cameras: T.listCameras(), models: T.listModels(),
     objectives: T.listObjectives(), linearisations: T.listLinearisations(), surfaces: T.listSurfaceCorrections(),
+    surfacePresets: T.listSurfacePresets(),
     layouts: Object.fromEntries(T.listChartLayouts().map((id) => [id, id === 'custom' ? null : T.chartLayout({ chart: id })])),
   }),
 };

@@ -11,7 +11,10 @@ export const handlers = {
   fit: (T, { recipe, sample, reference, heldOut }, { progress }) => {
     progress(NaN, `fitting ${recipe.characterisation.model}`);
     if (heldOut) recipe.evaluation.held_out_digest = T.trainingDigest(heldOut.ids, heldOut.rgb, heldOut.xyz);
-    const out = T.fitSample(recipe, sample, reference);
+    // A built-in chart with a surface correction: the reference is the recipe's (the chart's
+    // spectra through the surface stage), so the profile is trained on what the recipe records.
+    const corrected = recipe.reference.chart !== 'file' && (recipe.surface?.method ?? 'none') !== 'none';
+    const out = T.fitSample(recipe, sample, corrected ? T.recipeReference(recipe) : reference);
     out.display = displayOf(T, out.reference_XYZ, out.evaluation.fit.fitted, out.recipe.characterisation.lab_white);
     if (heldOut) out.held_out = { ...T.evaluateProfile(out.profile, heldOut.rgb, heldOut.xyz, heldOut.ids).metrics, set: heldOut.name };
     return reply(out);

@@ -75,13 +75,16 @@ export function mount(section, app) {
     const s = app.derived.sample, r = app.derived.reference;
     if (!s || !r) { dataNote.textContent = 'Fitting needs a reference (step 1) and a sampled chart (step 2).'; return null; }
     const d = pairData(s, r, { exclude });
+    const surface = app.session.surface, corrected = surface && surface.method !== 'none' && !r.settings.referenceFile;
     dataNote.textContent = `${d.ids.length} patches pair sampled RGB with reference XYZ`
+      + (corrected ? ` (the reference corrected for the capture geometry: ${surface.method}, step 1b)` : '')
       + (d.excluded.length ? `; left out as flagged: ${d.excluded.map((e) => e.id).join(', ')}` : '')
       + (d.missing.length ? `; not in the reference: ${d.missing.join(', ')}` : '') + '.';
     return d;
   }
   app.on('sample', describeData);
   app.on('reference', describeData);
+  app.on('surface', describeData);
   excludeCb.addEventListener('change', describeData);
 
   /// The held-out set {name, ids, rgb, xyz} from a patch file, paired with the reference by id.
@@ -156,7 +159,8 @@ export function mount(section, app) {
             recipe: fit.recipe, white: fit.recipe.characterisation.lab_white, ids: fit.ids, rgb: fit.linear_RGB, xyz: fit.reference_XYZ,
             fit, heldOut: fit.held_out ?? null, referenceText: referenceText(ref), camera: cameraOf(app.derived.image?.metadata) });
           const { status, message } = fit.evaluation.fit;
-          log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}`));
+          const joint = jointSurface(recipe.surface, ref.settings) ? `; surface fitted jointly (Phase II): ${choiceText(fit.surface)} (${fit.surface_status})` : '';
+          log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}${joint}`));
         } catch (e) {
           if (e.code === 'CANCELLED') throw e;
           log.append(h('li', { class: 'error', dataset: { code: e.code } }, `${label}: ${e.message} (${e.code})`));
@@ -196,7 +200,11 @@ export function mount(section, app) {
       capture: { dark_frames: s['files.dark'] ? s['files.dark'].list?.length ?? 1 : 0, flat_field: flat && !radial, falloff: flat && radial },
       sampling: { layout: s.layout ?? { chart: 'passport' }, corners: sample.corners, area: s.sampleOptions?.area ?? 0.5,
         exclude: choice.excludeAllFlagged ? [] : data.excluded.map((e) => e.id), exclude_flagged: !!choice.excludeAllFlagged },
-      characterisation: { model, objective: choice.objectiveChoices[objective], white_patch: choice.preserveWhite ? brightestPatch(data) : '', lab_white: ref.white },
+      // the surface step's correction of a built-in chart's spectra (an uploaded reference stays as read)
+      surface: rs.referenceFile ? { method: 'none' } : (s.surface ?? { method: 'none' }),
+      // a joint surface fit (Phase II) is anchored to the chart's white patch, so it sets one
+      characterisation: { model, objective: choice.objectiveChoices[objective],
+        white_patch: choice.preserveWhite || jointSurface(s.surface, rs) ? brightestPatch(data) : '', lab_white: ref.white },
       evaluation: { leave_one_out: true },
     };
   }
@@ -209,6 +217,11 @@ export function mount(section, app) {
   describeData();
   return { run, runDefault, cancel: () => cancelBtn.click(), runBtn };
 }
+
+/// True when the surface stage is fitted in the fit step (Phase II, a built-in chart only).
+const jointSurface = (surface, rs) => !rs.referenceFile && surface?.settings?.fit === 'joint';
+/// "scaler-offset: mu=0.9641, rho=0.03673" (the numbers to 4 significant digits).
+const choiceText = (c) => `${c.method}: ${Object.entries(c.parameters ?? {}).map(([k, v]) => `${k}=${Number(v).toPrecision(4)}`).join(', ')}`;
 
 /// "Make Model" of RAW metadata ('' when unknown).
 export const cameraOf = (m) => [m?.make, m?.model].filter(Boolean).join(' ');

@@ -5,6 +5,7 @@
 
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
+#include "tristim/surface/joint.hpp"
 #include "tristim/surface/surface.hpp"
 
 namespace tristim {
@@ -39,6 +40,55 @@ TrainingSet finish(std::vector<std::string> ids, std::vector<Vec3> rgb, std::vec
     t.reference_XYZ.row(i) = xyz[i].transpose();
   }
   return t;
+}
+
+bool joint_surface(const MethodChoice& surface) {
+  const auto it = surface.settings.find("fit");
+  return it != surface.settings.end() && it->second == "joint";
+}
+
+// Phase II (Abed, Berns & Masaoka 2013, Fig. 3) on the training set: the surface coefficients
+// jointly with a 3×3 anchored to the white patch; returns the training reference XYZ of the
+// fitted correction and records it in c.surface.
+PatchMatrix joint_surface_XYZ(Characterisation& c, const TrainingSet& t) {
+  const Recipe& r = c.recipe;
+  if (r.reference.chart == "file")
+    throw Error(ErrorCode::InvalidArgument, "the joint surface fit (Phase II) corrects a built-in chart's spectra; "
+                                            "the reference is a file");
+  const std::string white = normalise_patch_id(r.characterisation.white_patch);
+  if (white.empty())
+    throw Error(ErrorCode::IllPosed, "the joint surface fit (Phase II) is anchored to a white reference: set the "
+                                     "characterisation's white_patch (the chart's white), or the fit would shrink "
+                                     "the reference to lower its error");
+  const SpectralData all = chart_reflectances(r.reference.chart);
+  SpectralData mine{all.wavelengths, {}, {}, all.linear};
+  int w = -1;
+  for (size_t i = 0; i < t.ids.size(); ++i) {
+    size_t k = 0;
+    while (k < all.names.size() && normalise_patch_id(all.names[k]) != t.ids[i]) ++k;
+    if (k == all.names.size())
+      throw Error(ErrorCode::PatchMismatch, "patch '" + t.ids[i] + "' has no spectrum in chart " + r.reference.chart);
+    mine.names.push_back(t.ids[i]);
+    mine.values.push_back(all.values[k]);
+    if (t.ids[i] == white) w = static_cast<int>(i);
+  }
+  if (w < 0) throw Error(ErrorCode::UnknownId, "white patch '" + white + "' is not in the training set");
+  const SpectralData illuminant = illuminant_spd(r.reference.illuminant);
+  const Observer observer = parse_observer(r.reference.observer);
+  const ReferenceChart measured = reference_from_spectra(mine, illuminant, observer);
+  JointFitOptions o;
+  o.illuminant = illuminant;
+  o.observer = observer;
+  o.white_RGB = c.linear_RGB.row(w).transpose();
+  o.white_reflectance = measured.XYZ[w][1] / measured.white[1];  // the white patch taken as flat
+  const JointFitResult j = fit_surface_joint_Abed2013(r.surface, c.linear_RGB, mine, o);
+  c.surface = j.choice;
+  c.surface.settings["fit"] = "fixed";
+  c.surface_status = j.status + (j.message.empty() ? "" : ": " + j.message);
+  const ReferenceChart corrected = reference_from_spectra(correct_surface(c.surface, mine), illuminant, observer);
+  PatchMatrix XYZ(static_cast<Eigen::Index>(t.ids.size()), 3);
+  for (size_t i = 0; i < t.ids.size(); ++i) XYZ.row(static_cast<Eigen::Index>(i)) = corrected.XYZ[i].transpose();
+  return XYZ;
 }
 
 }  // namespace
@@ -101,10 +151,13 @@ Characterisation characterise(const Recipe& in, const TrainingSet& t) {
     data.reflectances = correct_surface(c.recipe.surface, chart_reflectances(c.recipe.reference.chart));
   c.linearisation = fit_linearisation(c.recipe.linearisation, data);
   c.linear_RGB = linearise(c.linearisation, t.camera_RGB);
-  const FitOptions options = recipe_fit_options(c.recipe, t.ids, c.linear_RGB, t.reference_XYZ, c.white_index);
-  c.evaluation = evaluate_model(c.recipe.characterisation.model, c.linear_RGB, t.reference_XYZ, options,
+  c.surface = c.recipe.surface;
+  c.reference_XYZ = joint_surface(c.recipe.surface) ? joint_surface_XYZ(c, t) : t.reference_XYZ;
+  const PatchMatrix& reference_XYZ = c.reference_XYZ;
+  const FitOptions options = recipe_fit_options(c.recipe, t.ids, c.linear_RGB, reference_XYZ, c.white_index);
+  c.evaluation = evaluate_model(c.recipe.characterisation.model, c.linear_RGB, reference_XYZ, options,
                                 c.white_index, c.recipe.evaluation.leave_one_out);
-  c.profile = make_profile(c.evaluation, options, t.ids, c.linear_RGB, t.reference_XYZ,
+  c.profile = make_profile(c.evaluation, options, t.ids, c.linear_RGB, reference_XYZ,
                            c.white_index >= 0 ? t.ids[c.white_index] : "",
                            "");
   c.profile.observer = c.recipe.reference.observer == "1964" ? "CIE 1964 10°" : "CIE 1931 2°";

@@ -113,6 +113,21 @@ OptionSpec spectral_option() {
   return o;
 }
 
+// Where the coefficients come from (Phase II as an option of the normal fit path).
+OptionSpec fit_option() {
+  OptionSpec o;
+  o.name = "fit";
+  o.type = "choice";
+  o.label = "Coefficients";
+  o.default_text = "fixed";
+  o.choices = {"fixed", "joint"};
+  o.description =
+      "fixed: applied as given; joint: fitted by the fit step jointly with a 3×3 matrix anchored to the chart's white "
+      "patch (Phase II, Abed et al. 2013 Fig. 3), these values being the start and, for Saunderson, the fixed "
+      "instrument geometry";
+  return o;
+}
+
 SpectralData apply_rows(const SpectralData& reflectances, const MethodChoice& choice) {
   check_reflectances(reflectances, "reflectances to correct");
   const PointCorrection::Kind kind = correction_kind(choice.method);
@@ -133,14 +148,14 @@ std::vector<SurfaceMethod> build_table() {
   std::vector<SurfaceMethod> t;
   t.push_back({{"none", "None (reflectances as measured)", "", {}}, apply_rows, {}});
   t.push_back({{"scaler", "Scaler (R' = μR)", abed + "Phase I 'scaler'",
-                {number_option("mu", "μ", 1, 0, 2, mu_text), spectral_option()}},
+                {number_option("mu", "μ", 1, 0, 2, mu_text), spectral_option(), fit_option()}},
                apply_rows, {"mu"}});
   t.push_back({{"offset", "Offset (R' = R + ρ)", abed + "Phase I 'offset'",
-                {number_option("rho", "ρ", 0, -0.5, 0.5, rho_text), spectral_option()}},
+                {number_option("rho", "ρ", 0, -0.5, 0.5, rho_text), spectral_option(), fit_option()}},
                apply_rows, {"rho"}});
   t.push_back({{"scaler-offset", "Scaler-offset (R' = μR + ρ)", abed + "eq (5), Appendix B",
                 {number_option("mu", "μ", 1, 0, 2, mu_text), number_option("rho", "ρ", 0, -0.5, 0.5, rho_text),
-                 spectral_option()}},
+                 spectral_option(), fit_option()}},
                apply_rows, {"mu", "rho"}});
   // Defaults: measurement and capture both 45°:0° (the identity). k1, k2 stop at 0.99: at 1 every
   // patch would read the same.
@@ -154,7 +169,8 @@ std::vector<SurfaceMethod> build_table() {
                  number_option("k_ins", "k_ins (measurement)", g.k_ins, 0, 1, kins_text),
                  number_option("k1_capture", "k1' (capture)", g.k1, 0, 0.99, k1_text),
                  number_option("k2_capture", "k2' (capture)", g.k2, 0, 0.99, k2_text),
-                 number_option("k_ins_capture", "k_ins' (capture)", g.k_ins, 0, 1, kins_text), spectral_option()}},
+                 number_option("k_ins_capture", "k_ins' (capture)", g.k_ins, 0, 1, kins_text), spectral_option(),
+                 fit_option()}},
                apply_rows, {"k1", "k2", "k_ins", "k1_capture", "k2_capture", "k_ins_capture"}});
   return t;
 }
@@ -313,7 +329,7 @@ std::string surface_choice_text(const MethodChoice& choice) {
     sep = ",";
   }
   for (const auto& [name, value] : choice.settings) {
-    if (value.empty()) continue;  // an empty text option is its default
+    if (value.empty() || (name == "fit" && value == "fixed")) continue;  // the defaults
     s += sep + name + "=" + value;
     sep = ",";
   }

@@ -45,12 +45,21 @@ struct Characterisation {
   Recipe recipe;                 ///< completed
   Linearisation linearisation;   ///< the fitted linearisation stage (identity for RAW)
   PatchMatrix linear_RGB;        ///< the training camera RGB after linearisation
+  PatchMatrix reference_XYZ;     ///< the training reference XYZ as fitted (after a joint surface fit)
   ModelEvaluation evaluation;    ///< fit, training and leave-one-out metrics
   int white_index = -1;          ///< row of the preserved white patch, or -1
+  /// The surface correction the training reference went through: the recipe's, or, when its
+  /// `fit` option is "joint", the Phase II result (fit "fixed", so it reproduces that reference).
+  MethodChoice surface{"none", {}, {}};
+  std::string surface_status;    ///< Phase II only: "ok", "at_bound", "iteration_limit" (+ message)
   Profile profile;               ///< embeds the recipe
 };
 
 /// Runs the linearisation, characterisation and evaluation stages of `recipe` on `training`.
+/// A surface stage with fit "joint" (Phase II, surface/joint.hpp) is fitted here, on the linear
+/// RGB, jointly with a 3×3 anchored to the white patch (characterisation.white_patch, required:
+/// it stands in for the paper's PTFE, its reflectance taken as flat at its measured Y/Y_white);
+/// the training reference XYZ are then those of the fitted correction. Needs a built-in chart.
 Characterisation characterise(const Recipe& recipe, const TrainingSet& training);
 
 }  // namespace tristim

@@ -16,6 +16,10 @@
 // coefficients in the order above), e.g. "400/1.02/-0.01;410/1.01/-0.012". Between listed
 // wavelengths the coefficients are interpolated linearly, outside they are held constant; when
 // `spectral` is set it replaces the scalar options.
+// Every row but `none` also has the choice option `fit`: "fixed" (the default: the coefficients
+// are applied as given) or "joint" (Phase II in the fit step: characterise() fits the coefficients
+// jointly with a 3×3 anchored to the chart's white patch, joint.hpp, starting from the given
+// values; correct_surface itself always applies the values as given).
 #pragma once
 #include <string>
 #include <vector>
