@@ -75,6 +75,7 @@ test('surface: correction preview, Phase I ranking of the example, the choice in
     await page.click('#step-surface table.surface-ranking tr[data-method="scaler-offset"] button');
     const fitted = fits['scaler-offset'].choice;
     await page.waitForFunction((mu) => window.tristim.session.surface?.parameters?.mu === mu, fitted.parameters.mu);
+    if (settings.chart !== 'sg140-2005') assert.match(await page.textContent('#step-surface [data-role="surface-use-note"]'), /fitted on sg140-2005; step 1's chart is/);
     await step(page, 'fit');
     const results = await page.evaluate(() => window.tristim.views.fit.run());
     assert.ok(results?.length > 0, `the fit ran: ${await page.textContent('#step-fit .fit-log')} ${await page.textContent('#fit-error')}`);

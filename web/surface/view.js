@@ -53,6 +53,7 @@ export function mount(section, app) {
   const progress = progressBar('Fitting surface corrections');
   const rankBox = h('div', { class: 'table-box' });
   const rankPlots = h('div', { class: 'plot-box' });
+  const useNote = h('p', { class: 'unavailable', role: 'status', hidden: true, dataset: { role: 'surface-use-note' } });
 
   // Simulated Table IV
   const cameraSel = select(asOptions(app.catalog.cameras), 'Nikon_D850');
@@ -76,7 +77,7 @@ export function mount(section, app) {
       + '(bounded NLopt, Fig. 6 of the paper); CIEDE2000 before and after under the step-1 illuminant and observer.'),
     h('div', { class: 'controls' }, field('Second measurement (spectral CSV)', fileInput), exampleBtn,
       field('from λ (nm)', rangeMin), field('to λ (nm)', rangeMax)),
-    compareState, progress.el, rankBox, rankPlots,
+    compareState, progress.el, useNote, rankBox, rankPlots,
     h('h3', {}, 'Table IV by simulation: five methods, trained on one chart, tested on a matte chart'),
     h('p', { class: 'hint' }, 'No capture-geometry measurement of a real chart is at hand, so the virtual camera renders the paper\'s experiment: '
       + 'instrument Eye-one 45°:0°, capture a diffuse booth, the Table III coefficients of each chart; Phase II fits (scaler-offset and Saunderson '
@@ -227,7 +228,13 @@ export function mount(section, app) {
       h('thead', {}, h('tr', {}, head.map((t) => h('th', { scope: 'col' }, t)))),
       h('tbody', {}, fits.map((f) => {
         const use = h('button', { type: 'button' }, 'Use');
-        use.addEventListener('click', () => { Object.assign(choice, JSON.parse(JSON.stringify(f.choice))); methodSel.value = choice.method; syncPresetsFromChoice(); renderForm(); changed(); });
+        use.addEventListener('click', () => {
+          Object.assign(choice, JSON.parse(JSON.stringify(f.choice))); methodSel.value = choice.method; syncPresetsFromChoice(); renderForm(); changed();
+          const mine = reference()?.settings.chart;
+          useNote.hidden = !mine || mine === compare.chart;
+          useNote.textContent = `These coefficients were fitted on ${compare.chart}; step 1's chart is ${mine}. Surface coefficients depend on the material `
+            + '(gloss, medium): they carry over only to a chart with the same surface (Abed et al. 2013, Table III).';
+        });
         const label = byId[f.choice.method]?.label ?? f.choice.method;
         const tr = h('tr', { dataset: { method: f.choice.method }, class: f.choice.method === compare.selected ? 'selected' : null,
           title: 'Click to plot this correction below' });
