@@ -167,6 +167,27 @@ int main() {
       }
   }
 
+  {
+    // Issue 13: `tristim compare` on the Passport patches, every model x objective with
+    // leave-one-out (51 rows; natively the rows are spread over the hardware threads).
+    PatchMatrix prgb, pxyz;
+    std::printf("\n== compare: Passport patches, every model x objective with leave-one-out (best of 3) ==\n");
+    if (!read_passport(prgb, pxyz)) std::printf("  shared data missing: skipped\n");
+    else {
+      for (const char* objs : {"ls", "psm", "de2000", "all"}) {
+        std::vector<Objective> ob;
+        if (std::string(objs) == "all") ob = {Objective::LeastSquares, Objective::PatternSearch, Objective::DeltaE2000};
+        else ob = {objective_from_id(objs)};
+        std::size_t n_rows = 0;
+        const double t = best_ms(3, [&] { n_rows = compare_models(prgb, pxyz, FitOptions{}, {}, ob).size(); });
+        std::printf("  %-7s %3zu rows %10.1f ms\n", objs, n_rows, t);
+        std::printf("BENCH compare_passport %s %.1f\n", objs, t);
+      }
+      std::printf("CASE compare_passport tristim compare on 24 Passport patches, every model x objective with "
+                  "leave-one-out\n");
+    }
+  }
+
   std::printf("\n== leave-one-out, 140 patches, ls (best of 3) ==\n");
   for (const char* id : {"matrix-3x3", "Finlayson2015-2", "Cheung2004-20"}) {
     const double t = best_ms(3, [&] { (void)leave_one_out(id, rgb, xyz); });

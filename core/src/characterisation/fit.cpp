@@ -1,5 +1,5 @@
-// Fitting: least squares (QR), Guarnera's pattern search (Algorithm 2), mean CIEDE2000 (NLopt), RMS
-// CIEDE2000 (Levenberg–Marquardt), optional white-point preservation (equality constraint, null-space parametrisation).
+// Fitting: least squares (QR), Guarnera's pattern search (Algorithm 2), mean CIEDE2000 (reweighted
+// Levenberg–Marquardt; NLopt on request), RMS CIEDE2000 (Levenberg–Marquardt), optional white-point preservation (equality constraint, null-space parametrisation).
 #include <nlopt.h>
 
 #include <Eigen/Dense>
@@ -407,6 +407,91 @@ void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOption
   ++out.evaluations;
 }
 
+// The mean loss Σ w_i ΔE_i / Σ w_i is a sum of Euclidean norms, ΔE_i = ‖q_i‖ with q_i the three
+// squares of de2000_squares (J_i their Jacobian rows). Minimised by a reweighted, damped Gauss–Newton:
+// at x, with e_i = max(‖q_i‖, δ) and u_i = q_i / e_i, the gradient is g = Σ (w_i / e_i) J_iᵀ q_i, and
+// the curvature of ‖q_i + J_i h‖ at h = 0 is J_iᵀ (I − u_i u_iᵀ) J_i / e_i (Newton: no curvature
+// along q_i), whereas Weiszfeld's iteratively reweighted least squares (Beck & Sabach 2015, "Weiszfeld's
+// method: old and new results", JOTA 164) uses J_iᵀ J_i / e_i, a majoriser that converges linearly.
+// We take half the radial term, H = Σ (w_i / e_i) J_iᵀ (I − ½ u_i u_iᵀ) J_i: positive definite like
+// Weiszfeld's, and on the Passport patches 2–5× fewer iterations to the same minimum (within 1e-5
+// ΔE00 of a run with xtol 1e-12, ftol 1e-15); the pure Newton curvature stalls at the loss's kinks
+// (patches fitted exactly). Steps (H + μI) h = −g; gain ratio on the mean itself against the model's
+// decrease −(gᵀh + ½ hᵀHh); damping and stopping tests as levenberg_marquardt (Madsen, Nielsen &
+// Tingleff 2004, Algorithm 3.16). δ = 1e-9 ΔE00 keeps weights finite at an exactly fitted patch.
+// Started from least squares, unbounded; evaluations counted as levenberg_marquardt.
+void reweighted_lm(const Problem& pr, const De2000Data& d, const FitOptions& options, std::vector<double>& x,
+                   De2000Outcome& out) {
+  const int nvar = static_cast<int>(x.size());
+  const Eigen::Index n = pr.n, m = 3 * n;
+  const int max_iter = options.de2000.max_evaluations > 0 ? std::max(1, options.de2000.max_evaluations / 4) : 500;
+  const double xtol = options.de2000.xtol_rel, ftol = options.de2000.ftol_rel;
+  constexpr double delta = 1e-9;
+  De2000Data du = d;  // unweighted residuals: q_i itself
+  du.w.assign(n, 1.0);
+  Eigen::VectorXd r(m), r_new(m), h(nvar), g(nvar), x_new(nvar), a(n);
+  Eigen::MatrixXd J(m, nvar), A(nvar, nvar), Am(nvar, nvar), WJ(m, nvar), WG(m, nvar);
+  Eigen::Map<Eigen::VectorXd> xv(x.data(), nvar);
+  auto loss = [&](const Eigen::VectorXd& res) {  // Σ w_i ‖q_i‖ (not yet divided by Σ w)
+    double s = 0;
+    for (Eigen::Index i = 0; i < n; ++i) s += d.w[i] * res.segment<3>(3 * i).norm();
+    return s;
+  };
+  auto linearise = [&]() {
+    de2000_residuals(pr, du, x.data(), r, &J);
+    out.evaluations += 4;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Vec3 q = r.segment<3>(3 * i);
+      const double e = std::max(q.norm(), delta);
+      a[i] = d.w[i] / e;
+      const Vec3 u = q / e;
+      const Mat3 P = Mat3::Identity() - 0.5 * u * u.transpose();
+      WJ.middleRows<3>(3 * i) = a[i] * P * J.middleRows<3>(3 * i);
+      WG.middleRows<3>(3 * i) = a[i] * J.middleRows<3>(3 * i);
+    }
+    A.noalias() = J.transpose() * WJ;
+    g.noalias() = WG.transpose() * r;
+  };
+  linearise();
+  double S = loss(r);
+  double mu = 1e-3 * A.diagonal().maxCoeff(), nu = 2.0;
+  int k = 0;
+  bool converged = !(mu > 0) || g.lpNorm<Eigen::Infinity>() <= 1e-12 * (1.0 + S);
+  while (!converged && k < max_iter) {
+    ++k;
+    Am = A;
+    Am.diagonal().array() += mu;
+    h = Am.ldlt().solve(-g);
+    if (!h.allFinite()) break;
+    if (h.norm() <= xtol * (xv.norm() + xtol)) {
+      converged = true;
+      break;
+    }
+    x_new = xv + h;
+    de2000_residuals(pr, du, x_new.data(), r_new, nullptr);
+    ++out.evaluations;
+    const double S_new = loss(r_new);
+    const double predicted = -(g.dot(h) + 0.5 * h.dot(A * h));  // decrease of the majoriser
+    const double rho = predicted > 0 ? (S - S_new) / predicted : -1.0;
+    if (rho > 0 && S_new < S) {
+      const bool small_decrease = S - S_new <= ftol * S;
+      xv = x_new;
+      S = S_new;
+      linearise();
+      mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
+      nu = 2.0;
+      converged = small_decrease || g.lpNorm<Eigen::Infinity>() <= 1e-12 * (1.0 + S);
+    } else {
+      mu *= nu;
+      nu *= 2.0;
+    }
+  }
+  out.iterations = k;
+  out.hit_limit = !converged && k >= max_iter;
+  out.f = de2000_cost(pr, d, x.data());  // the reported mean, from delta_E_CIE2000 as every path
+  ++out.evaluations;
+}
+
 De2000Outcome minimise_de2000(const Problem& pr, const FitOptions& options, Eigen::MatrixXd& z) {
   De2000Outcome out;
   const int nvar = pr.q * 3;
@@ -463,14 +548,23 @@ De2000Outcome minimise_de2000(const Problem& pr, const FitOptions& options, Eige
       for (int j = 0; j < pr.q; ++j) z(j, c) = x[c * pr.q + j];
     return out;
   }
+  if (alg == "irls" || alg == "auto") {
+    if (d.rms)
+      throw Error(ErrorCode::InvalidArgument,
+                  "CIEDE2000 objective: algorithm 'irls' minimises the mean; the RMS loss uses 'lm'");
+    reweighted_lm(pr, d, options, x, out);
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < pr.q; ++j) z(j, c) = x[c * pr.q + j];
+    return out;
+  }
   nlopt_algorithm a;
-  if (alg == "bobyqa" || alg == "auto") a = NLOPT_LN_BOBYQA;
+  if (alg == "bobyqa") a = NLOPT_LN_BOBYQA;
   else if (alg == "sbplx") a = NLOPT_LN_SBPLX;
   else if (alg == "newuoa") a = NLOPT_LN_NEWUOA_BOUND;
   else if (alg == "praxis") a = NLOPT_LN_PRAXIS;
   else if (alg == "cobyla") a = NLOPT_LN_COBYLA;
   else if (alg == "neldermead") a = NLOPT_LN_NELDERMEAD;
-  else throw Error(ErrorCode::UnknownId, "CIEDE2000 objective: unknown algorithm '" + alg + "' (auto, lm, bobyqa, sbplx, newuoa, praxis, cobyla, neldermead)");
+  else throw Error(ErrorCode::UnknownId, "CIEDE2000 objective: unknown algorithm '" + alg + "' (auto, lm, irls, bobyqa, sbplx, newuoa, praxis, cobyla, neldermead)");
   nlopt_opt opt = nlopt_create(a, static_cast<unsigned>(nvar));
   if (!opt) throw Error(ErrorCode::FitFailed, "NLopt could not create the optimiser");
   nlopt_set_min_objective(opt, nlopt_objective, &d);

@@ -40,9 +40,9 @@ std::vector<ObjectiveMethod> build_table() {
   alg.type = "choice";
   alg.label = "Algorithm";
   alg.default_text = de.algorithm;
-  alg.choices = {"auto", "lm", "bobyqa", "sbplx", "newuoa", "praxis", "cobyla", "neldermead"};
-  alg.description = "auto: Levenberg-Marquardt for the RMS loss, NLopt BOBYQA for the mean";
-  t.push_back({{"de2000", "CIEDE2000, mean or RMS (NLopt BOBYQA / Levenberg-Marquardt)", "CIEDE2000 under the stated white (CIE 142-2001)",
+  alg.choices = {"auto", "lm", "irls", "bobyqa", "sbplx", "newuoa", "praxis", "cobyla", "neldermead"};
+  alg.description = "auto: Levenberg-Marquardt for the RMS loss, reweighted Levenberg-Marquardt (irls) for the mean";
+  t.push_back({{"de2000", "CIEDE2000, mean or RMS (reweighted / plain Levenberg-Marquardt)", "CIEDE2000 under the stated white (CIE 142-2001)",
                 {alg,
                  number("rms", "Minimise the RMS instead of the mean", de.rms ? 1 : 0, 0, 1,
                         "the loss OpenCV's ccm minimises", "boolean"),

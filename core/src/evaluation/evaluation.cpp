@@ -2,9 +2,14 @@
 #include "tristim/evaluation/evaluation.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <exception>
+#ifndef __EMSCRIPTEN__
+#include <thread>
+#endif
 
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
@@ -160,39 +165,68 @@ std::vector<CompareRow> compare_models(const PatchMatrix& rgb, const PatchMatrix
       if (m.duplicate_of.empty()) model_ids.push_back(m.id);
   if (objectives.empty())
     objectives = {Objective::LeastSquares, Objective::PatternSearch, Objective::DeltaE2000};
-  std::vector<CompareRow> rows;
+  // Rows are independent: natively they are spread over the hardware threads (each row's numbers do
+  // not depend on which thread or in which order it runs); the wasm build runs them in order.
+  std::vector<std::pair<std::string, Objective>> tasks;
   for (const auto& id : model_ids) {
-    const ModelInfo& info = model_info(id);
-    for (Objective obj : objectives) {
-      CompareRow row;
-      row.model_id = id;
-      row.objective = obj;
-      row.n_terms = info.n_terms;
-      FitOptions o = options;
-      o.objective = obj;
-      try {
-        const ModelEvaluation ev = evaluate_model(id, rgb, xyz, o, white_patch_index, true);
-        row.seconds = ev.fit_seconds;
-        row.cpu_seconds = ev.fit_cpu_seconds;
-        row.ok = true;
-        row.status = ev.fit.status;
-        row.message = ev.fit.message;
-        row.condition_number = ev.fit.condition_number;
-        row.train_dE00 = ev.training.dE00;
-        row.train_dE_xyz = ev.training.dE_xyz;
-        row.has_loo = ev.has_loo;
-        if (ev.has_loo) {
-          row.loo_dE00 = ev.loo.dE00;
-          row.loo_dE_xyz = ev.loo.dE_xyz;
-        }
-      } catch (const Error& e) {
-        row.ok = false;
-        row.error_code = e.code_name();
-        row.message = e.what();
-      }
-      rows.push_back(std::move(row));
-    }
+    (void)model_info(id);  // UnknownId before any work
+    for (Objective obj : objectives) tasks.emplace_back(id, obj);
   }
+  std::vector<CompareRow> rows(tasks.size());
+  auto run_row = [&](std::size_t t) {
+    const std::string& id = tasks[t].first;
+    const Objective obj = tasks[t].second;
+    const ModelInfo& info = model_info(id);
+    CompareRow row;
+    row.model_id = id;
+    row.objective = obj;
+    row.n_terms = info.n_terms;
+    FitOptions o = options;
+    o.objective = obj;
+    try {
+      const ModelEvaluation ev = evaluate_model(id, rgb, xyz, o, white_patch_index, true);
+      row.seconds = ev.fit_seconds;
+      row.cpu_seconds = ev.fit_cpu_seconds;
+      row.ok = true;
+      row.status = ev.fit.status;
+      row.message = ev.fit.message;
+      row.condition_number = ev.fit.condition_number;
+      row.train_dE00 = ev.training.dE00;
+      row.train_dE_xyz = ev.training.dE_xyz;
+      row.has_loo = ev.has_loo;
+      if (ev.has_loo) {
+        row.loo_dE00 = ev.loo.dE00;
+        row.loo_dE_xyz = ev.loo.dE_xyz;
+      }
+    } catch (const Error& e) {
+      row.ok = false;
+      row.error_code = e.code_name();
+      row.message = e.what();
+    }
+    rows[t] = std::move(row);
+  };
+#ifdef __EMSCRIPTEN__
+  for (std::size_t t = 0; t < tasks.size(); ++t) run_row(t);
+#else
+  const std::size_t n_threads =
+      std::min<std::size_t>(tasks.size(), std::max(1u, std::min(16u, std::thread::hardware_concurrency())));
+  std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> failures(n_threads);
+  auto worker = [&](std::size_t w) {
+    try {
+      for (std::size_t t; (t = next.fetch_add(1)) < tasks.size();) run_row(t);
+    } catch (...) {
+      failures[w] = std::current_exception();
+      next = tasks.size();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < n_threads; ++w) pool.emplace_back(worker, w);
+  worker(0);
+  for (auto& th : pool) th.join();
+  for (auto& f : failures)
+    if (f) std::rethrow_exception(f);
+#endif
   std::stable_sort(rows.begin(), rows.end(), [](const CompareRow& a, const CompareRow& b) {
     auto key = [](const CompareRow& r) {
       if (!r.ok) return std::make_pair(2, 0.0);
