@@ -8,10 +8,11 @@ ColorChecker Classic reference L*a*b* D50):
   * OpenCV's ccm (3x3, CIEDE2000 loss, identity linearisation),
 and prints the figures side by side. Exit status 1 if a claim fails:
   - tristim's best leave-one-out mean CIEDE2000 < Argyll's matrix-profile training mean,
-  - tristim's CIEDE2000-objective 3x3 (RMS loss) RMS CIEDE2000 <= OpenCV's, scored with the
-    same CIEDE2000 implementation (tristim evaluate) on both matrices,
+  - the 3x3 RMS-CIEDE2000 fits of tristim and OpenCV land on the same loss (within 0.002) under
+    each of two stated Lab conventions: D50 (tristim's; OpenCV with ProPhoto RGB, a D50 space)
+    and D65 with the reference Bradford-adapted (OpenCV's default, sRGB; tristim --lab-white D65),
   - and (with --assert-speed; otherwise printed as a warning) it is >= 10x faster than OpenCV's
-    fit (wall time of the fit alone, best of 20 / 10 runs).
+    fit (CPU time of the fit alone, best of 20 / 10 runs).
 
 Usage: compare_passport.py [--tristim PATH] [--shared DIR] [--reference before|after] [--all] [--json]
 Needs: the tristim CLI, Debian's argyll (colprof, profcheck) and python3-opencv. A tool that is
@@ -151,34 +152,46 @@ def main():
         if cv2 is not None:
             src = (np.array(rgb, dtype=np.float64) / 65535.0).reshape(24, 1, 3)
             dst = np.array(lab, dtype=np.float64).reshape(24, 1, 3)
-            times, cpu_times = [], []
-            for _ in range(10):
-                t0, c0 = time.perf_counter(), time.process_time()
-                model = cv2.ccm_ColorCorrectionModel(src, dst, cv2.ccm.COLOR_SPACE_Lab_D50_2)
-                model.setColorSpace(cv2.ccm.COLOR_SPACE_sRGB)
-                model.setCCM_TYPE(cv2.ccm.CCM_3x3)
-                model.setDistance(cv2.ccm.DISTANCE_CIE2000)
-                model.setLinear(cv2.ccm.LINEARIZATION_IDENTITY)
-                model.run()
-                times.append(time.perf_counter() - t0)
-                cpu_times.append(time.process_time() - c0)
-            ccm = np.array(model.getCCM())  # dst_linear_sRGB_row = src_row @ ccm
-            # Effective camera RGB -> XYZ (D50, Y = 100): sRGB (D65) primaries, Bradford D65 -> D50.
-            M = np.array([[0.4124564, 0.3575761, 0.1804375], [0.2126729, 0.7151522, 0.0721750],
-                          [0.0193339, 0.1191920, 0.9503041]])
-            B = np.array([[1.0478112, 0.0228866, -0.0501270], [0.0295424, 0.9904844, -0.0170491],
-                          [-0.0092345, 0.0150436, 0.7521316]])
-            eff = (B @ M @ ccm.T) * (100.0 / 65535.0)
-            prof = {'format': 'tristim-profile', 'version': 1,
-                    'model': {'id': 'matrix-3x3', 'coefficients': eff.tolist()}, 'objective': 'de2000',
-                    'colorimetry': {'white': list(D50)}, 'training': {'patches': 24, 'digest': 'opencv'}}
-            pj = os.path.join(tmp, 'opencv_profile.json')
-            with open(pj, 'w') as f:
-                json.dump(prof, f)
-            ev = json.loads(run([args.tristim, 'evaluate', '--profile', pj, '--rgb', rgb_csv, '--xyz', ref_csv]).stdout)
-            out['opencv_3x3_de2000'] = {'loss': float(model.getLoss()), 'train_rms_dE00_tristim_metric': ev['metrics']['dE00']['rms'],
-                                        'train_mean_dE00_tristim_metric': ev['metrics']['dE00']['mean'],
-                                        'fit_ms': min(times) * 1e3, 'fit_cpu_ms': min(cpu_times) * 1e3}
+            # Two CIELAB conventions for the same RMS CIEDE2000 loss. OpenCV's ccm scores in the Lab of
+            # its target RGB space's white: sRGB (its default) is D65, so the D50 reference is
+            # Bradford-adapted to D65 first; ProPhoto RGB is D50, so the reference is used as given,
+            # which is tristim's convention (Lab relative to D50). tristim runs under both: D50 as
+            # is, and D65 with the reference Bradford-adapted (the same matrix OpenCV uses) and
+            # --lab-white D65.
+            # sRGB first: in python3-opencv 4.6, an sRGB model built after a ProPhoto one in the same
+            # process reported the ProPhoto loss (seen here; order-dependent), so the order is fixed.
+            conventions = {'D65': cv2.ccm.COLOR_SPACE_sRGB, 'D50': cv2.ccm.COLOR_SPACE_ProPhotoRGB}
+            D65 = np.array([95.0470, 100.0, 108.8830])
+            Mb = np.array([[0.8951, 0.2664, -0.1614], [-0.7502, 1.7135, 0.0367], [0.0389, -0.0685, 1.0296]])
+            adapt = np.linalg.inv(Mb) @ np.diag((Mb @ D65) / (Mb @ np.array(D50))) @ Mb
+            ref65_csv = os.path.join(tmp, 'ref_D65.csv')
+            with open(ref65_csv, 'w') as f:
+                f.write('id,X,Y,Z\n' + ''.join(f'{i},{v[0]!r},{v[1]!r},{v[2]!r}\n'
+                                               for i, v in zip(ids, (adapt @ np.array(x) for x in xyz))))
+            out['conventions'] = {}
+            for conv, space in conventions.items():
+                times, cpu_times = [], []
+                for _ in range(10):
+                    t0, c0 = time.perf_counter(), time.process_time()
+                    model = cv2.ccm_ColorCorrectionModel(src, dst, cv2.ccm.COLOR_SPACE_Lab_D50_2)
+                    model.setColorSpace(space)
+                    model.setCCM_TYPE(cv2.ccm.CCM_3x3)
+                    model.setDistance(cv2.ccm.DISTANCE_CIE2000)
+                    model.setLinear(cv2.ccm.LINEARIZATION_IDENTITY)
+                    model.run()
+                    times.append(time.perf_counter() - t0)
+                    cpu_times.append(time.process_time() - c0)
+                args_t = ['--xyz', ref_csv] if conv == 'D50' else ['--xyz', ref65_csv, '--lab-white', 'D65']
+                t_rows = [json.loads(run([args.tristim, 'compare', '--rgb', rgb_csv, '--models', 'matrix-3x3',
+                                          '--objectives', 'de2000', '--de-rms', '--json'] + args_t).stdout)['rows'][0]
+                          for _ in range(20)]
+                out['conventions'][conv] = {
+                    'opencv_color_space': 'ProPhoto RGB (D50)' if conv == 'D50' else 'sRGB (D65, OpenCV default)',
+                    'opencv_rms_dE00': float(model.getLoss()), 'opencv_fit_ms': min(times) * 1e3,
+                    'opencv_fit_cpu_ms': min(cpu_times) * 1e3,
+                    'tristim_rms_dE00': t_rows[0]['train_dE00']['rms'],
+                    'tristim_fit_ms': min(r['seconds'] for r in t_rows) * 1e3,
+                    'tristim_fit_cpu_ms': min(r['cpu_seconds'] for r in t_rows) * 1e3}
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
@@ -186,17 +199,14 @@ def main():
     if 'argyll_m' in out:
         if not out['tristim_best']['loo_mean_dE00'] < out['argyll_m']['train_mean_dE00']:
             failures.append('best leave-one-out mean is not below Argyll -am training mean')
-    if 'opencv_3x3_de2000' in out:
-        ocv = out['opencv_3x3_de2000']
-        ours = out['tristim_3x3_de2000']
-        if not ours['train_rms_dE00'] <= ocv['train_rms_dE00_tristim_metric'] + 1e-9:
-            failures.append('3x3 CIEDE2000 RMS above OpenCV')
-        out['speedup_vs_opencv'] = ocv['fit_ms'] / ours['fit_ms']
-        out['cpu_speedup_vs_opencv'] = ocv['fit_cpu_ms'] / max(ours['fit_cpu_ms'], 1e-3)
-        # CPU time (all threads) is the fairer measure on a shared machine; wall time is printed too.
-        if not ours['fit_cpu_ms'] * 10 <= ocv['fit_cpu_ms']:
+    for conv, c in out.get('conventions', {}).items():
+        # The same loss under the same convention: both optimisers must land on the same optimum.
+        if not abs(c['tristim_rms_dE00'] - c['opencv_rms_dE00']) <= 2e-3:
+            failures.append(f"{conv} Lab: tristim RMS {c['tristim_rms_dE00']:.4f} vs OpenCV {c['opencv_rms_dE00']:.4f}")
+        c['cpu_speedup'] = c['opencv_fit_cpu_ms'] / max(c['tristim_fit_cpu_ms'], 1e-3)
+        if not c['tristim_fit_cpu_ms'] * 10 <= c['opencv_fit_cpu_ms']:
             (failures if args.assert_speed else warnings).append(
-                f"3x3 CIEDE2000 fit only {out['cpu_speedup_vs_opencv']:.1f}x less CPU than OpenCV's (claim: 10x)")
+                f"{conv} Lab: 3x3 CIEDE2000 fit only {c['cpu_speedup']:.1f}x less CPU than OpenCV's (claim: 10x)")
     out['failures'] = failures
     out['warnings'] = warnings
     out['skipped'] = skipped
@@ -216,16 +226,13 @@ def main():
             if f'argyll_{algo}' in out:
                 a = out[f'argyll_{algo}']
                 print(f"{name:46s} {a['train_mean_dE00']:10.3f} {'-':>9s} {'-':>7s} {a['seconds'] * 1e3:8.0f}")
-        if 'opencv_3x3_de2000' in out:
-            o = out['opencv_3x3_de2000']
-            print(f"{'OpenCV ccm 3x3 (CIEDE2000 loss), tristim metric':46s} {o['train_mean_dE00_tristim_metric']:10.3f} "
-                  f"{'-':>9s} {o['train_rms_dE00_tristim_metric']:7.3f} {o['fit_ms']:8.2f}   (OpenCV's own loss {o['loss']:.3f})")
-        for s in skipped:
-            print('skipped:', s)
-        if 'speedup_vs_opencv' in out:
-            print(f"speed: tristim 3x3 CIEDE2000 fit {out['speedup_vs_opencv']:.1f}x faster than OpenCV's (wall), "
-                  f"{out['cpu_speedup_vs_opencv']:.1f}x less CPU time "
-                  f"({out['tristim_3x3_de2000']['fit_cpu_ms']:.2f} vs {out['opencv_3x3_de2000']['fit_cpu_ms']:.2f} ms)")
+        for s_ in skipped:
+            print('skipped:', s_)
+        for conv, c in out.get('conventions', {}).items():
+            print(f"RMS CIEDE2000, 3x3, Lab relative to {conv}: tristim {c['tristim_rms_dE00']:.4f} "
+                  f"({c['tristim_fit_cpu_ms']:.2f} ms CPU), OpenCV ccm with {c['opencv_color_space']} "
+                  f"{c['opencv_rms_dE00']:.4f} ({c['opencv_fit_cpu_ms']:.2f} ms CPU): same loss, "
+                  f"{c['cpu_speedup']:.0f}x less CPU")
         for w in warnings:
             print('warning:', w)
         print('claims:', 'all hold' if not failures else '; '.join(failures))
