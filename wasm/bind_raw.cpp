@@ -1,4 +1,6 @@
-// Declarations: RAW decoding (the RawImage handle, which owns wasm memory: call .delete()), frame
+// Declarations: image decoding — camera RAW, and 8/16-bit TIFF, 8/16-bit PNG and JPEG with their
+// values as stored (capture/image.hpp: decode_any picks the decoder from the file's first bytes)
+// — into the RawImage handle, which owns wasm memory: call .delete(); frame
 // calibration set on an image, chart sampling and applying a profile to a decoded RAW.
 //
 // RawImage methods: width(), height() (the measurement image: half resolution for Bayer),
@@ -9,6 +11,7 @@
 // linearRGB() -> Float32Array(3·w·h) with the dark/flat set on this image applied.
 #include <optional>
 
+#include "tristim/capture/image.hpp"
 #include "tristim/chart/layout.hpp"
 #include "tristim/profile/export.hpp"
 #include "raw_handle.hpp"
@@ -75,7 +78,7 @@ val set_flat(RawHandle& h, val flat, val mode, val reflectance) {
 }
 
 RawHandle decode(val bytes) {
-  return guard([&] { return RawHandle{decode_raw(wasm::vector_from<uint8_t>(bytes)), {}}; });
+  return guard([&] { return RawHandle{decode_any(wasm::vector_from<uint8_t>(bytes)), {}}; });
 }
 
 ChartSample sample(const RawHandle* h, const LayoutOptions& layout, const std::array<double, 8>& corners,
@@ -102,7 +105,7 @@ Image3f apply_to_pixels(const Profile& profile, const std::vector<float>& rgb, i
 EMSCRIPTEN_BINDINGS(tristim_raw) {
   using emscripten::class_;
   using emscripten::optional_override;
-  { using S = RawMetadata; value_object<S>("RawMetadata") FIELD(make) FIELD(model) FIELD(lens) FIELD(iso) FIELD(shutter_s)
+  { using S = RawMetadata; value_object<S>("RawMetadata") FIELD(format) FIELD(encoding) FIELD(declared_colour) FIELD(make) FIELD(model) FIELD(lens) FIELD(iso) FIELD(shutter_s)
       FIELD(f_number) FIELD(timestamp) FIELD(timestamp_iso) FIELD(layout) FIELD(cfa_pattern) FIELD(cfa_width)
       FIELD(cfa_height) FIELD(block) FIELD(sensor_width) FIELD(sensor_height) FIELD(raw_width) FIELD(raw_height)
       FIELD(width) FIELD(height) FIELD(bits) FIELD(flip) FIELD(cfa_black) FIELD(black_level) FIELD(white_level)

@@ -6,20 +6,21 @@ import { h } from './lib/ui.js';
 import * as reference from './reference/view.js';
 import * as surface from './surface/view.js';
 import * as images from './images/view.js';
+import * as linearisation from './linearisation/view.js';
 import * as fit from './fit/view.js';
 import * as results from './results/view.js';
 import * as apply from './apply/view.js';
 import * as exporter from './export/view.js';
 
 // The features, in journey order: web/<feature>/view.js, each mounted into <section id="step-<feature>">.
-const FEATURES = { reference, surface, images, fit, results, apply, export: exporter };
+const FEATURES = { reference, surface, images, linearisation, fit, results, apply, export: exporter };
 const STEPS = Object.keys(FEATURES);
 const status = document.getElementById('engine-status');
 
 const app = {
   engine: new Engine(),
   store,
-  session: {},        // persisted: settings, surface, surfaceSettings, surfaceCompare, files.*, corners, layout, fitChoice, results (each with its recipe), selected, recipe, step
+  session: {},        // persisted: settings, surface, surfaceSettings, surfaceCompare, linearisation, linearisationSettings, files.*, corners, layout, fitChoice, results (each with its recipe), selected, recipe, step
   derived: {},        // recomputed: reference, locus, sample, preview
   views: {},
   bus: new EventTarget(),

@@ -8,11 +8,12 @@ import * as reference from './reference/handlers.js';
 import * as surface from './surface/handlers.js';
 import * as images from './images/handlers.js';
 import * as detect from './images/detect.js';
+import * as linearisation from './linearisation/handlers.js';
 import * as fit from './fit/handlers.js';
 import * as apply from './apply/handlers.js';
 import * as exporter from './export/handlers.js';
 
-const FEATURES = [reference, surface, images, detect, fit, apply, exporter];
+const FEATURES = [reference, surface, images, detect, linearisation, fit, apply, exporter];
 
 const handlers = {
   hello: (T) => ({ result: { version: T.version() } }),

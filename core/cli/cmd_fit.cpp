@@ -4,7 +4,7 @@
 
 #include "cli.hpp"
 #include "patch_args.hpp"
-#include "tristim/capture/raw.hpp"
+#include "tristim/capture/image.hpp"
 #include "tristim/characterisation/objectives.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
@@ -63,7 +63,9 @@ PatchData pair_with_reference(const PatchTable& rgb, const ReferenceChart& ref, 
   return d;
 }
 
-TrainingSet training_from_recipe(const Args& args, const Recipe& recipe) {
+/// The training set of a recipe; a TIFF/PNG/JPEG given with --raw also sets the recipe's capture
+/// full scale (255 / 65535) when it has none, so its linearisation reads x = stored / full scale.
+TrainingSet training_from_recipe(const Args& args, Recipe& recipe) {
   if (args.has("raw") == args.has("rgb"))
     throw Error(ErrorCode::InvalidArgument, "fit --recipe takes one of --rgb patches.csv or --raw chart image");
   const bool builtin = recipe.reference.chart != "file";
@@ -73,10 +75,11 @@ TrainingSet training_from_recipe(const Args& args, const Recipe& recipe) {
     const std::string path = args.get("raw"), bytes = read_file(path);
     RawImage image;
     try {
-      image = decode_raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+      image = decode_any(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
     } catch (const Error& e) {
       throw Error(e.code(), "'" + path + "': " + e.what());
     }
+    if (image.meta.encoding == "stored" && recipe.capture.saturation == 0) recipe.capture.saturation = image.meta.white_level;
     const std::array<double, 8>& c = recipe.sampling.corners;
     if (std::all_of(c.begin(), c.end(), [](double v) { return v == 0; }))
       throw Error(ErrorCode::InvalidArgument, "the recipe has no chart corners to sample --raw with");

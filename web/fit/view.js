@@ -78,6 +78,7 @@ export function mount(section, app) {
     const surface = app.session.surface, corrected = surface && surface.method !== 'none' && !r.settings.referenceFile;
     dataNote.textContent = `${d.ids.length} patches pair sampled RGB with reference XYZ`
       + (corrected ? ` (the reference corrected for the capture geometry: ${surface.method}, step 1b)` : '')
+      + linearisationText(app.session.linearisation, app.derived.image?.metadata)
       + (d.excluded.length ? `; left out as flagged: ${d.excluded.map((e) => e.id).join(', ')}` : '')
       + (d.missing.length ? `; not in the reference: ${d.missing.join(', ')}` : '') + '.';
     return d;
@@ -85,6 +86,7 @@ export function mount(section, app) {
   app.on('sample', describeData);
   app.on('reference', describeData);
   app.on('surface', describeData);
+  app.on('linearisation', describeData);
   excludeCb.addEventListener('change', describeData);
 
   /// The held-out set {name, ids, rgb, xyz} from a patch file, paired with the reference by id.
@@ -197,9 +199,12 @@ export function mount(section, app) {
     return {
       reference: rs.referenceFile ? { chart: 'file', data_digest: ref.data_digest, illuminant: rs.illuminant, observer: rs.observer }
         : { chart: rs.chart, illuminant: rs.illuminant, observer: rs.observer },
-      capture: { dark_frames: s['files.dark'] ? s['files.dark'].list?.length ?? 1 : 0, flat_field: flat && !radial, falloff: flat && radial },
+      capture: { dark_frames: s['files.dark'] ? s['files.dark'].list?.length ?? 1 : 0, flat_field: flat && !radial, falloff: flat && radial,
+        saturation: storedFullScale(app.derived.image?.metadata) },
       sampling: { layout: s.layout ?? { chart: 'passport' }, corners: sample.corners, area: s.sampleOptions?.area ?? 0.5,
         exclude: choice.excludeAllFlagged ? [] : data.excluded.map((e) => e.id), exclude_flagged: !!choice.excludeAllFlagged },
+      // the linearisation step's choice (step 2b): the fit trains on the linearised camera RGB
+      linearisation: s.linearisation ?? { method: 'identity' },
       // the surface step's correction of a built-in chart's spectra (an uploaded reference stays as read)
       surface: rs.referenceFile ? { method: 'none' } : (s.surface ?? { method: 'none' }),
       // a joint surface fit (Phase II) is anchored to the chart's white patch, so it sets one
@@ -222,6 +227,18 @@ export function mount(section, app) {
 const jointSurface = (surface, rs) => !rs.referenceFile && surface?.settings?.fit === 'joint';
 /// "scaler-offset: mu=0.9641, rho=0.03673" (the numbers to 4 significant digits).
 const choiceText = (c) => `${c.method}: ${Object.entries(c.parameters ?? {}).map(([k, v]) => `${k}=${Number(v).toPrecision(4)}`).join(', ')}`;
+
+/// What the linearisation stage (step 2b) does to the camera RGB, for the data note.
+function linearisationText(lin, meta) {
+  const method = lin?.method ?? 'identity';
+  if (meta?.encoding === 'stored' && method === 'identity')
+    return `; the chart image is a ${meta.format.toUpperCase()} (not linear) and the linearisation is “identity”: choose one in step 2b`;
+  return method === 'identity' ? '' : `; camera RGB linearised by ${method} (step 2b)`;
+}
+
+/// The full scale of a TIFF/PNG/JPEG's stored values (255, 65535): the linearisation's x = 1.
+/// 0 for a RAW (its linear DN need none).
+export const storedFullScale = (m) => (m?.encoding === 'stored' ? m.white_level : 0);
 
 /// "Make Model" of RAW metadata ('' when unknown).
 export const cameraOf = (m) => [m?.make, m?.model].filter(Boolean).join(' ');

@@ -1,4 +1,5 @@
-// Step 2: the chart RAW (plus optional dark frame and flat field), decoded in the worker; the
+// Step 2: the chart image — camera RAW, or TIFF/PNG/JPEG read as stored (its encoding shown, with
+// a pointer to the linearisation step) — plus optional dark frame and flat field, decoded in the worker; the
 // preview with four draggable corner handles and the patch grid; the per-patch table with flags,
 // re-sampled as the corners move; automatic chart detection (a new image takes the detected
 // corners; an image that already has corners gets the detected chart as a proposal to use or
@@ -8,7 +9,7 @@ import { CornerEditor } from './corners.js';
 import { patchTable } from './patch_table.js';
 
 const SLOTS = {
-  chart: { label: 'Chart RAW', hint: 'A RAW photograph of the chart (DNG, CR2, NEF, ARW, …), evenly lit' },
+  chart: { label: 'Chart image', hint: 'A photograph of the chart, evenly lit: camera RAW (DNG, CR2, NEF, ARW, …), or an 8/16-bit TIFF, 8/16-bit PNG or JPEG (read as stored: then choose a linearisation, step 2b)' },
   dark: { label: 'Dark frame(s) (optional)', hint: 'Same camera and settings, lens capped; several files are averaged (Abed et al. 2013, App. C step 1)' },
   flat: { label: 'Flat field (optional)', hint: 'A uniform white/grey surface filling the frame (App. C step 2)' },
 };
@@ -19,7 +20,7 @@ export function mount(section, app) {
   const names = {};
   const decodedGen = {};     // slot -> engine generation in which it was decoded
   const progress = progressBar('Decoding');
-  const drop = h('div', { class: 'drop-zone', tabindex: -1 }, 'Drop a RAW file here, or choose one below.');
+  const drop = h('div', { class: 'drop-zone', tabindex: -1 }, 'Drop a RAW, TIFF, PNG or JPEG file here, or choose one below.');
   const fileRow = h('div', { class: 'controls' });
   for (const [slot, s] of Object.entries(SLOTS)) {
     inputs[slot] = h('input', { type: 'file', dataset: { slot }, multiple: slot === 'dark' });
@@ -50,6 +51,8 @@ export function mount(section, app) {
     field('Gap (× patch size)', gapIn),
     h('fieldset', { class: 'margins' }, h('legend', {}, 'Margins inside the corners (fraction of width / height: left, top, right, bottom)'), marginIns));
   const meta = h('p', { class: 'meta', 'aria-live': 'polite' });
+  // A TIFF/PNG/JPEG: its non-linear encoding and what to do about it (the linearisation step).
+  const encodingNote = h('p', { class: 'warning encoding-note', role: 'status', hidden: true });
   const editor = new CornerEditor({ onChange: (c, final) => cornersChanged(c, final), grid: (layout, corners) => engine.call('grid', { layout, corners }) });
   const cornerErr = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'corners-error' });
   editor.el.setAttribute('aria-describedby', 'corners-error');
@@ -68,7 +71,7 @@ export function mount(section, app) {
 
   fileRow.append(field('Flat-field correction', flatMode));
   section.append(
-    fileRow, drop, progress.el, meta,
+    fileRow, drop, progress.el, meta, encodingNote,
     h('div', { class: 'controls' }, field('Chart layout', layoutSel), customBox,
       field('Sampled area per patch', areaIn, 'Fraction of each patch averaged (Abed et al.: central 50 %)'), resetCorners),
     h('p', { class: 'hint' }, 'Drag the four corner handles onto the chart\'s outer patch corners (A1 top-left). '
@@ -165,8 +168,16 @@ export function mount(section, app) {
         const m = r.metadata ?? {};
         const bits = [m.make, m.model, m.lens, m.iso && `ISO ${m.iso}`, m.shutter_s && `${fmtShutter(m.shutter_s)} s`,
           m.f_number && `f/${m.f_number}`, m.cfa_pattern && `${m.layout ?? ''} ${m.cfa_pattern}`, m.bits && `${m.bits} bit`, m.timestamp_iso].filter(Boolean);
-        meta.textContent = `${bits.join(' · ')} — measurement image ${r.width}×${r.height} (half resolution, linear, no white balance).`
-          + ' The preview below uses the camera matrix and sRGB gamma for display only.';
+        if (m.encoding === 'stored') {
+          meta.textContent = `${[m.make, m.model, m.timestamp_iso].filter(Boolean).join(' · ')}${m.make || m.model ? ' — ' : ''}`
+            + `${m.format.toUpperCase()}, ${m.bits}-bit ${m.layout === 'monochrome' ? 'grey' : 'RGB'}, ${r.width}×${r.height}, values as stored (0–${m.white_level}).`
+            + ' The preview shows the stored values as they are.';
+        } else {
+          meta.textContent = `${bits.join(' · ')} — measurement image ${r.width}×${r.height} (half resolution, linear, no white balance).`
+            + ' The preview below uses the camera matrix and sRGB gamma for display only.';
+        }
+        encodingNote.hidden = m.encoding !== 'stored';
+        encodingNote.textContent = m.encoding === 'stored' ? encodingText(m) : '';
         // Same size as the image on screen: keep the handles where they are (they may have moved
         // since the last save); otherwise take the session's corners, or reset.
         const sameSize = editor.width === r.width && editor.height === r.height;
@@ -188,6 +199,13 @@ export function mount(section, app) {
     if (slot === 'dark' && d) return `; dark: ${d.frames} frame(s), mean ${d.mean.map((v) => fmt(v, 1)).join(' / ')} DN, noise ${d.noise.map((v) => fmt(v, 1)).join(' / ')} DN`;
     if (slot === 'flat' && f) return f.mode === 'radial' ? `; radial fall-off p1 ${fmt(f.p1, 4)}, p2 ${fmt(f.p2, 4)}, p3 ${fmt(f.p3, 4)}, rms residual ${fmt(f.rms_residual, 4)}` : `; flat field (${f.mode}) applied`;
     return '';
+  }
+  /// What a stored (non-linear) image means for the fit.
+  function encodingText(m) {
+    const declared = m.declared_colour ? ` The file declares ${m.declared_colour.split(';').join(', ')} — reported, not applied.` : '';
+    return `Not linear: a ${m.format.toUpperCase()} holds display-encoded values (full scale ${m.white_level}), not values proportional to light.`
+      + `${declared} Choose a linearisation in step 2b (gamma or sRGB if the encoding is known; Shen2008 or a grey-based curve to recover it from the chart) before fitting.`
+      + (m.bits === 8 ? ' With 8 bits, patches at 0 or 255 are clipped and left out of the linearisation.' : '');
   }
   const fmtShutter = (t) => (t > 0 && t < 1 ? `1/${Math.round(1 / t)}` : `${t}`);
 

@@ -11,8 +11,9 @@ export const CURVE_STYLES = {
 
 /// rows: [{id, kind ('measured'|'corrected'|'target'), wavelength, value, colour, last}]; the
 /// legend is drawn in data coordinates above the curves, so an exported plot keeps it.
-export function reflectancePlot(rows, { width = 900, height = 380, Plot = getPlot() } = {}) {
-  const kinds = Object.keys(CURVE_STYLES).filter((k) => rows.some((r) => r.kind === k));
+/// `styles`: the kinds and their legend labels and dashes (default CURVE_STYLES).
+export function reflectancePlot(rows, { width = 900, height = 380, Plot = getPlot(), styles = CURVE_STYLES } = {}) {
+  const kinds = Object.keys(styles).filter((k) => rows.some((r) => r.kind === k));
   const top = Math.max(0.2, ...rows.map((r) => r.value)) * 1.05;
   const x0 = Math.min(...rows.map((r) => r.wavelength));
   const legend = kinds.map((k, i) => ({ k, y: top * (1 + 0.07 * (kinds.length - i)) }));
@@ -21,11 +22,11 @@ export function reflectancePlot(rows, { width = 900, height = 380, Plot = getPlo
     x: { label: 'wavelength λ (nm) →' },
     y: { label: '↑ reflectance factor R (fraction of the perfect diffuser)', domain: [0, top * (1 + 0.07 * (kinds.length + 0.6))], grid: true },
     marks: [
-      ...legend.map(({ k, y }) => Plot.line([[x0 + 3, y], [x0 + 23, y]], { stroke: '#333', strokeWidth: 1.8, strokeDasharray: CURVE_STYLES[k].dash })),
-      Plot.text(legend, { x: x0 + 26, y: 'y', text: (d) => CURVE_STYLES[d.k].label, textAnchor: 'start', fontSize: 11 }),
+      ...legend.map(({ k, y }) => Plot.line([[x0 + 3, y], [x0 + 23, y]], { stroke: '#333', strokeWidth: 1.8, strokeDasharray: styles[k].dash })),
+      Plot.text(legend, { x: x0 + 26, y: 'y', text: (d) => styles[d.k].label, textAnchor: 'start', fontSize: 11 }),
       ...kinds.map((k) => Plot.line(rows.filter((r) => r.kind === k), {
-        x: 'wavelength', y: 'value', z: 'id', stroke: 'colour', strokeWidth: 1.8, strokeDasharray: CURVE_STYLES[k].dash,
-        title: (d) => `${d.id} ${CURVE_STYLES[d.kind].label}`,
+        x: 'wavelength', y: 'value', z: 'id', stroke: 'colour', strokeWidth: 1.8, strokeDasharray: styles[k].dash,
+        title: (d) => `${d.id} ${styles[d.kind].label}`,
       })),
       Plot.text(rows.filter((r) => r.kind === kinds[0] && r.last), { x: 'wavelength', y: 'value', text: 'id', dx: 6, textAnchor: 'start', fill: '#333', fontSize: 11 }),
       Plot.ruleY([0]),

@@ -147,6 +147,8 @@ Characterisation characterise(const Recipe& in, const TrainingSet& t) {
   data.ids = t.ids;
   data.camera_RGB = t.camera_RGB;
   data.reference_XYZ = t.reference_XYZ;
+  data.white = c.recipe.characterisation.lab_white;      // the reference's white: greys are neutral under it
+  data.full_scale = c.recipe.capture.saturation;         // 255 / 65535 for a stored image (0: max of the data)
   if (c.recipe.reference.chart != "file")
     data.reflectances = correct_surface(c.recipe.surface, chart_reflectances(c.recipe.reference.chart));
   c.linearisation = fit_linearisation(c.recipe.linearisation, data);

@@ -53,7 +53,9 @@ struct CaptureStage {
   std::string dark_mode = "per_pixel";   ///< "per_pixel" | "per_channel"
   bool flat_field = false;               ///< a flat field was applied
   bool falloff = false;                  ///< the radial fall-off fit (Guarnera eq 7) replaced the flat
-  double saturation = 0;                 ///< clip level in DN; 0: LibRaw's maximum
+  double saturation = 0;                 ///< clip level in DN; 0: LibRaw's maximum. A TIFF/PNG/JPEG
+                                         ///< (stored, non-linear values): the encoding's full scale,
+                                         ///< 255 or 65535, which the linearisation stage reads as x = 1
   double noise_floor = 0;                ///< DN; 0: from the dark frames (or none)
 };
 
