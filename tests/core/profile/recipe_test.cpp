@@ -168,6 +168,36 @@ TEST_CASE("characterise(recipe) gives the numbers of the direct calls, and the p
   require_code([&] { characterise(wrong_white, t); }, ErrorCode::UnknownId);
 }
 
+TEST_CASE("characterise: the linearisation stage reads the recipe's capture full scale", "[recipe][linearisation]") {
+  // Planted: camera RGB = a 3×3 of XYZ, sRGB-encoded to 8-bit codes (no rounding), the white at
+  // 200 of 255. With capture.saturation = 255 the sRGB row decodes exactly (x = code / 255) and a
+  // 3×3 fits to ~0; with 0 (x = code / the data's max) the curve is read at the wrong scale.
+  Recipe r = passport_recipe();
+  r.characterisation.model = "matrix-3x3";
+  r.characterisation.objective = MethodChoice{"ls", {}, {}};
+  r.characterisation.white_patch = "";
+  r.linearisation = MethodChoice{"sRGB", {}, {}};
+  const ReferenceChart ref = recipe_reference(r);
+  Mat3 M;
+  M << 0.7, 0.3, 0.05, 0.2, 0.9, 0.1, 0.05, 0.1, 0.9;
+  PatchMatrix rgb(24, 3), xyz(24, 3);
+  for (int i = 0; i < 24; ++i) {
+    xyz.row(i) = ref.XYZ[i].transpose();
+    const Vec3 lin = M * ref.XYZ[i] / (ref.white[1] * 1.45);
+    for (int c = 0; c < 3; ++c) rgb(i, c) = 255 * sRGB_encode(std::max(lin[c], 1e-4));
+  }
+  REQUIRE(rgb.maxCoeff() < 255);
+  r.capture.saturation = 255;
+  const Characterisation c = characterise(r, training_set(r, ref.ids, rgb, xyz));
+  CHECK(c.linearisation.full_scale == 255);
+  CHECK(c.evaluation.training.dE00.mean < 1e-3);
+  r.capture.saturation = 0;
+  const Characterisation wrong = characterise(r, training_set(r, ref.ids, rgb, xyz));
+  CHECK(wrong.linearisation.full_scale == Approx(rgb.maxCoeff()));
+  INFO("dE00 mean " << c.evaluation.training.dE00.mean << " at 255, " << wrong.evaluation.training.dE00.mean << " at the max");
+  CHECK(wrong.evaluation.training.dE00.mean > 0.1);  // 0.22 measured
+}
+
 TEST_CASE("method choices: defaults, bounds and the CLI syntax", "[recipe]") {
   const MethodChoice c = parse_choice("psm:expansion=3,max_iterations=50");
   CHECK(c.method == "psm");
