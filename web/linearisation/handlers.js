@@ -7,7 +7,7 @@ import { reply } from '../lib/reply.js';
 const err = (e) => ({ code: e?.code ?? 'INTERNAL', message: String(e?.message ?? e) });
 
 /// Squared Pearson correlation of two equally long arrays (NaN when one is constant).
-function squaredCorrelation(a, b) {
+export function squaredCorrelation(a, b) {
   const n = a.length;
   const ma = a.reduce((s, v) => s + v, 0) / n, mb = b.reduce((s, v) => s + v, 0) / n;
   let sab = 0, saa = 0, sbb = 0;
@@ -31,15 +31,16 @@ function curveAt(T, lin, x, c) {
 /// grey_coefficients: the polynomial of the same order K); any other row is compared here, by the
 /// same definition, with the engine's grey-polynomial of degree K (3 unless the row has a K). The
 /// grey-* rows are the grey-based OECF themselves.
-function compareWithGreys(T, lin, data) {
+/// `generic`: compare any row here (tests check this path against the engine's Shen2008 R²).
+export function compareWithGreys(T, lin, data, { generic = false } = {}) {
   const method = lin.choice.method;
-  if (method === 'Shen2008') {
+  if (method === 'Shen2008' && !generic) {
     const curves = [0, 1, 2].map((c) => T.sampleCurve(lin, c, 101));
     if (!curves[0].grey_based.length) return { greys: [], reason: lin.grey_reason, error: null, curves: null };
     return { source: 'engine', greys: lin.greys, reason: lin.grey_reason, r_squared: Array.from(lin.r_squared), K: lin.choice.parameters.K,
       curves: curves.map((s) => ({ x: s.x, estimated: s.linear, grey_based: s.grey_based })) };
   }
-  if (method.startsWith('grey-')) return { source: 'self', greys: lin.greys, reason: lin.grey_reason, r_squared: Array.from(lin.r_squared), curves: null };
+  if (method.startsWith('grey-') && !generic) return { source: 'self', greys: lin.greys, reason: lin.grey_reason, r_squared: Array.from(lin.r_squared), curves: null };
   const K = lin.choice.parameters.K ?? 3;
   const settings = lin.choice.settings.grey !== undefined ? { grey: lin.choice.settings.grey } : {};
   const parameters = { K, ...(lin.choice.parameters.grey_threshold ? { grey_threshold: lin.choice.parameters.grey_threshold } : {}) };

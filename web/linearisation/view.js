@@ -129,13 +129,21 @@ export function mount(section, app) {
       if (mine !== seq || e.code === 'CANCELLED') return null;
       app.derived.linearisation = null;
       // next to the input that caused it: J/K for too few samples, else the method picker
-      const opt = e.code === 'TOO_FEW_PATCHES' ? (formBox.querySelector('[data-option="J"]') ?? formBox.querySelector('[data-option="K"]')) : null;
-      showError(opt ?? methodSel, e, choice.method);
+      showError(inputFor(e) ?? methodSel, e, choice.method);
       summary.textContent = `No ${choice.method} linearisation on these patches (see the message above); the fit would fail the same way.`;
       for (const b of [greysNote, r2Box, curveBox, spectralBox, barsBox, spectralNote]) b.replaceChildren();
       monotonicWarn.hidden = clipWarn.hidden = true;
       return null;
     } finally { if (mine === seq) progress.done(); }
+  }
+
+  /// The option an error is about (its error slot), or null for the method picker.
+  function inputFor(e) {
+    const opt = (name) => formBox.querySelector(`[data-option="${name}"]`);
+    if (e.code === 'TOO_FEW_PATCHES') return opt('J') ?? opt('K');
+    if (e.code === 'MISSING_COLUMN' && choice.settings.basis === 'user') return opt('basis');
+    if (/\bgrey\b/i.test(e.message) && ['UNKNOWN_ID', 'PATCH_MISMATCH', 'INVALID_ARGUMENT'].includes(e.code)) return opt('grey');
+    return null;
   }
 
   function render(out, d) {
