@@ -152,7 +152,8 @@ export function mount(section, app) {
     const clipped = warnings.filter((w) => /clipped/.test(w));
     const left = d.excluded.filter((e) => e.flags.includes('saturated')).map((e) => e.id);
     summary.dataset.method = lin.choice.method;
-    summary.textContent = `${byId[lin.choice.method]?.label ?? lin.choice.method}: fitted on ${lin.fitted.length || d.ids.length} of ${d.ids.length} paired patches`
+    summary.textContent = `${byId[lin.choice.method]?.label ?? lin.choice.method}: `
+      + (lin.fitted.length ? `fitted on ${lin.fitted.length} of ${d.ids.length} paired patches` : `a stated curve (nothing fitted), applied to the ${d.ids.length} paired patches`)
       + (lin.full_scale > 1 ? `, x = stored value / ${fmt(lin.full_scale, lin.full_scale % 1 ? 2 : 0)}` : '')
       + `. Options: ${optionText(lin.choice)}.`
       + (warnings.filter((w) => !/clipped/.test(w) && !/not increasing/.test(w)).length ? ` Notes: ${warnings.filter((w) => !/clipped/.test(w) && !/not increasing/.test(w)).join('; ')}.` : '');
@@ -177,8 +178,9 @@ export function mount(section, app) {
     const r2 = cmp?.r_squared ?? [NaN, NaN, NaN];
     const what = self ? 'R² of the fit through the greys (coefficient of determination)'
       : `R² between the recovered and the grey-based OECF (squared correlation over the greys' range, Shen et al. Tables I–II; grey-based: degree ${cmp?.K ?? '–'})`;
-    r2Box.replaceChildren(h('table', { class: 'compare linearisation-r2' },
-      h('caption', {}, what + (cmp?.source === 'page' ? '. Computed here with the engine\'s grey-polynomial, by the definition the engine uses for Shen2008.' : '')),
+    r2Box.replaceChildren(h('p', { class: 'hint' }, what + (cmp?.source === 'page' ? '. Computed here with the engine\'s grey-polynomial, by the definition the engine uses for Shen2008.' : '.')),
+      h('table', { class: 'compare linearisation-r2' },
+      h('caption', {}, 'R² per channel'),
       h('thead', {}, h('tr', {}, h('th', { scope: 'col' }, 'channel'), h('th', { scope: 'col' }, 'R²'), h('th', { scope: 'col' }, 'fitted range of x'), h('th', { scope: 'col' }, 'monotonic'))),
       h('tbody', {}, CHANNELS.map((c, i) => h('tr', { dataset: { channel: c } },
         h('th', { scope: 'row' }, c),
@@ -227,7 +229,7 @@ export function mount(section, app) {
       return;
     }
     const ids = sp.est_ids;
-    const current = ids.includes(patchSel.value) ? patchSel.value : ids.includes(st.patch) ? st.patch : worstPatch(sp);
+    const current = ids.includes(st.patch) ? st.patch : worstPatch(sp);   // the user's patch, else the worst estimated
     patchSel.replaceChildren(...ids.map((id) => h('option', { value: id, selected: id === current }, id)));
     patchSel.value = current;
     spectralNote.dataset.rmsMean = String(sp.rms_summary.mean);
