@@ -25,6 +25,8 @@ async function fit(page) {
   await page.click('#step-fit button.primary');
   await page.waitForFunction(() => /fits in [\d.]+ s\.$/.test(document.querySelector('#step-fit .fit-log li:last-child')?.textContent ?? ''),
     null, { timeout: 120000 });
+  // the run keeps its results, then the selected one and its recipe (IndexedDB writes in between)
+  await page.waitForFunction(() => { const s = window.tristim.session; return s.recipe && s.recipe === s.results?.find((r) => r.key === s.selected)?.recipe; });
   return trainingErrors(page);
 }
 
@@ -108,7 +110,8 @@ test('JPEG and 16-bit TIFF charts: encoding shown, Shen2008 and gamma recover th
     for (const v of gamma.r2) assert.ok(v > 0.99, `gamma R² ${gamma.r2}`);
     const gammaFit = await fit(page);
     const recipe = await page.evaluate(() => window.tristim.session.recipe);
-    assert.equal(recipe.linearisation.method, 'gamma');
+    assert.equal(recipe.linearisation.method, 'gamma', JSON.stringify(await page.evaluate(() => ({ lin: window.tristim.session.linearisation,
+      log: document.querySelector('#step-fit .fit-log').textContent, results: window.tristim.session.results.map((r) => r.recipe.linearisation.method) }))));
     assert.equal(recipe.capture.saturation, 255, 'the recipe records the JPEG\'s full scale');
 
     // 16-bit TIFF, gamma kept.
@@ -127,7 +130,8 @@ test('JPEG and 16-bit TIFF charts: encoding shown, Shen2008 and gamma recover th
       assert.ok(Math.abs(gammaFit[m] - raw[m]) < 0.05 * raw[m] + 0.05, line);
       assert.ok(Math.abs(tiffFit[m] - raw[m]) < 0.05 * raw[m] + 0.05, line);
       assert.ok(shenFit[m] < 1.5 * raw[m] + 0.5, line);
-      assert.ok(Math.min(gammaFit[m], shenFit[m]) < identityFit[m], line);
+      // a 3×3 cannot absorb the encoding's curve (a root-polynomial or the 10-term polynomial partly can)
+      if (m === 'matrix-3x3') assert.ok(identityFit[m] > gammaFit[m] + 2 && identityFit[m] > shenFit[m] + 2, line);
     }
 
     // Bad input: J = 20 needs K + J = 22 non-grey patches; the Passport has 18.
