@@ -131,7 +131,8 @@ export function mount(section, app) {
       // next to the input that caused it: J/K for too few samples, else the method picker
       showError(inputFor(e) ?? methodSel, e, choice.method);
       summary.textContent = `No ${choice.method} linearisation on these patches (see the message above); the fit would fail the same way.`;
-      for (const b of [greysNote, r2Box, curveBox, spectralBox, barsBox, spectralNote]) b.replaceChildren();
+      for (const b of [greysNote, r2Box, curveBox, spectralBox, barsBox, spectralNote, patchSel]) b.replaceChildren();
+      app.mark('linearisation', '');
       monotonicWarn.hidden = clipWarn.hidden = true;
       return null;
     } finally { if (mine === seq) progress.done(); }
