@@ -14,7 +14,7 @@
 
 using namespace tristim;
 
-TEST_CASE("absolute: the stimuli CSV of the example reads back exactly; bad rows are coded", "[absolute]") {
+TEST_CASE("absolute: the stimuli CSV of the example reads back exactly, bad rows are coded", "[absolute]") {
   const AbsoluteExample ex = make_absolute_example();
   REQUIRE(ex.stimuli.size() > 100);
   const auto rows = read_stimuli_csv(stimuli_to_csv(ex.stimuli), "example.csv");
