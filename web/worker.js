@@ -12,8 +12,9 @@ import * as linearisation from './linearisation/handlers.js';
 import * as fit from './fit/handlers.js';
 import * as apply from './apply/handlers.js';
 import * as exporter from './export/handlers.js';
+import * as absolute from './absolute/handlers.js';
 
-const FEATURES = [reference, surface, images, detect, linearisation, fit, apply, exporter];
+const FEATURES = [reference, surface, images, detect, linearisation, fit, apply, exporter, absolute];
 
 const handlers = {
   hello: (T) => ({ result: { version: T.version() } }),

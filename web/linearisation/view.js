@@ -11,7 +11,7 @@ import { h, field, select, showError, clearError, fmt, progressBar } from '../li
 import { optionsForm, completeChoice } from '../lib/options_form.js';
 import { pairData } from '../lib/pairs.js';
 import { figure, cssColours } from '../plots/common.js';
-import { oecfPlot } from '../plots/oecf.js';
+import { oecfPlot } from '../plots/inverse_oecf.js';
 import { reflectancePlot, patchBarsPlot } from '../plots/reflectance.js';
 import { storedFullScale } from '../fit/view.js';
 

@@ -1,44 +1,51 @@
-// The recovered inverse OECF of each channel against the grey-based one (Shen et al. 2008, Fig 5),
-// with the stored values of the chart's patches as ticks under the curves. Pure function from
-// arrays to SVG.
+// The fitted OECFs per channel and per exposure, Guarnera 2018 fig 5 style: the normalised
+// camera response R′, G′, B′ (eq 7) of the training stimuli against their luminance Y (cd/m²),
+// one panel per exposure {t, N, ISO}, log axes; the common eq (8) curve of each channel at that
+// exposure's ε drawn through the points, and (dashed) the exposure's own fit of the reciprocity
+// check. Parallel lines across panels = reciprocity holds. Pure function from arrays to SVG.
 import { getPlot } from './common.js';
 
-/// Channel colours (Okabe–Ito: told apart with colour-vision deficiencies too).
-export const CHANNEL_COLOURS = { R: '#D55E00', G: '#009E73', B: '#0072B2' };
-const KINDS = {
-  estimated: { label: 'recovered by the chosen method', dash: null },
-  'grey-based': { label: 'grey-based (a polynomial through the grey patches)', dash: '6,4' },
-};
+export const CHANNELS = [
+  { id: 'R', colour: '#c0392b', symbol: 'circle' },
+  { id: 'G', colour: '#2e8b3a', symbol: 'triangle' },
+  { id: 'B', colour: '#2c5fb8', symbol: 'square' },
+];
 
-/// rows: [{channel: 'R'|'G'|'B', kind: 'estimated'|'grey-based', x, y}]; ticks: [{channel, x, id}]
-/// (the patches' stored values / full scale, drawn below 0, one row of ticks per channel).
-export function oecfPlot(rows, ticks, { width = 900, height = 440, xLabel = 'stored value / full scale →',
-  yLabel = '↑ linear response (relative)', Plot = getPlot() } = {}) {
-  const kinds = Object.keys(KINDS).filter((k) => rows.some((r) => r.kind === k));
-  const finite = rows.map((r) => r.y).filter(Number.isFinite);
-  const top = Math.max(1, ...finite) * 1.04, bottom = Math.min(0, ...finite);
-  const span = top - bottom;
-  const tickRow = { R: 0, G: 1, B: 2 };
-  const tickY = (d, k) => bottom - span * (0.05 + 0.045 * tickRow[d.channel] + 0.035 * k);
-  const legend = [...kinds.map((k) => ({ k, label: KINDS[k].label, dash: KINDS[k].dash, colour: '#333' })),
-    ...Object.entries(CHANNEL_COLOURS).map(([c, colour]) => ({ k: c, label: `${c} channel`, dash: null, colour }))];
-  const x0 = Math.min(0, ...rows.map((r) => r.x));
-  const ly = (i) => top - span * 0.06 * (i + 0.5);
+/// panels: the engine's OecfPanel list (fitAbsolute().panels) -> rows for the plot.
+export function oecfRows(panels) {
+  const points = [], curves = [], own = [];
+  for (const p of panels) {
+    for (let c = 0; c < 3; c++) {
+      const ch = CHANNELS[c].id;
+      p.point_Y[c].forEach((Y, i) => points.push({ exposure: p.label, channel: ch, Y, R: p.point_R[c][i] }));
+      p.curve_Y[c].forEach((Y, i) => curves.push({ exposure: p.label, channel: ch, Y, R: p.curve_R[c][i] }));
+      p.own_Y[c].forEach((Y, i) => { if (Y > 0) own.push({ exposure: p.label, channel: ch, Y, R: p.curve_R[c][i] }); });
+    }
+  }
+  return { points, curves, own };
+}
+
+export function oecfPlot(panels, { width = 1100, height = 320, Plot = getPlot() } = {}) {
+  const { points, curves, own } = oecfRows(panels);
+  const ys = points.map((d) => d.Y), rs = points.map((d) => d.R);
+  const x = [Math.min(...ys) / 1.5, Math.max(...ys) * 1.5];
+  const y = [Math.min(...rs) / 1.5, Math.min(1.6, Math.max(...rs) * 1.5)];
+  const inside = (d) => d.Y >= x[0] && d.Y <= x[1] && d.R >= y[0] && d.R <= y[1];
+  const labels = panels.map((p) => p.label);
+  const colour = { domain: CHANNELS.map((c) => c.id), range: CHANNELS.map((c) => c.colour), legend: true, label: 'channel' };
   return Plot.plot({
-    width, height, marginLeft: 56, marginRight: 76, marginBottom: 44,
-    x: { label: xLabel, domain: [x0, 1], grid: true },
-    y: { label: yLabel, domain: [bottom - span * 0.2, top], grid: true },
+    width, height, marginLeft: 60, marginBottom: 40, marginTop: 44,
+    fx: { domain: labels, label: null, padding: 0.08 },
+    x: { type: 'log', domain: x, label: 'luminance Y (cd/m²) →', grid: true, ticks: 3, tickFormat: ',~g' },
+    y: { type: 'log', domain: y, label: "↑ normalised R′, G′, B′ (eq 7)", grid: true, tickFormat: '~g' },
+    color: colour,
+    symbol: { domain: CHANNELS.map((c) => c.id), range: CHANNELS.map((c) => c.symbol) },
     marks: [
-      ...legend.map((d, i) => Plot.line([[x0 + 0.01, ly(i)], [x0 + 0.06, ly(i)]], { stroke: d.colour, strokeWidth: 2, strokeDasharray: d.dash })),
-      Plot.text(legend, { x: x0 + 0.07, y: (d, i) => ly(i), text: 'label', textAnchor: 'start', fontSize: 11 }),
-      ...kinds.map((k) => Plot.line(rows.filter((r) => r.kind === k), {
-        x: 'x', y: 'y', z: 'channel', stroke: (d) => CHANNEL_COLOURS[d.channel], strokeWidth: 2, strokeDasharray: KINDS[k].dash,
-        title: (d) => `${d.channel}, ${KINDS[d.kind].label}`,
-      })),
-      Plot.ruleX(ticks, { x: 'x', y1: (d) => tickY(d, 0), y2: (d) => tickY(d, 1), stroke: (d) => CHANNEL_COLOURS[d.channel], strokeWidth: 1.2,
-        title: (d) => `${d.id}: ${d.channel} ${d.x.toFixed(4)}${d.note ? ` (${d.note})` : ''}` }),
-      Plot.text(['R', 'G', 'B'].map((c) => ({ c, y: tickY({ channel: c }, 0.5) })), { x: 1, y: 'y', text: (d) => `${d.c} patches`, textAnchor: 'start', dx: 6, fontSize: 10 }),
-      Plot.ruleY([0]),
+      Plot.frame({ stroke: '#ccc' }),
+      Plot.line(curves.filter(inside), { x: 'Y', y: 'R', fx: 'exposure', z: 'channel', stroke: 'channel', strokeWidth: 1.5 }),
+      Plot.line(own.filter(inside), { x: 'Y', y: 'R', fx: 'exposure', z: 'channel', stroke: 'channel', strokeWidth: 1, strokeDasharray: '3,3' }),
+      Plot.dot(points, { x: 'Y', y: 'R', fx: 'exposure', stroke: 'channel', symbol: 'channel', r: 2.5, title: (d) => `${d.channel} at ${d.exposure}: Y ${d.Y.toFixed(1)} cd/m², ${d.channel}′ ${d.R.toFixed(4)}` }),
+      Plot.ruleY([1], { stroke: '#999', strokeDasharray: '2,3' }),
     ],
   });
 }
