@@ -5,6 +5,7 @@
 #include "cli.hpp"
 #include "patch_args.hpp"
 #include "tristim/capture/raw.hpp"
+#include "tristim/chart/light_trap.hpp"
 #include "tristim/characterisation/objectives.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
@@ -82,7 +83,15 @@ TrainingSet training_from_recipe(const Args& args, const Recipe& recipe) {
       throw Error(ErrorCode::InvalidArgument, "the recipe has no chart corners to sample --raw with");
     SampleOptions so;
     so.area = recipe.sampling.area;
-    const ChartSample sample = sample_chart(image, recipe.sampling.layout, c, so);
+    FrameCalibration cal;
+    if (recipe.capture.has_light_trap()) {  // Abed 2013 App. C step 1: measured again on this image
+      const LightTrap trap = measure_light_trap(image, recipe.capture.light_trap, so);
+      std::cerr << "light trap: flare R=" << trap.mean[0] << " G=" << trap.mean[1] << " B=" << trap.mean[2]
+                << " DN (recipe: " << recipe.capture.flare[0] << " " << recipe.capture.flare[1] << " "
+                << recipe.capture.flare[2] << ")\n";
+      cal = with_light_trap(cal, trap);
+    }
+    const ChartSample sample = sample_chart(image, recipe.sampling.layout, c, so, &cal);
     if (builtin && !args.has("xyz")) return training_set(recipe, sample, recipe_reference(recipe));
     const std::string xyz_path = args.get("xyz");
     const PatchTable t = read_patch_file(read_file(xyz_path), xyz_path);

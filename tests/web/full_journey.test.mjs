@@ -5,8 +5,16 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
+import { execFileSync } from 'node:child_process';
 import { screenshot, repoRoot } from './harness.mjs';
 import { openPage, step, upload, fileBuffer, DNG, marks, markCounts, noErrorNear, setCorners, waitSampled } from './journey.mjs';
+
+// Index of the first differing byte of two buffers (or of the shorter length), -1 when identical.
+function firstDifference(a, b) {
+  const n = Math.min(a.length, b.length);
+  for (let i = 0; i < n; i++) if (a[i] !== b[i]) return i;
+  return a.length === b.length ? -1 : n;
+}
 
 const example = JSON.parse(fs.readFileSync(path.join(repoRoot, 'examples/web/passport.json'), 'utf8'));
 
@@ -166,7 +174,15 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await upload(page, '#step-export input[type=file]', 'journey.icc', bytes);
     await page.waitForFunction(() => /ICC v/.test(document.querySelector('#step-export .import-result')?.textContent ?? ''));
     const [cube] = await Promise.all([page.waitForEvent('download'), page.click('#step-export button[data-export=".cube LUT"]')]);
-    await upload(page, '#step-export input[type=file]', 'journey.cube', fs.readFileSync(await cube.path()));
+    const cubeBytes = fs.readFileSync(await cube.path());
+    // The page's downloads are byte-identical to the CLI's for the same profile (issue 15): the
+    // native `tristim export` on the downloaded profile JSON writes the same ICC and .cube bytes.
+    const cliIcc = path.join(repoRoot, 'test-artifacts', 'journey-cli.icc');
+    const cliCube = path.join(repoRoot, 'test-artifacts', 'journey-cli.cube');
+    execFileSync(path.join(repoRoot, 'build/native/core/tristim'), ['export', '--profile', saved, '--icc', cliIcc, '--cube', cliCube]);
+    assert.equal(firstDifference(bytes, fs.readFileSync(cliIcc)), -1, 'page ICC = CLI ICC, byte for byte');
+    assert.equal(firstDifference(cubeBytes, fs.readFileSync(cliCube)), -1, 'page .cube = CLI .cube, byte for byte');
+    await upload(page, '#step-export input[type=file]', 'journey.cube', cubeBytes);
     await page.waitForFunction(() => /3D LUT/.test(document.querySelector('#step-export .import-result')?.textContent ?? ''));
     // The per-patch CSV loads back as a reference (its X_ref, Y_ref, Z_ref columns).
     await upload(page, '#step-export input[type=file]', 'journey-patches.csv', Buffer.from(csv.join('\n') + '\n'));

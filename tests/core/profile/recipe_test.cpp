@@ -86,6 +86,15 @@ TEST_CASE("recipe options survive the round trip bit for bit", "[recipe]") {
   CHECK(back.characterisation.objective.settings.at("algorithm") == "lm");
   CHECK(back.capture.saturation == 15000.0 / 7.0);
   CHECK(back.sampling.area == 1.0 / 3.0);
+  CHECK_FALSE(back.capture.has_light_trap());
+  CHECK(recipe_to_json(r).find("light_trap") == std::string::npos);  // only recipes with a trap have it
+  // A light trap (Abed 2013 App. C step 1): its corners and the flare measured there round-trip.
+  r.capture.light_trap = {603.5, 443, 643, 443, 643, 481.25, 603.5, 481.25};
+  r.capture.flare = {1.0 / 3.0, 2.5, 0.1};
+  const Recipe trapped = recipe_from_json(recipe_to_json(r));
+  CHECK(trapped.capture.light_trap == r.capture.light_trap);
+  CHECK(trapped.capture.flare == r.capture.flare);
+  CHECK(recipe_to_json(trapped) == recipe_to_json(r));
   FitOptions o;
   apply_objective_choice(back.characterisation.objective, o);
   CHECK(o.objective == Objective::DeltaE2000);
@@ -111,6 +120,8 @@ TEST_CASE("malformed recipes are refused with a code naming the field", "[recipe
   require_code([&] { recipe_from_json(replace(good, "\"leave_one_out\": true", "\"leave_one_out\": 1")); }, ErrorCode::RecipeInvalid);
   require_code([&] { recipe_from_json(replace(good, "\"falloff\": false,", "")); }, ErrorCode::RecipeInvalid);
   require_code([&] { recipe_from_json(replace(good, "\"corners\": [335", "\"corners\": [")); }, ErrorCode::RecipeInvalid);
+  require_code([&] { recipe_from_json(replace(good, "\"noise_floor\": 0", "\"noise_floor\": 0, \"light_trap\": [1, 2, 3]")); }, ErrorCode::RecipeInvalid);
+  require_code([&] { recipe_from_json(replace(good, "\"noise_floor\": 0", "\"noise_floor\": 0, \"light_trap\": [0, 0, 0, 0, 0, 0, 0, 0], \"flare\": [0, 0, 0]")); }, ErrorCode::RecipeInvalid);
   // Unknown ids and options, out-of-range values.
   require_code([&] { recipe_from_json(replace(good, "Finlayson2015-2", "Finlayson2015-9")); }, ErrorCode::UnknownId);
   require_code([&] { recipe_from_json(replace(good, "\"method\": \"identity\"", "\"method\": \"magic\"")); }, ErrorCode::UnknownId);
