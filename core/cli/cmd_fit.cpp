@@ -19,7 +19,7 @@ const char* kFitUsage =
     "tristim fit --rgb patches.csv --xyz reference.csv --model <id> [--objective ls|psm|de2000]\n"
     "            [--white <patch id>] [--lab-white D50|D65|X,Y,Z] [--ref-white D50|D65|X,Y,Z]\n"
     "            [--out profile.json] [--csv patches_out.csv] [--no-loo] [--recipe-out recipe.json]\n"
-    "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm auto|lm|bobyqa|sbplx]\n"
+    "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm auto|lm|irls|bobyqa|sbplx]\n"
     "            [--de-xtol X] [--de-ftol F] [--de-max-evaluations N] [--de-step S]\n"
     "            [--linearisation <id>[:name=value,...]]   (the recipe's linearisation stage: tristim linearise --list)\n"
     "tristim fit --recipe recipe.json (--rgb patches.csv | --raw chart.dng) [--xyz reference.csv]\n"
