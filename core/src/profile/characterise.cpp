@@ -147,6 +147,8 @@ Characterisation characterise(const Recipe& in, const TrainingSet& t) {
   data.ids = t.ids;
   data.camera_RGB = t.camera_RGB;
   data.reference_XYZ = t.reference_XYZ;
+  data.white = c.recipe.characterisation.lab_white;      // the reference's white: greys are neutral under it
+  data.full_scale = c.recipe.capture.saturation;         // 255 / 65535 for a stored image (0: max of the data)
   if (c.recipe.reference.chart != "file")
     data.reflectances = correct_surface(c.recipe.surface, chart_reflectances(c.recipe.reference.chart));
   c.linearisation = fit_linearisation(c.recipe.linearisation, data);
@@ -163,6 +165,14 @@ Characterisation characterise(const Recipe& in, const TrainingSet& t) {
   c.profile.observer = c.recipe.reference.observer == "1964" ? "CIE 1964 10°" : "CIE 1931 2°";
   c.profile.has_recipe = true;
   c.profile.recipe = c.recipe;
+  if (c.linearisation.choice.method != "identity") {
+    // The profile takes the stored values (a JPEG's, a TIFF's) and linearises them itself.
+    c.profile.has_linearisation = true;
+    c.profile.linearisation = c.linearisation;
+    c.profile.training_digest = training_digest(t.ids, t.camera_RGB, reference_XYZ);
+    // device 1.0 of the ICC/.cube exports: the encoding's full scale (255, 65535)
+    if (c.linearisation.full_scale > 0) c.profile.rgb_max = c.linearisation.full_scale;
+  }
   return c;
 }
 
