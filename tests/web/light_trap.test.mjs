@@ -5,7 +5,11 @@
 // input and the chart is sampled without it; a drag on the image marks a trap.
 import test from 'node:test';
 import assert from 'node:assert/strict';
-import { screenshot } from './harness.mjs';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { screenshot, repoRoot } from './harness.mjs';
 import { openPage, step, errorNear, noErrorNear } from './journey.mjs';
 
 const TRAP = { x: 603, y: 443, width: 40, height: 38 };   // inside D6 of the example Passport
@@ -60,6 +64,19 @@ test('light trap: flare measured in the marked region is subtracted before sampl
     const profile = JSON.parse(await page.evaluate(() => window.tristim.session.results.find((r) => /"light_trap"/.test(r.fit.profile)).fit.profile));
     assert.deepEqual(profile.recipe.capture.light_trap, trap.corners);
     for (let c = 0; c < 3; c++) assert.ok(Math.abs(profile.recipe.capture.flare[c] - trap.mean[c]) < 1e-9);
+    // The page's recipe run by the CLI on the same RAW (issue 8): `tristim fit --recipe r.json
+    // --raw passport.dng` measures the trap again and gives the page's coefficients (1e-9 relative).
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'tristim-trap-'));
+    fs.writeFileSync(path.join(dir, 'r.json'), JSON.stringify(profile.recipe));
+    execFileSync(path.join(repoRoot, 'build/native/core/tristim'), ['fit', '--recipe', path.join(dir, 'r.json'),
+      '--raw', path.join(repoRoot, 'examples/web/passport.dng'), '--out', path.join(dir, 'cli.json')], { stdio: ['ignore', 'ignore', 'pipe'] });
+    const cli = JSON.parse(fs.readFileSync(path.join(dir, 'cli.json'), 'utf8'));
+    const a = profile.model.coefficients.flat(), c2 = cli.model.coefficients.flat();
+    assert.equal(c2.length, a.length);
+    const scale = Math.max(...a.map(Math.abs));
+    const worst = Math.max(...a.map((v, i) => Math.abs(v - c2[i]) / scale));
+    assert.ok(worst < 1e-9, `CLI coefficients from the page's recipe differ by ${worst} (relative to the largest)`);
+    fs.rmSync(dir, { recursive: true, force: true });
 
     // 3. A trap outside the image: refused next to the trap's input; the chart is sampled without it.
     await step(page, 'images');
