@@ -7,6 +7,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/linearisation/linearisation.hpp"
 #include "tristim/profile/characterise.hpp"
+#include "tristim/profile/export.hpp"
 #include "tristim/surface/surface.hpp"
 
 using namespace tristim;
