@@ -92,6 +92,7 @@ test('light trap: flare measured in the marked region is subtracted before sampl
 
     // 4. Marked with a drag on the image: the inputs take the rectangle, the flare is measured there.
     await page.click(`${box} button:has-text("Mark it on the image")`);
+    await page.locator('#step-images .corner-editor').scrollIntoViewIfNeeded();
     const pts = await page.evaluate(([x0, y0, x1, y1]) => {
       const svg = document.querySelector('#step-images svg.overlay');
       const m = svg.getScreenCTM();
