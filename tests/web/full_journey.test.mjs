@@ -52,6 +52,7 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     assert.equal(await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]'), table0);
     // Pointer: drag corner 3 a little and back.
     const h = page.locator('#step-images .handle[data-corner="2"] circle.ring');
+    await h.scrollIntoViewIfNeeded();
     const box = await h.boundingBox();
     await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
     await page.mouse.down();
@@ -66,7 +67,7 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await screenshot(page, 'journey-2-images');
 
     // A held-out set: the same photo sampled over a smaller central area (other pixels), as a CSV.
-    const area = page.locator('#step-images input[type=number]').last();
+    const area = page.locator('#step-images').getByLabel('Sampled area per patch');
     await area.fill('0.25');
     await area.dispatchEvent('change');
     await page.waitForFunction((t0) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent !== t0, table0);
