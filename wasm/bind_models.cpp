@@ -42,7 +42,8 @@ EMSCRIPTEN_BINDINGS(tristim_models) {
   { using S = Profile; value_object<S>("Profile") FIELD(version) FIELD(tristim_version) FIELD(model) FIELD(objective)
       FIELD(white) FIELD(illuminant) FIELD(observer) FIELD(white_preserved) FIELD(white_patch) FIELD(white_RGB)
       FIELD(white_XYZ) FIELD(training_patches) FIELD(training_digest) FIELD(rgb_max) FIELD(status) FIELD(message)
-      FIELD(condition_number) FIELD(iterations) FIELD(objective_value) FIELD(has_recipe) FIELD(recipe); }
+      FIELD(condition_number) FIELD(iterations) FIELD(objective_value) FIELD(has_recipe) FIELD(recipe)
+      FIELD(has_linearisation) FIELD(linearisation); }
   { using S = IccOptions; value_object<S>("IccOptions") FIELD(rgb_scale) FIELD(grid_points) FIELD(shaper_gamma)
       FIELD(description) FIELD(version); }
 
@@ -52,6 +53,7 @@ EMSCRIPTEN_BINDINGS(tristim_models) {
   def<static_cast<PatchMatrix (*)(const Model&, const PatchMatrix&)>(&predict)>("predict");
   def<&evaluate>("evaluate");
   def<&training_digest>("trainingDigest");
+  def<&profile_predict>("profilePredict");
   def<&export_icc>("exportIcc");
   def<&export_cube>("exportCube");
   def<&patch_csv>("patchCsv");

@@ -8,11 +8,14 @@
 // setDark(frames: RawImage | RawImage[], mode 'pixel' | 'channel') -> DarkFrame summary,
 // clearDark(), setFlat(flat, mode 'pixel' | 'radial', white_reflectance?: number | [r, g, b])
 // -> FlatField summary or FalloffFit, clearFlat(), saturationMask() -> Uint8Array(w·h),
-// linearRGB() -> Float32Array(3·w·h) with the dark/flat set on this image applied.
+// linearRGB() -> Float32Array(3·w·h) with the dark/flat set on this image applied,
+// setLightTrap(corners[8], SampleOptions?) -> LightTrap (Abed 2013 App. C step 1: the trap's mean
+// after the dark frame becomes the flare subtracted from every pixel), clearLightTrap().
 #include <optional>
 
 #include "tristim/capture/image.hpp"
 #include "tristim/chart/layout.hpp"
+#include "tristim/chart/light_trap.hpp"
 #include "tristim/profile/export.hpp"
 #include "raw_handle.hpp"
 #include "types.hpp"
@@ -77,6 +80,19 @@ val set_flat(RawHandle& h, val flat, val mode, val reflectance) {
   });
 }
 
+/// Measures the light trap on the image with its dark frame (an earlier flare is not subtracted)
+/// and makes its mean the flare of the image's calibration.
+val set_light_trap(RawHandle& h, val corners, val options) {
+  return guard([&] {
+    FrameCalibration base = h.calibration;
+    base.flare.reset();
+    const LightTrap trap = measure_light_trap(h.image, Conv<std::array<double, 8>>::from(corners),
+                                              Conv<SampleOptions>::from(options), &base);
+    h.calibration = with_light_trap(base, trap);
+    return val(trap);
+  });
+}
+
 RawHandle decode(val bytes) {
   return guard([&] { return RawHandle{decode_any(wasm::vector_from<uint8_t>(bytes)), {}}; });
 }
@@ -121,6 +137,7 @@ EMSCRIPTEN_BINDINGS(tristim_raw) {
       FIELD(nonuniform_threshold); }
   { using S = PatchSample; value_object<S>("PatchSample") FIELD(id) FIELD(mean) FIELD(std) FIELD(n)
       FIELD(saturated_fraction) FIELD(flags) FIELD(centre) FIELD(quad) FIELD(sample_quad); }
+  { using S = LightTrap; value_object<S>("LightTrap") FIELD(mean) FIELD(std) FIELD(n) FIELD(flags) FIELD(sample_quad); }
   { using S = ChartSample; value_object<S>("ChartSample") FIELD(layout) FIELD(homography) FIELD(patches); }
   { using S = Image3f; value_object<S>("Image3f") FIELD(width) FIELD(height) FIELD(pixels); }
 
@@ -138,6 +155,9 @@ EMSCRIPTEN_BINDINGS(tristim_raw) {
       .function("setFlat", optional_override([](RawHandle& h, val f, val m) { return set_flat(h, f, m, val::undefined()); }))
       .function("setFlat", &set_flat)
       .function("clearFlat", optional_override([](RawHandle& h) { h.calibration.flat.reset(); h.calibration.falloff.reset(); }))
+      .function("setLightTrap", optional_override([](RawHandle& h, val c) { return set_light_trap(h, c, val::undefined()); }))
+      .function("setLightTrap", &set_light_trap)
+      .function("clearLightTrap", optional_override([](RawHandle& h) { h.calibration.flare.reset(); }))
       .function("saturationMask", optional_override([](const RawHandle& h) { return Conv<std::vector<uint8_t>>::to(h.image.saturated); }))
       .function("linearRGB", optional_override([](const RawHandle& h) {
                   return guard([&] { return with_calibrated(h, [](const RawImage& i) { return Conv<std::vector<float>>::to(i.rgb); }); }); }));

@@ -40,7 +40,7 @@ FitOutcome fit_tables(const Recipe& recipe, const std::vector<std::string>& ids,
 EMSCRIPTEN_BINDINGS(tristim_recipe) {
   { using S = ReferenceStage; value_object<S>("ReferenceStage") FIELD(chart) FIELD(data_digest) FIELD(illuminant) FIELD(observer); }
   { using S = CaptureStage; value_object<S>("CaptureStage") FIELD(dark_frames) FIELD(dark_mode) FIELD(flat_field) FIELD(falloff)
-      FIELD(saturation) FIELD(noise_floor); }
+      FIELD(saturation) FIELD(noise_floor) FIELD(light_trap) FIELD(flare); }
   { using S = SamplingStage; value_object<S>("SamplingStage") FIELD(layout) FIELD(corners) FIELD(area) FIELD(exclude)
       FIELD(exclude_flagged); }
   { using S = CharacterisationStage; value_object<S>("CharacterisationStage") FIELD(model) FIELD(objective) FIELD(white_patch)

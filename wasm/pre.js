@@ -27,7 +27,8 @@ Module['onRuntimeInitialized'] = function () {
   /// evaluateProfile(profile JSON text, rgb, xyz, ids) -> {profile, estimated (3N),
   /// metrics, same_data_as_training (the training digest matches these patches)}.
   M.evaluateProfile = function (profile, rgb, xyz, ids) {
-    var p = M.profileFromJson(profile), estimated = M.predict(p.model, rgb);
+    // (a profile with a linearisation stage takes stored values: profilePredict linearises them)
+    var p = M.profileFromJson(profile), estimated = M.profilePredict(profile, rgb);
     return { profile: p, estimated: estimated, metrics: M.evaluate(estimated, xyz, p.white),
       same_data_as_training: M.trainingDigest(ids, rgb, xyz) === p.training_digest };
   };

@@ -5,6 +5,8 @@
 #include "cli.hpp"
 #include "patch_args.hpp"
 #include "tristim/capture/image.hpp"
+#include "tristim/capture/raw.hpp"
+#include "tristim/chart/light_trap.hpp"
 #include "tristim/characterisation/objectives.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
@@ -18,7 +20,7 @@ const char* kFitUsage =
     "tristim fit --rgb patches.csv --xyz reference.csv --model <id> [--objective ls|psm|de2000]\n"
     "            [--white <patch id>] [--lab-white D50|D65|X,Y,Z] [--ref-white D50|D65|X,Y,Z]\n"
     "            [--out profile.json] [--csv patches_out.csv] [--no-loo] [--recipe-out recipe.json]\n"
-    "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm auto|lm|bobyqa|sbplx]\n"
+    "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm auto|lm|irls|bobyqa|sbplx]\n"
     "            [--de-xtol X] [--de-ftol F] [--de-max-evaluations N] [--de-step S]\n"
     "            [--linearisation <id>[:name=value,...]]   (the recipe's linearisation stage: tristim linearise --list)\n"
     "tristim fit --recipe recipe.json (--rgb patches.csv | --raw chart.dng) [--xyz reference.csv]\n"
@@ -85,7 +87,15 @@ TrainingSet training_from_recipe(const Args& args, Recipe& recipe) {
       throw Error(ErrorCode::InvalidArgument, "the recipe has no chart corners to sample --raw with");
     SampleOptions so;
     so.area = recipe.sampling.area;
-    const ChartSample sample = sample_chart(image, recipe.sampling.layout, c, so);
+    FrameCalibration cal;
+    if (recipe.capture.has_light_trap()) {  // Abed 2013 App. C step 1: measured again on this image
+      const LightTrap trap = measure_light_trap(image, recipe.capture.light_trap, so);
+      std::cerr << "light trap: flare R=" << trap.mean[0] << " G=" << trap.mean[1] << " B=" << trap.mean[2]
+                << " DN (recipe: " << recipe.capture.flare[0] << " " << recipe.capture.flare[1] << " "
+                << recipe.capture.flare[2] << ")\n";
+      cal = with_light_trap(cal, trap);
+    }
+    const ChartSample sample = sample_chart(image, recipe.sampling.layout, c, so, &cal);
     if (builtin && !args.has("xyz")) return training_set(recipe, sample, recipe_reference(recipe));
     const std::string xyz_path = args.get("xyz");
     const PatchTable t = read_patch_file(read_file(xyz_path), xyz_path);

@@ -13,6 +13,7 @@
 #include "cli.hpp"
 #include "linearise_option.hpp"
 #include "patch_args.hpp"
+#include "tristim/capture/image.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/evaluation/evaluation.hpp"
@@ -34,7 +35,7 @@ int run_evaluate(const Args& args, std::ostream& out) {
   const Profile p = profile_from_json(read_file(args.get("profile")));
   const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
   validate_patches(d.rgb, d.xyz);
-  const PatchMatrix est = predict(p.model, d.rgb);
+  const PatchMatrix est = profile_predict(p, d.rgb);  // (a profile with a linearisation takes stored values)
   const Metrics m = evaluate(est, d.xyz, p.white);
   json::Value o = json::Value::object();
   o.set("model", p.model.id);
@@ -173,9 +174,11 @@ int run_compare(const Args& args, std::ostream& out) {
 
 const char* kApplyUsage =
     "tristim apply <profile.json> <image> --out xyz.tiff|xyz.pfm [--linearisation gamma|sRGB|fitted.json [--full-scale 255]]\n"
-    "  Applies the profile to a linear camera-RGB image and writes 32-bit float XYZ (TIFF,\n"
+    "  Applies the profile to a camera-RGB image and writes 32-bit float XYZ (TIFF,\n"
     "  uncompressed, or PFM). Input: a RAW file (decoded like the chart: linear, black subtracted,\n"
-    "  no white balance) or a colour PFM of linear camera RGB.";
+    "  no white balance), a TIFF/PNG/JPEG (values as stored) or a colour PFM of camera RGB. A\n"
+    "  profile fitted with a linearisation stage (fit --linearisation) linearises the stored values\n"
+    "  itself; --linearisation is for profiles without one (e.g. a RAW profile on a gamma image).";
 
 int run_apply(const Args& args, std::ostream&) {
   args.allow_only({"out", "linearisation", "full-scale"});
@@ -188,13 +191,22 @@ int run_apply(const Args& args, std::ostream&) {
     rgb = read_pfm(read_file(in_path));
   } else {
     // A RAW file: LibRaw's linear camera RGB (black subtracted, no white balance, half size for
-    // Bayer sensors), the same data the chart patches are sampled from.
+    // Bayer sensors), the same data the chart patches are sampled from; a TIFF/PNG/JPEG: its
+    // values as stored (recognised by its bytes, like `sample`).
     const std::string bytes = read_file(in_path);
-    RawImage raw = decode_raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+    RawImage raw;
+    try {
+      raw = decode_any(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+    } catch (const Error& e) {
+      throw Error(e.code(), "'" + in_path + "': " + e.what());
+    }
     rgb.width = raw.width;
     rgb.height = raw.height;
     rgb.pixels = std::move(raw.rgb);
   }
+  if (p.has_linearisation && args.has("linearisation"))
+    throw Error(ErrorCode::InvalidArgument, "the profile has its own linearisation stage (" + p.linearisation.choice.method +
+                                                "): --linearisation would apply a second one");
   linearise_image(linearisation_for_image(args), rgb.pixels.data(), rgb.pixels.size() / 3);  // linearise_option.hpp
   const std::string out_path = args.get("out");
   const auto t0 = std::chrono::steady_clock::now();

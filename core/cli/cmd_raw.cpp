@@ -12,6 +12,7 @@
 #include "tristim/capture/calibration.hpp"
 #include "tristim/chart/detect.hpp"
 #include "tristim/chart/layout.hpp"
+#include "tristim/chart/light_trap.hpp"
 #include "tristim/error.hpp"
 #include "tristim/capture/image.hpp"
 #include "tristim/capture/raw.hpp"
@@ -72,7 +73,7 @@ int run_inspect(const Args& args, std::ostream& out) {
 
 int run_sample(const Args& args, std::ostream& out) {
   args.allow_only({"chart", "corners", "dark", "dark-mode", "flat", "flat-mode", "white-reflectance",
-                   "area", "rows", "columns", "margins"});
+                   "area", "rows", "columns", "margins", "light-trap"});
   if (args.positional.size() != 1)
     throw Error(ErrorCode::InvalidArgument, "sample takes exactly one RAW, TIFF, PNG or JPEG file");
   const LayoutOptions layout = layout_options(args);
@@ -129,6 +130,16 @@ int run_sample(const Args& args, std::ostream& out) {
       throw Error(ErrorCode::InvalidArgument, "--flat-mode is 'pixel' or 'radial'");
     }
   }
+  if (args.has("light-trap")) {  // Abed 2013 App. C step 1: flare from an in-scene light trap
+    const auto c = numbers(args.get("light-trap"), "light-trap");
+    if (c.size() != 8) throw Error(ErrorCode::InvalidArgument, "--light-trap needs 8 numbers: x1,y1,...,x4,y4");
+    std::array<double, 8> trap_corners;
+    std::copy(c.begin(), c.end(), trap_corners.begin());
+    const LightTrap trap = measure_light_trap(image, trap_corners, options, &cal);
+    std::cerr << "light trap (Abed 2013 App. C): flare R=" << trap.mean[0] << " G=" << trap.mean[1] << " B=" << trap.mean[2]
+              << " DN over " << trap.n << " pixels, subtracted before sampling\n";
+    cal = with_light_trap(cal, trap);
+  }
   const ChartSample s = sample_chart(image, layout, corners, options, &cal);
   out << chart_sample_to_csv(s);
   return 0;
@@ -153,6 +164,7 @@ const CommandRegistration sample_cmd{Command{
     "                      [--dark f ...] [--dark-mode pixel|channel]\n"
     "                      [--flat f] [--flat-mode pixel|radial] [--white-reflectance r | r,g,b]\n"
     "                      [--area 0.5] [--rows N --columns M --margins l,t,r,b]\n"
+    "                      [--light-trap x1,y1,x2,y2,x3,y3,x4,y4]\n"
     "--chart: cc24, cc24-2005, passport, sg140, sg140-2005 or custom (with --rows/--columns,\n"
     "  optional --margins as fractions of the chart width/height).\n"
     "--corners: the four outer corners of the patch grid, clockwise from the top-left (the\n"
@@ -164,6 +176,9 @@ const CommandRegistration sample_cmd{Command{
     "--dark: dark frames (repeat the option), averaged, subtracted per pixel or per channel.\n"
     "--flat: flat-field frame: per-pixel gains (Abed 2013 App. C) or a radial fall-off fit\n"
     "  (Guarnera 2018 eq 7; coefficients printed on stderr).\n"
+    "--light-trap: the four corners of an in-scene light trap (a black cavity, marked like a patch,\n"
+    "  same coordinates as --corners): its mean RGB after the dark frame is the flare, subtracted\n"
+    "  per channel before sampling (Abed 2013 App. C step 1); printed on stderr.\n"
     "--area: sampled fraction of each patch's width and height (default 0.5: the central quarter).\n"
     "Output CSV: patch,R,G,B,R_std,G_std,B_std,n,flags — for a RAW, linear, black-subtracted DN (no\n"
     "white balance, no matrix); for a TIFF/PNG/JPEG, the values as stored (0..255 or 0..65535, not\n"

@@ -5,8 +5,16 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
+import { execFileSync } from 'node:child_process';
 import { screenshot, repoRoot } from './harness.mjs';
 import { openPage, step, upload, fileBuffer, DNG, marks, markCounts, noErrorNear, setCorners, waitSampled } from './journey.mjs';
+
+// Index of the first differing byte of two buffers (or of the shorter length), -1 when identical.
+function firstDifference(a, b) {
+  const n = Math.min(a.length, b.length);
+  for (let i = 0; i < n; i++) if (a[i] !== b[i]) return i;
+  return a.length === b.length ? -1 : n;
+}
 
 const example = JSON.parse(fs.readFileSync(path.join(repoRoot, 'examples/web/passport.json'), 'utf8'));
 
@@ -44,6 +52,7 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     assert.equal(await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]'), table0);
     // Pointer: drag corner 3 a little and back.
     const h = page.locator('#step-images .handle[data-corner="2"] circle.ring');
+    await h.scrollIntoViewIfNeeded();
     const box = await h.boundingBox();
     await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
     await page.mouse.down();
@@ -58,7 +67,7 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await screenshot(page, 'journey-2-images');
 
     // A held-out set: the same photo sampled over a smaller central area (other pixels), as a CSV.
-    const area = page.locator('#step-images input[type=number]').last();
+    const area = page.locator('#step-images').getByLabel('Sampled area per patch');
     await area.fill('0.25');
     await area.dispatchEvent('change');
     await page.waitForFunction((t0) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent !== t0, table0);
@@ -166,7 +175,15 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await upload(page, '#step-export input[type=file]', 'journey.icc', bytes);
     await page.waitForFunction(() => /ICC v/.test(document.querySelector('#step-export .import-result')?.textContent ?? ''));
     const [cube] = await Promise.all([page.waitForEvent('download'), page.click('#step-export button[data-export=".cube LUT"]')]);
-    await upload(page, '#step-export input[type=file]', 'journey.cube', fs.readFileSync(await cube.path()));
+    const cubeBytes = fs.readFileSync(await cube.path());
+    // The page's downloads are byte-identical to the CLI's for the same profile (issue 15): the
+    // native `tristim export` on the downloaded profile JSON writes the same ICC and .cube bytes.
+    const cliIcc = path.join(repoRoot, 'test-artifacts', 'journey-cli.icc');
+    const cliCube = path.join(repoRoot, 'test-artifacts', 'journey-cli.cube');
+    execFileSync(path.join(repoRoot, 'build/native/core/tristim'), ['export', '--profile', saved, '--icc', cliIcc, '--cube', cliCube]);
+    assert.equal(firstDifference(bytes, fs.readFileSync(cliIcc)), -1, 'page ICC = CLI ICC, byte for byte');
+    assert.equal(firstDifference(cubeBytes, fs.readFileSync(cliCube)), -1, 'page .cube = CLI .cube, byte for byte');
+    await upload(page, '#step-export input[type=file]', 'journey.cube', cubeBytes);
     await page.waitForFunction(() => /3D LUT/.test(document.querySelector('#step-export .import-result')?.textContent ?? ''));
     // The per-patch CSV loads back as a reference (its X_ref, Y_ref, Z_ref columns).
     await upload(page, '#step-export input[type=file]', 'journey-patches.csv', Buffer.from(csv.join('\n') + '\n'));

@@ -200,7 +200,9 @@ export function mount(section, app) {
       reference: rs.referenceFile ? { chart: 'file', data_digest: ref.data_digest, illuminant: rs.illuminant, observer: rs.observer }
         : { chart: rs.chart, illuminant: rs.illuminant, observer: rs.observer },
       capture: { dark_frames: s['files.dark'] ? s['files.dark'].list?.length ?? 1 : 0, flat_field: flat && !radial, falloff: flat && radial,
-        saturation: storedFullScale(app.derived.image?.metadata) },
+        saturation: storedFullScale(app.derived.image?.metadata),
+        // the light trap of step 2 (Abed 2013 App. C step 1) and the flare it subtracted
+        ...(sample.lightTrap ? { light_trap: sample.lightTrapCorners, flare: Array.from(sample.lightTrap.mean) } : {}) },
       sampling: { layout: s.layout ?? { chart: 'passport' }, corners: sample.corners, area: s.sampleOptions?.area ?? 0.5,
         exclude: choice.excludeAllFlagged ? [] : data.excluded.map((e) => e.id), exclude_flagged: !!choice.excludeAllFlagged },
       // the linearisation step's choice (step 2b): the fit trains on the linearised camera RGB

@@ -32,6 +32,8 @@ export class CornerEditor {
     this.sample = null;
     this.refused = null;       // the code of the last refused sampling of these corners
     this.detected = null;      // {candidate, proposal}: a detected chart, drawn as a proposal or labelled in use
+    this.trap = null;          // the light trap {x, y, w, h} (measurement-image pixels), or null
+    this.onTrapDrawn = null;   // while marking a light trap: called with the rectangle dragged out
     this.el = document.createElement('div');
     this.el.className = 'corner-editor';
     this.el.tabIndex = -1;
@@ -48,7 +50,34 @@ export class CornerEditor {
     this.handleLayer = svgEl('g', { class: 'handles' });
     this.detectLayer = svgEl('g', { class: 'detected', 'clip-path': 'url(#image-clip)' });
     this.detectLabel = svgEl('text', { class: 'detect-label' });
-    this.svg.append(defs, this.detectLayer, this.outline, this.gridLayer, this.detectLabel, this.handleLayer);
+    this.trapRect = svgEl('rect', { class: 'light-trap' });
+    this.trapLabel = svgEl('text', { class: 'light-trap-label' });
+    this.trapLabel.textContent = 'light trap';
+    this.svg.append(defs, this.detectLayer, this.outline, this.gridLayer, this.detectLabel, this.trapRect, this.trapLabel, this.handleLayer);
+    // Marking a light trap: a drag on the image (not on a handle) draws its rectangle.
+    this.svg.addEventListener('pointerdown', (e) => {
+      if (!this.onTrapDrawn || e.target.closest('.handle')) return;
+      e.preventDefault();
+      this.svg.setPointerCapture(e.pointerId);
+      const [x0, y0] = this.toImage(e);
+      const rectOf = (ev) => {
+        const [x1, y1] = this.toImage(ev);
+        const r = (v) => Math.round(v * 10) / 10;
+        return { x: r(Math.min(x0, x1)), y: r(Math.min(y0, y1)), w: r(Math.abs(x1 - x0)), h: r(Math.abs(y1 - y0)) };
+      };
+      const move = (ev) => this.setLightTrap(rectOf(ev));
+      const up = (ev) => {
+        this.svg.releasePointerCapture(ev.pointerId);
+        this.svg.removeEventListener('pointermove', move);
+        this.svg.removeEventListener('pointerup', up);
+        const done = this.onTrapDrawn;
+        this.onTrapDrawn = null;
+        this.el.classList.remove('marking');
+        done(rectOf(ev));
+      };
+      this.svg.addEventListener('pointermove', move);
+      this.svg.addEventListener('pointerup', up);
+    });
     this.el.append(this.canvas, this.svg);
     this.el.hidden = true;
     this.handles = CORNER_NAMES.map((name, i) => this.makeHandle(i, name));
@@ -129,6 +158,10 @@ export class CornerEditor {
   }
 
   setLayout(layout) { this.layout = layout; this.draw(); }
+  /// The light trap's rectangle {x, y, w, h} drawn over the image (null: none).
+  setLightTrap(rect) { this.trap = rect; this.draw(); }
+  /// The next drag on the image marks the light trap; onDone(rect) gets it.
+  markLightTrap(onDone) { this.onTrapDrawn = onDone; this.el.classList.add('marking'); }
   /// The engine's sampling of the current corners, or null and the code it refused them with.
   setSample(s, refused = null) { this.sample = s; this.refused = refused; this.draw(); }
 
@@ -207,6 +240,14 @@ export class CornerEditor {
       return poly;
     }));
     this.drawDetected(scale);
+    const t = this.trap;
+    this.trapRect.style.display = this.trapLabel.style.display = t ? '' : 'none';
+    if (t) {
+      for (const [k, v] of Object.entries({ x: t.x, y: t.y, width: t.w, height: t.h })) this.trapRect.setAttribute(k, v);
+      this.trapLabel.setAttribute('x', t.x);
+      this.trapLabel.setAttribute('y', Math.max(12 * scale, t.y - 4 * scale));
+      this.trapLabel.setAttribute('font-size', 12 * scale);
+    }
     for (const g of this.handles) {
       g.querySelector('circle.ring').setAttribute('r', 9 * scale);
       g.querySelector('circle.hit').setAttribute('r', 16 * scale);

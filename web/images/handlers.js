@@ -72,9 +72,21 @@ export const handlers = {
     return reply(result);
   },
 
-  sample: (T, { layout, corners, sampleOptions = {} }, { state }) => {
-    if (!state.raw?.chart) throw coded('no RAW image decoded yet', 'NO_IMAGE');
-    return reply(T.sampleChart(state.raw.chart, layout, corners, sampleOptions));
+  /// Samples the chart. lightTrap: the four corners of an in-scene light trap (Abed 2013 App. C
+  /// step 1) whose mean after the dark frame is subtracted as flare before sampling, or null. A
+  /// trap the engine refuses (outside the image, saturated, ...) is not used: the chart is
+  /// sampled without it and the reply carries lightTrapError {code, message} for the trap's input.
+  sample: (T, { layout, corners, sampleOptions = {}, lightTrap = null }, { state }) => {
+    const chart = state.raw?.chart;
+    if (!chart) throw coded('no RAW image decoded yet', 'NO_IMAGE');
+    let trap = null, trapError = null;
+    if (lightTrap) {
+      try { trap = chart.setLightTrap(lightTrap, sampleOptions); } catch (e) { chart.clearLightTrap(); trapError = { code: e.code, message: e.message }; }
+    } else chart.clearLightTrap();
+    const s = T.sampleChart(chart, layout, corners, sampleOptions);
+    s.lightTrap = trap;
+    s.lightTrapError = trapError;
+    return reply(s);
   },
   /// The patch grid of a layout placed by four corners (for drawing; the engine's homography).
   grid: (T, { layout, corners }) => reply({ layout: T.chartLayout(layout), homography: T.homographyUnitSquare(corners) }),

@@ -66,6 +66,51 @@ export function mount(section, app) {
   const detectProgress = progressBar('Finding the chart');
   const detectPanel = h('div', { class: 'detect-panel', dataset: { state: 'idle' } }, detectText, acceptBtn, againBtn, detectProgress.el);
   let detection = null;  // {candidate, state: 'proposal' | 'in-use' | 'adjusted'}
+  // Light trap (Abed 2013 App. C step 1): a black cavity in the scene, marked like a patch; its
+  // mean after the dark frame is the flare subtracted per channel before sampling.
+  const trapOn = h('input', { type: 'checkbox', checked: !!app.session.lightTrap });
+  const trapIns = ['x', 'y', 'width', 'height'].map((k) => h('input', { type: 'number', min: 0, step: 1, 'aria-label': `Light trap ${k} (pixels)`, dataset: { trap: k } }));
+  const trapMark = h('button', { type: 'button' }, 'Mark it on the image');
+  const trapState = h('p', { class: 'light-trap-state', 'aria-live': 'polite' });
+  const trapErr = errorSlot(trapOn);
+  const trapBox = h('fieldset', { class: 'light-trap' },
+    h('legend', {}, 'Light trap — flare (Abed et al. 2013, App. C)'),
+    h('label', {}, trapOn, ' Subtract an in-scene light trap'),
+    ...trapIns.map((i) => h('label', {}, i.getAttribute('aria-label').replace(/^Light trap /, '').replace(/ \(pixels\)/, ''), ' ', i)),
+    trapMark, trapState, trapErr);
+  const trapRect = () => {
+    if (!trapOn.checked) return null;
+    const [x, y, w, hh] = trapIns.map((i) => Number(i.value));
+    return [x, y, w, hh].every(Number.isFinite) && w > 0 && hh > 0 ? { x, y, w, h: hh } : null;
+  };
+  const trapCorners = (r) => (r ? [r.x, r.y, r.x + r.w, r.y, r.x + r.w, r.y + r.h, r.x, r.y + r.h] : null);
+  function showTrap(r) {
+    if (r) [r.x, r.y, r.w, r.h].forEach((v, i) => { trapIns[i].value = v; });
+    for (const i of [...trapIns, trapMark]) i.disabled = !trapOn.checked;
+    editor.setLightTrap(trapOn.checked ? trapRect() : null);
+  }
+  async function trapChanged() {
+    const r = trapRect();
+    editor.setLightTrap(r);
+    await app.save('lightTrap', trapOn.checked ? (r ?? app.session.lightTrap ?? null) : undefined);
+    resample();
+  }
+  trapOn.addEventListener('change', () => {
+    if (trapOn.checked && !trapRect() && editor.width) {
+      // A first guess to move: a small square at the image's top-left quarter.
+      const side = Math.round(Math.min(editor.width, editor.height) / 12);
+      showTrap({ x: Math.round(editor.width / 8), y: Math.round(editor.height / 8), w: side, h: side });
+    }
+    showTrap();
+    if (!trapOn.checked) { clearError(trapOn); trapState.textContent = ''; }
+    trapChanged();
+  });
+  for (const i of trapIns) i.addEventListener('change', () => { showTrap(); trapChanged(); });
+  trapMark.addEventListener('click', () => {
+    trapState.textContent = 'Drag a rectangle over the light trap on the image.';
+    editor.markLightTrap((r) => { if (r.w >= 1 && r.h >= 1) { showTrap(r); trapChanged(); } else trapState.textContent = ''; });
+  });
+  if (app.session.lightTrap) showTrap(app.session.lightTrap); else showTrap();
   const tableBox = h('div', { class: 'table-box' });
   const sampleSummary = h('p', { class: 'summary', 'aria-live': 'polite' });
 
@@ -74,6 +119,7 @@ export function mount(section, app) {
     fileRow, drop, progress.el, meta, encodingNote,
     h('div', { class: 'controls' }, field('Chart layout', layoutSel), customBox,
       field('Sampled area per patch', areaIn, 'Fraction of each patch averaged (Abed et al.: central 50 %)'), resetCorners),
+    h('div', { class: 'controls' }, trapBox),
     h('p', { class: 'hint' }, 'Drag the four corner handles onto the chart\'s outer patch corners (A1 top-left). '
       + 'With the keyboard: Tab to a handle, arrow keys move it 1 pixel (Shift: 10).'),
     h('div', { class: 'images-layout' }, h('div', {}, editor.el, cornerErr, detectPanel, detectErr), h('div', {}, sampleSummary, tableBox)));
@@ -303,9 +349,12 @@ export function mount(section, app) {
     }
     const corners = Array.from(editor.corners);   // a copy: handles move while the worker samples
     try {
-      const s = await engine.call('sample', { layout: layoutOptions(), corners: Array.from(corners), sampleOptions: { area: Number(areaIn.value) } });
+      const lightTrap = trapCorners(trapRect());
+      const s = await engine.call('sample', { layout: layoutOptions(), corners: Array.from(corners), sampleOptions: { area: Number(areaIn.value) }, lightTrap });
       if (seq !== sampleSeq) return null;
       clearError(editor.el);
+      showTrapResult(s, lightTrap);
+      if (s.lightTrap) s.lightTrapCorners = lightTrap;
       s.corners = Array.from(corners);
       // Handles may have moved while the worker sampled: sample again until the table matches.
       if (editor.corners.some((v, i) => v !== corners[i])) setTimeout(resample, 0);
@@ -325,6 +374,20 @@ export function mount(section, app) {
       }
       return null;
     }
+  }
+
+  /// What the light trap gave: the flare subtracted, or the reason it was not used (next to it).
+  function showTrapResult(s, lightTrap) {
+    clearError(trapOn);
+    if (!lightTrap) { trapState.textContent = trapOn.checked ? 'Mark the trap (a rectangle of positive size).' : ''; return; }
+    if (s.lightTrapError) {
+      showError(trapOn, s.lightTrapError, 'Light trap');
+      trapState.textContent = 'Not subtracted: the chart is sampled without a light trap.';
+      return;
+    }
+    const t = s.lightTrap;
+    trapState.textContent = `Flare subtracted from every pixel: R ${fmt(t.mean[0], 1)}, G ${fmt(t.mean[1], 1)}, B ${fmt(t.mean[2], 1)} DN `
+      + `(mean of ${t.n} pixels after the dark frame; σ ${t.std.map((v) => fmt(v, 1)).join(' / ')})${t.flags.length ? ` — ${t.flags.join(', ')}` : ''}.`;
   }
 
   function renderTable(s) {

@@ -157,6 +157,7 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout_opti
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) H(r, c) = out.homography[r * 3 + c];
   const Eigen::Matrix3d Hi = H.inverse();
+  const auto snap = [](double t) { return std::round(t * 1e9) * 1e-9; };
   const auto fwd = [&](double u, double v) {
     const Eigen::Vector3d p = H * Eigen::Vector3d(u, v, 1);
     return std::array<double, 2>{p(0) / p(2), p(1) / p(2)};
@@ -191,6 +192,11 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout_opti
               x1 = std::min(image.width - 1, static_cast<int>(std::ceil(xmax)));
     const int y0 = std::max(0, static_cast<int>(std::floor(ymin))),
               y1 = std::min(image.height - 1, static_cast<int>(std::ceil(ymax)));
+    // Pixel centres often fall exactly on a sample-area edge (an axis-aligned area with corners on
+    // half pixels). Which side they land on must not depend on the last bit of the inverse
+    // homography, which differs between builds (native SIMD vs wasm scalar): both sides of each
+    // test are snapped to a 1e-9 grid in patch coordinates first.
+    const double su0 = snap(u0), su1 = snap(u1), sv0 = snap(v0), sv1 = snap(v1), suc = snap(uc), svc = snap(vc);
     // Welford per channel, in double; raw (dark-subtracted, DN) means for the noise-floor test.
     std::array<double, 3> mean{}, m2{}, raw_mean{};
     std::array<int, 3> nsat{};
@@ -202,8 +208,8 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout_opti
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) {
         const Eigen::Vector3d q = Hi * Eigen::Vector3d(x + 0.5, y + 0.5, 1);
-        const double u = q(0) / q(2), v = q(1) / q(2);
-        if (u < u0 || u >= u1 || v < v0 || v >= v1) continue;
+        const double u = snap(q(0) / q(2)), v = snap(q(1) / q(2));
+        if (u < su0 || u >= su1 || v < sv0 || v >= sv1) continue;
         if (calibration) {
           calibration->calibrated(image, x, y, cal);
           calibration->dark_subtracted(image, x, y, dn);
@@ -211,7 +217,7 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout_opti
           for (int c = 0; c < 3; ++c) cal[c] = dn[c] = image.at(x, y, c);
         }
         ++n;
-        const int quadrant = (u >= uc ? 1 : 0) + (v >= vc ? 2 : 0);
+        const int quadrant = (u >= suc ? 1 : 0) + (v >= svc ? 2 : 0);
         ++qn[quadrant];
         for (int c = 0; c < 3; ++c) qsum[quadrant][c] += cal[c];
         const std::uint8_t sat = image.saturated[static_cast<size_t>(y) * image.width + x];

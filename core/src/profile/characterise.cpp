@@ -165,6 +165,14 @@ Characterisation characterise(const Recipe& in, const TrainingSet& t) {
   c.profile.observer = c.recipe.reference.observer == "1964" ? "CIE 1964 10°" : "CIE 1931 2°";
   c.profile.has_recipe = true;
   c.profile.recipe = c.recipe;
+  if (c.linearisation.choice.method != "identity") {
+    // The profile takes the stored values (a JPEG's, a TIFF's) and linearises them itself.
+    c.profile.has_linearisation = true;
+    c.profile.linearisation = c.linearisation;
+    c.profile.training_digest = training_digest(t.ids, t.camera_RGB, reference_XYZ);
+    // device 1.0 of the ICC/.cube exports: the encoding's full scale (255, 65535)
+    if (c.linearisation.full_scale > 0) c.profile.rgb_max = c.linearisation.full_scale;
+  }
   return c;
 }
 

@@ -69,8 +69,17 @@ void write_text_tag(const LcmsContext& lc, cmsHPROFILE h, cmsTagSignature sig, c
   if (!ok) export_failed(lc, "cannot write a text tag");
 }
 
+// XYZ of one camera value as the profile takes it: a profile with a linearisation stage takes
+// stored (non-linear) values and linearises them first (profile.hpp).
+Vec3 profile_XYZ(const Profile& p, const Vec3& camera) {
+  if (!p.has_linearisation) return predict(p.model, camera);
+  PatchMatrix one(1, 3);
+  one.row(0) = camera.transpose();
+  return predict(p.model, linearise(p.linearisation, one)).row(0).transpose();
+}
+
 struct SamplerCargo {
-  const Model* model;
+  const Profile* profile;
   double rgb_scale, gamma;
   PcsMapping pcs;
 };
@@ -90,7 +99,7 @@ int clut_sampler(const cmsUInt16Number In[], cmsUInt16Number Out[], void* cargo)
     const double u = In[k] / 65535.0;                       // grid coordinate after the A curve
     rgb[k] = std::pow(u, c->gamma) * c->rgb_scale;          // back to camera RGB
   }
-  const Vec3 xyz = c->pcs.cat * (predict(*c->model, rgb) * c->pcs.inv_white_Y);
+  const Vec3 xyz = c->pcs.cat * (profile_XYZ(*c->profile, rgb) * c->pcs.inv_white_Y);
   for (int k = 0; k < 3; ++k) {
     const double v = std::round((xyz[k] - kClutLow) / kClutSpan * 65535.0);
     Out[k] = static_cast<cmsUInt16Number>(v < 0 ? 0 : (v > 65535 ? 65535 : v));
@@ -183,7 +192,7 @@ std::vector<uint8_t> export_icc(const Profile& p, const IccOptions& options) {
       for (int c = 0; c < 3; ++c) chad[3 * r + c] = pcs.cat(r, c);
     if (!cmsWriteTag(h, cmsSigChromaticAdaptationTag, chad)) export_failed(lc, "cannot write chad");
   }
-  if (info.linear) {
+  if (info.linear && !p.has_linearisation) {  // (with a linearisation stage: the LUT form below)
     const Mat3 M = pcs.cat * p.model.coefficients.leftCols(3) * (scale * pcs.inv_white_Y);
     const cmsTagSignature sigs[3] = {cmsSigRedColorantTag, cmsSigGreenColorantTag, cmsSigBlueColorantTag};
     const cmsTagSignature trcs[3] = {cmsSigRedTRCTag, cmsSigGreenTRCTag, cmsSigBlueTRCTag};
@@ -209,7 +218,7 @@ std::vector<uint8_t> export_icc(const Profile& p, const IccOptions& options) {
     cmsStage* sb = cmsStageAllocToneCurves(lc.ctx, 3, Bc);
     cmsFreeToneCurve(a);
     cmsFreeToneCurve(id);
-    SamplerCargo cargo{&p.model, scale, options.shaper_gamma, pcs};
+    SamplerCargo cargo{&p, scale, options.shaper_gamma, pcs};
     bool ok = sa && clut && sb && cmsStageSampleCLut16bit(clut, clut_sampler, &cargo, 0) &&
               cmsPipelineInsertStage(lut, cmsAT_END, sa) && cmsPipelineInsertStage(lut, cmsAT_END, clut) &&
               cmsPipelineInsertStage(lut, cmsAT_END, sb);
@@ -262,7 +271,11 @@ std::string export_cube(const Profile& p, int size, double rgb_scale) {
   // Resolve's .cube convention: comments only before the first keyword, no TITLE (OpenColorIO's
   // Resolve reader refuses it), both sizes and ranges, then the 1D rows, then the 3D rows.
   out += "# tristim " + std::string(kVersion) + " " + p.model.id + " (" + objective_id(p.objective) + ")\n";
-  std::snprintf(buf, sizeof buf, "# input: d = camera RGB / %.17g (linear; d = 1 is the brightest training value)\n", scale);
+  if (p.has_linearisation)
+    std::snprintf(buf, sizeof buf, "# input: d = stored camera value / %.17g (non-linear, as in the image; the profile's %s linearisation is inside the LUT)\n",
+                  scale, p.linearisation.choice.method.c_str());
+  else
+    std::snprintf(buf, sizeof buf, "# input: d = camera RGB / %.17g (linear; d = 1 is the brightest training value)\n", scale);
   out += buf;
   std::snprintf(buf, sizeof buf, "# output: CIE XYZ / white Y (white %.9g %.9g %.9g, %s), not clipped\n", p.white[0], p.white[1],
                 p.white[2], p.illuminant.c_str());
@@ -286,7 +299,7 @@ std::string export_cube(const Profile& p, int size, double rgb_scale) {
   for (int b = 0; b < size; ++b)
     for (int g = 0; g < size; ++g)
       for (int r = 0; r < size; ++r) {
-        const Vec3 xyz = predict(p.model, Vec3(d[r], d[g], d[b])) * inv;
+        const Vec3 xyz = profile_XYZ(p, Vec3(d[r], d[g], d[b])) * inv;
         std::snprintf(buf, sizeof buf, "%.7g %.7g %.7g\n", xyz[0], xyz[1], xyz[2]);
         out += buf;
       }
@@ -520,8 +533,17 @@ Image3f apply_profile(const Profile& profile, const float* rgb, int width, int h
   Image3f out;
   out.width = width;
   out.height = height;
-  out.pixels.resize(static_cast<size_t>(width) * height * 3);
-  apply_to_image(profile.model, rgb, static_cast<size_t>(width) * height, out.pixels.data());
+  const size_t n = static_cast<size_t>(width) * height;
+  out.pixels.resize(n * 3);
+  if (profile.has_linearisation) {  // stored values: the profile's linearisation stage first
+    std::copy(rgb, rgb + n * 3, out.pixels.begin());
+    linearise_image(profile.linearisation, out.pixels.data(), n);
+    std::vector<float> linear(std::move(out.pixels));
+    out.pixels.assign(n * 3, 0.f);
+    apply_to_image(profile.model, linear.data(), n, out.pixels.data());
+    return out;
+  }
+  apply_to_image(profile.model, rgb, n, out.pixels.data());
   return out;
 }
 

@@ -196,6 +196,7 @@ std::string profile_to_json(const Profile& p) {
   o.set("fit", f);
   o.set("metrics", p.metrics.is_object() ? p.metrics : json::Value::object());
   if (p.has_recipe) o.set("recipe", recipe_json(p.recipe));
+  if (p.has_linearisation) o.set("linearisation", linearisation_json(p.linearisation));
   return o.dump(2) + "\n";
 }
 
@@ -275,7 +276,19 @@ Profile profile_from_json(const std::string& text) {
     p.recipe = recipe_from_json(*r);
     p.has_recipe = true;
   }
+  if (const auto* l = o.find("linearisation")) {
+    p.linearisation = linearisation_from_json(*l);
+    p.has_linearisation = true;
+  }
   return p;
+}
+
+PatchMatrix profile_input(const Profile& profile, const PatchMatrix& camera_RGB) {
+  return profile.has_linearisation ? linearise(profile.linearisation, camera_RGB) : camera_RGB;
+}
+
+PatchMatrix profile_predict(const Profile& profile, const PatchMatrix& camera_RGB) {
+  return predict(profile.model, profile_input(profile, camera_RGB));
 }
 
 }  // namespace tristim

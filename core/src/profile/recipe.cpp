@@ -185,6 +185,10 @@ json::Value recipe_json(const Recipe& in) {
   cap.set("falloff", r.capture.falloff);
   cap.set("saturation", r.capture.saturation);
   cap.set("noise_floor", r.capture.noise_floor);
+  if (r.capture.has_light_trap()) {
+    cap.set("light_trap", json::Value(std::vector<double>(r.capture.light_trap.begin(), r.capture.light_trap.end())));
+    cap.set("flare", json::Value(std::vector<double>(r.capture.flare.begin(), r.capture.flare.end())));
+  }
   o.set("capture", cap);
 
   json::Value lay = json::Value::object();
@@ -246,13 +250,21 @@ Recipe recipe_from_json(const json::Value& o) {
   r.reference.observer = text(ref, "observer", "reference");
 
   const json::Value& cap = object_at(o, "capture", "capture",
-                                     {"dark_frames", "dark_mode", "flat_field", "falloff", "saturation", "noise_floor"});
+                                     {"dark_frames", "dark_mode", "flat_field", "falloff", "saturation", "noise_floor",
+                                      "light_trap", "flare"});
   r.capture.dark_frames = integer(cap, "dark_frames", "capture");
   r.capture.dark_mode = text(cap, "dark_mode", "capture");
   r.capture.flat_field = boolean(cap, "flat_field", "capture");
   r.capture.falloff = boolean(cap, "falloff", "capture");
   r.capture.saturation = number(cap, "saturation", "capture");
   r.capture.noise_floor = number(cap, "noise_floor", "capture");
+  if (cap.find("light_trap") || cap.find("flare")) {  // optional: only recipes with a light trap have them
+    const auto t = numbers(cap, "light_trap", "capture", 8);
+    std::copy(t.begin(), t.end(), r.capture.light_trap.begin());
+    const auto f = numbers(cap, "flare", "capture", 3);
+    std::copy(f.begin(), f.end(), r.capture.flare.begin());
+    if (!r.capture.has_light_trap()) invalid("capture.light_trap: the corners of a light trap cannot all be 0");
+  }
 
   const json::Value& smp = object_at(o, "sampling", "sampling", {"layout", "corners", "area", "exclude", "exclude_flagged"});
   const json::Value& lay = object_at(smp, "layout", "sampling.layout", {"chart", "rows", "columns", "margins", "gap"});

@@ -7,6 +7,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/linearisation/linearisation.hpp"
 #include "tristim/profile/characterise.hpp"
+#include "tristim/profile/export.hpp"
 #include "tristim/surface/surface.hpp"
 
 using namespace tristim;
@@ -86,6 +87,15 @@ TEST_CASE("recipe options survive the round trip bit for bit", "[recipe]") {
   CHECK(back.characterisation.objective.settings.at("algorithm") == "lm");
   CHECK(back.capture.saturation == 15000.0 / 7.0);
   CHECK(back.sampling.area == 1.0 / 3.0);
+  CHECK_FALSE(back.capture.has_light_trap());
+  CHECK(recipe_to_json(r).find("light_trap") == std::string::npos);  // only recipes with a trap have it
+  // A light trap (Abed 2013 App. C step 1): its corners and the flare measured there round-trip.
+  r.capture.light_trap = {603.5, 443, 643, 443, 643, 481.25, 603.5, 481.25};
+  r.capture.flare = {1.0 / 3.0, 2.5, 0.1};
+  const Recipe trapped = recipe_from_json(recipe_to_json(r));
+  CHECK(trapped.capture.light_trap == r.capture.light_trap);
+  CHECK(trapped.capture.flare == r.capture.flare);
+  CHECK(recipe_to_json(trapped) == recipe_to_json(r));
   FitOptions o;
   apply_objective_choice(back.characterisation.objective, o);
   CHECK(o.objective == Objective::DeltaE2000);
@@ -111,6 +121,8 @@ TEST_CASE("malformed recipes are refused with a code naming the field", "[recipe
   require_code([&] { recipe_from_json(replace(good, "\"leave_one_out\": true", "\"leave_one_out\": 1")); }, ErrorCode::RecipeInvalid);
   require_code([&] { recipe_from_json(replace(good, "\"falloff\": false,", "")); }, ErrorCode::RecipeInvalid);
   require_code([&] { recipe_from_json(replace(good, "\"corners\": [335", "\"corners\": [")); }, ErrorCode::RecipeInvalid);
+  require_code([&] { recipe_from_json(replace(good, "\"noise_floor\": 0", "\"noise_floor\": 0, \"light_trap\": [1, 2, 3]")); }, ErrorCode::RecipeInvalid);
+  require_code([&] { recipe_from_json(replace(good, "\"noise_floor\": 0", "\"noise_floor\": 0, \"light_trap\": [0, 0, 0, 0, 0, 0, 0, 0], \"flare\": [0, 0, 0]")); }, ErrorCode::RecipeInvalid);
   // Unknown ids and options, out-of-range values.
   require_code([&] { recipe_from_json(replace(good, "Finlayson2015-2", "Finlayson2015-9")); }, ErrorCode::UnknownId);
   require_code([&] { recipe_from_json(replace(good, "\"method\": \"identity\"", "\"method\": \"magic\"")); }, ErrorCode::UnknownId);
@@ -212,4 +224,56 @@ TEST_CASE("method choices: defaults, bounds and the CLI syntax", "[recipe]") {
                ErrorCode::InvalidArgument);
   require_code([] { parse_choice("psm:expansion"); }, ErrorCode::InvalidArgument);
   require_code([] { parse_choice(":x=1"); }, ErrorCode::InvalidArgument);
+}
+
+TEST_CASE("a profile fitted with a linearisation stage takes stored values everywhere", "[recipe][profile]") {
+  // Stored 8-bit-scale values of a planted 3×3 under a 1/2.2 encoding: v = 255 (M·XYZ / s)^(1/2.2).
+  Recipe r = passport_recipe();
+  r.characterisation.model = "matrix-3x3";
+  r.characterisation.objective = MethodChoice{"ls", {}, {}};
+  r.linearisation = MethodChoice{"gamma", {{"gamma", 2.2}}, {}};
+  r.capture.saturation = 255;
+  const ReferenceChart ref = recipe_reference(r);
+  PatchMatrix stored(24, 3), xyz(24, 3);
+  Mat3 M;
+  M << 0.9, 0.2, -0.1, 0.1, 1.0, 0.05, 0.0, 0.1, 0.8;
+  for (int i = 0; i < 24; ++i) {
+    xyz.row(i) = ref.XYZ[i].transpose();
+    const Vec3 lin = M * ref.XYZ[i] / 110.0;
+    for (int c = 0; c < 3; ++c) stored(i, c) = 255.0 * std::pow(std::max(0.0, lin[c]), 1 / 2.2);
+  }
+  const Characterisation c = characterise(r, training_set(r, ref.ids, stored, xyz));
+  REQUIRE(c.profile.has_linearisation);
+  CHECK(c.profile.linearisation.choice.method == "gamma");
+  CHECK(c.profile.rgb_max == 255);  // device 1.0 of the exports = the encoding's full scale
+  CHECK(c.evaluation.training.dE00.max < 0.05);  // the planted 3×3 is found through the gamma
+  // Read back: the linearisation survives, predictions on stored values are the fit's, bit for bit.
+  const std::string text = profile_to_json(c.profile);
+  const Profile back = profile_from_json(text);
+  REQUIRE(back.has_linearisation);
+  CHECK(profile_to_json(back) == text);
+  const PatchMatrix est = profile_predict(back, stored);
+  CHECK(est == c.evaluation.fit.fitted);
+  CHECK(training_digest(ref.ids, stored, xyz) == back.training_digest);
+  // apply_profile on a stored-value image: the same XYZ as the patches (float image, float tolerance).
+  std::vector<float> img;
+  for (int i = 0; i < 24; ++i)
+    for (int k = 0; k < 3; ++k) img.push_back(static_cast<float>(stored(i, k)));
+  const Image3f out = apply_profile(back, img.data(), 24, 1);
+  double worst = 0;
+  for (int i = 0; i < 24; ++i)
+    for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(out.pixels[3 * i + k] - est(i, k)) / 100.0);
+  CHECK(worst < 1e-5);
+  // ICC (LUT form, the linearisation in it) read back by lcms2, and the .cube: close to the model.
+  const PatchMatrix icc = icc_device_to_XYZ(export_icc(back), stored / 255.0);
+  double icc_worst = 0;
+  for (int i = 0; i < 24; ++i) icc_worst = std::max(icc_worst, (icc.row(i) * 100.0 - est.row(i)).cwiseAbs().maxCoeff());
+  INFO("worst ICC patch error (XYZ, Y = 100): " << icc_worst);
+  CHECK(icc_worst < 0.5);
+  CHECK(export_cube(back).find("gamma linearisation is inside the LUT") != std::string::npos);
+  // Without a linearisation stage (identity) nothing changes: no "linearisation" member.
+  Recipe plain = passport_recipe();
+  const Characterisation p = characterise(plain, training_set(plain, ref.ids, stored, xyz));
+  CHECK_FALSE(p.profile.has_linearisation);
+  CHECK_FALSE(profile_from_json(profile_to_json(p.profile)).has_linearisation);  // (no top-level member)
 }

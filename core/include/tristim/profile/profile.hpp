@@ -13,8 +13,13 @@
 //   "fit": {"status": "ok", "message": "", "condition_number": ..., "iterations": ...,
 //           "objective_value": ...},
 //   "metrics": {"training": {...}, "loo": {...}},                  // summaries (optional)
-//   "recipe": {...}                                                // how it was made (recipe.hpp; optional)
+//   "recipe": {...},                                               // how it was made (recipe.hpp; optional)
+//   "linearisation": {...}                                         // fitted OECF (optional, see below)
 // }
+// A profile fitted on non-linear data (JPEG/TIFF/PNG, a `--linearisation` other than identity)
+// carries its fitted linearisation stage (linearisation_json): its input is then the stored
+// camera values, which profile_predict and apply_profile linearise before the model. Its training
+// digest is over those stored values.
 // The training digest is FNV-1a 64-bit (not cryptographic: it identifies the data, it does
 // not authenticate it) over "tristim-training-v1\n" followed, per patch, by the id bytes, a
 // NUL, and R, G, B, X, Y, Z as IEEE-754 little-endian doubles.
@@ -25,6 +30,7 @@
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/io/json.hpp"
 #include "tristim/characterisation/models.hpp"
+#include "tristim/linearisation/linearisation.hpp"
 #include "tristim/profile/recipe.hpp"
 
 namespace tristim {
@@ -53,7 +59,16 @@ struct Profile {
   json::Value metrics;  ///< object; empty object when not computed
   bool has_recipe = false;  ///< profiles written before recipes existed have none
   Recipe recipe;            ///< how the profile was made (profile/recipe.hpp)
+  bool has_linearisation = false;  ///< the input is stored (non-linear) values: see the header comment
+  Linearisation linearisation;     ///< the fitted linearisation stage (when has_linearisation)
 };
+
+/// The model's input for stored camera RGB: linearised by the profile's linearisation stage
+/// when it has one, else camera_RGB as it is.
+PatchMatrix profile_input(const Profile& profile, const PatchMatrix& camera_RGB);
+/// XYZ predicted by the profile for camera RGB as the profile takes it (stored values when it
+/// carries a linearisation, linear camera RGB otherwise).
+PatchMatrix profile_predict(const Profile& profile, const PatchMatrix& camera_RGB);
 
 /// "fnv1a64:xxxxxxxxxxxxxxxx" of the training data (see the header comment).
 std::string training_digest(const std::vector<std::string>& ids, const PatchMatrix& camera_RGB,

@@ -11,7 +11,8 @@
 //   "format": "tristim-recipe", "version": 1,
 //   "reference": {"chart": "passport", "data_digest": "", "illuminant": "D50", "observer": "1931"},
 //   "capture": {"dark_frames": 0, "dark_mode": "per_pixel", "flat_field": false,
-//               "falloff": false, "saturation": 0, "noise_floor": 0},
+//               "falloff": false, "saturation": 0, "noise_floor": 0,
+//               "light_trap": [x1, y1, ... x4, y4], "flare": [R, G, B]},   (both only with a light trap)
 //   "sampling": {"layout": {"chart": "passport", "rows": 0, "columns": 0, "margins": [l, t, r, b],
 //                           "gap": -1},
 //                "corners": [x1, y1, ... x4, y4], "area": 0.5, "exclude": ["A3"],
@@ -57,6 +58,15 @@ struct CaptureStage {
                                          ///< (stored, non-linear values): the encoding's full scale,
                                          ///< 255 or 65535, which the linearisation stage reads as x = 1
   double noise_floor = 0;                ///< DN; 0: from the dark frames (or none)
+  /// An in-scene light trap (Abed 2013 App. C step 1, chart/light_trap.hpp): its four corners in
+  /// the chart image (all 0: none) and the flare measured there (mean RGB after the dark frame,
+  /// DN), subtracted per channel before sampling. With --raw, `fit --recipe` measures it again.
+  std::array<double, 8> light_trap{};
+  std::array<double, 3> flare{};
+  bool has_light_trap() const {
+    for (double v : light_trap) if (v != 0) return true;
+    return false;
+  }
 };
 
 /// How patches were read from the image.
