@@ -71,7 +71,8 @@ void fuzz_seeds(const std::string& dir) {
   save(dir + "/jpeg/rgb_progressive_420.jpg", write_jpeg(img(24, 16, 3, 8), progressive));
   save(dir + "/jpeg/grey_arithmetic.jpg", write_jpeg(img(16, 8, 1, 8), arithmetic));
 
-  // RAW (fuzz_raw): our own DNGs, small enough for libFuzzer's -max_len.
+  // RAW (fuzz_raw): our own DNGs, small enough for libFuzzer's -max_len; at least 22 pixels a
+  // side (LibRaw takes anything smaller for no RAW at all).
   const auto cfa = [](int w, int h) {
     std::vector<std::uint16_t> v(static_cast<std::size_t>(w) * h);
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<std::uint16_t>(512 + (i * 2654435761u) % 3000);
@@ -82,21 +83,21 @@ void fuzz_seeds(const std::string& dir) {
   bayer.white = 4095;
   bayer.exposure_s = 0.01;
   bayer.f_number = 8;
-  const auto rggb = tristim::write_dng(cfa(16, 12), 16, 12, bayer);
+  const auto rggb = tristim::write_dng(cfa(24, 24), 24, 24, bayer);
   save(dir + "/raw/rggb.dng", rggb);
   tristim::DngWriteOptions bggr = bayer;
   bggr.cfa = "BGGR";
-  save(dir + "/raw/bggr.dng", tristim::write_dng(cfa(8, 8), 8, 8, bggr));
+  save(dir + "/raw/bggr.dng", tristim::write_dng(cfa(24, 22), 24, 22, bggr));
   tristim::DngWriteOptions xtrans;
   xtrans.cfa = "GGRGGB" "GGBGGR" "BRGRBG" "GGBGGR" "GGRGGB" "RBGBRG";
-  save(dir + "/raw/xtrans.dng", tristim::write_dng(cfa(12, 12), 12, 12, xtrans));
+  save(dir + "/raw/xtrans.dng", tristim::write_dng(cfa(24, 24), 24, 24, xtrans));
   tristim::DngWriteOptions cmyg;
   cmyg.cfa = "CMYG";
-  save(dir + "/raw/cmyg.dng", tristim::write_dng(cfa(8, 8), 8, 8, cmyg));
+  save(dir + "/raw/cmyg.dng", tristim::write_dng(cfa(24, 24), 24, 24, cmyg));
   tristim::DngWriteOptions huge = bayer;
-  huge.header_width = 100000;
-  huge.header_height = 100000;
-  save(dir + "/raw/huge_header.dng", tristim::write_dng(cfa(8, 8), 8, 8, huge));
+  huge.header_width = 60000;
+  huge.header_height = 60000;
+  save(dir + "/raw/huge_header.dng", tristim::write_dng(cfa(24, 24), 24, 24, huge));
   save(dir + "/raw/truncated.dng", std::vector<std::uint8_t>(rggb.begin(), rggb.begin() + rggb.size() * 3 / 4));
 
   // Recipes (fuzz_recipe): every method id once, options completed, so each reader branch has a seed.
