@@ -21,8 +21,8 @@ test('100 decodes, samplings and fits in one module leave its memory where the f
   const round = () => {
     const raw = T.decodeRaw(dng);
     try {
-      const sample = T.sampleChart(raw, { chart: 'passport' }, r.sampling.corners, { area: r.sampling.area });
-      const out = T.fitSample(recipe, sample, reference);
+      const s = T.sampleChart(raw, { chart: 'passport' }, r.sampling.corners, { area: r.sampling.area });
+      const out = T.fitSample(recipe, { layout: s.layout, homography: s.homography, patches: s.patches }, reference);
       assert.ok(out.profile.length > 100);
     } finally {
       raw.delete();
