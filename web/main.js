@@ -10,9 +10,10 @@ import * as fit from './fit/view.js';
 import * as results from './results/view.js';
 import * as apply from './apply/view.js';
 import * as exporter from './export/view.js';
+import * as absolute from './absolute/view.js';
 
 // The features, in journey order: web/<feature>/view.js, each mounted into <section id="step-<feature>">.
-const FEATURES = { reference, surface, images, fit, results, apply, export: exporter };
+const FEATURES = { reference, surface, images, fit, results, apply, export: exporter, absolute };
 const STEPS = Object.keys(FEATURES);
 const status = document.getElementById('engine-status');
 

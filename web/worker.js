@@ -11,8 +11,9 @@ import * as detect from './images/detect.js';
 import * as fit from './fit/handlers.js';
 import * as apply from './apply/handlers.js';
 import * as exporter from './export/handlers.js';
+import * as absolute from './absolute/handlers.js';
 
-const FEATURES = [reference, surface, images, detect, fit, apply, exporter];
+const FEATURES = [reference, surface, images, detect, fit, apply, exporter, absolute];
 
 const handlers = {
   hello: (T) => ({ result: { version: T.version() } }),

@@ -14,6 +14,7 @@
 #include "cli.hpp"
 #include "tristim/absolute/profile.hpp"
 #include "tristim/absolute/sensitivities.hpp"
+#include "tristim/absolute/stimuli_file.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
@@ -149,68 +150,12 @@ int run_sensitivities(const Args& args, std::ostream& out) {
 
 // ---- tristim absolute fit ----------------------------------------------------------------
 
-struct StimulusRow {
-  TrainingStimulus s;
-  std::string file;  // "" for per-patch rows
-  int x = 0, y = 0, w = 0, h = 0;
-  bool has_set = false;
-};
-
+/// The stimuli CSV (tristim/absolute/stimuli_file.hpp) with region files relative to the CSV.
 std::vector<StimulusRow> read_stimuli(const std::string& path) {
-  const TextTable t = parse_delimited(read_file(path), path);
-  // Exact (case-sensitive) names: the region's x, y differ from the measured X, Y.
-  auto col = [&](const char* name) {
-    for (size_t k = 0; k < t.header.size(); ++k)
-      if (t.header[k] == name) return static_cast<int>(k);
-    return -1;
-  };
-  const int id = col("id"), set = col("set"), ex = col("exposure_s"), fn = col("f_number"), iso = col("iso");
-  const int file = col("file"), x = col("x"), y = col("y"), w = col("w"), h = col("h");
-  const int R = col("R"), G = col("G"), B = col("B"), fall = col("falloff"), X = col("X"), Y = col("Y"), Z = col("Z");
-  if (X < 0 || Y < 0 || Z < 0) throw Error(ErrorCode::MissingColumn, path + ": the measured X, Y, Z (cd/m²) columns are needed");
-  if (file < 0 && (R < 0 || G < 0 || B < 0))
-    throw Error(ErrorCode::MissingColumn, path + ": give per-patch R, G, B columns or a file column with a region x, y, w, h");
-  std::vector<StimulusRow> rows;
+  std::vector<StimulusRow> rows = read_stimuli_csv(read_file(path), path);
   const std::string dir = dirname_of(path);
-  for (size_t r = 0; r < t.rows.size(); ++r) {
-    const auto& row = t.rows[r];
-    const int line = t.lines[r];
-    auto num = [&](int col, const char* name) { return parse_cell(row[col], path, line, name); };
-    auto opt = [&](int col, const char* name, double fallback) {
-      return col >= 0 && !row[col].empty() ? num(col, name) : fallback;
-    };
-    StimulusRow s;
-    s.s.id = id >= 0 ? row[id] : std::to_string(r + 1);
-    s.s.XYZ = Vec3(num(X, "X"), num(Y, "Y"), num(Z, "Z"));
-    s.s.exposure = {opt(ex, "exposure_s", 0), opt(fn, "f_number", 0), opt(iso, "iso", 0)};
-    if (set >= 0 && !row[set].empty()) {
-      const std::string v = row[set];
-      if (v != "luminance" && v != "oecf" && v != "colour" && v != "color")
-        throw Error(ErrorCode::InvalidArgument, path + ", line " + std::to_string(line) + ": set is luminance or colour");
-      s.s.luminance_set = v == "luminance" || v == "oecf";
-      s.has_set = true;
-    } else {  // X = Y = Z within 2 %: an equal-tristimulus stimulus
-      const Vec3& v = s.s.XYZ;
-      s.s.luminance_set = std::fabs(v[0] - v[1]) <= 0.02 * v[1] && std::fabs(v[2] - v[1]) <= 0.02 * v[1];
-    }
-    if (file >= 0 && !row[file].empty()) {
-      s.file = row[file][0] == '/' ? row[file] : dir + row[file];
-      if (x < 0 || y < 0 || w < 0 || h < 0) throw Error(ErrorCode::MissingColumn, path + ": a file row needs x, y, w, h");
-      s.x = static_cast<int>(num(x, "x"));
-      s.y = static_cast<int>(num(y, "y"));
-      s.w = static_cast<int>(num(w, "w"));
-      s.h = static_cast<int>(num(h, "h"));
-    } else {
-      if (R < 0) throw Error(ErrorCode::MissingColumn, path + ", line " + std::to_string(line) + ": no file and no R, G, B");
-      s.s.raw_RGB = Vec3(num(R, "R"), num(G, "G"), num(B, "B"));
-      s.s.falloff = opt(fall, "falloff", 1.0);
-      if (!(s.s.exposure.exposure_s > 0) || !(s.s.exposure.f_number > 0))
-        throw Error(ErrorCode::MissingMetadata, path + ", line " + std::to_string(line) +
-                                                    ": a per-patch row needs exposure_s and f_number");
-    }
-    rows.push_back(s);
-  }
-  if (rows.empty()) throw Error(ErrorCode::EmptyFile, path + ": no stimuli");
+  for (auto& r : rows)
+    if (!r.file.empty() && r.file[0] != '/') r.file = dir + r.file;
   return rows;
 }
 
@@ -274,13 +219,13 @@ int run_fit(const Args& args, std::ostream& out) {
       }
       if (falloff && (f.width != falloff->width || f.height != falloff->height))
         throw Error(ErrorCode::FrameMismatch, "'" + r.file + "' and the flat field differ in size");
-      ExposureSettings e = r.s.exposure;
+      ExposureSettings e = r.stimulus.exposure;
       if (!(e.exposure_s > 0) || !(e.f_number > 0)) e = exposure_from_metadata(f.meta, "'" + r.file + "'");
-      TrainingStimulus s = sample_stimulus(f, r.x, r.y, r.w, r.h, n, e, r.s.XYZ, r.s.id, r.s.luminance_set);
+      TrainingStimulus s = sample_stimulus(f, r.x, r.y, r.w, r.h, n, e, r.stimulus.XYZ, r.stimulus.id, r.stimulus.luminance_set);
       stimuli.push_back(s);
     } else {
-      for (int c = 0; c < 3; ++c) r.s.saturated[c] = n.zone(c, r.s.raw_RGB[c]) == Zone::Saturated;
-      stimuli.push_back(r.s);
+      for (int c = 0; c < 3; ++c) r.stimulus.saturated[c] = n.zone(c, r.stimulus.raw_RGB[c]) == Zone::Saturated;
+      stimuli.push_back(r.stimulus);
     }
   }
   AbsoluteFitOptions o;

@@ -1,0 +1,122 @@
+// The worked example of the absolute chain on the virtual bracket camera (rules in
+// tristim/absolute/example.hpp).
+#include "tristim/absolute/example.hpp"
+
+#include <cmath>
+
+#include "tristim/chart/reference.hpp"
+#include "tristim/error.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+
+namespace tristim {
+
+namespace {
+
+double luminance_sum(const SpectralData& spectra, size_t k) {  // Σ ȳ·φ, up to one constant
+  const SpectralData& cm = cmfs(Observer::CIE1931_2);
+  const auto ybar = interpolate_spectrum(cm.wavelengths, cm.values[1], spectra.wavelengths);
+  const auto phi = interpolate_spectrum(spectra.wavelengths, spectra.values[k], spectra.wavelengths, spectra.linear);
+  double s = 0;
+  for (size_t i = 0; i < ybar.size(); ++i) s += ybar[i] * phi[i];
+  return s;
+}
+
+void add_column(SpectralData& to, const SpectralData& from, size_t k, const std::string& name) {
+  const auto v = interpolate_spectrum(from.wavelengths, from.values[k], to.wavelengths, from.linear);
+  to.values.push_back(v);
+  to.names.push_back(name);
+}
+
+}  // namespace
+
+AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
+  if (o.cell < 8) throw Error(ErrorCode::InvalidArgument, "example: cells need at least 8 pixels");
+  if (!(o.white_luminance > 0)) throw Error(ErrorCode::InvalidArgument, "example: the white luminance must be positive");
+  AbsoluteExample ex;
+  ex.camera = o.camera;
+  ex.sensor.ssf = camera_ssf(o.camera);
+  ex.sensor.model = "Virtual " + o.camera;
+  ex.sensor.oecf_exponent = {1.03, 1.0, 0.97};
+  ex.bracket = {{1.0 / 250, 8, 100}, {1.0 / 125, 8, 100}, {1.0 / 60, 8, 100}, {1.0 / 30, 8, 100}, {1.0 / 15, 8, 100}};
+  const ExposureSettings mid = ex.bracket[2];
+  std::uint64_t seed = o.seed * 100000;
+
+  // The scene: 24 ColorChecker patches under D65, then a 12-step ladder of equal-tristimulus light.
+  const SpectralData refl = chart_reflectances("cc24");
+  const SpectralData cc = reflected_spectra(refl, illuminant_spd("D65"));
+  const SpectralData E = projector_spectra({Vec3(1, 1, 1)}, {"E"});
+  size_t white = 0;
+  for (size_t k = 1; k < cc.size(); ++k)
+    if (luminance_sum(cc, k) > luminance_sum(cc, white)) white = k;
+  VirtualScene scene;
+  scene.stimuli.wavelengths = E.wavelengths;
+  scene.stimuli.linear = true;
+  std::vector<std::string> ids;
+  for (size_t k = 0; k < cc.size(); ++k) {
+    add_column(scene.stimuli, cc, k, cc.names[k]);
+    scene.luminance.push_back(o.white_luminance * luminance_sum(cc, k) / luminance_sum(cc, white));
+  }
+  ex.white_id = cc.names[white];
+  for (int k = 0; k < 12; ++k) {
+    const double Y = 0.3 * std::pow(10.0, 4.0 * k / 11.0);
+    char name[32];
+    std::snprintf(name, sizeof name, "E%.3g", Y);
+    add_column(scene.stimuli, E, 0, name);
+    scene.luminance.push_back(Y);
+  }
+  const int columns = 6, rows = 6;
+  scene.width = columns * o.cell;
+  scene.height = rows * o.cell;
+  scene.label.resize(static_cast<size_t>(scene.width) * scene.height);
+  for (int y = 0; y < scene.height; ++y)
+    for (int x = 0; x < scene.width; ++x)
+      scene.label[static_cast<size_t>(y) * scene.width + x] = static_cast<std::uint16_t>((y / o.cell) * columns + x / o.cell);
+  for (size_t k = 0; k < scene.stimuli.size(); ++k) {
+    const int cx = static_cast<int>(k % columns) * o.cell, cy = static_cast<int>(k / columns) * o.cell;
+    ex.regions.push_back({scene.stimuli.names[k], cx, cy, o.cell, o.cell, virtual_XYZ(ex.sensor, scene, static_cast<int>(k))});
+  }
+  for (const auto& e : ex.bracket) ex.frames.push_back(capture_virtual(ex.sensor, scene, e, seed++));
+
+  // Calibration frames at the scene's size.
+  const int W = scene.width, H = scene.height;
+  for (int i = 0; i < 4; ++i) ex.lens_cap.push_back(capture_virtual(ex.sensor, uniform_scene(W, H, E, 0.0), mid, seed++));
+  ex.flat = capture_virtual(ex.sensor, uniform_scene(W, H, E, 450.0), mid, seed++);
+
+  // Training stimuli, sampled at the centre with the normalisation the page will rebuild from
+  // the same frames (n from the lens cap, f(r) from the flat; S and areas do not enter sampling).
+  std::vector<const RawImage*> caps;
+  for (const auto& c : ex.lens_cap) caps.push_back(&c);
+  const DarkFrame cap = average_dark_frames(caps);
+  SaturationEstimate sat;
+  sat.level = sat.reported = {ex.sensor.saturation, ex.sensor.saturation, ex.sensor.saturation};
+  sat.fraction = {1, 1, 1};
+  const Normalisation n = make_normalisation(&cap, sat, &ex.sensor.ssf, fit_falloff_Guarnera2018(ex.flat, &cap), 10);
+  const int rx = W / 2 - 4, ry = H / 2 - 4;
+  auto keep = [&](const TrainingStimulus& s) {
+    if (!s.saturated[0] && !s.saturated[1] && !s.saturated[2]) ex.stimuli.push_back(s);
+  };
+  std::vector<double> training_Y;  // 0, 30, …, 870, 890 cd/m² (the paper's luminance training set)
+  for (int v = 0; v <= 870; v += 30) training_Y.push_back(v);
+  training_Y.push_back(890);
+  for (double Y : training_Y) {
+    for (size_t e = 0; e < ex.bracket.size(); ++e) {
+      const RawImage f = capture_virtual(ex.sensor, uniform_scene(W, H, E, Y), ex.bracket[e], seed++);
+      keep(sample_stimulus(f, rx, ry, 8, 8, n, ex.bracket[e], Vec3(Y, Y, Y),
+                           "Y" + std::to_string(static_cast<int>(Y)) + "@" + std::to_string(e + 1)));
+    }
+  }
+  const ReferenceChart ref = reference_chart("cc24", "D65");
+  std::vector<Vec3> targets;
+  for (const auto& x : ref.XYZ) targets.push_back(x * 7.0);
+  const SpectralData proj = projector_spectra(targets, ref.ids);
+  for (size_t k = 0; k < targets.size(); ++k) {
+    VirtualScene s = uniform_scene(W, H, proj, targets[k][1]);
+    s.stimuli.values = {proj.values[k]};
+    s.stimuli.names = {proj.names[k]};
+    const RawImage f = capture_virtual(ex.sensor, s, mid, seed++);
+    keep(sample_stimulus(f, rx, ry, 8, 8, n, mid, virtual_XYZ(ex.sensor, s, 0), "colour " + ref.ids[k], false));
+  }
+  return ex;
+}
+
+}  // namespace tristim

@@ -1,0 +1,163 @@
+// Worker handlers of the Absolute mode (Guarnera, Bianco & Schettini 2018): a bracketed series of
+// RAWs, lens-cap frames and a flat decoded here (state.abs), the training stimuli CSV read by the
+// engine, the absolute profile fitted and applied to the series (the AbsoluteMaps handle stays
+// here), renders of the luminance and source-exposure maps, read-outs and region figures. The
+// example comes from the engine's virtual bracket camera.
+import { reply, coded } from '../lib/reply.js';
+import { renderLuminance, renderSource } from './render.js';
+
+const free = (...hs) => { for (const h of hs.flat()) h?.delete?.(); };
+
+function abs(state) {
+  state.abs ??= { series: [], names: [], lensCap: [], flat: null, stimuli: null, fit: null, maps: null, regions: null };
+  return state.abs;
+}
+
+function describe(raw, name) {
+  const m = raw.metadata();
+  return { name, make: m.make, model: m.model, width: raw.width(), height: raw.height(), exposure_s: m.shutter_s, f_number: m.f_number, iso: m.iso };
+}
+
+function decodeAll(T, files, progress, what) {
+  const out = [];
+  try {
+    files.forEach((f, i) => {
+      progress(i / files.length, `decoding ${what} ${i + 1} of ${files.length}`);
+      try { out.push(T.decodeRaw(new Uint8Array(f.bytes))); } catch (e) { throw Object.assign(new Error(`'${f.name}': ${e.message}`), { code: e.code }); }
+    });
+  } catch (e) { free(out); throw e; }
+  return out;
+}
+
+function clearResults(a) {
+  free(a.maps);
+  a.maps = null; a.xyz = null; a.source = null;
+}
+
+/// The series with its exposures checked by the engine (same camera and size; t, N from the
+/// metadata unless given). Returns one row per frame.
+function checkSeries(T, a, exposures) {
+  const got = T.checkAbsoluteSeries(a.series, { exposures: exposures ?? [], names: a.names });
+  return a.series.map((r, i) => ({ ...describe(r, a.names[i]), exposure: got[i] }));
+}
+
+export const handlers = {
+  /// Decodes a bracketed series (several RAWs of one scene). Errors name the file: RAW decoding
+  /// codes, FRAME_MISMATCH (another camera or size), MISSING_METADATA (no t or N: the rows are
+  /// still returned so the page can ask for them, with `missing` set).
+  absSeries: (T, { files }, { state, progress }) => {
+    const a = abs(state);
+    const list = decodeAll(T, files, progress, 'frame');
+    free(a.series); clearResults(a);
+    a.series = list; a.names = files.map((f) => f.name); a.regions = null;
+    const rows = a.series.map((r, i) => describe(r, a.names[i]));
+    try {
+      return { result: { frames: checkSeries(T, a) } };
+    } catch (e) {
+      if (e.code !== 'MISSING_METADATA') { free(a.series); a.series = []; a.names = []; throw e; }
+      return { result: { frames: rows, missing: { code: e.code, message: e.message } } };
+    }
+  },
+
+  /// Re-checks the series with exposures typed in by the user ([{exposure_s, f_number, iso}], zeros:
+  /// from the metadata).
+  absExposures: (T, { exposures }, { state }) => ({ result: { frames: checkSeries(T, abs(state), exposures) } }),
+
+  /// Lens-cap frames (kind 'lensCap', several) or a flat field (kind 'flat', one).
+  absCalibration: (T, { kind, files }, { state, progress }) => {
+    const a = abs(state);
+    const list = files.length ? decodeAll(T, files, progress, kind === 'flat' ? 'flat field' : 'lens-cap frame') : [];
+    if (kind === 'flat') { free(a.flat); a.flat = list[0] ?? null; free(list.slice(1)); } else { free(a.lensCap); a.lensCap = list; }
+    return { result: { frames: list.map((r, i) => describe(r, files[i].name)) } };
+  },
+
+  /// Reads a training-stimuli CSV (the engine's reader); keeps the rows.
+  absStimuli: (T, { text, name }, { state }) => {
+    const a = abs(state);
+    const rows = T.readAbsoluteStimuli(text, name);
+    a.stimuli = rows;
+    const exposures = new Set(rows.map((r) => `${r.exposure.exposure_s}/${r.exposure.f_number}/${r.exposure.iso}`));
+    return { result: { count: rows.length, luminance: rows.filter((r) => r.set === 'luminance').length, colour: rows.filter((r) => r.set === 'colour').length, exposures: exposures.size, regionRows: rows.filter((r) => r.file).length } };
+  },
+
+  /// The virtual-camera example: the series, lens cap, flat and stimuli CSV take the place of
+  /// loaded files; the cells' known X, Y, Z are kept for the figures and the read-out.
+  absExample: (T, { options = {} }, { state, progress }) => {
+    const a = abs(state);
+    progress(NaN, 'generating the bracketed series with the virtual camera');
+    const ex = T.absoluteExample(options);
+    free(a.series, a.lensCap, a.flat); clearResults(a);
+    a.series = ex.frames; a.lensCap = ex.lens_cap; a.flat = ex.flat;
+    a.names = ex.labels.map((l, i) => `virtual-${i + 1}.raw`);
+    a.regions = ex.regions; a.whiteId = ex.white_id;
+    return reply({
+      frames: checkSeries(T, a), lensCap: a.lensCap.map((r, i) => describe(r, `virtual lens cap ${i + 1}`)),
+      flat: describe(a.flat, 'virtual flat field'), stimuliCsv: ex.stimuli_csv, camera: ex.camera,
+      regions: ex.regions.map((r) => ({ id: r.id, x: r.x, y: r.y, w: r.w, h: r.h, XYZ: Array.from(r.XYZ) })), whiteId: ex.white_id,
+    });
+  },
+
+  /// Fits the absolute profile: stimuli + lens cap (n) + flat (f(r)) + the series (S measured).
+  absFit: (T, { options }, { state, progress }) => {
+    const a = abs(state);
+    if (!a.stimuli) throw coded('load the training stimuli first', 'NO_STIMULI');
+    const regionRows = a.stimuli.filter((s) => s.file);
+    if (regionRows.length) throw coded(`${regionRows.length} rows name a RAW region (e.g. '${regionRows[0].file}'): this page takes per-patch R, G, B rows; sample the regions with \`tristim absolute fit\``, 'INVALID_ARGUMENT');
+    progress(NaN, 'fitting eq (8) per channel across every exposure, then the colour matrix');
+    const fit = T.fitAbsolute({ ...options, stimuli: a.stimuli }, [], a.lensCap, a.flat ? [a.flat] : [], a.series);
+    a.fit = fit;
+    clearResults(a);
+    return reply(fit);
+  },
+
+  /// Applies the fitted profile to the series; renders the maps.
+  absApply: (T, { mode, exposures, render }, { state, progress }) => {
+    const a = abs(state);
+    if (!a.fit) throw coded('fit a profile first', 'NO_PROFILE');
+    if (!a.series.length) throw coded('load a bracketed series first', 'NO_IMAGE');
+    clearResults(a);
+    const t0 = performance.now();
+    a.maps = T.applyAbsolute(a.fit.profile, a.series, { mode, exposures: exposures ?? [], names: a.names },
+      (fraction, stage) => progress(0.8 * fraction, stage));
+    const ms = performance.now() - t0;
+    progress(0.85, 'rendering');
+    a.summary = a.maps.summary();
+    a.xyz = a.maps.XYZ();
+    a.source = a.maps.source();
+    let figures = null;
+    if (a.regions) {
+      const white = a.regions.find((r) => r.id === a.whiteId);
+      const yMax = Math.max(...a.regions.map((r) => r.XYZ[1]));
+      // eq (16): the white patch's chromaticity at the largest luminance of the scene
+      const w = T.whiteGuarnera2018(white.XYZ, yMax);
+      figures = { ...a.maps.measure(a.regions, w), whiteId: a.whiteId, yMax };
+    }
+    return reply({ summary: a.summary, ms, figures, ...renderAll(a, render) });
+  },
+
+  /// Re-renders the kept maps (colour map, log scale).
+  absRender: (T, { render }, { state }) => {
+    const a = abs(state);
+    if (!a.xyz) throw coded('no maps yet', 'NO_IMAGE');
+    return reply(renderAll(a, render));
+  },
+
+  /// X, Y, Z (mean over a window), L(R, G, B) and the source exposure at a pixel; the known
+  /// region under it (example), with its reference X, Y, Z.
+  absReadout: (T, { x, y, window = 5 }, { state }) => {
+    const a = abs(state);
+    if (!a.maps) throw coded('no maps yet', 'NO_IMAGE');
+    const { width, height } = a.summary;
+    if (!(x >= 0 && y >= 0 && x < width && y < height)) return { result: null };
+    const r = a.maps.readout(Math.floor(x), Math.floor(y), window);
+    const region = a.regions?.find((g) => x >= g.x && x < g.x + g.w && y >= g.y && y < g.y + g.h);
+    return { result: { ...r, XYZ: Array.from(r.XYZ), L: Array.from(r.L), region: region ? { id: region.id, XYZ: Array.from(region.XYZ) } : null } };
+  },
+};
+
+function renderAll(a, { lut, log = true, maxSide = 900, sourceColours } = {}) {
+  const { width, height } = a.summary;
+  const lum = renderLuminance(a.xyz, width, height, { lut: new Uint8Array(lut), log, maxSide, low: a.summary.Y_p01, high: a.summary.Y.max });
+  const src = renderSource(a.source, width, height, { colours: sourceColours, maxSide });
+  return { luminance: lum, source: src };
+}

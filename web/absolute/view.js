@@ -1,0 +1,362 @@
+// The Absolute mode (Guarnera, Bianco & Schettini 2018): a bracketed series of RAWs and the
+// training stimuli -> an absolute profile (eq 8 per channel across every exposure, the colour
+// matrix) -> X, Y, Z in cd/m² for every pixel. Shows the fitted OECFs per channel and exposure
+// (fig 5), the luminance map with a cd/m² colour bar (linear or log), the map of the exposure
+// that served each pixel, a pointer read-out and the section 4.1 figures. "Example" makes the
+// whole input with the engine's virtual bracket camera.
+import { h, field, select, setOptions, showError, clearError, progressBar, fmt, fileBytes } from '../lib/ui.js';
+import { figure } from '../plots/common.js';
+import { oecfPlot } from '../plots/oecf.js';
+import { NO_VALUE_RGB } from './render.js';
+
+const MAPS = {
+  viridis: { label: 'viridis', interp: () => globalThis.d3.interpolateViridis },
+  cividis: { label: 'cividis', interp: () => globalThis.d3.interpolateCividis },
+};
+// One colour per exposure, shortest first: Okabe & Ito's palette (distinct with colour-vision
+// deficiencies), then grey steps beyond eight exposures.
+const EXPOSURE_COLOURS = ['#0072B2', '#56B4E9', '#009E73', '#F0E442', '#E69F00', '#D55E00', '#CC79A7', '#000000'];
+const exposureColour = (i) => EXPOSURE_COLOURS[i] ?? `hsl(0, 0%, ${20 + ((i * 9) % 60)}%)`;
+const rgbOf = (css) => { const c = globalThis.d3.rgb(css); return [c.r, c.g, c.b]; };
+const pct = (x, d = 2) => (Number.isFinite(x) ? `${(100 * x).toFixed(d)} %` : '–');
+const num = (x) => (Number.isFinite(x) ? (Math.abs(x) >= 100 ? x.toFixed(1) : Math.abs(x) >= 1 ? x.toFixed(2) : x.toPrecision(3)) : '–');
+
+export function mount(section, app) {
+  const { engine } = app;
+  const intro = h('p', { class: 'summary' },
+    'A camera as a tele-colorimeter: absolute X, Y, Z in cd/m² for every pixel from a bracketed series of RAW exposures, ',
+    'after Guarnera, Bianco & Schettini (2018). The inverse OECF of each channel (eq 8) is fitted to equal-tristimulus training stimuli ',
+    'of known luminance across every exposure (scaled by t/N²·ISO), the colour matrix (eqs 11–15) to chromatic ones; each pixel takes ',
+    'its value from the exposures where it is reliable.');
+
+  // ---- inputs ----
+  const seriesInput = h('input', { type: 'file', multiple: true, 'data-role': 'abs-series' });
+  const seriesTable = h('div', { class: 'abs-series' });
+  const stimuliInput = h('input', { type: 'file', accept: '.csv,.txt,text/csv', 'data-role': 'abs-stimuli' });
+  const stimuliInfo = h('span', { class: 'file-state', 'data-role': 'abs-stimuli-info' });
+  const capInput = h('input', { type: 'file', multiple: true, 'data-role': 'abs-lenscap' });
+  const capInfo = h('span', { class: 'file-state' });
+  const flatInput = h('input', { type: 'file', 'data-role': 'abs-flat' });
+  const flatInfo = h('span', { class: 'file-state' });
+  const noiseInput = h('input', { type: 'number', min: 0, step: 'any', placeholder: '0', 'data-role': 'abs-noise' });
+  const satInput = h('input', { type: 'number', min: 0, step: 'any', placeholder: 'measured', 'data-role': 'abs-saturation' });
+  const cameraSel = select([{ value: '', label: 'none (A_R = A_G = A_B)' }, ...(app.catalog?.cameras ?? []).map((c) => ({ value: c.id, label: c.name }))], '');
+  // The colour matrix: the Guarnera2018-<transform> rows of the engine's model table.
+  const transforms = (app.catalog?.models ?? []).filter((m) => m.id.startsWith('Guarnera2018-'))
+    .map((m) => ({ value: m.id.slice('Guarnera2018-'.length), label: `${m.label} — ${m.reference}` }));
+  const transformSel = select(transforms, 'T1');
+  const fusionSel = select([{ value: 'weighted', label: 'weighted (every reliable exposure)' }, { value: 'recursive', label: 'Algorithm 1 (recursive selection)' }], 'weighted');
+  const exampleBtn = h('button', { type: 'button', 'data-role': 'abs-example' }, 'Example (virtual camera)');
+  const fitBtn = h('button', { type: 'button', class: 'primary', 'data-role': 'abs-fit' }, 'Fit and measure the series');
+  const progress = progressBar('Absolute');
+
+  section.append(intro,
+    h('div', { class: 'abs-inputs' },
+      h('div', { class: 'abs-series-box' }, field('Bracketed series (RAW files of one scene)', seriesInput, 'Same camera and size; exposure time, f-number and ISO from each file (or typed in the table)'), seriesTable),
+      h('div', {}, field('Training stimuli (CSV)', stimuliInput, 'Per patch: id, set (luminance|colour), exposure_s, f_number, iso, R, G, B (black-subtracted DN), falloff, X, Y, Z (cd/m²)'), stimuliInfo),
+      h('div', {}, field('Lens-cap frames (RAW, optional)', capInput, 'Averaged: the noise floor n of eq (7)'), capInfo),
+      h('div', {}, field('Flat field (RAW, optional)', flatInput, 'Evenly lit: the radial fall-off f(r) of eq (7)'), flatInfo),
+      field('Noise floor n (DN, without lens cap)', noiseInput),
+      field('Saturation S (DN)', satInput, 'Empty: measured from the frames (where the body clips)'),
+      field('Sensitivities for A_R, A_G, A_B', cameraSel, 'Eq (7) channel areas from built-in measured sensitivities'),
+      field('Colour matrix', transformSel),
+      field('Exposure fusion', fusionSel),
+      h('div', { class: 'buttons' }, exampleBtn, fitBtn)),
+    progress.el);
+  fitBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'abs-fit-error' });
+  fitBtn.setAttribute('aria-describedby', 'abs-fit-error');
+  fitBtn.parentElement.after(fitBtn._errorSlot);
+  exampleBtn._errorSlot = fitBtn._errorSlot;
+
+  // ---- results ----
+  const fitSummary = h('div', { class: 'abs-fit-summary', 'data-role': 'abs-fit-summary', 'aria-live': 'polite' });
+  const oecfBox = h('div', { class: 'abs-oecf' });
+  const mapSel = select(Object.entries(MAPS).map(([value, m]) => ({ value, label: m.label })), app.session.colourMap ?? 'viridis');
+  const logBox = h('input', { type: 'checkbox', checked: true, 'data-role': 'abs-log' });
+  const lumCanvas = h('canvas', { class: 'apply-img abs-map', 'data-role': 'abs-luminance', 'aria-label': 'Luminance Y in cd/m² (false colour)' });
+  const srcCanvas = h('canvas', { class: 'apply-img abs-map', 'data-role': 'abs-source', 'aria-label': 'The exposure that served each pixel' });
+  const lumLegend = h('div', { class: 'legend', 'data-role': 'abs-colourbar' });
+  const srcLegend = h('div', { class: 'legend abs-source-legend', 'data-role': 'abs-source-legend' });
+  const readout = h('output', { class: 'readout', 'data-role': 'abs-readout', 'aria-live': 'polite' }, 'Move the pointer over a map (or focus it and use the arrow keys) to read X, Y, Z in cd/m² and the exposure that served the pixel.');
+  const mapSummary = h('p', { class: 'summary', 'data-role': 'abs-map-summary' });
+  const maps = h('div', { class: 'abs-maps', hidden: true },
+    h('div', { class: 'controls' }, field('Colour map', mapSel, 'Perceptually uniform, readable with colour-vision deficiencies'),
+      h('label', { class: 'check' }, logBox, ' log scale')),
+    mapSummary, readout,
+    h('div', { class: 'apply-images' },
+      h('figure', {}, lumCanvas, h('figcaption', {}, 'Luminance Y (cd/m²)'), lumLegend),
+      h('figure', {}, srcCanvas, h('figcaption', {}, 'Dominant exposure per pixel (largest reliability × t/N²)'), srcLegend)));
+  const figuresBox = h('div', { class: 'abs-figures', 'data-role': 'abs-figures' });
+  section.append(fitSummary, oecfBox, maps, figuresBox);
+
+  // ---- state (page side: what was loaded, for the messages and the read-out) ----
+  const st = { frames: [], exposures: null, fit: null, shown: null, regions: null };
+
+  function seriesRows(frames) {
+    st.frames = frames;
+    const inputs = frames.map((f) => {
+      const e = f.exposure ?? { exposure_s: f.exposure_s, f_number: f.f_number, iso: f.iso };
+      const t = h('input', { type: 'number', step: 'any', min: 0, value: e.exposure_s > 0 ? e.exposure_s : '', 'aria-label': `exposure time of ${f.name} (s)`, class: 'num' });
+      const n = h('input', { type: 'number', step: 'any', min: 0, value: e.f_number > 0 ? e.f_number : '', 'aria-label': `f-number of ${f.name}`, class: 'num' });
+      const iso = h('input', { type: 'number', step: 'any', min: 0, value: e.iso > 0 ? e.iso : '', 'aria-label': `ISO of ${f.name}`, class: 'num' });
+      for (const i of [t, n, iso]) i.addEventListener('change', retypeExposures);
+      return { t, n, iso, f };
+    });
+    st.inputs = inputs;
+    seriesTable.replaceChildren(frames.length ? h('table', { class: 'patch-table' },
+      h('thead', {}, h('tr', {}, h('th', {}, '#'), h('th', {}, 'file'), h('th', {}, 'camera'), h('th', {}, 'size'), h('th', {}, 't (s)'), h('th', {}, 'N'), h('th', {}, 'ISO'))),
+      h('tbody', {}, inputs.map(({ t, n, iso, f }, i) => h('tr', { dataset: { frame: i } },
+        h('td', {}, h('span', { class: 'abs-swatch', style: { background: exposureColour(i) } }), ` ${i + 1}`), h('td', {}, f.name), h('td', {}, `${f.make} ${f.model}`),
+        h('td', {}, `${f.width}×${f.height}`), h('td', {}, t), h('td', {}, n), h('td', {}, iso))))) : '');
+  }
+  function typedExposures() {
+    return (st.inputs ?? []).map(({ t, n, iso }) => ({ exposure_s: Number(t.value) || 0, f_number: Number(n.value) || 0, iso: Number(iso.value) || 0 }));
+  }
+  async function retypeExposures() {
+    clearError(seriesInput);
+    try {
+      const r = await engine.call('absExposures', { exposures: typedExposures() });
+      st.frames = r.frames;
+    } catch (e) { showError(seriesInput, e, 'Series'); }
+  }
+
+  async function readFiles(input) {
+    return Promise.all([...input.files].map(async (f) => ({ name: f.name, bytes: (await fileBytes(f)).buffer })));
+  }
+
+  seriesInput.addEventListener('change', async () => {
+    if (!seriesInput.files.length) return;
+    clearError(seriesInput);
+    st.regions = null;
+    progress.start('Decoding the series…');
+    try {
+      const files = await readFiles(seriesInput);
+      const r = await engine.call('absSeries', { files }, { transfer: files.map((f) => f.bytes), onProgress: progress.update });
+      seriesRows(r.frames);
+      if (r.missing) showError(seriesInput, Object.assign(new Error(`${r.missing.message}: type it in the table`), { code: r.missing.code }), 'Series');
+    } catch (e) { seriesRows([]); showError(seriesInput, e, 'Series'); } finally { progress.done(); }
+  });
+
+  async function loadStimuli(text, name) {
+    clearError(stimuliInput);
+    try {
+      const r = await engine.call('absStimuli', { text, name });
+      stimuliInfo.textContent = `${name}: ${r.count} stimuli (${r.luminance} luminance, ${r.colour} colour) over ${r.exposures} exposures.`;
+      return true;
+    } catch (e) { stimuliInfo.textContent = ''; showError(stimuliInput, e, name); return false; }
+  }
+  stimuliInput.addEventListener('change', async () => {
+    const f = stimuliInput.files[0];
+    if (f) await loadStimuli(await f.text(), f.name);
+  });
+
+  async function loadCalibration(input, kind, info) {
+    clearError(input);
+    progress.start(kind === 'flat' ? 'Decoding the flat field…' : 'Decoding the lens-cap frames…');
+    try {
+      const files = await readFiles(input);
+      const r = await engine.call('absCalibration', { kind, files }, { transfer: files.map((f) => f.bytes), onProgress: progress.update });
+      info.textContent = r.frames.length ? `${r.frames.length} frame${r.frames.length > 1 ? 's' : ''}: ${r.frames[0].make} ${r.frames[0].model}, ${r.frames[0].width}×${r.frames[0].height}` : '';
+    } catch (e) { info.textContent = ''; showError(input, e, kind === 'flat' ? 'Flat field' : 'Lens cap'); } finally { progress.done(); }
+  }
+  capInput.addEventListener('change', () => loadCalibration(capInput, 'lensCap', capInfo));
+  flatInput.addEventListener('change', () => loadCalibration(flatInput, 'flat', flatInfo));
+
+  /// Where an error of the fit or the application belongs.
+  function errorTarget(e, stage) {
+    const m = e.message ?? '';
+    if (['NON_MONOTONIC', 'TOO_FEW_PATCHES', 'NEGATIVE_VALUE', 'EMPTY_FILE', 'NO_STIMULI', 'MISSING_COLUMN'].includes(e.code)) return stimuliInput;
+    if (/lens-cap/.test(m)) return capInput;
+    if (/flat/.test(m)) return flatInput;
+    if (['FRAME_MISMATCH', 'MISSING_METADATA', 'NO_IMAGE', 'LIMIT_EXCEEDED'].includes(e.code)) return seriesInput;
+    if (e.code === 'NO_USABLE_DATA') return stage === 'apply' ? seriesInput : stimuliInput;
+    if (/stimulus/.test(m)) return stimuliInput;
+    return fitBtn;
+  }
+
+  function lut() {
+    const f = MAPS[mapSel.value].interp();
+    const out = new Uint8Array(256 * 3);
+    for (let i = 0; i < 256; i++) { const c = globalThis.d3.rgb(f(i / 255)); out[3 * i] = c.r; out[3 * i + 1] = c.g; out[3 * i + 2] = c.b; }
+    return out;
+  }
+  function renderOptions() {
+    const L = lut();
+    return { lut: L.buffer, log: logBox.checked, maxSide: 900, sourceColours: st.frames.map((_, i) => rgbOf(exposureColour(i))) };
+  }
+
+  /// Fits the profile and applies it to the series. Returns {fit, apply} or null.
+  async function run() {
+    for (const c of [fitBtn, seriesInput, stimuliInput, capInput, flatInput]) clearError(c);
+    fitBtn.disabled = exampleBtn.disabled = true;
+    let stage = 'fit';
+    try {
+      progress.start('Fitting the absolute profile…');
+      const options = { camera: cameraSel.value, transform: transformSel.value, fusion: fusionSel.value,
+        noise_floor: Number(noiseInput.value) || 0, saturation: Number(satInput.value) || 0 };
+      const fit = await engine.call('absFit', { options }, { onProgress: progress.update });
+      st.fit = fit;
+      showFit(fit);
+      if (!st.frames.length) { maps.hidden = true; return { fit }; }
+      stage = 'apply';
+      progress.start('Measuring the series…');
+      const out = await engine.call('absApply', { mode: fusionSel.value, exposures: typedExposures(), render: renderOptions() }, { onProgress: progress.update });
+      showMaps(out);
+      showFigures(fit, out.figures);
+      app.mark('absolute', 'done');
+      return { fit, apply: out };
+    } catch (e) {
+      if (e.code !== 'CANCELLED') showError(errorTarget(e, stage), e, stage === 'fit' ? 'Fit' : 'Measure');
+      if (stage === 'fit') { fitSummary.replaceChildren(); oecfBox.replaceChildren(); figuresBox.replaceChildren(); }
+      maps.hidden = true;
+      return null;
+    } finally { progress.done(); fitBtn.disabled = exampleBtn.disabled = false; }
+  }
+  fitBtn.addEventListener('click', run);
+
+  async function example() {
+    for (const c of [fitBtn, seriesInput, stimuliInput, capInput, flatInput]) clearError(c);
+    progress.start('Generating the example with the virtual camera…');
+    fitBtn.disabled = exampleBtn.disabled = true;
+    let ex;
+    try {
+      ex = await engine.call('absExample', {}, { onProgress: progress.update });
+    } catch (e) { showError(exampleBtn, e, 'Example'); return null; } finally { progress.done(); fitBtn.disabled = exampleBtn.disabled = false; }
+    for (const i of [seriesInput, stimuliInput, capInput, flatInput]) i.value = '';
+    seriesRows(ex.frames);
+    st.regions = ex.regions;
+    capInfo.textContent = `${ex.lensCap.length} virtual lens-cap frames`;
+    flatInfo.textContent = 'virtual flat field (equal-tristimulus light, 450 cd/m²)';
+    noiseInput.value = ''; satInput.value = '';
+    setOptions(cameraSel, [...cameraSel.options].map((o) => ({ value: o.value, label: o.textContent })), ex.camera);
+    if (!(await loadStimuli(ex.stimuliCsv, 'example-stimuli.csv'))) return null;
+    stimuliInfo.textContent += ` Scene: a ColorChecker under D65 (white ${num(ex.regions.find((r) => r.id === ex.whiteId).XYZ[1])} cd/m²) and 12 equal-tristimulus cells from 0.3 to 3000 cd/m², with their true X, Y, Z.`;
+    return run();
+  }
+  exampleBtn.addEventListener('click', example);
+
+  // ---- fit summary and OECF plot ----
+  function showFit(fit) {
+    const ch = ['R', 'G', 'B'];
+    const rows = fit.channels.map((c, i) => h('tr', {}, h('th', {}, ch[i]), h('td', {}, c.k1.toExponential(3)), h('td', {}, c.k2.toExponential(4)), h('td', { 'data-col': `k3-${ch[i]}` }, c.k3.toFixed(4)),
+      h('td', {}, String(c.samples)), h('td', {}, pct(c.rms_relative)), h('td', {}, c.r_squared.toFixed(5)),
+      h('td', {}, num(fit.noise_floor[i])), h('td', {}, `${num(fit.saturation[i])}${fit.saturation_measured[i] ? ` (measured; ${pct(fit.saturation_fraction[i], 1)} of the metadata's ${num(fit.saturation_reported[i])})` : ' (metadata)'}`),
+      h('td', {}, (fit.areas[1] / fit.areas[i]).toFixed(4))));
+    const recip = fit.reciprocity_ok
+      ? h('p', { class: 'ok', 'data-role': 'abs-reciprocity' }, `Reciprocity holds: every exposure's own curve is parallel to the common one (scale within 2 %, k3 within 0.03).`)
+      : h('p', { class: 'unavailable', 'data-role': 'abs-reciprocity' }, `Reciprocity fails: ${fit.reciprocity_message}. The common curve is used as fitted; values from these exposures are biased.`);
+    fitSummary.replaceChildren(
+      h('h3', {}, 'Fitted profile'),
+      h('p', {}, `${fit.make} ${fit.model}: ${fit.luminance_stimuli} luminance and ${fit.colour_stimuli} colour stimuli used${fit.saturated_stimuli ? `, ${fit.saturated_stimuli} left out (a channel saturated)` : ''}. `,
+        `Fall-off f(r): ${fit.has_falloff ? `p1 ${fit.falloff.p1.toFixed(4)}, p2 ${fit.falloff.p2.toFixed(4)} (from the flat field)` : 'none (f = 1)'}. Channel areas: ${fit.areas_source}. `,
+        `Colour matrix ${fit.transform}: ${fit.colour_message || 'fitted by pattern search (eqs 11–12)'}.`),
+      h('table', { class: 'metrics abs-channels' },
+        h('thead', {}, h('tr', {}, ['channel', 'k1', 'k2', 'k3', 'stimuli', 'RMS rel. error', 'R²', 'n (DN)', 'S (DN)', 'A_G/A_c'].map((t) => h('th', {}, t)))),
+        h('tbody', {}, rows)),
+      recip);
+    oecfBox.replaceChildren(figure(oecfPlot(fit.panels), { name: 'absolute-oecf', caption: "Fitted OECFs per channel and exposure (Guarnera 2018 fig 5): normalised R′, G′, B′ (eq 7) of the luminance training stimuli against Y; solid: the common eq (8) curve at each exposure's t/N², dashed: the exposure's own fit (reciprocity check); log axes" }));
+  }
+
+  // ---- maps ----
+  function draw(canvas, r) {
+    canvas.width = r.width; canvas.height = r.height;
+    canvas.getContext('2d').putImageData(new ImageData(new Uint8ClampedArray(r.rgba.buffer), r.width, r.height), 0, 0);
+  }
+  function colourBar(range, log) {
+    const name = MAPS[mapSel.value].label;
+    const leg = globalThis.Plot.legend({ color: { type: log ? 'log' : 'linear', interpolate: MAPS[mapSel.value].interp(), domain: range, label: 'luminance Y (cd/m²)' }, width: 520, height: 52, ticks: log ? 5 : 6, tickFormat: log ? ',~g' : ',~g' });
+    return h('div', { class: 'legend-box', dataset: { colourMap: name, low: range[0], high: range[1], scale: log ? 'log' : 'linear' } }, leg,
+      h('small', { class: 'hint' }, `${log ? 'Log' : 'Linear'} scale from ${num(range[0])} to ${num(range[1])} cd/m² (1st to 99th percentile${log ? '' : ' from 0'}); values beyond are drawn at the end colours. `,
+        h('span', { class: 'abs-swatch', style: { background: `rgb(${NO_VALUE_RGB.join(',')})`, border: '1px solid #999' } }), ' saturated in every exposure (no value).'));
+  }
+  function sourceLegend(summary) {
+    return [h('ul', { class: 'abs-legend-list' }, summary.labels.map((l, i) => h('li', {}, h('span', { class: 'abs-swatch', style: { background: exposureColour(i) } }), ` ${l}: ${pct(summary.dominant_pixels[i] / (summary.width * summary.height), 1)} of the pixels`)),
+      h('li', {}, h('span', { class: 'abs-swatch', style: { background: `rgb(${NO_VALUE_RGB.join(',')})`, border: '1px solid #999' } }), ' none (no reliable value)'))];
+  }
+  function showMaps(out) {
+    st.shown = out;
+    draw(lumCanvas, out.luminance);
+    draw(srcCanvas, out.source);
+    lumLegend.replaceChildren(colourBar(out.luminance.range, out.luminance.log));
+    srcLegend.replaceChildren(...sourceLegend(out.summary));
+    const s = out.summary;
+    mapSummary.textContent = `${s.width}×${s.height} pixels from ${s.labels.length} exposure${s.labels.length > 1 ? 's' : ''} (${fusionSel.value === 'recursive' ? 'Algorithm 1' : 'weighted fusion'}) in ${fmt(out.ms, 0)} ms. `
+      + `Y from ${num(s.Y.min)} to ${num(s.Y.max)} cd/m² (median ${num(s.Y.median)}); ${s.saturated_pixels} pixels saturated in every exposure, ${s.unreliable_pixels} without a reliable value.`;
+    maps.hidden = false;
+  }
+  async function rerender() {
+    app.save('colourMap', mapSel.value);
+    if (!st.shown) return;
+    try {
+      const r = await engine.call('absRender', { render: renderOptions() });
+      st.shown = { ...st.shown, ...r };
+      draw(lumCanvas, r.luminance);
+      draw(srcCanvas, r.source);
+      lumLegend.replaceChildren(colourBar(r.luminance.range, r.luminance.log));
+    } catch (e) { showError(fitBtn, e, 'Render'); }
+  }
+  mapSel.addEventListener('change', rerender);
+  logBox.addEventListener('change', rerender);
+
+  // ---- figures (section 4.1) ----
+  function showFigures(fit, figures) {
+    const cols = [['Training stimuli (fit)', fit.training, `white: E at ${num(fit.training.white[1])} cd/m²`]];
+    if (figures) cols.push([`Scene cells (${figures.ids.length}, measured vs true)`, figures.metrics, `white per eq (16): ${figures.whiteId} at ${num(figures.yMax)} cd/m²`]);
+    const row = (label, f) => h('tr', {}, h('th', {}, label), cols.map(([, m]) => h('td', {}, f(m))));
+    const s3 = (s) => `${s.mean.toFixed(2)} / ${s.median.toFixed(2)} / ${s.max.toFixed(2)}`;
+    figuresBox.replaceChildren(h('h3', {}, 'Figures (Guarnera 2018 section 4.1)'),
+      h('table', { class: 'metrics abs-figures-table' },
+        h('thead', {}, h('tr', {}, h('th', {}, ''), cols.map(([l]) => h('th', {}, l)))),
+        h('tbody', {},
+          row('ΔE94 mean / median / max', (m) => s3(m.metrics.dE94)),
+          row('ΔE00 mean / median / max', (m) => s3(m.metrics.dE00)),
+          row('NRMSE X / Y / Z', (m) => Array.from(m.metrics.NRMSE).map((v) => pct(v)).join(' / ')),
+          row('relative Y error (mean |ΔY|/Y)', (m) => h('span', { 'data-col': 'relY' }, pct(m.relative_Y_error))),
+          row('median |ΔX| / |ΔY| / |ΔZ| (cd/m²)', (m) => Array.from(m.median_absolute_error).map(num).join(' / ')),
+          row('CIELAB white', (m) => `${Array.from(m.white).map(num).join(', ')} cd/m²`))),
+      h('small', { class: 'hint' }, cols.map(([l, , w]) => `${l}: ${w}.`).join(' '), ' NRMSE: RMS error over the range of the reference channel.'));
+  }
+
+  // ---- pointer read-out ----
+  let pending = false;
+  const cursor = { x: 0, y: 0 };
+  async function read(x, y) {
+    if (!st.shown || pending) return;
+    pending = true;
+    try {
+      const r = await engine.call('absReadout', { x, y, window: 5 });
+      if (!r) return;
+      const s = r.XYZ[0] + r.XYZ[1] + r.XYZ[2];
+      const parts = [`pixel (${r.x}, ${r.y}), mean of ${r.n} pixels: X ${num(r.XYZ[0])}  Y ${num(r.XYZ[1])}  Z ${num(r.XYZ[2])} cd/m²`,
+        s > 0 ? `x ${(r.XYZ[0] / s).toFixed(4)} y ${(r.XYZ[1] / s).toFixed(4)}` : null,
+        r.source >= 0 ? `source exposure ${r.source_label}${r.contributors.length > 1 ? ` (${r.contributors.length} exposures contributed)` : ''}` : 'no exposure served this pixel'];
+      if (r.region) parts.push(`known stimulus ${r.region.id}: X ${num(r.region.XYZ[0])}  Y ${num(r.region.XYZ[1])}  Z ${num(r.region.XYZ[2])} cd/m² (Y ${r.XYZ[1] >= r.region.XYZ[1] ? '+' : ''}${pct((r.XYZ[1] - r.region.XYZ[1]) / r.region.XYZ[1], 2)})`);
+      readout.textContent = parts.filter(Boolean).join('  ·  ');
+      Object.assign(readout.dataset, { x: r.x, y: r.y, X: r.XYZ[0], Y: r.XYZ[1], Z: r.XYZ[2], source: r.source, region: r.region?.id ?? '' });
+    } catch { /* worker restarted: ignore */ } finally { pending = false; }
+  }
+  for (const c of [lumCanvas, srcCanvas]) {
+    c.tabIndex = 0;
+    c.title = 'Pointer, or arrow keys when focused (Shift: 10 pixels), to read X, Y, Z in cd/m²';
+    c.addEventListener('pointermove', (e) => {
+      if (!st.shown) return;
+      const rect = c.getBoundingClientRect(), s = st.shown.summary;
+      cursor.x = ((e.clientX - rect.left) / rect.width) * s.width;
+      cursor.y = ((e.clientY - rect.top) / rect.height) * s.height;
+      read(cursor.x, cursor.y);
+    });
+    c.addEventListener('keydown', (e) => {
+      const d = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1] }[e.key];
+      if (!d || !st.shown) return;
+      e.preventDefault();
+      const k = (e.shiftKey ? 10 : 1) * st.shown.luminance.factor, s = st.shown.summary;
+      cursor.x = Math.min(Math.max(0, cursor.x + d[0] * k), s.width - 1);
+      cursor.y = Math.min(Math.max(0, cursor.y + d[1] * k), s.height - 1);
+      read(cursor.x, cursor.y);
+    });
+  }
+
+  // A cancelled job restarts the worker: what it held is gone.
+  engine.addEventListener('restart', () => { st.shown = null; maps.hidden = true; });
+  return { run, example, read, seriesInput, stimuliInput, fitBtn, exampleBtn };
+}
