@@ -18,6 +18,8 @@ cmake -S . -B "$out" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang 
   -DTRISTIM_FUZZ=ON ${CCACHE:+-DCMAKE_CXX_COMPILER_LAUNCHER=ccache} > "$out.configure.log" 2>&1 \
   || { cat "$out.configure.log"; exit 1; }
 cmake --build "$out" -j"$(nproc)" > "$out.build.log" 2>&1 || { tail -40 "$out.build.log"; exit 1; }
+# UBSan: fatal, with the listed findings inside LibRaw suppressed (tests/fuzz/ubsan_suppressions.txt).
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$PWD/tests/fuzz/ubsan_suppressions.txt"
 mkdir -p "$out/crashes"
 status=0
 echo "[fuzz] replaying the committed corpora (seeds and past crashes) under the sanitizers"
