@@ -367,13 +367,18 @@ double parse_cell(const std::string& cell, std::string_view source, int line, st
   if (s.empty()) throw Error(ErrorCode::NonNumeric, at + ": empty cell where a number is needed");
   char* end = nullptr;
   double v = std::strtod(s.c_str(), &end);
-  if ((end == s.c_str() || *end != '\0') && std::count(s.begin(), s.end(), ',') == 1 && s.find('.') == std::string::npos) {
+  bool whole = end != s.c_str() && *end == '\0';  // the cell is one number
+  if (!whole && std::count(s.begin(), s.end(), ',') == 1 && s.find('.') == std::string::npos) {
     std::string dot = s;  // decimal comma ("0,123": ';'-separated CSV or CGATS from a European locale)
     dot[dot.find(',')] = '.';
-    v = std::strtod(dot.c_str(), &end);
-    if (end != dot.c_str() && *end == '\0') end = const_cast<char*>(s.c_str()) + s.size();
+    char* dot_end = nullptr;  // points into `dot`: never used after this block (fuzz_patch_file found that)
+    const double d = std::strtod(dot.c_str(), &dot_end);
+    if (dot_end != dot.c_str() && *dot_end == '\0') {
+      v = d;
+      whole = true;
+    }
   }
-  if (end == s.c_str() || *end != '\0') throw Error(ErrorCode::NonNumeric, at + ": '" + s + "' is not a number");
+  if (!whole) throw Error(ErrorCode::NonNumeric, at + ": '" + s + "' is not a number");
   if (!std::isfinite(v)) throw Error(ErrorCode::NonFinite, at + ": '" + s + "' is not finite");
   return v;
 }

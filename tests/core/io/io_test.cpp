@@ -140,6 +140,9 @@ TEST_CASE("every malformed input gives its error code and line", "[io][errors]")
     expect_error([] { read_patch_file("patch,X,Y,Z\nA1,1,2,3\nA2,1,two,3\n", "a.csv"); }, ErrorCode::NonNumeric, 3);
     expect_error([] { read_patch_file("patch,X,Y,Z\nA1,1,,3\n", "a.csv"); }, ErrorCode::NonNumeric, 2);
     expect_error([] { read_patch_file("wavelength,A1\n400,0.1\n410,abc\n", "s.csv"); }, ErrorCode::NonNumeric, 3);
+    // One comma and no dot, but no decimal-comma number (a stray quote kept the comma): NON_NUMERIC, read
+    // without touching the discarded decimal-comma copy (fuzz_patch_file, crash-0031f042…).
+    expect_error([] { read_patch_file("patch,R,G,B\nI1,121.4,130.7,INATOR \"G,B\n", "a.csv"); }, ErrorCode::NonNumeric, 2);
     expect_error([] {
       read_patch_file("CTI3\nBEGIN_DATA_FORMAT\nSAMPLE_ID XYZ_X XYZ_Y XYZ_Z\nEND_DATA_FORMAT\nBEGIN_DATA\nA1 1 2 x\nEND_DATA\n", "a.ti3");
     }, ErrorCode::NonNumeric, 6);
