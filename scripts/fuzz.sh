@@ -4,8 +4,12 @@
 #   scripts/fuzz.sh            short run: FUZZ_SECONDS (default 60) per target (CI)
 #   scripts/fuzz.sh long       long run: FUZZ_RUNS (default 10000000) executions per target
 # New inputs found go to build/fuzz/corpus/<target> (not committed); crashes to build/fuzz/crashes.
-# Exit status 1 if any target crashed. Third-party libraries (lcms2, LibRaw, NLopt) are Debian's
+# Exit status 1 if any target crashed. LibRaw is compiled from its Debian source package with the
+# same sanitizers (fuzz_raw); lcms2, NLopt, libtiff, libpng, libjpeg and zlib are Debian's
 # uninstrumented builds here.
+# A crash found: fix it, then commit the input as tests/fuzz/corpus/<target>/crash-<name> — the
+# native ctest replays every corpus file (native:fuzz-replay:<target>), and so does ctest here
+# (fuzz:<target>:seeds, under the sanitizers), before each run.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-short}
@@ -14,8 +18,13 @@ cmake -S . -B "$out" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang 
   -DTRISTIM_FUZZ=ON ${CCACHE:+-DCMAKE_CXX_COMPILER_LAUNCHER=ccache} > "$out.configure.log" 2>&1 \
   || { cat "$out.configure.log"; exit 1; }
 cmake --build "$out" -j"$(nproc)" > "$out.build.log" 2>&1 || { tail -40 "$out.build.log"; exit 1; }
+# UBSan: fatal, with the listed findings inside LibRaw suppressed (tests/fuzz/ubsan_suppressions.txt).
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$PWD/tests/fuzz/ubsan_suppressions.txt"
 mkdir -p "$out/crashes"
 status=0
+echo "[fuzz] replaying the committed corpora (seeds and past crashes) under the sanitizers"
+ctest --test-dir "$out" --output-on-failure -j"$(nproc)" > "$out.replay.log" 2>&1 \
+  || { grep -E "Failed|ERROR|SUMMARY" "$out.replay.log" | head -20; status=1; }
 for bin in "$out"/tests/fuzz/fuzz_*; do
   [ -x "$bin" ] || continue
   name=$(basename "$bin")

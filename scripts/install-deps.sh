@@ -8,7 +8,8 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 
 PKGS="build-essential cmake pkg-config dpkg-dev libeigen3-dev libraw-dev catch2 emscripten
 chromium liblcms2-dev liblcms2-utils libnlopt-dev libnlopt-cxx-dev argyll python3-opencv
-python3-numpy ca-certificates opencolorio-tools parallel libtiff-dev libpng-dev libjpeg-dev zlib1g-dev"
+python3-numpy ca-certificates opencolorio-tools parallel libtiff-dev libpng-dev libjpeg-dev zlib1g-dev
+clang"  # clang + libFuzzer for scripts/fuzz.sh (also pulled in by emscripten)
 
 missing=""
 for p in $PKGS; do

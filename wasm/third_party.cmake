@@ -2,40 +2,11 @@
 # scripts/install-deps.sh unpacked into TRISTIM_THIRD_PARTY_DIR. Nothing here is committed
 # third-party source: only the list of what to compile and how.
 
-function(tristim_find_src out pattern what)
-  file(GLOB dirs LIST_DIRECTORIES true "${TRISTIM_THIRD_PARTY_DIR}/${pattern}")
-  set(found "")
-  foreach(d ${dirs})
-    if(IS_DIRECTORY ${d})
-      set(found ${d})
-    endif()
-  endforeach()
-  if(NOT found)
-    message(FATAL_ERROR "${what} source not found in ${TRISTIM_THIRD_PARTY_DIR}: "
-                        "run scripts/install-deps.sh (it fetches Debian's source package)")
-  endif()
-  set(${out} ${found} PARENT_SCOPE)
-endfunction()
+include(${CMAKE_SOURCE_DIR}/cmake/source_packages.cmake)  # tristim_find_src, LibRaw's source list
 
-# --- LibRaw 0.20: no CMake build. Sources = lib_libraw_a_SOURCES of Makefile.am (up to the next
-# blank line); libraw_cxx.cpp and *_ph.cpp are include-only, hence no glob.
-tristim_find_src(LIBRAW_DIR "libraw-0*" "LibRaw")
-file(READ ${LIBRAW_DIR}/Makefile.am am)
-string(REGEX MATCH "lib_libraw_a_SOURCES =[^\n]*(\n[^\n]+)*" block "${am}")
-string(REGEX MATCHALL "src/[A-Za-z0-9_/]+\\.cpp" libraw_rel "${block}")
-list(LENGTH libraw_rel n_libraw)
-if(n_libraw LESS 60)
-  message(FATAL_ERROR "could not read LibRaw's source list from ${LIBRAW_DIR}/Makefile.am")
-endif()
-set(libraw_src "")
-foreach(s ${libraw_rel})
-  list(APPEND libraw_src ${LIBRAW_DIR}/${s})
-endforeach()
-add_library(libraw_wasm STATIC ${libraw_src})
-target_include_directories(libraw_wasm PUBLIC ${LIBRAW_DIR})
-# LIBRAW_NOTHREADS: no pthreads in our wasm; -w: LibRaw's own warnings are not ours to fix.
-target_compile_definitions(libraw_wasm PUBLIC LIBRAW_NOTHREADS)
-target_compile_options(libraw_wasm PRIVATE -w -O3 -fexceptions)
+# --- LibRaw 0.20 (cmake/source_packages.cmake); -fexceptions: LibRaw reports errors by throwing.
+tristim_add_libraw_from_source(libraw_wasm)
+target_compile_options(libraw_wasm PRIVATE -O3 -fexceptions)
 add_library(tristim_libraw INTERFACE)
 target_link_libraries(tristim_libraw INTERFACE libraw_wasm)
 

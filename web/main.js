@@ -53,6 +53,14 @@ const app = {
 };
 window.tristim = app;   // for tests and the curious
 
+// The worker died (engine.js recover): a new one is already running; say what happened.
+app.engine.addEventListener('crashed', (e) => {
+  status.textContent = `The colour engine stopped (${e.detail}) and was restarted; your files, corners and results are kept. ` +
+    'If a step shows an error, run it again.';
+  status.classList.add('error');
+  status.dataset.crashes = String(app.engine.crashes);
+});
+
 for (const a of document.querySelectorAll('#steps a')) {
   a.addEventListener('click', (e) => { e.preventDefault(); app.goto(a.dataset.step, { focus: true }); history.replaceState(null, '', `#${a.dataset.step}`); });
 }

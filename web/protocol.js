@@ -1,5 +1,6 @@
 // Page <-> worker protocol. Requests: {type, id, ...args}. Replies: {type:'result', id, result},
-// {type:'error', id, code, message}, {type:'progress', id, fraction, stage}.
+// {type:'error', id, code, message, fatal?}, {type:'progress', id, fraction, stage}. `fatal`: the
+// wasm module aborted (out of memory, a trap); the worker is closing and must be replaced.
 // The page talks to the worker only through `call`, which returns a promise.
 
 export class EngineClient {
@@ -8,10 +9,12 @@ export class EngineClient {
     this.nextId = 1;
     this.pending = new Map();
     this.worker.onmessage = (ev) => this.onMessage(ev.data);
+    this.onfatal = null;   // (reason) => …: the worker or its module died (Engine restarts it)
     this.worker.onerror = (ev) => {
       ev.preventDefault();
       for (const p of this.pending.values()) p.reject(Object.assign(new Error(`worker failed: ${ev.message}`), { code: 'WORKER_FAILED' }));
       this.pending.clear();
+      this.onfatal?.(`the worker failed: ${ev.message}`);
     };
   }
 
@@ -31,6 +34,7 @@ export class EngineClient {
     this.pending.delete(msg.id);
     if (msg.type === 'result') p.resolve(msg.result);
     else p.reject(Object.assign(new Error(msg.message), { code: msg.code }));
+    if (msg.fatal) this.onfatal?.(msg.message);   // the module aborted: this worker is done
   }
 
   terminate() { this.worker.terminate(); }

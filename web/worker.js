@@ -25,6 +25,13 @@ const handlers = {
     surfacePresets: T.listSurfacePresets(),
     layouts: Object.fromEntries(T.listChartLayouts().map((id) => [id, id === 'custom' ? null : T.chartLayout({ chart: id })])),
   }),
+  /// Test-only (tests/web/worker_restart.test.mjs): makes this worker die the two ways a real one
+  /// can — 'abort': the module traps (what an abort or out-of-memory in wasm throws); 'uncaught':
+  /// an error escapes the worker. It can only stop the caller's own worker, which the page replaces.
+  testCrash: (T, { how }) => {
+    if (how === 'uncaught') { setTimeout(() => { throw new Error('test: uncaught error in the worker'); }); return { result: 'crashing' }; }
+    throw new WebAssembly.RuntimeError('Aborted(test: the module was made to abort)');
+  },
 };
 for (const f of FEATURES) {
   for (const type of Object.keys(f.handlers)) if (handlers[type]) throw new Error(`two features handle '${type}'`);
@@ -51,6 +58,11 @@ self.onmessage = async (ev) => {
     const { result, transfer = [] } = out ?? {};
     self.postMessage({ type: 'result', id: msg.id, result }, transfer);
   } catch (e) {
-    self.postMessage({ type: 'error', id: msg.id, code: e?.code ?? 'INTERNAL', message: String(e?.message ?? e) });
+    // A trap or abort of the wasm module (out of memory, a failed assertion) leaves it unusable:
+    // say so and close; the page starts a new worker (web/lib/engine.js recover).
+    const fatal = e instanceof WebAssembly.RuntimeError || /^Aborted\(/.test(String(e?.message));
+    self.postMessage({ type: 'error', id: msg.id, code: fatal ? 'ENGINE_CRASHED' : e?.code ?? 'INTERNAL',
+      message: String(e?.message ?? e), fatal });
+    if (fatal) self.close();
   }
 };

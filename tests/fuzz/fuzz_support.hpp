@@ -7,11 +7,12 @@
 
 #include "tristim/error.hpp"
 
-#define TRISTIM_FUZZ_TARGET(body)                                                  \
+// Variadic: a body with top-level commas (an array initialiser) is one argument.
+#define TRISTIM_FUZZ_TARGET(...)                                                   \
   extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) { \
     const std::string input(reinterpret_cast<const char*>(data), size);           \
     try {                                                                          \
-      body;                                                                        \
+      __VA_ARGS__;                                                                 \
     } catch (const tristim::Error&) {                                              \
     }                                                                              \
     return 0;                                                                      \

@@ -6,11 +6,19 @@
 // Patch i (layout order) is R = 20 + 9i, G = 230 - 8i, B = 60 + 5i; background 128.
 // usage: tristim_make_test_images <folder>
 //        tristim_make_test_images --fuzz-seeds <folder>   (the seed corpora of tests/fuzz:
-//        <folder>/tiff, png, jpeg: small files of every layout the decoders read)
+//        <folder>/tiff, png, jpeg: small files of every layout the decoders read; <folder>/raw:
+//        tiny DNGs of every CFA layout and a few broken headers; <folder>/recipe: one complete
+//        recipe per linearisation, surface and objective method and per model)
 #include <fstream>
 #include <stdexcept>
 #include <iostream>
 
+#include "dng_writer.hpp"
+#include "tristim/characterisation/models.hpp"
+#include "tristim/characterisation/objectives.hpp"
+#include "tristim/linearisation/linearisation.hpp"
+#include "tristim/profile/recipe.hpp"
+#include "tristim/surface/surface.hpp"
 #include "image_writer.hpp"
 
 using namespace tristim::test;
@@ -62,6 +70,64 @@ void fuzz_seeds(const std::string& dir) {
   save(dir + "/jpeg/rgb.jpg", write_jpeg(img(16, 16, 3, 8)));
   save(dir + "/jpeg/rgb_progressive_420.jpg", write_jpeg(img(24, 16, 3, 8), progressive));
   save(dir + "/jpeg/grey_arithmetic.jpg", write_jpeg(img(16, 8, 1, 8), arithmetic));
+
+  // RAW (fuzz_raw): our own DNGs, small enough for libFuzzer's -max_len; at least 22 pixels a
+  // side (LibRaw takes anything smaller for no RAW at all).
+  const auto cfa = [](int w, int h) {
+    std::vector<std::uint16_t> v(static_cast<std::size_t>(w) * h);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<std::uint16_t>(512 + (i * 2654435761u) % 3000);
+    return v;
+  };
+  tristim::DngWriteOptions bayer;
+  bayer.black = 512;
+  bayer.white = 4095;
+  bayer.exposure_s = 0.01;
+  bayer.f_number = 8;
+  const auto rggb = tristim::write_dng(cfa(24, 24), 24, 24, bayer);
+  save(dir + "/raw/rggb.dng", rggb);
+  tristim::DngWriteOptions bggr = bayer;
+  bggr.cfa = "BGGR";
+  save(dir + "/raw/bggr.dng", tristim::write_dng(cfa(24, 22), 24, 22, bggr));
+  tristim::DngWriteOptions xtrans;
+  xtrans.cfa = "GGRGGB" "GGBGGR" "BRGRBG" "GGBGGR" "GGRGGB" "RBGBRG";
+  save(dir + "/raw/xtrans.dng", tristim::write_dng(cfa(24, 24), 24, 24, xtrans));
+  tristim::DngWriteOptions cmyg;
+  cmyg.cfa = "CMYG";
+  save(dir + "/raw/cmyg.dng", tristim::write_dng(cfa(24, 24), 24, 24, cmyg));
+  tristim::DngWriteOptions huge = bayer;
+  huge.header_width = 60000;
+  huge.header_height = 60000;
+  save(dir + "/raw/huge_header.dng", tristim::write_dng(cfa(24, 24), 24, 24, huge));
+  save(dir + "/raw/truncated.dng", std::vector<std::uint8_t>(rggb.begin(), rggb.begin() + rggb.size() * 3 / 4));
+
+  // Recipes (fuzz_recipe): every method id once, options completed, so each reader branch has a seed.
+  const auto save_recipe = [&](const std::string& name, const tristim::Recipe& r) {
+    const std::string text = tristim::recipe_to_json(tristim::complete_recipe(r));
+    save(dir + "/recipe/" + name + ".json", std::vector<std::uint8_t>(text.begin(), text.end()));
+  };
+  for (const auto& m : tristim::linearisation_table()) {
+    tristim::Recipe r;
+    r.linearisation.method = m.info.id;
+    r.sampling.exclude = {"A3"};
+    save_recipe("linearisation-" + m.info.id, r);
+  }
+  for (const auto& m : tristim::surface_table()) {
+    tristim::Recipe r;
+    r.surface.method = m.info.id;
+    save_recipe("surface-" + m.info.id, r);
+  }
+  for (const auto& m : tristim::objective_table()) {
+    tristim::Recipe r;
+    r.characterisation.objective.method = m.info.id;
+    r.characterisation.white_patch = "D1";
+    save_recipe("objective-" + m.info.id, r);
+  }
+  for (const auto& m : tristim::model_table()) {
+    tristim::Recipe r;
+    r.characterisation.model = m.id;
+    r.sampling.corners = {1.25, 2.5, 101.125, 3, 99.0625, 80.5, 0.1, 79.9};
+    save_recipe("model-" + m.id, r);
+  }
 }
 
 }  // namespace

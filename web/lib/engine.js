@@ -7,7 +7,24 @@ export class Engine extends EventTarget {
   constructor() {
     super();
     this.generation = 0;
-    this.client = new EngineClient();
+    this.crashes = 0;
+    this.client = this.connect();
+  }
+
+  connect() {
+    const client = new EngineClient();
+    client.onfatal = (reason) => { if (client === this.client) this.recover(reason); };
+    return client;
+  }
+
+  /// The worker died (its module aborted: out of memory, a trap; or the worker itself failed):
+  /// a new one is started, views re-send what they need (the 'restart' event), and 'crashed'
+  /// {detail: reason} tells the page to say what happened. The session (files, corners,
+  /// results) lives in the page and is kept.
+  recover(reason) {
+    this.crashes++;
+    this.restart();
+    this.dispatchEvent(new CustomEvent('crashed', { detail: reason }));
   }
 
   call(type, args, opts) { return this.client.call(type, args, opts); }
@@ -19,7 +36,7 @@ export class Engine extends EventTarget {
     this.client.pending.clear();
     this.client.terminate();
     for (const p of pending) p.reject(Object.assign(new Error('cancelled'), { code: 'CANCELLED' }));
-    this.client = new EngineClient();
+    this.client = this.connect();
     this.generation++;
     this.dispatchEvent(new Event('restart'));
   }

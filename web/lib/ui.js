@@ -54,6 +54,9 @@ export function showError(control, error, context = '') {
   slot.dataset.code = code;
   slot.hidden = false;
   control.setAttribute('aria-invalid', 'true');
+  // A refused file is not kept in its input (the message names it; the file in use is the one
+  // the control's status line names), so the input never shows a file that was not loaded.
+  if (control.type === 'file') control.value = '';
 }
 
 export function clearError(control) {

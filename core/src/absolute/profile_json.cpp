@@ -165,7 +165,8 @@ AbsoluteProfile absolute_profile_from_json(const std::string& text) {
   try {
     o = json::parse(text);
   } catch (const Error& e) {
-    throw Error(ErrorCode::ProfileInvalid, std::string("absolute profile is not valid JSON: ") + e.what());
+    throw Error(e.code() == ErrorCode::LimitExceeded ? e.code() : ErrorCode::ProfileInvalid,
+                std::string("absolute profile is not valid JSON: ") + e.what());
   }
   if (!o.is_object()) throw Error(ErrorCode::ProfileInvalid, "an absolute profile must be a JSON object");
   const json::Value* fmt = o.find("format");

@@ -205,7 +205,9 @@ Profile profile_from_json(const std::string& text) {
   try {
     o = json::parse(text);
   } catch (const Error& e) {
-    throw Error(ErrorCode::ProfileInvalid, std::string("profile is not valid JSON: ") + e.what());
+    // A stated resource limit (io/limits.hpp) keeps its code: the file may be a valid profile.
+    throw Error(e.code() == ErrorCode::LimitExceeded ? e.code() : ErrorCode::ProfileInvalid,
+                std::string("profile is not valid JSON: ") + e.what());
   }
   if (!o.is_object()) throw Error(ErrorCode::ProfileInvalid, "a profile must be a JSON object");
   const json::Value* fmt = o.find("format");

@@ -304,6 +304,8 @@ Recipe recipe_from_json(const std::string& text) {
   try {
     v = json::parse(text);
   } catch (const Error& e) {
+    if (e.code() == ErrorCode::LimitExceeded)  // a stated limit (io/limits.hpp) keeps its code
+      throw Error(ErrorCode::LimitExceeded, std::string("recipe: ") + e.what());
     invalid(std::string("not valid JSON: ") + e.what());
   }
   return recipe_from_json(v);

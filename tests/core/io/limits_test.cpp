@@ -83,8 +83,8 @@ TEST_CASE("limits: columns of a table", "[limits][io]") {
   expect_limit("CSV with too many columns", [&] { read_patch_file(header + "\n", "s.csv"); });
 }
 
-/// profile_from_json (profile.cpp) re-codes every JSON error as PROFILE_INVALID today; the parser
-/// itself says LIMIT_EXCEEDED, and the profile reader's message keeps the limit.
+/// The parser says LIMIT_EXCEEDED and profile_from_json keeps that code (other JSON errors are
+/// PROFILE_INVALID); the message names the limit.
 void expect_profile_limit(const std::string& what, const std::string& text) {
   expect_limit(what + " (json::parse)", [&] { json::parse(text); });
   const auto t0 = std::chrono::steady_clock::now();
@@ -93,7 +93,7 @@ void expect_profile_limit(const std::string& what, const std::string& text) {
     FAIL("no error");
   } catch (const Error& e) {
     INFO(e.what());
-    CHECK((e.code() == ErrorCode::LimitExceeded || e.code() == ErrorCode::ProfileInvalid));
+    CHECK(e.code() == ErrorCode::LimitExceeded);
     CHECK(std::string(e.what()).find("the limit") != std::string::npos);
     std::printf("limits: %s -> profile_from_json %s in %.3f s\n", what.c_str(), e.code_name(),
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());

@@ -1,0 +1,40 @@
+# Shared by the wasm build (wasm/third_party.cmake) and the fuzz build (TRISTIM_FUZZ, top-level
+# CMakeLists.txt): finding the Debian source packages that scripts/install-deps.sh unpacked into
+# TRISTIM_THIRD_PARTY_DIR, and LibRaw's list of sources. Nothing here is committed third-party
+# source: only the list of what to compile.
+
+function(tristim_find_src out pattern what)
+  file(GLOB dirs LIST_DIRECTORIES true "${TRISTIM_THIRD_PARTY_DIR}/${pattern}")
+  set(found "")
+  foreach(d ${dirs})
+    if(IS_DIRECTORY ${d})
+      set(found ${d})
+    endif()
+  endforeach()
+  if(NOT found)
+    message(FATAL_ERROR "${what} source not found in ${TRISTIM_THIRD_PARTY_DIR}: "
+                        "run scripts/install-deps.sh (it fetches Debian's source package)")
+  endif()
+  set(${out} ${found} PARENT_SCOPE)
+endfunction()
+
+# LibRaw 0.20 as a static library `target` (compiled with the caller's directory-wide options,
+# e.g. the sanitizers of the fuzz build). LibRaw has no CMake build. Sources =
+# lib_libraw_a_SOURCES of Makefile.am (up to the next blank line); libraw_cxx.cpp and *_ph.cpp
+# are include-only, hence no glob. LIBRAW_NOTHREADS: single-threaded use only (wasm has no
+# pthreads; the fuzzers run one input at a time).
+function(tristim_add_libraw_from_source target)
+  tristim_find_src(LIBRAW_DIR "libraw-0*" "LibRaw")
+  file(READ ${LIBRAW_DIR}/Makefile.am am)
+  string(REGEX MATCH "lib_libraw_a_SOURCES =[^\n]*(\n[^\n]+)*" block "${am}")
+  string(REGEX MATCHALL "src/[A-Za-z0-9_/]+\\.cpp" libraw_rel "${block}")
+  list(LENGTH libraw_rel n_libraw)
+  if(n_libraw LESS 60)
+    message(FATAL_ERROR "could not read LibRaw's source list from ${LIBRAW_DIR}/Makefile.am")
+  endif()
+  list(TRANSFORM libraw_rel PREPEND ${LIBRAW_DIR}/ OUTPUT_VARIABLE libraw_src)
+  add_library(${target} STATIC ${libraw_src})
+  target_include_directories(${target} PUBLIC ${LIBRAW_DIR})
+  target_compile_definitions(${target} PUBLIC LIBRAW_NOTHREADS)
+  target_compile_options(${target} PRIVATE -w)  # LibRaw's own warnings are not ours to fix
+endfunction()
