@@ -21,8 +21,9 @@ endfunction()
 # LibRaw 0.20 as a static library `target` (compiled with the caller's directory-wide options,
 # e.g. the sanitizers of the fuzz build). LibRaw has no CMake build. Sources =
 # lib_libraw_a_SOURCES of Makefile.am (up to the next blank line); libraw_cxx.cpp and *_ph.cpp
-# are include-only, hence no glob. LIBRAW_NOTHREADS: single-threaded use only (wasm has no
-# pthreads; the fuzzers run one input at a time).
+# are include-only, hence no glob. LIBRAW_NOTHREADS (wasm, which has no pthreads, and the fuzzers,
+# which run one input at a time): single-threaded use only; the native build keeps LibRaw's
+# thread-local state.
 function(tristim_add_libraw_from_source target)
   tristim_find_src(LIBRAW_DIR "libraw-0*" "LibRaw")
   file(READ ${LIBRAW_DIR}/Makefile.am am)
@@ -35,6 +36,8 @@ function(tristim_add_libraw_from_source target)
   list(TRANSFORM libraw_rel PREPEND ${LIBRAW_DIR}/ OUTPUT_VARIABLE libraw_src)
   add_library(${target} STATIC ${libraw_src})
   target_include_directories(${target} PUBLIC ${LIBRAW_DIR})
-  target_compile_definitions(${target} PUBLIC LIBRAW_NOTHREADS)
+  if(EMSCRIPTEN OR TRISTIM_FUZZ)
+    target_compile_definitions(${target} PUBLIC LIBRAW_NOTHREADS)
+  endif()
   target_compile_options(${target} PRIVATE -w)  # LibRaw's own warnings are not ours to fix
 endfunction()

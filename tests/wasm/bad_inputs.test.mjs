@@ -12,7 +12,11 @@ const dec = new TextDecoder();
 function run(T, c, passport) {
   try {
     switch (c.kind) {
-      case 'raw': T.decodeRaw(c.bytes).delete(); break;
+      case 'raw': {  // as the page: decode (any image, by its bytes), then find the chart
+        const raw = T.decodeRaw(c.bytes);
+        try { T.detectCharts(raw); } finally { raw.delete(); }
+        break;
+      }
       case 'reference': T.parseReferenceFile(dec.decode(c.bytes), c.name, 'D50', '1931'); break;
       case 'patches': T.parsePatchFile(dec.decode(c.bytes), c.name); break;
       case 'profile': T.profileFromJson(dec.decode(c.bytes)); break;

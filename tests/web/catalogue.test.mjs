@@ -1,0 +1,125 @@
+// The bad-input catalogue (tests/bad-inputs/catalogue.json) through the page: each input is
+// uploaded into the file input of its step (a recipe inside a profile JSON, corners through the
+// corner editor), the code shown next to that control must be the expected one, the refused file
+// must not stay in the input, and the page must keep its state; a fit at the end succeeds.
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { screenshot } from './harness.mjs';
+import { openPage, step, noErrorNear } from './journey.mjs';
+import { materialise, expected, readBase, passportCorners, PASSPORT, sharedData } from '../bad-inputs/inputs.mjs';
+
+const INPUT = {
+  raw: ['images', '#step-images input[data-slot="chart"]'],
+  reference: ['reference', '#step-reference input[type=file]'],
+  patches: ['fit', '#step-fit input[type=file]'],
+  profile: ['export', '#step-export input[type=file]'],
+  recipe: ['export', '#step-export input[type=file]'],
+};
+const FIT = '#step-fit button.primary';
+const DETECT_AGAIN = '#step-images .detect-panel button:not(.primary)';
+const A1 = '#step-images .patch-table tbody tr[data-id="A1"]';
+
+/// The coded error next to `selector` once its text names `name`: {code, text}.
+function errorFor(page, selector, name, timeout = 60000) {
+  return page.waitForFunction(([sel, n]) => {
+    const el = document.querySelector(sel);
+    const slot = el && document.getElementById(el.getAttribute('aria-describedby'));
+    return slot && !slot.hidden && slot.dataset.code && slot.textContent.includes(n) ? { code: slot.dataset.code, text: slot.textContent } : null;
+  }, [selector, name], { timeout }).then((h) => h.jsonValue());
+}
+
+async function fitOnce(page) {
+  await step(page, 'fit');
+  const models = page.locator('#step-fit input[data-model]');
+  for (let i = 0; i < await models.count(); i++) await models.nth(i).setChecked(await models.nth(i).getAttribute('data-model') === 'matrix-3x3');
+  const objs = page.locator('#step-fit input[data-objective]');
+  for (let i = 0; i < await objs.count(); i++) await objs.nth(i).setChecked(i === 0);
+  await page.evaluate(() => document.querySelector('#step-fit .fit-log').replaceChildren());  // the run's lines only
+  await page.click(FIT);
+  // The fit log's summary line ("… fits in N s.") ends the run; no error next to the button.
+  await page.waitForFunction(() => /fits in [\d.]+ s\.$/.test(document.querySelector('#step-fit .fit-log li:last-child')?.textContent ?? ''),
+    null, { timeout: 120000 });
+  assert.match(await page.textContent('#step-fit .fit-log li:last-child'), /^1 of 1 fits/);
+  assert.ok(await noErrorNear(page, FIT), 'the fit succeeds');
+}
+
+test('every catalogue case shows its code next to its input, and the page still fits afterwards', async () => {
+  const b = await openPage();
+  try {
+    const { page } = b;
+    await step(page, 'images');
+    await page.waitForFunction(() => document.querySelectorAll('#step-images .patch-table tbody tr').length === 24, null, { timeout: 60000 });
+    const plainA1 = await page.textContent(A1);
+    await step(page, 'reference');
+    const summary = await page.textContent('#step-reference .summary');
+    await fitOnce(page);   // the profile import evaluates on the current chart data: fit once first
+
+    const profileText = new TextDecoder().decode(readBase('tests/fuzz/corpus/profile/root2.json')).trimEnd();
+    const cases = materialise();
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'tristim-catalogue-'));
+    const wrong = [];
+    const t0 = Date.now();
+    for (const c of cases) {
+      const want = expected(c, 'page');
+      let got;
+      if (c.kind === 'corners') {
+        await step(page, 'images');
+        got = await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, c.corners)
+          .then(() => page.waitForFunction(() => {
+            const slot = document.getElementById('corners-error');
+            return slot && !slot.hidden && slot.dataset.code ? slot.dataset.code : null;
+          }, null, { timeout: 30000 })).then((h) => h.jsonValue());
+        await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, passportCorners);
+        await page.waitForFunction(() => document.getElementById('corners-error')?.hidden === true, null, { timeout: 30000 });
+      } else {
+        const [where, selector] = INPUT[c.kind];
+        await step(page, where);
+        const name = `${c.id}--${c.name.replace(/\.[^.]*$/, '')}.${c.kind === 'recipe' ? 'json' : c.name.split('.').pop()}`;
+        // A recipe reaches the page inside a profile (its "recipe" field), the form the page reads.
+        const bytes = c.kind === 'recipe'
+          ? Buffer.from(`${profileText.slice(0, -1)}, "recipe": ${new TextDecoder().decode(c.bytes)}}`)
+          : Buffer.from(c.bytes);
+        // From a file on disk: a 33 MB buffer through the protocol can take longer than the timeout.
+        const file = path.join(dir, name);
+        fs.writeFileSync(file, bytes);
+        await page.setInputFiles(selector, file, { timeout: 120000 });
+        fs.rmSync(file);
+        if (want === 'CHART_NOT_FOUND') {
+          // A valid image (read by its bytes, whatever its name) without a chart: the page loads it
+          // and says so next to "Detect again"; then the example goes back in, with its corners.
+          got = await page.waitForFunction((sel) => {
+            const slot = document.getElementById(document.querySelector(sel)?.getAttribute('aria-describedby'));
+            return slot && !slot.hidden && slot.dataset.code ? slot.dataset.code : null;
+          }, DETECT_AGAIN, { timeout: 60000 }).then((h) => h.jsonValue(), () => 'no coded error shown');
+          await page.setInputFiles(selector, path.join(sharedData, PASSPORT.slice('shared:'.length)));
+          await page.waitForFunction(() => document.querySelectorAll('#step-images .patch-table tbody tr').length === 24, null, { timeout: 60000 });
+          await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, passportCorners);
+          await page.waitForFunction((t) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent === t, plainA1, { timeout: 30000 });
+        } else {
+          got = (await errorFor(page, selector, name).catch(() => ({ code: 'no coded error shown' }))).code;
+          const cleared = await page.waitForFunction((s) => document.querySelector(s).files.length === 0, selector, { timeout: 5000 }).then(() => true, () => false);
+          if (!cleared) wrong.push(`${c.id}: the refused file left in its input`);
+        }
+      }
+      if (got !== want) wrong.push(`${c.id}: expected ${want}, got ${got}`);
+      console.log(`${c.id}: ${got}`);
+    }
+    console.log(`${cases.length} catalogue cases in the page, ${((Date.now() - t0) / 1000).toFixed(1)} s`);
+    assert.deepEqual(wrong, []);
+
+    // The state from before the bad inputs is intact, and the page still fits.
+    await step(page, 'images');
+    assert.equal(await page.locator('#step-images .patch-table tbody tr').count(), 24);
+    assert.equal(await page.textContent(A1), plainA1);
+    await step(page, 'reference');
+    assert.equal(await page.textContent('#step-reference .summary'), summary);
+    await fitOnce(page);
+    await screenshot(page, 'catalogue-after');
+    assert.deepEqual(b.problems, []);
+  } finally {
+    await b.close();
+  }
+});
