@@ -86,7 +86,6 @@ test('every catalogue case shows its code next to its input, and the page still 
         const file = path.join(dir, name);
         fs.writeFileSync(file, bytes);
         await page.setInputFiles(selector, file, { timeout: 120000 });
-        fs.rmSync(file);
         if (want === 'CHART_NOT_FOUND') {
           // A valid image (read by its bytes, whatever its name) without a chart: the page loads it
           // and says so next to "Detect again"; then the example goes back in, with its corners.
@@ -107,6 +106,9 @@ test('every catalogue case shows its code next to its input, and the page still 
       if (got !== want) wrong.push(`${c.id}: expected ${want}, got ${got}`);
       console.log(`${c.id}: ${got}`);
     }
+    // (the files stay on disk until every case is done: the page reads a file after the input's
+    // change event, and a file deleted before that is a NotFoundError, not the case's error)
+    fs.rmSync(dir, { recursive: true, force: true });
     console.log(`${cases.length} catalogue cases in the page, ${((Date.now() - t0) / 1000).toFixed(1)} s`);
     assert.deepEqual(wrong, []);
 

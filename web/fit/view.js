@@ -114,7 +114,13 @@ export function mount(section, app) {
       await app.save('heldOutFile', file ?? undefined);
     } catch (e) { showError(heldInput, e, file.name); }
   }
-  heldInput.addEventListener('change', async () => { const f = heldInput.files[0]; if (f) await setHeldOut({ name: f.name, text: await f.text() }); });
+  heldInput.addEventListener('change', async () => {
+    const f = heldInput.files[0];
+    if (!f) return;
+    let text;
+    try { text = await f.text(); } catch (e) { showError(heldInput, e, f.name); return; }
+    await setHeldOut({ name: f.name, text });
+  });
   heldClear.addEventListener('click', () => { heldInput.value = ''; setHeldOut(null); });
   if (app.session.heldOutFile) app.on('reference', function once() { if (!heldOut) setHeldOut(app.session.heldOutFile); });
 

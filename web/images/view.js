@@ -157,7 +157,8 @@ export function mount(section, app) {
 
   async function setFile(slot, file) {
     clearError(inputs[slot]);
-    const bytes = await fileBytes(file);
+    let bytes;
+    try { bytes = await fileBytes(file); } catch (e) { showError(inputs[slot], e, file.name); return; }
     const before = app.derived.image;
     const ok = await decode(slot, { name: file.name, bytes });
     if (ok) {
@@ -178,7 +179,11 @@ export function mount(section, app) {
   /// Several dark frames: decoded together and averaged by the engine.
   async function setFiles(slot, files) {
     clearError(inputs[slot]);
-    const list = await Promise.all(files.map(async (f) => ({ name: f.name, bytes: (await fileBytes(f)).buffer })));
+    let list;
+    try { list = await Promise.all(files.map(async (f) => ({ name: f.name, bytes: (await fileBytes(f)).buffer }))); } catch (e) {
+      showError(inputs[slot], e, files.map((f) => f.name).join(', '));
+      return;
+    }
     const entry = { name: list.map((f) => f.name).join(', '), list };
     if (await decode(slot, entry)) {
       await app.save(`files.${slot}`, entry);

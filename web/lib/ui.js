@@ -46,8 +46,13 @@ export function errorSlot(control) {
 /// Shows `error` (with its code) next to `control`; the rest of the page keeps working.
 export function showError(control, error, context = '') {
   const slot = control?._errorSlot;
-  const code = error?.code ?? 'ERROR';
-  const message = String(error?.message ?? error);
+  // The engine's errors carry a string code. A browser DOMException has a legacy numeric one (a
+  // file moved or deleted after it was chosen: NotFoundError, 8; unreadable: NotReadableError):
+  // named instead, as a file the page could not read.
+  const unreadable = typeof DOMException !== 'undefined' && error instanceof DOMException;
+  const code = unreadable ? 'FILE_UNREADABLE' : typeof error?.code === 'string' ? error.code : 'ERROR';
+  const message = unreadable ? `the file could not be read (${error.name}: moved, deleted or changed since it was chosen?)`
+    : String(error?.message ?? error);
   const text = `${context && !message.includes(context) ? context + ': ' : ''}${message} (${code})`;
   if (!slot) { console.warn(text); return; }
   slot.textContent = text;

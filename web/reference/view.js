@@ -119,7 +119,8 @@ export function mount(section, app) {
     const f = fileInput.files[0];
     if (!f) return;
     clearError(fileInput);
-    const text = await f.text();
+    let text;
+    try { text = await f.text(); } catch (e) { showError(fileInput, e, f.name); return; }
     const previous = settings.referenceFile;
     settings.referenceFile = { name: f.name, text };
     await update();

@@ -321,7 +321,13 @@ export function mount(section, app) {
     sel.addEventListener('change', () => { st[role] = sel.value; applyPreset(role); renderForm(); changed(); });
   }
   patchInput.addEventListener('change', () => { st.patches = patchInput.value; persist(); if (app.derived.surface) render(app.derived.surface, reference().settings); });
-  fileInput.addEventListener('change', async () => { const f = fileInput.files[0]; if (f) await runCompare({ name: f.name, text: await f.text() }); });
+  fileInput.addEventListener('change', async () => {
+    const f = fileInput.files[0];
+    if (!f) return;
+    let text;
+    try { text = await f.text(); } catch (e) { showError(fileInput, e, f.name); return; }
+    await runCompare({ name: f.name, text });
+  });
   exampleBtn.addEventListener('click', () => loadExample());
   table4Btn.addEventListener('click', runTable4);
   app.on('reference', () => preview());
