@@ -344,31 +344,22 @@ void de2000_residuals(const Problem& pr, const De2000Data& d, const double* x, E
   }
 }
 
-// The RMS loss is a sum of squares, sqrt(Σ w_i ΔE_i² / Σ w_i): minimised by Levenberg–Marquardt on
-// the 3N residuals of de2000_residuals, started from least squares, unbounded (the box of the
-// derivative-free path is only its trust region). Damping update and stopping tests: Madsen,
-// Nielsen & Tingleff (2004), "Methods for non-linear least squares problems", Algorithm 3.16
-// (μ0 = τ·max diag JᵀJ, τ = 1e-3; gain ratio ρ; μ ← μ·max(1/3, 1-(2ρ-1)³) or μ·ν, ν ← 2ν), with
-// tests ‖Jᵀr‖∞ ≤ 1e-12·(1 + F), ‖h‖ ≤ xtol_rel·(‖x‖ + xtol_rel) and a relative decrease of the
-// RMS below ftol_rel. evaluations counts residual vectors (a linearisation counts 4: the residuals
-// and one difference per Lab axis).
-void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOptions& options, std::vector<double>& x,
-                         De2000Outcome& out) {
-  const int nvar = static_cast<int>(x.size());
-  const Eigen::Index m = 3 * pr.n;
-  const int max_iter = options.de2000.max_evaluations > 0 ? std::max(1, options.de2000.max_evaluations / 4) : 100;
-  const double xtol = options.de2000.xtol_rel, ftol = options.de2000.ftol_rel;
-  Eigen::VectorXd r(m), r_new(m), h(nvar), g(nvar), x_new(nvar);
-  Eigen::MatrixXd J(m, nvar), A(nvar, nvar), Am(nvar, nvar);
-  Eigen::Map<Eigen::VectorXd> xv(x.data(), nvar);
-  auto linearise = [&]() {
-    de2000_residuals(pr, d, x.data(), r, &J);
-    out.evaluations += 4;
-    A.noalias() = J.transpose() * J;
-    g.noalias() = J.transpose() * r;
-  };
-  linearise();
-  double F = r.squaredNorm();
+// The damped Gauss–Newton iteration both CIEDE2000 paths share: steps (A + μI) h = −g from the
+// linearisation at x, accepted on the gain ratio ρ = (F − F_new) / predicted. Damping update and
+// stopping tests: Madsen, Nielsen & Tingleff (2004), "Methods for non-linear least squares
+// problems", Algorithm 3.16 (μ0 = τ·max diag A, τ = 1e-3; μ ← μ·max(1/3, 1-(2ρ-1)³) or μ·ν, ν ← 2ν),
+// with tests ‖g‖∞ ≤ 1e-12·(1 + F), ‖h‖ ≤ xtol_rel·(‖x‖ + xtol_rel) and small_decrease(F, F_new).
+// linearise() refreshes A and g at x and returns the loss there; trial(x_new) the loss at x_new;
+// (after a step is accepted, F keeps trial's value);
+// predicted(h, μ) the model's decrease for step h.
+template <class Linearise, class Trial, class Predicted, class SmallDecrease>
+void damped_gauss_newton(Eigen::Map<Eigen::VectorXd>& xv, const Eigen::MatrixXd& A, const Eigen::VectorXd& g, int max_iter,
+                         double xtol, De2000Outcome& out, Linearise linearise, Trial trial, Predicted predicted,
+                         SmallDecrease small_decrease) {
+  const Eigen::Index nvar = xv.size();
+  Eigen::VectorXd h(nvar), x_new(nvar);
+  Eigen::MatrixXd Am(nvar, nvar);
+  double F = linearise();
   double mu = 1e-3 * A.diagonal().maxCoeff(), nu = 2.0;
   int k = 0;
   bool converged = !(mu > 0) || g.lpNorm<Eigen::Infinity>() <= 1e-12 * (1.0 + F);
@@ -383,19 +374,17 @@ void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOption
       break;
     }
     x_new = xv + h;
-    de2000_residuals(pr, d, x_new.data(), r_new, nullptr);
-    ++out.evaluations;
-    const double F_new = r_new.squaredNorm();
-    const double predicted = h.dot(mu * h - g);  // 2·(L(0) - L(h)) > 0
-    const double rho = predicted > 0 ? (F - F_new) / predicted : -1.0;
+    const double F_new = trial(x_new);
+    const double pred = predicted(h, mu);
+    const double rho = pred > 0 ? (F - F_new) / pred : -1.0;
     if (rho > 0 && F_new < F) {
-      const bool small_decrease = std::sqrt(F) - std::sqrt(F_new) <= ftol * std::sqrt(F);
+      const bool small = small_decrease(F, F_new);
       xv = x_new;
       F = F_new;
       linearise();
       mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
       nu = 2.0;
-      converged = small_decrease || g.lpNorm<Eigen::Infinity>() <= 1e-12 * (1.0 + F);
+      converged = small || g.lpNorm<Eigen::Infinity>() <= 1e-12 * (1.0 + F);
     } else {
       mu *= nu;
       nu *= 2.0;
@@ -403,6 +392,39 @@ void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOption
   }
   out.iterations = k;
   out.hit_limit = !converged && k >= max_iter;
+}
+
+// The RMS loss is a sum of squares, sqrt(Σ w_i ΔE_i² / Σ w_i): minimised by Levenberg–Marquardt on
+// the 3N residuals of de2000_residuals (damped_gauss_newton with A = JᵀJ, g = Jᵀr, F = ‖r‖², the
+// predicted decrease hᵀ(μh − g) = 2·(L(0) − L(h)), and a relative decrease of the RMS below
+// ftol_rel), started from least squares, unbounded (the box of the derivative-free path is only its
+// trust region). evaluations counts residual vectors (a linearisation counts 4: the residuals and
+// one difference per Lab axis).
+void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOptions& options, std::vector<double>& x,
+                         De2000Outcome& out) {
+  const int nvar = static_cast<int>(x.size());
+  const Eigen::Index m = 3 * pr.n;
+  const int max_iter = options.de2000.max_evaluations > 0 ? std::max(1, options.de2000.max_evaluations / 4) : 100;
+  const double ftol = options.de2000.ftol_rel;
+  Eigen::VectorXd r(m), r_new(m), g(nvar);
+  Eigen::MatrixXd J(m, nvar), A(nvar, nvar);
+  Eigen::Map<Eigen::VectorXd> xv(x.data(), nvar);
+  damped_gauss_newton(
+      xv, A, g, max_iter, options.de2000.xtol_rel, out,
+      [&] {
+        de2000_residuals(pr, d, x.data(), r, &J);
+        out.evaluations += 4;
+        A.noalias() = J.transpose() * J;
+        g.noalias() = J.transpose() * r;
+        return r.squaredNorm();
+      },
+      [&](const Eigen::VectorXd& x_new) {
+        de2000_residuals(pr, d, x_new.data(), r_new, nullptr);
+        ++out.evaluations;
+        return r_new.squaredNorm();
+      },
+      [&](const Eigen::VectorXd& h, double mu) { return h.dot(mu * h - g); },
+      [&](double F, double F_new) { return std::sqrt(F) - std::sqrt(F_new) <= ftol * std::sqrt(F); });
   out.f = de2000_cost(pr, d, x.data());  // the reported RMS, from delta_E_CIE2000 as every path
   ++out.evaluations;
 }
@@ -417,20 +439,20 @@ void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOption
 // Weiszfeld's, and on the Passport patches 2–5× fewer iterations to the same minimum (within 1e-5
 // ΔE00 of a run with xtol 1e-12, ftol 1e-15); the pure Newton curvature stalls at the loss's kinks
 // (patches fitted exactly). Steps (H + μI) h = −g; gain ratio on the mean itself against the model's
-// decrease −(gᵀh + ½ hᵀHh); damping and stopping tests as levenberg_marquardt (Madsen, Nielsen &
-// Tingleff 2004, Algorithm 3.16). δ = 1e-9 ΔE00 keeps weights finite at an exactly fitted patch.
-// Started from least squares, unbounded; evaluations counted as levenberg_marquardt.
+// decrease −(gᵀh + ½ hᵀHh); damping and stopping tests as levenberg_marquardt (damped_gauss_newton).
+// δ = 1e-9 ΔE00 keeps weights finite at an exactly fitted patch. Started from least squares,
+// unbounded; evaluations counted as levenberg_marquardt.
 void reweighted_lm(const Problem& pr, const De2000Data& d, const FitOptions& options, std::vector<double>& x,
                    De2000Outcome& out) {
   const int nvar = static_cast<int>(x.size());
   const Eigen::Index n = pr.n, m = 3 * n;
   const int max_iter = options.de2000.max_evaluations > 0 ? std::max(1, options.de2000.max_evaluations / 4) : 500;
-  const double xtol = options.de2000.xtol_rel, ftol = options.de2000.ftol_rel;
+  const double ftol = options.de2000.ftol_rel;
   constexpr double delta = 1e-9;
   De2000Data du = d;  // unweighted residuals: q_i itself
   du.w.assign(n, 1.0);
-  Eigen::VectorXd r(m), r_new(m), h(nvar), g(nvar), x_new(nvar), a(n);
-  Eigen::MatrixXd J(m, nvar), A(nvar, nvar), Am(nvar, nvar), WJ(m, nvar), WG(m, nvar);
+  Eigen::VectorXd r(m), r_new(m), g(nvar), a(n);
+  Eigen::MatrixXd J(m, nvar), A(nvar, nvar), WJ(m, nvar), WG(m, nvar);
   Eigen::Map<Eigen::VectorXd> xv(x.data(), nvar);
   auto loss = [&](const Eigen::VectorXd& res) {  // Σ w_i ‖q_i‖ (not yet divided by Σ w)
     double s = 0;
@@ -451,43 +473,17 @@ void reweighted_lm(const Problem& pr, const De2000Data& d, const FitOptions& opt
     }
     A.noalias() = J.transpose() * WJ;
     g.noalias() = WG.transpose() * r;
+    return loss(r);
   };
-  linearise();
-  double S = loss(r);
-  double mu = 1e-3 * A.diagonal().maxCoeff(), nu = 2.0;
-  int k = 0;
-  bool converged = !(mu > 0) || g.lpNorm<Eigen::Infinity>() <= 1e-12 * (1.0 + S);
-  while (!converged && k < max_iter) {
-    ++k;
-    Am = A;
-    Am.diagonal().array() += mu;
-    h = Am.ldlt().solve(-g);
-    if (!h.allFinite()) break;
-    if (h.norm() <= xtol * (xv.norm() + xtol)) {
-      converged = true;
-      break;
-    }
-    x_new = xv + h;
-    de2000_residuals(pr, du, x_new.data(), r_new, nullptr);
-    ++out.evaluations;
-    const double S_new = loss(r_new);
-    const double predicted = -(g.dot(h) + 0.5 * h.dot(A * h));  // decrease of the majoriser
-    const double rho = predicted > 0 ? (S - S_new) / predicted : -1.0;
-    if (rho > 0 && S_new < S) {
-      const bool small_decrease = S - S_new <= ftol * S;
-      xv = x_new;
-      S = S_new;
-      linearise();
-      mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
-      nu = 2.0;
-      converged = small_decrease || g.lpNorm<Eigen::Infinity>() <= 1e-12 * (1.0 + S);
-    } else {
-      mu *= nu;
-      nu *= 2.0;
-    }
-  }
-  out.iterations = k;
-  out.hit_limit = !converged && k >= max_iter;
+  damped_gauss_newton(
+      xv, A, g, max_iter, options.de2000.xtol_rel, out, linearise,
+      [&](const Eigen::VectorXd& x_new) {
+        de2000_residuals(pr, du, x_new.data(), r_new, nullptr);
+        ++out.evaluations;
+        return loss(r_new);
+      },
+      [&](const Eigen::VectorXd& h, double) { return -(g.dot(h) + 0.5 * h.dot(A * h)); },  // decrease of the majoriser
+      [&](double S, double S_new) { return S - S_new <= ftol * S; });
   out.f = de2000_cost(pr, d, x.data());  // the reported mean, from delta_E_CIE2000 as every path
   ++out.evaluations;
 }

@@ -73,9 +73,7 @@ void write_text_tag(const LcmsContext& lc, cmsHPROFILE h, cmsTagSignature sig, c
 // stored (non-linear) values and linearises them first (profile.hpp).
 Vec3 profile_XYZ(const Profile& p, const Vec3& camera) {
   if (!p.has_linearisation) return predict(p.model, camera);
-  PatchMatrix one(1, 3);
-  one.row(0) = camera.transpose();
-  return predict(p.model, linearise(p.linearisation, one)).row(0).transpose();
+  return profile_predict(p, camera.transpose()).row(0).transpose();
 }
 
 struct SamplerCargo {
