@@ -18,6 +18,7 @@
 //  4. Experiment (a) of the paper: 8 reflective colour targets, each under 30 projector
 //     illuminants, T1 from the projected colours: the mean relative Y error (the paper's
 //     2.37 %) and the ΔE of Table 2, white E at the largest luminance.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -92,6 +93,15 @@ void print_run(const Run& r) {
   print("Algorithm 1 (5 exposures)", r.recursive);
 }
 
+/// The luminance of each column of `spectra` (cd/m²), the brightest at `top`.
+std::vector<double> luminances_up_to(const SpectralData& spectra, double top) {
+  std::vector<double> Y;
+  for (size_t k = 0; k < spectra.size(); ++k) Y.push_back(test::luminance_sum(spectra, static_cast<int>(k)));
+  const double y_max = *std::max_element(Y.begin(), Y.end());
+  for (double& y : Y) y *= top / y_max;
+  return Y;
+}
+
 /// The colour module trained on the ColorChecker SG patches unlike every ColorChecker Classic
 /// patch (spectral RMS difference > 0.03), under `illuminant`, photographed at 1/60 s f/8.
 Model colour_from_sg(const test::AbsoluteBench& b, const std::string& illuminant, const std::string& transform) {
@@ -111,11 +121,7 @@ Model colour_from_sg(const test::AbsoluteBench& b, const std::string& illuminant
     }
   }
   const SpectralData spectra = reflected_spectra(keep, illuminant_spd(illuminant));
-  double y_max = 0;
-  for (size_t k = 0; k < spectra.size(); ++k) y_max = std::max(y_max, test::luminance_sum(spectra, static_cast<int>(k)));
-  std::vector<double> Y;
-  for (size_t k = 0; k < spectra.size(); ++k) Y.push_back(600 * test::luminance_sum(spectra, static_cast<int>(k)) / y_max);
-  const test::GridScene g = test::grid_scene(b.sensor, spectra, Y, 14, 16);
+  const test::GridScene g = test::grid_scene(b.sensor, spectra, luminances_up_to(spectra, 600), 14, 16);
   const AbsoluteProfile p = test::profile_for(b, g.scene.width, g.scene.height);
   const RawImage f = capture_virtual(b.sensor, g.scene, b.bracket[2], 800);
   const PatchMatrix L = test::patch_means(apply_absolute(p, {&f}).luminance.L, g);
@@ -243,11 +249,7 @@ TEST_CASE("absolute: Experiment (a), colour targets under projector illuminants 
       spectra.names.push_back(r.names[0]);
     }
   }
-  double y_max = 0;
-  for (size_t k = 0; k < spectra.size(); ++k) y_max = std::max(y_max, test::luminance_sum(spectra, static_cast<int>(k)));
-  std::vector<double> Y;
-  for (size_t k = 0; k < spectra.size(); ++k) Y.push_back(800 * test::luminance_sum(spectra, static_cast<int>(k)) / y_max);
-  const test::GridScene g = test::grid_scene(b.sensor, spectra, Y, 24, 8);
+  const test::GridScene g = test::grid_scene(b.sensor, spectra, luminances_up_to(spectra, 800), 24, 8);
   const AbsoluteProfile p = test::profile_for(b, g.scene.width, g.scene.height);
   double truth_max = 0;
   for (const auto& x : g.XYZ) truth_max = std::max(truth_max, x[1]);
