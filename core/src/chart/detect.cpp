@@ -104,8 +104,14 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
     if (options.progress) options.progress(stage, f);
   };
   progress("segment", 0.0);
+  // The working image: the image itself when small enough (no copy), else box-downsampled.
   int factor = 1;
-  const RawImage work = working_image(image, options.working_side, &factor);
+  RawImage scaled;
+  if (std::max(image.width, image.height) > std::max(1, options.working_side))
+    scaled = working_image(image, options.working_side, &factor);
+  else if (image.width < 1 || image.height < 1 || image.rgb.size() != size_t(image.width) * image.height * 3)
+    throw Error(ErrorCode::InvalidArgument, "chart detection needs a non-empty RGB image");
+  const RawImage& work = factor > 1 ? scaled : image;
   const RegionLabels regions = flat_regions(work);
   progress("segment", 0.2);
   const std::vector<PatchQuad> quads = patch_quads(work, regions);
