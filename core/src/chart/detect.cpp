@@ -287,6 +287,14 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
     } catch (const Error& e) {
       if (e.code() != ErrorCode::ChartNotFound) throw;
     }
+    // The coarse pass decides only when every candidate is confident and its lattice holds at
+    // least half of the layout's patches: a chart whose patches are too small for it may show a
+    // few cells, and a layout extrapolated from those can sit one cell off.
+    for (const auto& c : out)
+      if (c.coverage < 0.5 || c.confidence < 0.9) {
+        out.clear();
+        break;
+      }
   }
   if (out.empty()) out = detect_pass(image, wanted, options, fine);
   if (options.progress) options.progress("done", 1.0);
