@@ -96,11 +96,12 @@ Point centre_of(const std::array<double, 8>& k) {
   return Point((k[0] + k[2] + k[4] + k[6]) / 4, (k[1] + k[3] + k[5] + k[7]) / 4);
 }
 
-// One pass of the pipeline on a working image of longer side <= working_side.
+// One pass of the pipeline on a working image of longer side <= working_side; its progress is
+// reported as the part [from, to] of the whole.
 std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector<Target>& wanted,
-                                        const DetectOptions& options, int working_side) {
+                                        const DetectOptions& options, int working_side, double from, double to) {
   auto progress = [&](const char* stage, double f) {
-    if (options.progress) options.progress(stage, f);
+    if (options.progress) options.progress(stage, from + (to - from) * f);
   };
   progress("segment", 0.0);
   // The working image: the image itself when small enough (no copy), else box-downsampled.
@@ -281,9 +282,10 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
   constexpr int kCoarseSide = 1000;
   const int side = std::max(image.width, image.height), fine = std::max(1, options.working_side);
   std::vector<ChartCandidate> out;
-  if ((side + kCoarseSide - 1) / kCoarseSide > (side + fine - 1) / fine) {
+  const bool coarse = (side + kCoarseSide - 1) / kCoarseSide > (side + fine - 1) / fine;
+  if (coarse) {
     try {
-      out = detect_pass(image, wanted, options, kCoarseSide);
+      out = detect_pass(image, wanted, options, kCoarseSide, 0.0, 0.5);
     } catch (const Error& e) {
       if (e.code() != ErrorCode::ChartNotFound) throw;
     }
@@ -296,7 +298,7 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
         break;
       }
   }
-  if (out.empty()) out = detect_pass(image, wanted, options, fine);
+  if (out.empty()) out = detect_pass(image, wanted, options, fine, coarse ? 0.5 : 0.0, 1.0);
   if (options.progress) options.progress("done", 1.0);
   return out;
 }
