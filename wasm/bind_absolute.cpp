@@ -7,7 +7,8 @@
 //
 // AbsoluteMaps methods (the handle owns wasm memory: call .delete()): summary(), XYZ() ->
 // Float32Array(3·w·h), source() -> Uint8Array(w·h) (dominant exposure, 255: none),
-// contributors() -> Int32Array(w·h) (bit e: exposure e served the pixel), readout(x, y, window)
+// contributors() -> Int32Array(w·h) (bit e: exposure e served the pixel), tiff() -> Uint8Array
+// (the X, Y, Z map as a 32-bit float TIFF, as `tristim absolute apply` writes), readout(x, y, window)
 // -> PixelReadout, measure(regions, white) -> RegionFigures.
 #include <algorithm>
 #include <cmath>
@@ -15,8 +16,10 @@
 
 #include "raw_handle.hpp"
 #include "tristim/absolute/example.hpp"
+#include "tristim/absolute/fit_frames.hpp"
 #include "tristim/absolute/profile.hpp"
 #include "tristim/absolute/stimuli_file.hpp"
+#include "tristim/profile/export.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 #include "types.hpp"
 
@@ -174,90 +177,52 @@ OecfPanel panel_of(const ExposureReport& r, const LuminanceFit& fit, const std::
 
 AbsoluteFitOutcome fit_absolute(const AbsoluteFitInput& in, const Handles& frames, const Handles& lens_cap,
                                 const Handles& flat, const Handles& series) {
-  if (in.stimuli.empty()) throw Error(ErrorCode::EmptyFile, "no training stimuli");
-  std::optional<DarkFrame> cap;
-  if (!lens_cap.empty()) cap = average_dark_frames(images_of(lens_cap));
-  std::vector<const RawImage*> all = images_of(frames);
-  for (const auto* s : images_of(series)) all.push_back(s);
-  SaturationEstimate sat;
-  if (in.saturation > 0) {
-    sat.level = sat.reported = {in.saturation, in.saturation, in.saturation};
-    sat.fraction = {1, 1, 1};
-  } else if (!all.empty()) {
-    sat = measure_saturation(all);  // the brightest shots show where the body really clips
-  } else {
-    throw Error(ErrorCode::InvalidArgument, "per-patch stimuli need the saturation level S (DN), or RAW frames to measure it from");
-  }
-  std::optional<SpectralData> ssf;
-  if (!in.camera.empty()) ssf = camera_ssf(in.camera);
-  std::optional<FalloffFit> falloff;
   if (flat.size() > 1) throw Error(ErrorCode::InvalidArgument, "one flat field at most");
-  if (!flat.empty()) falloff = fit_falloff_Guarnera2018(flat[0]->image, cap ? &*cap : nullptr);
-  Normalisation n = make_normalisation(cap ? &*cap : nullptr, sat, ssf ? &*ssf : nullptr, falloff, in.w);
-  if (!cap && in.noise_floor != 0) {
-    n.noise_floor = {in.noise_floor, in.noise_floor, in.noise_floor};
-    n.check();
-  }
-  // The camera: every frame given must come from one body (FrameMismatch otherwise).
-  std::string make, model;
-  bool known = false;
-  auto same_camera = [&](const RawImage& f, const std::string& what) {
-    if (!known) {
-      make = f.meta.make, model = f.meta.model, known = true;
-    } else if (f.meta.make != make || f.meta.model != model) {
-      throw Error(ErrorCode::FrameMismatch, what + " comes from " + f.meta.make + " " + f.meta.model + " but the others from " +
-                                                make + " " + model);
-    }
-  };
-  for (size_t i = 0; i < series.size(); ++i) same_camera(series[i]->image, "frame " + std::to_string(i + 1) + " of the series");
-  for (size_t i = 0; i < frames.size(); ++i) same_camera(frames[i]->image, "training frame " + std::to_string(i + 1));
-  for (size_t i = 0; i < lens_cap.size(); ++i) same_camera(lens_cap[i]->image, "lens-cap frame " + std::to_string(i + 1));
-  if (!flat.empty()) same_camera(flat[0]->image, "the flat field");
-
-  std::vector<TrainingStimulus> stimuli;
-  AbsoluteFitOutcome out;
+  AbsoluteFitFrames fi;
   for (const auto& a : in.stimuli) {
-    const std::string where = "stimulus '" + a.id + "'" + (a.line ? " (line " + std::to_string(a.line) + ")" : "");
+    FrameStimulus s;
+    s.where = "stimulus '" + a.id + "'" + (a.line ? " (line " + std::to_string(a.line) + ")" : "");
     bool luminance_set = equal_tristimulus(a.XYZ);
     if (a.set == "luminance" || a.set == "oecf") luminance_set = true;
     else if (a.set == "colour" || a.set == "color") luminance_set = false;
-    else if (!a.set.empty()) throw Error(ErrorCode::InvalidArgument, where + ": set is luminance or colour, not '" + a.set + "'");
-    TrainingStimulus s;
+    else if (!a.set.empty()) throw Error(ErrorCode::InvalidArgument, s.where + ": set is luminance or colour, not '" + a.set + "'");
+    s.stimulus.id = a.id;
+    s.stimulus.exposure = a.exposure;
+    s.stimulus.XYZ = a.XYZ;
+    s.stimulus.luminance_set = luminance_set;
     if (a.frame >= 0) {
       if (a.frame >= static_cast<int>(frames.size()))
-        throw Error(ErrorCode::InvalidArgument, where + ": frame " + std::to_string(a.frame) + " was not given");
-      const RawImage& f = frames[a.frame]->image;
-      if (falloff && (f.width != falloff->width || f.height != falloff->height))
-        throw Error(ErrorCode::FrameMismatch, where + ": its frame and the flat field differ in size");
-      ExposureSettings e = a.exposure;
-      if (!(e.exposure_s > 0) || !(e.f_number > 0)) e = exposure_from_metadata(f.meta, where + " ('" + a.file + "')");
-      s = sample_stimulus(f, a.x, a.y, a.w, a.h, n, e, a.XYZ, a.id, luminance_set);
+        throw Error(ErrorCode::InvalidArgument, s.where + ": frame " + std::to_string(a.frame) + " was not given");
+      s.frame = &frames[a.frame]->image;
+      s.frame_name = "'" + a.file + "'";
+      s.x = a.x, s.y = a.y, s.w = a.w, s.h = a.h;
     } else {
-      if (!(a.exposure.exposure_s > 0) || !(a.exposure.f_number > 0))
-        throw Error(ErrorCode::MissingMetadata, where + ": a per-patch stimulus needs exposure_s and f_number");
-      s.id = a.id;
-      s.exposure = a.exposure;
-      s.raw_RGB = a.RGB;
-      s.falloff = a.falloff;
-      s.XYZ = a.XYZ;
-      s.luminance_set = luminance_set;
-      for (int c = 0; c < 3; ++c) s.saturated[c] = n.zone(c, s.raw_RGB[c]) == Zone::Saturated;
+      s.stimulus.raw_RGB = a.RGB;
+      s.stimulus.falloff = a.falloff;
     }
-    stimuli.push_back(s);
+    fi.stimuli.push_back(s);
   }
-  AbsoluteFitOptions o;
-  o.transform = in.transform;
-  AbsoluteProfile p = fit_absolute_Guarnera2018(stimuli, n, o);
-  p.make = make;
-  p.model = model;
-  if (falloff) p.width = falloff->width, p.height = falloff->height;
-  p.saturation = sat;
-  p.areas_source = in.camera.empty() ? "none" : "camera:" + in.camera;
-  p.fusion = in.fusion;
-
+  fi.lens_cap = images_of(lens_cap);
+  if (!flat.empty()) fi.flat = &flat[0]->image;
+  fi.series = images_of(series);
+  fi.saturation = in.saturation;
+  fi.noise_floor = in.noise_floor;
+  if (!in.camera.empty()) {
+    fi.ssf = camera_ssf(in.camera);
+    fi.areas_source = "camera:" + in.camera;
+  }
+  fi.w = in.w;
+  fi.options.transform = in.transform;
+  fi.fusion = in.fusion;
+  const AbsoluteFitFromFrames fitted = fit_absolute_from_frames(fi);
+  const AbsoluteProfile& p = fitted.profile;
+  const std::vector<TrainingStimulus>& stimuli = fitted.stimuli;
+  const Normalisation& n = p.normalisation;
+  const SaturationEstimate& sat = p.saturation;
+  AbsoluteFitOutcome out;
   out.profile = absolute_profile_to_json(p);
-  out.make = make;
-  out.model = model;
+  out.make = p.make;
+  out.model = p.model;
   for (int c = 0; c < 3; ++c) {
     const OecfFit& f = p.luminance.fits[c];
     out.channels[c] = {p.luminance.curves[c].k1, p.luminance.curves[c].k2, p.luminance.curves[c].k3, f.samples,
@@ -275,8 +240,8 @@ AbsoluteFitOutcome fit_absolute(const AbsoluteFitInput& in, const Handles& frame
   out.saturation_measured = sat.measured;
   out.areas = n.areas;
   out.areas_source = p.areas_source;
-  out.has_falloff = falloff.has_value();
-  if (falloff) out.falloff = *falloff;
+  out.has_falloff = n.falloff.has_value();
+  if (n.falloff) out.falloff = *n.falloff;
   out.transform = p.transform;
   out.colour_message = p.colour_message;
   out.colour_status = p.colour_status;
@@ -598,6 +563,12 @@ EMSCRIPTEN_BINDINGS(tristim_absolute) {
       .function("source", optional_override([](const AbsoluteMaps& m) {
                   return Conv<std::vector<uint8_t>>::to(m.image.luminance.source); }))
       .function("contributors", optional_override([](const AbsoluteMaps& m) { return Conv<std::vector<int>>::to(maps_contributors(m)); }))
+      .function("tiff", optional_override([](const AbsoluteMaps& m) {
+                  return guard([&] {
+                    const FusedLuminance& L = m.image.luminance;
+                    return Conv<std::vector<uint8_t>>::to(
+                        float_tiff(m.image.XYZ.data(), L.width, L.height, "CIE XYZ, cd/m2 (tristim absolute, Guarnera 2018)"));
+                  }); }))
       .function("readout", optional_override([](const AbsoluteMaps& m, val x, val y, val window) {
                   return guard([&] {
                     return val(maps_readout(m, Conv<int>::from(x), Conv<int>::from(y), wasm::absent(window) ? 1 : Conv<int>::from(window)));

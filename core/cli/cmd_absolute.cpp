@@ -9,9 +9,11 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "cli.hpp"
+#include "tristim/absolute/fit_frames.hpp"
 #include "tristim/absolute/profile.hpp"
 #include "tristim/absolute/sensitivities.hpp"
 #include "tristim/absolute/stimuli_file.hpp"
@@ -162,84 +164,51 @@ std::vector<StimulusRow> read_stimuli(const std::string& path) {
 int run_fit(const Args& args, std::ostream& out) {
   args.allow_only({"stimuli", "dark", "flat", "camera", "ssf", "noise-floor", "saturation", "w", "transform", "fusion", "out"});
   const std::string path = args.get("stimuli");
-  std::vector<StimulusRow> rows = read_stimuli(path);
-  // Lens-cap frames: the noise floor n (eq 7).
+  const std::vector<StimulusRow> rows = read_stimuli(path);
+  AbsoluteFitFrames in;
+  // Lens-cap frames (the noise floor n, eq 7), the flat (f(r)), the training frames: decoded once each.
   std::vector<RawImage> darks;
   for (const auto& f : args.all("dark")) darks.push_back(load_raw_file(f));
-  std::optional<DarkFrame> cap;
-  if (!darks.empty()) {
-    std::vector<const RawImage*> p;
-    for (const auto& d : darks) p.push_back(&d);
-    cap = average_dark_frames(p);
-  }
-  // The training frames (decoded once each).
+  for (const auto& d : darks) in.lens_cap.push_back(&d);
+  std::optional<RawImage> flat;
+  if (args.has("flat")) flat = load_raw_file(args.get("flat"));
+  if (flat) in.flat = &*flat;
   std::map<std::string, std::unique_ptr<RawImage>> frames;
   for (const auto& r : rows)
     if (!r.file.empty() && !frames.count(r.file)) frames[r.file] = std::make_unique<RawImage>(load_raw_file(r.file));
-  std::vector<const RawImage*> frame_ptrs;
-  for (const auto& kv : frames) frame_ptrs.push_back(kv.second.get());
-  SaturationEstimate sat;
+  for (const auto& r : rows) {
+    FrameStimulus s;
+    s.stimulus = r.stimulus;
+    s.where = "'" + path + "', line " + std::to_string(r.line) + " (" + r.stimulus.id + ")";
+    if (!r.file.empty()) {
+      s.frame = frames[r.file].get();
+      s.frame_name = "'" + r.file + "'";
+      s.x = r.x, s.y = r.y, s.w = r.w, s.h = r.h;
+    }
+    in.stimuli.push_back(s);
+  }
   if (args.has("saturation")) {
-    const double S = args.get_double("saturation", 0);
-    sat.level = sat.reported = {S, S, S};
-    sat.fraction = {1, 1, 1};
-  } else if (!frame_ptrs.empty()) {
-    sat = measure_saturation(frame_ptrs);  // the brightest training shots show the real clip level
-  } else {
+    in.saturation = args.get_double("saturation", 0);
+    if (!(in.saturation > 0)) throw Error(ErrorCode::InvalidArgument, "--saturation must be a positive level in DN");
+  } else if (frames.empty()) {
     throw Error(ErrorCode::InvalidArgument, "per-patch stimuli need --saturation (the clip level in DN)");
   }
-  std::optional<SpectralData> ssf;
-  std::string areas_source = "none";
   if (args.has("camera")) {
-    ssf = camera_ssf(args.get("camera"));
-    areas_source = "camera:" + args.get("camera");
+    in.ssf = camera_ssf(args.get("camera"));
+    in.areas_source = "camera:" + args.get("camera");
   } else if (args.has("ssf")) {
-    ssf = read_ssf_csv(read_file(args.get("ssf")), args.get("ssf"));
-    areas_source = "file:" + args.get("ssf");
+    in.ssf = read_ssf_csv(read_file(args.get("ssf")), args.get("ssf"));
+    in.areas_source = "file:" + args.get("ssf");
   }
-  std::optional<FalloffFit> falloff;
-  if (args.has("flat")) falloff = fit_falloff_Guarnera2018(load_raw_file(args.get("flat")), cap ? &*cap : nullptr);
-  Normalisation n = make_normalisation(cap ? &*cap : nullptr, sat, ssf ? &*ssf : nullptr, falloff, args.get_double("w", 10));
-  if (!cap && args.has("noise-floor")) {
-    const double v = args.get_double("noise-floor", 0);
-    n.noise_floor = {v, v, v};
-    n.check();
-  }
-  std::string make, model;
-  std::vector<TrainingStimulus> stimuli;
-  for (auto& r : rows) {
-    if (!r.file.empty()) {
-      const RawImage& f = *frames[r.file];
-      if (make.empty() && model.empty()) {
-        make = f.meta.make;
-        model = f.meta.model;
-      } else if (f.meta.make != make || f.meta.model != model) {
-        throw Error(ErrorCode::FrameMismatch, "'" + r.file + "' comes from " + f.meta.make + " " + f.meta.model +
-                                                  " but the other training frames from " + make + " " + model);
-      }
-      if (falloff && (f.width != falloff->width || f.height != falloff->height))
-        throw Error(ErrorCode::FrameMismatch, "'" + r.file + "' and the flat field differ in size");
-      ExposureSettings e = r.stimulus.exposure;
-      if (!(e.exposure_s > 0) || !(e.f_number > 0)) e = exposure_from_metadata(f.meta, "'" + r.file + "'");
-      TrainingStimulus s = sample_stimulus(f, r.x, r.y, r.w, r.h, n, e, r.stimulus.XYZ, r.stimulus.id, r.stimulus.luminance_set);
-      stimuli.push_back(s);
-    } else {
-      for (int c = 0; c < 3; ++c) r.stimulus.saturated[c] = n.zone(c, r.stimulus.raw_RGB[c]) == Zone::Saturated;
-      stimuli.push_back(r.stimulus);
-    }
-  }
-  AbsoluteFitOptions o;
-  o.transform = args.get("transform", "T1");
-  AbsoluteProfile p = fit_absolute_Guarnera2018(stimuli, n, o);
-  p.make = make;
-  p.model = model;
-  if (falloff) {
-    p.width = falloff->width;
-    p.height = falloff->height;
-  }
-  p.saturation = sat;
-  p.areas_source = areas_source;
-  p.fusion = fusion_mode_from_id(args.get("fusion", "weighted"));
+  in.noise_floor = args.get_double("noise-floor", 0);
+  in.w = args.get_double("w", 10);
+  in.options.transform = args.get("transform", "T1");
+  in.fusion = fusion_mode_from_id(args.get("fusion", "weighted"));
+  const AbsoluteFitFromFrames fitted = fit_absolute_from_frames(in);
+  const AbsoluteProfile& p = fitted.profile;
+  const std::vector<TrainingStimulus>& stimuli = fitted.stimuli;
+  const SaturationEstimate& sat = p.saturation;
+  const std::string& areas_source = p.areas_source;
   const std::string profile = absolute_profile_to_json(p);
   json::Value s = json::Value::object();
   int lum = 0;

@@ -6,43 +6,21 @@
 //   decode+fuse5x24MP DNG bytes → decode_raw → add, ×5 → finish → eq (4)  (the page's path)
 // Frames are noise-free (noise costs nothing in the fusion, a lot to simulate).
 // Output lines "BENCH <case> <step> <ms>" and "PEAK <case> <MiB>" are read by scripts/bench.sh.
-#include <chrono>
 #include <cstdio>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "bench_util.hpp"
 #include "dng_writer.hpp"
 #include "tristim/absolute/profile.hpp"
 #include "tristim/absolute/virtual_bracket.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
-#ifdef __EMSCRIPTEN__
-#include <emscripten/heap.h>
-#else
-#include <sys/resource.h>
-#endif
-
 using namespace tristim;
+using namespace tristim::bench;
 
 namespace {
-
-double peak_mib() {
-#ifdef __EMSCRIPTEN__
-  return emscripten_get_heap_size() / 1048576.0;  // the heap only grows: its size is the peak
-#else
-  rusage ru{};
-  getrusage(RUSAGE_SELF, &ru);
-  return ru.ru_maxrss / 1024.0;
-#endif
-}
-
-double time_ms(const std::function<void()>& f) {
-  const auto t0 = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 constexpr int kW = 3000, kH = 2000;
 

@@ -13,31 +13,16 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.hpp"
 #include "chart_scene.hpp"
 #include "tristim/capture/raw.hpp"
 #include "tristim/chart/detect.hpp"
 #include "tristim/error.hpp"
 
-#ifdef __EMSCRIPTEN__
-#include <emscripten/heap.h>
-#else
-#include <sys/resource.h>
-#endif
-
 using namespace tristim;
-using Clock = std::chrono::steady_clock;
+using namespace tristim::bench;
 
 namespace {
-
-double peak_mib() {
-#ifdef __EMSCRIPTEN__
-  return emscripten_get_heap_size() / 1048576.0;
-#else
-  rusage ru{};
-  getrusage(RUSAGE_SELF, &ru);
-  return ru.ru_maxrss / 1024.0;
-#endif
-}
 
 // Median over `runs` of the total and of each stage (time from one stage's start to the next's).
 void run_case(const std::string& name, const RawImage& img, const std::string& chart, int runs = 3) {

@@ -10,28 +10,16 @@
 #include <cstring>
 #include <vector>
 
+#include "bench_util.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/linearisation/linearisation.hpp"
 #include "tristim/linearisation/spectral.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
 using namespace tristim;
-using Clock = std::chrono::steady_clock;
+using namespace tristim::bench;
 
 namespace {
-
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-template <class F>
-double best_ms(int reps, F&& f) {
-  double best = 1e300;
-  for (int i = 0; i < reps; ++i) {
-    const auto t0 = Clock::now();
-    f();
-    best = std::min(best, ms_since(t0));
-  }
-  return best;
-}
 
 LinearisationData sg_simulated() {
   const SpectralData refl = chart_reflectances("sg140");

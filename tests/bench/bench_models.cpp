@@ -4,7 +4,6 @@
 // and applying a degree-2 root-polynomial to a 24 MP float RGB image next to a plain memcpy of
 // the same size. Prints figures; asserts nothing.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -14,29 +13,15 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/characterisation/models.hpp"
 
 using namespace tristim;
-using Clock = std::chrono::steady_clock;
+using namespace tristim::bench;
 
 namespace {
-
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-template <class F>
-double best_ms(int reps, F&& f) {
-  double best = 1e300;
-  for (int i = 0; i < reps; ++i) {
-    const auto t0 = Clock::now();
-    f();
-    best = std::min(best, ms_since(t0));
-  }
-  return best;
-}
 
 // 140 synthetic patches (an SG-sized chart): camera RGB in raw counts, XYZ (Y = 100 white)
 // from a plausible root-polynomial camera plus 0.5 % noise.

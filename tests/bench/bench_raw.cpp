@@ -3,45 +3,23 @@
 // In wasm this program runs with a 1 GiB heap limit (tests/bench/CMakeLists.txt): the 50 MP case
 // (file bytes, LibRaw's raster, linear RGB, plus full-size dark and flat frames) must fit.
 // Output lines "BENCH <case> <step> <ms>" and "PEAK <case> <MiB>" are read by scripts/bench.sh.
-#include <chrono>
 #include <cstdio>
 #include <fstream>
-#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench_util.hpp"
 #include "tristim/capture/calibration.hpp"
 #include "tristim/chart/layout.hpp"
 #include "dng_writer.hpp"
 #include "tristim/error.hpp"
 #include "tristim/capture/raw.hpp"
 
-#ifdef __EMSCRIPTEN__
-#include <emscripten/heap.h>
-#else
-#include <sys/resource.h>
-#endif
-
 using namespace tristim;
+using namespace tristim::bench;
 
 namespace {
-
-double peak_mib() {
-#ifdef __EMSCRIPTEN__
-  return emscripten_get_heap_size() / 1048576.0;  // the heap only grows: its size is the peak
-#else
-  rusage ru{};
-  getrusage(RUSAGE_SELF, &ru);
-  return ru.ru_maxrss / 1024.0;
-#endif
-}
-
-double time_ms(const std::function<void()>& f) {
-  const auto t0 = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 std::vector<std::uint8_t> read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -5,10 +5,10 @@
 // geometry) for every method; Phase II (the joint fit with a 3×3 matrix) on 140 simulated
 // patches; the Table IV simulation. Prints figures; asserts nothing.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <string>
 
+#include "bench_util.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/surface/fit.hpp"
 #include "tristim/surface/geometry_table.hpp"
@@ -16,22 +16,7 @@
 #include "tristim/surface/surface.hpp"
 
 using namespace tristim;
-using Clock = std::chrono::steady_clock;
-
-namespace {
-
-template <class F>
-double best_ms(int reps, F&& f) {
-  double best = 1e300;
-  for (int i = 0; i < reps; ++i) {
-    const auto t0 = Clock::now();
-    f();
-    best = std::min(best, std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-  }
-  return best;
-}
-
-}  // namespace
+using namespace tristim::bench;
 
 int main() {
 #ifdef __EMSCRIPTEN__

@@ -64,6 +64,14 @@ test('applyAbsolute on the bracket: Y within 2.4 %, the read-out, the source exp
     assert.equal(s.labels.length, 5);
     assert.equal(maps.XYZ().length, 3 * 192 * 192);
     assert.equal(maps.source().length, 192 * 192);
+    // the float TIFF holds the XYZ map as it is (little-endian float32 at StripOffsets)
+    const tiff = maps.tiff(), xyz = maps.XYZ();
+    assert.ok(tiff instanceof Uint8Array);
+    const dv = new DataView(tiff.buffer, tiff.byteOffset, tiff.byteLength), ifd = dv.getUint32(4, true);
+    let strip = -1;
+    for (let i = 0; i < dv.getUint16(ifd, true); i++) if (dv.getUint16(ifd + 2 + 12 * i, true) === 273) strip = dv.getUint32(ifd + 2 + 12 * i + 8, true);
+    assert.ok(strip > 0 && strip + 4 * xyz.length <= tiff.length);
+    for (const i of [0, 1, 2, 3 * 96 * 192 + 4, xyz.length - 1]) assert.ok(Object.is(dv.getFloat32(strip + 4 * i, true), xyz[i]), `TIFF sample ${i}`);
     const white = ex.regions.find((r) => r.id === ex.white_id);
     const yMax = Math.max(...ex.regions.map((r) => r.XYZ[1]));
     const w = T.whiteGuarnera2018(white.XYZ, yMax);

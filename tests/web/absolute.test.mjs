@@ -69,6 +69,24 @@ test('absolute: example bracket fitted, OECF curves, luminance map, read-out aga
     assert.ok(relY[1] < 2.4, `relative Y error on the scene's cells ${relY[1]} %`);
     await screenshot(page, 'absolute-1-example');
 
+    // downloads: the absolute profile JSON, and the X, Y, Z map as a float TIFF whose white-patch
+    // centre holds the known stimulus within 2.4 %
+    const [dlProfile] = await Promise.all([page.waitForEvent('download'), page.click(`${S} [data-role="abs-download-profile"]`)]);
+    const profile = JSON.parse(fs.readFileSync(await dlProfile.path(), 'utf8'));
+    assert.equal(typeof profile, 'object');
+    assert.match(dlProfile.suggestedFilename(), /absolute\.json$/);
+    const [dlTiff] = await Promise.all([page.waitForEvent('download'), page.click(`${S} [data-role="abs-download-xyz"]`)]);
+    const tiff = fs.readFileSync(await dlTiff.path());
+    assert.equal(tiff.toString('latin1', 0, 4), 'II*\0');
+    const dv = new DataView(tiff.buffer, tiff.byteOffset, tiff.byteLength), ifd = dv.getUint32(4, true);
+    const tags = {};
+    for (let i = 0; i < dv.getUint16(ifd, true); i++) { const e = ifd + 2 + 12 * i; tags[dv.getUint16(e, true)] = dv.getUint32(e + 8, true); }
+    assert.equal(tags[256], W);
+    let ySum = 0;  // mean Y over 5 × 5 pixels at the white patch's centre
+    for (let dy = -2; dy <= 2; dy++)
+      for (let dx = -2; dx <= 2; dx++) ySum += dv.getFloat32(tags[273] + (((white.y + white.h / 2 + dy) * W + white.x + white.w / 2 + dx) * 3 + 1) * 4, true);
+    assert.ok(Math.abs(ySum / 25 / white.XYZ[1] - 1) < 0.024, `TIFF Y at the white patch ${ySum / 25} vs known ${white.XYZ[1]}`);
+
     // linear colour bar on request
     await page.click(`${S} [data-role="abs-log"]`);
     await page.waitForFunction((s) => document.querySelector(`${s} [data-role="abs-colourbar"] .legend-box`)?.dataset.scale === 'linear', S);

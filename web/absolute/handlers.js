@@ -142,6 +142,14 @@ export const handlers = {
     return reply(renderAll(a, render));
   },
 
+  /// The X, Y, Z map as a 32-bit float TIFF (cd/m², NaN where every exposure clipped), the bytes
+  /// `tristim absolute apply --out` writes.
+  absMapTiff: (T, _msg, { state }) => {
+    const a = abs(state);
+    if (!a.maps) throw coded('no maps yet', 'NO_IMAGE');
+    return reply({ bytes: a.maps.tiff() });
+  },
+
   /// X, Y, Z (mean over a window), L(R, G, B) and the source exposure at a pixel; the known
   /// region under it (example), with its reference X, Y, Z.
   absReadout: (T, { x, y, window = 5 }, { state }) => {

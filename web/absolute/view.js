@@ -4,7 +4,7 @@
 // (fig 5), the luminance map with a cd/m² colour bar (linear or log), the map of the exposure
 // that served each pixel, a pointer read-out and the section 4.1 figures. "Example" makes the
 // whole input with the engine's virtual bracket camera.
-import { h, field, select, setOptions, showError, clearError, progressBar, fmt, fileBytes } from '../lib/ui.js';
+import { h, field, select, setOptions, showError, clearError, progressBar, fmt, fileBytes, download } from '../lib/ui.js';
 import { figure } from '../plots/common.js';
 import { oecfPlot } from '../plots/oecf.js';
 import { NO_VALUE_RGB } from './render.js';
@@ -79,9 +79,22 @@ export function mount(section, app) {
   const srcLegend = h('div', { class: 'legend abs-source-legend', 'data-role': 'abs-source-legend' });
   const readout = h('output', { class: 'readout', 'data-role': 'abs-readout', 'aria-live': 'polite' }, 'Move the pointer over a map (or focus it and use the arrow keys) to read X, Y, Z in cd/m² and the exposure that served the pixel.');
   const mapSummary = h('p', { class: 'summary', 'data-role': 'abs-map-summary' });
+  // Downloads: the absolute profile (what `tristim absolute apply` takes) and the X, Y, Z map.
+  const fileBase = () => `${st.fit?.model || 'camera'}-absolute`.replace(/[^\w.-]+/g, '_');
+  const profileBtn = h('button', { type: 'button', 'data-role': 'abs-download-profile' }, 'Download the absolute profile (JSON)');
+  profileBtn.addEventListener('click', () => { if (st.fit) download(`${fileBase()}.json`, st.fit.profile, 'application/json'); });
+  const tiffBtn = h('button', { type: 'button', 'data-role': 'abs-download-xyz' }, 'Download X, Y, Z in cd/m² (32-bit float TIFF)');
+  tiffBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true });
+  tiffBtn.addEventListener('click', async () => {
+    clearError(tiffBtn);
+    try {
+      const { bytes } = await engine.call('absMapTiff', {});
+      download(`${fileBase()}-XYZ.tiff`, bytes, 'image/tiff');
+    } catch (e) { showError(tiffBtn, e, 'Download'); }
+  });
   const maps = h('div', { class: 'abs-maps', hidden: true },
     h('div', { class: 'controls' }, field('Colour map', mapSel, 'Perceptually uniform, readable with colour-vision deficiencies'),
-      h('label', { class: 'check' }, logBox, ' log scale')),
+      h('label', { class: 'check' }, logBox, ' log scale'), h('div', { class: 'buttons' }, tiffBtn, tiffBtn._errorSlot)),
     mapSummary, readout,
     h('div', { class: 'apply-images' },
       h('figure', {}, lumCanvas, h('figcaption', {}, 'Luminance Y (cd/m²)'), lumLegend),
@@ -253,7 +266,7 @@ export function mount(section, app) {
       h('table', { class: 'metrics abs-channels' },
         h('thead', {}, h('tr', {}, ['channel', 'k1', 'k2', 'k3', 'stimuli', 'RMS rel. error', 'R²', 'n (DN)', 'S (DN)', 'A_G/A_c'].map((t) => h('th', {}, t)))),
         h('tbody', {}, rows)),
-      recip);
+      recip, h('div', { class: 'buttons' }, profileBtn));
     oecfBox.replaceChildren(figure(oecfPlot(fit.panels), { name: 'absolute-oecf', caption: "Fitted OECFs per channel and exposure (Guarnera 2018 fig 5): normalised R′, G′, B′ (eq 7) of the luminance training stimuli against Y; solid: the common eq (8) curve at each exposure's t/N², dashed: the exposure's own fit (reciprocity check); log axes" }));
   }
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numeric>
 
+#include "large_buffer.hpp"
 #include "tristim/error.hpp"
 
 namespace tristim {
@@ -41,6 +42,21 @@ class PowerTable {
     if (linear_) return;
     table_.resize(kN + 2);
     for (int i = 0; i <= kN + 1; ++i) table_[i] = static_cast<float>(std::pow(i / scale_, p));
+  }
+  bool linear() const { return linear_; }
+  /// The same lookup in float (the fusion's pixel loop); x ≥ 0 or < 0 alike.
+  float at(float x) const {
+    const float a = std::fabs(x);
+    float y;
+    if (a < static_cast<float>(x_max_)) {
+      const float t = a * static_cast<float>(scale_);
+      const int i = static_cast<int>(t);
+      const float f = t - static_cast<float>(i);
+      y = table_[i] + f * (table_[i + 1] - table_[i]);
+    } else {
+      y = static_cast<float>(std::pow(static_cast<double>(a), p_));
+    }
+    return x < 0 ? -y : y;
   }
   double operator()(double x) const {
     if (linear_) return x;
@@ -98,6 +114,37 @@ struct FrameKernel {
   }
 };
 
+// The weighted fusion's per-frame constants, in float (the pixel loop below is the hot path of a
+// bracket: 5 × 24 MP). Same rules as FrameKernel + Normalisation::zone + reliability_Guarnera2018:
+//   saturated ⇔ flagged or v ≥ clip (clip: the float nearest above S − max(0.5, 1e-4·(S − n)));
+//   h = 0 for u ≤ u_min, else min(1, w·u, w·(1 − u)) — the zones' ramps written without branches
+//   (w·u < 1 exactly in Z_u, w·(1 − u) < 1 exactly in Z_o);
+//   L = (R'^(1/k3)/k2 − k1)/ε with R' = u·A_G/A_c·f(r)   (eqs 7, 8, 10).
+struct FastKernel {
+  float floor[3], inv_range[3], clip[3], u_min[3], area[3], gain[3], offset[3];
+  float w, eps;
+  bool linear[3];
+  const PowerTable* root[3];
+
+  FastKernel(const FrameKernel& k, const Normalisation& n, double eps_d) : w(static_cast<float>(n.w)), eps(static_cast<float>(eps_d)) {
+    for (int c = 0; c < 3; ++c) {
+      floor[c] = static_cast<float>(k.floor[c]);
+      inv_range[c] = static_cast<float>(k.inv_range[c]);
+      const double range = n.saturation[c] - n.noise_floor[c];
+      const double t = n.saturation[c] - std::max(0.5, 1e-4 * range);
+      float tf = static_cast<float>(t);
+      if (static_cast<double>(tf) < t) tf = std::nextafter(tf, std::numeric_limits<float>::infinity());
+      clip[c] = tf;  // v ≥ tf ⇔ v ≥ t for every float v
+      u_min[c] = static_cast<float>(k.u_min[c]);
+      area[c] = static_cast<float>(k.area[c]);
+      gain[c] = static_cast<float>(k.inv_k2[c] * k.inv_eps);
+      offset[c] = static_cast<float>(k.k1[c] * k.inv_eps);
+      linear[c] = k.root[c].linear();
+      root[c] = &k.root[c];
+    }
+  }
+};
+
 void check_frame(const FusedLuminance& out, const Normalisation& n, const RawImage& frame, size_t index) {
   const std::string what = "exposure " + std::to_string(index + 1);
   if (index >= static_cast<size_t>(kMaxExposures))
@@ -147,41 +194,75 @@ void ExposureFusion::add(const RawImage& frame, const ExposureSettings& exposure
   if (index == 0) {
     out_.make = frame.meta.make;
     out_.model = frame.meta.model;
-    sum_wL_.assign(npix * 3, 0.0f);
-    sum_w_.assign(npix * 3, 0.0f);
-    best_.assign(npix, 0.0f);
-    out_.source.assign(npix, 255);
-    out_.contributors.assign(npix, 0);
+    detail::assign_large(sum_wL_, npix * 3, 0.0f);
+    detail::assign_large(sum_w_, npix * 3, 0.0f);
+    detail::assign_large(best_, npix, 0.0f);
+    detail::assign_large(out_.source, npix, std::uint8_t{255});
+    detail::assign_large(out_.contributors, npix, std::uint16_t{0});
   }
   out_.exposures.push_back(exposure);
-  const FrameKernel k(n_, fit_, exposure);
-  const double eps = exposure.factor(fit_.iso_reference), w = n_.w;
+  const FrameKernel kd(n_, fit_, exposure);
+  const FastKernel k(kd, n_, exposure.factor(fit_.iso_reference));
   const std::uint16_t bit = static_cast<std::uint16_t>(1u << index);
   const bool has_flags = !frame.saturated.empty();
-  for (int y = 0; y < out_.height; ++y)
-    for (int x = 0; x < out_.width; ++x) {
-      const size_t p = static_cast<size_t>(y) * out_.width + x;
-      const double f = n_.falloff_factor(x, y);
-      double reliability = 0;
+  const int W = out_.width;
+  // f(r) = p1 r² + p2 r + p3 (eq 7) from r² = dx² + dy², in units of r_scale; the square root
+  // only when p2 ≠ 0. dx² once per frame, dy² once per row.
+  const FalloffFit* fo = n_.falloff ? &*n_.falloff : nullptr;
+  std::vector<float> dx2(W, 0.0f);
+  if (fo)
+    for (int x = 0; x < W; ++x) {
+      const double d = (x + 0.5 - fo->centre_x) / fo->r_scale;
+      dx2[x] = static_cast<float>(d * d);
+    }
+  const float p1 = fo ? static_cast<float>(fo->p1) : 0.0f, p2 = fo ? static_cast<float>(fo->p2) : 0.0f,
+              p3 = fo ? static_cast<float>(fo->p3) : 1.0f;
+  const float* rgb = frame.rgb.data();
+  const std::uint8_t* flags = has_flags ? frame.saturated.data() : nullptr;
+  float* swl = sum_wL_.data();
+  float* sw = sum_w_.data();
+  float* best = best_.data();
+  std::uint16_t* contributors = out_.contributors.data();
+  std::uint8_t* source = out_.source.data();
+  const std::uint8_t index8 = static_cast<std::uint8_t>(index);
+  for (int y = 0; y < out_.height; ++y) {
+    float dy2 = 0;
+    if (fo) {
+      const double d = (y + 0.5 - fo->centre_y) / fo->r_scale;
+      dy2 = static_cast<float>(d * d);
+    }
+    const size_t row = static_cast<size_t>(y) * W;
+    for (int x = 0; x < W; ++x) {
+      const size_t p = row + x;
+      float f = 1.0f;
+      if (fo) {
+        const float r2 = dx2[x] + dy2;
+        f = p1 * r2 + p3;
+        if (p2 != 0.0f) f += p2 * std::sqrt(r2);
+      }
+      const std::uint8_t flag = flags ? flags[p] : 0;
+      float reliability = 0;
       for (int c = 0; c < 3; ++c) {
-        const double v = frame.rgb[p * 3 + c];
-        const Zone z = n_.zone(c, v, has_flags && (frame.saturated[p] >> c & 1));
-        if (z == Zone::Saturated) continue;
-        const double u = (v - k.floor[c]) * k.inv_range[c];
-        const double h = reliability_Guarnera2018(z, u, w, k.u_min[c]);
-        const double weight = std::max(h, 1e-6) * eps;
-        sum_wL_[p * 3 + c] += static_cast<float>(weight * k.luminance(c, u, f));
-        sum_w_[p * 3 + c] += static_cast<float>(weight);
-        reliability += h * eps;
+        const float v = rgb[p * 3 + c];
+        if (v >= k.clip[c] || (flag >> c & 1)) continue;  // saturated: no contribution
+        const float u = (v - k.floor[c]) * k.inv_range[c];
+        const float h = u <= k.u_min[c] ? 0.0f : std::max(0.0f, std::min(1.0f, std::min(k.w * u, k.w * (1.0f - u))));
+        const float weight = std::max(h, 1e-6f) * k.eps;
+        const float R = u * k.area[c] * f;                                          // eq (7)
+        const float L = (k.linear[c] ? R : k.root[c]->at(R)) * k.gain[c] - k.offset[c];  // eqs (8), (10)
+        swl[p * 3 + c] += weight * L;
+        sw[p * 3 + c] += weight;
+        reliability += h * k.eps;
       }
       if (reliability > 0) {
-        out_.contributors[p] |= bit;
-        if (reliability > best_[p]) {
-          best_[p] = static_cast<float>(reliability);
-          out_.source[p] = static_cast<std::uint8_t>(index);
+        contributors[p] |= bit;
+        if (reliability > best[p]) {
+          best[p] = reliability;
+          source[p] = index8;
         }
       }
     }
+  }
 }
 
 FusedLuminance ExposureFusion::finish() {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "large_buffer.hpp"
 #include "tristim/error.hpp"
 
 namespace tristim {
@@ -85,7 +86,7 @@ void check_profile_frame(const AbsoluteProfile& profile, const RawImage& frame, 
 }
 
 void luminance_to_XYZ(const AbsoluteProfile& profile, const std::vector<float>& L, std::vector<float>& XYZ) {
-  XYZ.resize(L.size());
+  detail::assign_large(XYZ, L.size(), 0.0f);
   apply_to_image(profile.colour, L.data(), L.size() / 3, XYZ.data());  // eq (4)
 }
 

@@ -8,13 +8,22 @@
 //     colours (the ColorChecker SG patches unlike any of the 24) under the scene's illuminant,
 //     T2R (eq 15, the paper's best for its booth scenes) — the brief's thresholds hold here;
 //  3. the same chart with the paper's own colour training (24 projected ColorChecker colours,
-//     T1): D65 meets the thresholds, A and F2 do not — a three-primary projector spans only
-//     three spectral shapes, so its matrix does not transfer to broadband or line spectra for
-//     this camera (printed, and bounded so a regression shows; see notes/absolute.md).
+//     T1). Projected colours are mixtures of three primaries, so M is exact on them and maps
+//     this camera's response to broadband (D65, A) or line (F2) spectra with the camera's
+//     metamerism: the colour module's floor (matrix_floor.hpp: eq 4 with an exact luminance
+//     module) is already 2.5 % (D65), 3.0 % (A), 7.0 % (F2) mean relative Y error, up to 6.7 %
+//     (C6 under D65) per patch. The test holds the chain to that floor (it adds < 0.5 % to the
+//     relative Y error, < 0.3 % to NRMSE) and to the paper's Table 4 NRMSE under D65; the
+//     paper's 2.4 % relative error is Experiment (a)'s, checked in setting 4;
+//  4. Experiment (a) of the paper: 8 reflective colour targets, each under 30 projector
+//     illuminants, T1 from the projected colours: the mean relative Y error (the paper's
+//     2.37 %) and the ΔE of Table 2, white E at the largest luminance.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "absolute_bench.hpp"
+#include "matrix_floor.hpp"
 #include "test_support.hpp"
 #include "tristim/absolute/profile.hpp"
 
@@ -84,6 +93,15 @@ void print_run(const Run& r) {
   print("Algorithm 1 (5 exposures)", r.recursive);
 }
 
+/// The luminance of each column of `spectra` (cd/m²), the brightest at `top`.
+std::vector<double> luminances_up_to(const SpectralData& spectra, double top) {
+  std::vector<double> Y;
+  for (size_t k = 0; k < spectra.size(); ++k) Y.push_back(test::luminance_sum(spectra, static_cast<int>(k)));
+  const double y_max = *std::max_element(Y.begin(), Y.end());
+  for (double& y : Y) y *= top / y_max;
+  return Y;
+}
+
 /// The colour module trained on the ColorChecker SG patches unlike every ColorChecker Classic
 /// patch (spectral RMS difference > 0.03), under `illuminant`, photographed at 1/60 s f/8.
 Model colour_from_sg(const test::AbsoluteBench& b, const std::string& illuminant, const std::string& transform) {
@@ -103,11 +121,7 @@ Model colour_from_sg(const test::AbsoluteBench& b, const std::string& illuminant
     }
   }
   const SpectralData spectra = reflected_spectra(keep, illuminant_spd(illuminant));
-  double y_max = 0;
-  for (size_t k = 0; k < spectra.size(); ++k) y_max = std::max(y_max, test::luminance_sum(spectra, static_cast<int>(k)));
-  std::vector<double> Y;
-  for (size_t k = 0; k < spectra.size(); ++k) Y.push_back(600 * test::luminance_sum(spectra, static_cast<int>(k)) / y_max);
-  const test::GridScene g = test::grid_scene(b.sensor, spectra, Y, 14, 16);
+  const test::GridScene g = test::grid_scene(b.sensor, spectra, luminances_up_to(spectra, 600), 14, 16);
   const AbsoluteProfile p = test::profile_for(b, g.scene.width, g.scene.height);
   const RawImage f = capture_virtual(b.sensor, g.scene, b.bracket[2], 800);
   const PatchMatrix L = test::patch_means(apply_absolute(p, {&f}).luminance.L, g);
@@ -172,23 +186,82 @@ TEST_CASE("absolute: ColorChecker under D65, A, F2 per pixel, colour module trai
   }
 }
 
+/// The colour module's floor per stimulus of a grid scene (matrix_floor.hpp), as patch rows.
+PatchMatrix floor_rows(const AbsoluteProfile& p, const VirtualSensor& sensor, const test::GridScene& g) {
+  PatchMatrix m(g.ids.size(), 3);
+  for (size_t k = 0; k < g.ids.size(); ++k)
+    m.row(k) = test::matrix_floor_XYZ(p, sensor.ssf, g.scene.stimuli, k, g.XYZ[k][1]).transpose();
+  return m;
+}
+
 TEST_CASE("absolute: ColorChecker under D65, A, F2 with the paper's projector training (T1)", "[absolute]") {
   const auto& b = test::bench();
   std::printf("ColorChecker per pixel, colour module from 24 projected ColorChecker colours (T1), eq (16) white:\n");
   for (const char* ill : {"D65", "A", "F2"}) {
     const test::GridScene c = test::chart_scene(b.sensor, ill);
     const AbsoluteProfile p = test::profile_for(b, c.scene.width, c.scene.height);
-    const Run r = run(p, c, shoot(b, c.scene, 600), white_Guarnera2018(c.XYZ[18], 600), true);
+    const Vec3 white = white_Guarnera2018(c.XYZ[18], 600);
+    const AbsoluteMetrics floor = evaluate_absolute(floor_rows(p, b.sensor, c), test::to_patch_matrix(c.XYZ), white);
+    const Run r = run(p, c, shoot(b, c.scene, 600), white, true);
     std::printf(" %s\n", ill);
+    print("M floor (exact L, patches)", floor);
     print_run(r);
-    INFO(ill);
+    INFO(ill << ": floor relative Y error " << floor.relative_Y_error << ", NRMSE " << mean_nrmse(floor));
     CHECK(mean_nrmse(r.fused) <= r.best_single);
-    if (std::string(ill) == "D65") {
+    CHECK(r.single.relative_Y_error < floor.relative_Y_error + 0.005);
+    CHECK(r.fused.relative_Y_error < floor.relative_Y_error + 0.005);
+    CHECK(mean_nrmse(r.fused) < mean_nrmse(floor) + 0.003);
+    if (std::string(ill) == "D65") {  // Table 4 (booth under D65): 1.5 % single, 1.2 % multiple shots
       CHECK(mean_nrmse(r.single) < 0.016);
       CHECK(mean_nrmse(r.fused) < 0.013);
-    } else {  // not the paper's figures (see the header): bounds that catch a regression
-      CHECK(mean_nrmse(r.fused) < 0.045);
-      CHECK(r.fused.relative_Y_error < 0.08);
     }
   }
+}
+
+TEST_CASE("absolute: Experiment (a), colour targets under projector illuminants (T1)", "[absolute]") {
+  const auto& b = test::bench();
+  // 8 ColorChecker reflectances (every third patch) × 30 projector illuminants (mixtures of the
+  // three primaries with weights in [0.2, 1.2], from a fixed integer sequence).
+  const SpectralData refl = chart_reflectances("cc24"), prim = projector_primaries();
+  SpectralData spectra;
+  spectra.wavelengths = refl.wavelengths;
+  std::uint32_t state = 7;
+  auto next = [&] {
+    state = state * 1103515245u + 12345u;
+    return 0.2 + ((state >> 8) & 0xffff) / 65535.0;
+  };
+  for (int i = 0; i < 30; ++i) {
+    SpectralData ill;
+    ill.wavelengths = prim.wavelengths;
+    ill.linear = true;
+    ill.names = {"P" + std::to_string(i + 1)};
+    const double w[3] = {next(), next(), next()};
+    ill.values.assign(1, std::vector<double>(prim.wavelengths.size(), 0.0));
+    for (int k = 0; k < 3; ++k)
+      for (size_t j = 0; j < prim.wavelengths.size(); ++j) ill.values[0][j] += w[k] * prim.values[k][j];
+    for (size_t t = 0; t < refl.size(); t += 3) {
+      SpectralData one;
+      one.wavelengths = refl.wavelengths;
+      one.values = {refl.values[t]};
+      one.names = {refl.names[t] + "/" + ill.names[0]};
+      const SpectralData r = reflected_spectra(one, ill);
+      spectra.values.push_back(r.values[0]);
+      spectra.names.push_back(r.names[0]);
+    }
+  }
+  const test::GridScene g = test::grid_scene(b.sensor, spectra, luminances_up_to(spectra, 800), 24, 8);
+  const AbsoluteProfile p = test::profile_for(b, g.scene.width, g.scene.height);
+  double truth_max = 0;
+  for (const auto& x : g.XYZ) truth_max = std::max(truth_max, x[1]);
+  const Vec3 white = white_equal_energy(truth_max);  // Experiments (a), (c)
+  const AbsoluteMetrics floor = evaluate_absolute(floor_rows(p, b.sensor, g), test::to_patch_matrix(g.XYZ), white);
+  const Run r = run(p, g, shoot(b, g.scene, 700), white, false);
+  std::printf("Experiment (a): %zu samples (8 targets x 30 projector illuminants), patch means, white E at %.0f cd/m2 "
+              "(paper, test set: relative Y error 2.37 %%, dE94 mean 1.76, dE00 mean 1.64):\n",
+              g.ids.size(), truth_max);
+  print("M floor (exact L)", floor);
+  print_run(r);
+  CHECK(r.single.relative_Y_error < 0.024);
+  CHECK(r.fused.relative_Y_error < 0.024);
+  CHECK(r.fused.relative_Y_error < floor.relative_Y_error + 0.005);
 }

@@ -1,12 +1,20 @@
 // The worked example of the absolute chain (tristim/absolute/example.hpp) and the training
 // stimuli CSV (tristim/absolute/stimuli_file.hpp): the CSV reads back exactly, and the chain
 // fitted as a user would (n from the lens cap, S measured from the series, f(r) from the flat,
-// areas from the camera's sensitivities) recovers the Y of every equal-tristimulus cell within the paper's 2.4 %
-// (above 1 cd/m²) and the ColorChecker's within it on average.
+// areas from the camera's sensitivities) recovers Y within the paper's 2.4 %: every
+// equal-tristimulus cell (above 1 cd/m²), and the 36 cells on average — the paper's 2.37 % is a
+// mean relative error over a test set (section 4.1, Experiment (a)), not a bound per sample.
+// The ColorChecker cells are compared with the colour module's floor too (matrix_floor.hpp):
+// M, fitted on 24 projected colours (mixtures of three primaries), maps this camera's response
+// to broadband reflectances under D65 with errors up to 6.7 % (C6) even when every step before
+// M is exact (metamerism: the camera fails the Luther condition, eq 3); the chain must add
+// little to that.
 #include <cmath>
 #include <cstdio>
 
+#include "matrix_floor.hpp"
 #include "test_support.hpp"
+#include "tristim/chart/reference.hpp"
 #include "tristim/absolute/example.hpp"
 #include "tristim/absolute/profile.hpp"
 #include "tristim/absolute/stimuli_file.hpp"
@@ -58,8 +66,11 @@ TEST_CASE("absolute: the example, fitted as a user would, measures Y within 2.4 
   AbsoluteProfile p = fit_absolute_Guarnera2018(stimuli, n);
   CHECK(p.luminance.reciprocity_ok);
   const AbsoluteImage img = apply_absolute(p, series);
-  std::vector<double> err;
+  // The scene's chart spectra, as make_absolute_example builds them (cc24 under D65).
+  const SpectralData chart = reflected_spectra(chart_reflectances("cc24"), illuminant_spd("D65"));
+  std::vector<double> err, floor_err, chain_err;
   const int W = img.luminance.width;
+  std::printf("  cell     truth Y cd/m2   measured (rel)        M floor (rel)      measured vs floor\n");
   for (const auto& g : ex.regions) {
     Vec3 sum = Vec3::Zero();
     int count = 0;
@@ -70,20 +81,30 @@ TEST_CASE("absolute: the example, fitted as a user would, measures Y within 2.4 
         if (v.allFinite()) sum += v, ++count;
       }
     REQUIRE(count > 0);
-    const double rel = (sum[1] / count - g.XYZ[1]) / g.XYZ[1];
-    std::printf("  %-8s Y %9.3f cd/m2, measured %9.3f (%+.4f), source exposure %d\n", g.id.c_str(), g.XYZ[1], sum[1] / count,
-                rel, img.luminance.source[static_cast<size_t>(g.y + g.h / 2) * W + g.x + g.w / 2]);
+    const double Y = sum[1] / count, rel = (Y - g.XYZ[1]) / g.XYZ[1];
     err.push_back(std::fabs(rel));
-    // The equal-tristimulus ladder tests the luminance module (eq 9) cell by cell; the chart's
-    // colours also go through M, trained on projector primaries (chain_test.cpp: it transfers to
-    // broadband spectra only on average), so they are held to the paper's figure on average.
     if (g.id[0] == 'E') {
-      INFO(g.id << " Y " << g.XYZ[1] << " measured " << sum[1] / count);
+      // The equal-tristimulus ladder tests the luminance module (eq 9) cell by cell.
+      std::printf("  %-8s %12.3f %12.3f (%+.4f)\n", g.id.c_str(), g.XYZ[1], Y, rel);
+      INFO(g.id << " Y " << g.XYZ[1] << " measured " << Y);
       CHECK(std::fabs(rel) < (g.XYZ[1] < 1 ? 0.05 : 0.024));
+      continue;
     }
+    size_t k = 0;
+    while (k < chart.size() && chart.names[k] != g.id) ++k;
+    REQUIRE(k < chart.size());
+    const double floor_Y = test::matrix_floor_XYZ(p, ex.sensor.ssf, chart, k, g.XYZ[1])[1];
+    const double floor_rel = (floor_Y - g.XYZ[1]) / g.XYZ[1], chain_rel = (Y - floor_Y) / floor_Y;
+    floor_err.push_back(std::fabs(floor_rel));
+    chain_err.push_back(std::fabs(chain_rel));
+    std::printf("  %-8s %12.3f %12.3f (%+.4f) %12.3f (%+.4f) %+.4f\n", g.id.c_str(), g.XYZ[1], Y, rel, floor_Y, floor_rel,
+                chain_rel);
+    INFO(g.id << " Y " << g.XYZ[1] << " measured " << Y << ", what M gives with an exact luminance module " << floor_Y);
+    CHECK(std::fabs(chain_rel) < 0.01);
   }
-  const Summary s = summarize(err);
+  const Summary s = summarize(err), f = summarize(floor_err), c = summarize(chain_err);
   std::printf("example: |relative Y error| over %zu cells: median %.4f mean %.4f max %.4f\n", err.size(), s.median, s.mean, s.max);
-  CHECK(s.mean < 0.024);
-  CHECK(s.max < 0.08);
+  std::printf("example: ColorChecker cells, M floor |rel Y| mean %.4f max %.4f; measured vs floor mean %.4f max %.4f\n",
+              f.mean, f.max, c.mean, c.max);
+  CHECK(s.mean < 0.024);  // the paper's 2.37 % (a mean over its test set)
 }
