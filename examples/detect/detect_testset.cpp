@@ -8,6 +8,8 @@
 //
 //   detect_testset [--count 300] [--seed 1] [--shared ../shared/data] [--write DIR] [--verbose]
 //                  [--only i]   (one scene, verbose: for debugging)
+//                  [--scale k]  (images k times wider and higher, e.g. 2: 1800-3200 px wide, where
+//                                detection starts with its coarse pass; the same scenes otherwise)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -65,6 +67,7 @@ int main(int argc, char** argv) {
   std::string shared = TRISTIM_SHARED_DATA_DIR, write_dir;
   bool verbose = false;
   int only = -1;
+  double scale = 1;
   if (const char* env = std::getenv("TRISTIM_SHARED_DATA")) shared = env;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -74,10 +77,15 @@ int main(int argc, char** argv) {
     else if (a == "--write" && i + 1 < argc) write_dir = argv[++i];
     else if (a == "--verbose") verbose = true;
     else if (a == "--only" && i + 1 < argc) only = std::atoi(argv[++i]), verbose = true;
+    else if (a == "--scale" && i + 1 < argc) scale = std::atof(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--shared DIR] [--write DIR] [--verbose]\n");
+      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--shared DIR] [--write DIR] [--verbose] [--only i] [--scale k]\n");
       return 2;
     }
+  }
+  if (!(scale > 0) || scale > 8) {
+    std::fprintf(stderr, "detect_testset: --scale must lie in (0, 8]\n");
+    return 2;
   }
   const std::vector<RawImage> photos = background_photos(shared);
   std::vector<const RawImage*> photo_ptrs;
@@ -100,7 +108,7 @@ int main(int argc, char** argv) {
   for (int i = only >= 0 ? only : 0; i < (only >= 0 ? only + 1 : count); ++i) {
     const std::string chart = charts[i % 3];
     SceneRandom pick(seed * 7919 + static_cast<std::uint64_t>(i));
-    const int w = widths[pick.integer(3)], h = w * 2 / 3;
+    const int w = static_cast<int>(std::lround(scale * widths[pick.integer(3)])), h = w * 2 / 3;
     const SceneSpec spec = random_scene_spec(chart, seed * 100003 + static_cast<std::uint64_t>(i), w, h, !photos.empty());
     const ChartScene scene = render_chart_scene(spec, photo_ptrs);
     LayoutOptions layout;

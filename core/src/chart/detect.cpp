@@ -96,16 +96,19 @@ Point centre_of(const std::array<double, 8>& k) {
   return Point((k[0] + k[2] + k[4] + k[6]) / 4, (k[1] + k[3] + k[5] + k[7]) / 4);
 }
 
-}  // namespace
-
-std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOptions& options) {
-  const std::vector<Target> wanted = targets(options);
+// One pass of the pipeline on a working image of longer side <= working_side; its progress is
+// reported as the part [from, to] of the whole.
+std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector<Target>& wanted,
+                                        const DetectOptions& options, int working_side, double from, double to) {
   auto progress = [&](const char* stage, double f) {
-    if (options.progress) options.progress(stage, f);
+    if (options.progress) options.progress(stage, from + (to - from) * f);
   };
   progress("segment", 0.0);
+  // The working image: the image itself when small enough (no copy), else box-downsampled.
   int factor = 1;
-  const RawImage work = working_image(image, options.working_side, &factor);
+  RawImage scaled;
+  if (std::max(image.width, image.height) > working_side) scaled = working_image(image, working_side, &factor);
+  const RawImage& work = factor > 1 ? scaled : image;
   const RegionLabels regions = flat_regions(work);
   progress("segment", 0.2);
   const std::vector<PatchQuad> quads = patch_quads(work, regions);
@@ -258,11 +261,45 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
     for (const auto& o : out) dup = dup || contains(o.corners, centre_of(c.corners)) || contains(c.corners, centre_of(o.corners));
     if (!dup && static_cast<int>(out.size()) < options.max_candidates) out.push_back(c);
   }
-  progress("done", 1.0);
   if (out.empty())
     throw Error(ErrorCode::ChartNotFound,
                 "no chart found (" + std::to_string(quads.size()) + " patch-like regions, " +
                     std::to_string(groups.size()) + " grids)" + (reasons.empty() ? "" : ": " + reasons));
+  return out;
+}
+
+}  // namespace
+
+std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOptions& options) {
+  const std::vector<Target> wanted = targets(options);
+  if (image.width < 1 || image.height < 1 || image.rgb.size() != size_t(image.width) * image.height * 3)
+    throw Error(ErrorCode::InvalidArgument, "chart detection needs a non-empty RGB image");
+  // A coarse pass first on a working image of longer side <= kCoarseSide when that is smaller
+  // than the one of `working_side` (a 3000 × 2000 image: 1000 × 666 instead of 1500 × 1000,
+  // less than half the pixels); when it finds no chart, the pass at `working_side`. Either way
+  // the corners are refined on the full image. A chart too small for the coarse pass (a few %
+  // of the frame) is found by the second one, unless the coarse pass found another chart.
+  constexpr int kCoarseSide = 1000;
+  const int side = std::max(image.width, image.height), fine = std::max(1, options.working_side);
+  std::vector<ChartCandidate> out;
+  const bool coarse = (side + kCoarseSide - 1) / kCoarseSide > (side + fine - 1) / fine;
+  if (coarse) {
+    try {
+      out = detect_pass(image, wanted, options, kCoarseSide, 0.0, 0.5);
+    } catch (const Error& e) {
+      if (e.code() != ErrorCode::ChartNotFound) throw;
+    }
+    // The coarse pass decides only when every candidate is confident and its lattice holds at
+    // least half of the layout's patches: a chart whose patches are too small for it may show a
+    // few cells, and a layout extrapolated from those can sit one cell off.
+    for (const auto& c : out)
+      if (c.coverage < 0.5 || c.confidence < 0.9) {
+        out.clear();
+        break;
+      }
+  }
+  if (out.empty()) out = detect_pass(image, wanted, options, fine, coarse ? 0.5 : 0.0, 1.0);
+  if (options.progress) options.progress("done", 1.0);
   return out;
 }
 

@@ -40,8 +40,9 @@ std::vector<double> relative_residuals(const std::vector<Vec3>& rgb, const std::
 
 // Mean of the smallest 75 % of the residuals.
 double trimmed_mean(std::vector<double> e) {
-  std::sort(e.begin(), e.end());
   const size_t keep = std::max<size_t>(1, static_cast<size_t>(std::ceil(0.75 * e.size())));
+  std::nth_element(e.begin(), e.begin() + static_cast<std::ptrdiff_t>(keep - 1), e.end());
+  std::sort(e.begin(), e.begin() + static_cast<std::ptrdiff_t>(keep));  // summed in increasing order, as before
   return std::accumulate(e.begin(), e.begin() + static_cast<std::ptrdiff_t>(keep), 0.0) / double(keep);
 }
 
@@ -74,15 +75,18 @@ std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const 
   const int terms = positions.empty() || n < 12 ? 0 : n < 24 ? 3 : 6;
   std::vector<double> light(n, 1.0);
   std::vector<Vec3> lit = ref;
-  std::vector<double> e;
-  for (int it = 0; it < (terms ? 4 : 2); ++it) {
+  std::vector<double> e, sorted;
+  const int iterations = terms ? 4 : 2;
+  for (int it = 0; it < iterations; ++it) {
     for (size_t k = 0; k < n; ++k) lit[k] = light[k] * ref[k];
     const Mat3 M = fit_matrix(rgb, lit, w);
     e = relative_residuals(rgb, lit, M);
+    if (it == iterations - 1) break;  // the weights and light below would only serve a next fit
     // Refit without the worst 25 % (glare, a shadow, a missing patch).
-    std::vector<double> sorted = e;
-    std::sort(sorted.begin(), sorted.end());
-    const double cut = sorted[static_cast<size_t>(std::floor(0.75 * (sorted.size() - 1)))];
+    sorted = e;
+    const auto q3 = sorted.begin() + static_cast<std::ptrdiff_t>(std::floor(0.75 * (sorted.size() - 1)));
+    std::nth_element(sorted.begin(), q3, sorted.end());
+    const double cut = *q3;
     for (size_t k = 0; k < n; ++k) w[k] = e[k] > cut ? 0 : w0[k];
     if (!terms) continue;
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), terms);
@@ -124,11 +128,16 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
   std::map<std::array<int, 2>, int> found;
   for (const auto& cell : group.cells) found[cell] = 1;
   // Mean RGB of the central part of a lattice cell (a square of ±20 % of the local pitch);
-  // false when it leaves the image. Cached: placements share cells.
-  std::map<std::array<int, 2>, std::pair<bool, Vec3>> cache;
+  // false when it leaves the image. Cached in a dense table: placements share cells, and every
+  // cell they reach lies within max(R, C) - 1 cells of the group's range.
+  const int reach = std::max(R, C);
+  const int cache_p0 = group.p_min - reach, cache_q0 = group.q_min - reach;
+  const int cache_w = group.p_max - group.p_min + 1 + 2 * reach, cache_h = group.q_max - group.q_min + 1 + 2 * reach;
+  std::vector<std::pair<bool, Vec3>> cache(size_t(cache_w) * cache_h);
+  std::vector<char> cached(cache.size(), 0);
   auto sample = [&](const std::array<int, 2>& cell) -> const std::pair<bool, Vec3>& {
-    auto it = cache.find(cell);
-    if (it != cache.end()) return it->second;
+    const size_t slot = size_t(cell[1] - cache_q0) * cache_w + size_t(cell[0] - cache_p0);
+    if (cached[slot]) return cache[slot];
     const Point c = apply_homography(H, Point(cell[0], cell[1]));
     const double pitch = std::min((apply_homography(H, Point(cell[0] + 1, cell[1])) - c).norm(),
                                   (apply_homography(H, Point(cell[0], cell[1] + 1)) - c).norm());
@@ -144,7 +153,8 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
           for (int k = 0; k < 3; ++k) s.second[k] += img.at(x, y, k);
       s.second /= double(std::max(1, n));
     }
-    return cache.emplace(cell, s).first->second;
+    cached[slot] = 1;
+    return cache[slot] = s;
   };
   // Chart unit square -> layout (column, row) coordinates of the cell centres (affine).
   const PatchCell& first = layout.patches.front();

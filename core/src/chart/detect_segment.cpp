@@ -19,30 +19,6 @@ float percentile(std::vector<float>& v, double p) {
   return v[k];
 }
 
-// 3×3 box mean of an interleaved 3-channel image (edges: the mean of the pixels inside).
-std::vector<float> box3(const std::vector<float>& in, int w, int h) {
-  std::vector<float> tmp(in.size()), out(in.size());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const int x0 = std::max(0, x - 1), x1 = std::min(w - 1, x + 1);
-      for (int c = 0; c < 3; ++c) {
-        float s = 0;
-        for (int xx = x0; xx <= x1; ++xx) s += in[(size_t(y) * w + xx) * 3 + c];
-        tmp[(size_t(y) * w + x) * 3 + c] = s / float(x1 - x0 + 1);
-      }
-    }
-  for (int y = 0; y < h; ++y) {
-    const int y0 = std::max(0, y - 1), y1 = std::min(h - 1, y + 1);
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c) {
-        float s = 0;
-        for (int yy = y0; yy <= y1; ++yy) s += tmp[(size_t(yy) * w + x) * 3 + c];
-        out[(size_t(y) * w + x) * 3 + c] = s / float(y1 - y0 + 1);
-      }
-  }
-  return out;
-}
-
 using Point = Eigen::Vector2d;
 
 double cross2(const Point& o, const Point& a, const Point& b) {
@@ -121,27 +97,50 @@ RawImage working_image(const RawImage& image, int working_side, int* factor_out)
   return out;
 }
 
+namespace {
+
+// Splits v[lo, hi) into `bins` parts of equal count (bin k: the k-th `bins`-quantile range of
+// the key), each part's members before the next part's, by recursive nth_element: the same
+// bins as a full sort, O(n log bins) instead of O(n log n). bounds[k] = first index of bin k.
+template <class T, class Less>
+void quantile_split(std::vector<T>& v, size_t lo, size_t hi, int k0, int k1, int bins, Less less) {
+  if (k1 - k0 < 2) return;
+  const int km = (k0 + k1) / 2;
+  const size_t m = v.size() * static_cast<size_t>(km) / static_cast<size_t>(bins);
+  std::nth_element(v.begin() + static_cast<std::ptrdiff_t>(lo), v.begin() + static_cast<std::ptrdiff_t>(m),
+                   v.begin() + static_cast<std::ptrdiff_t>(hi), less);
+  quantile_split(v, lo, m, k0, km, bins, less);
+  quantile_split(v, m, hi, km, k1, bins, less);
+}
+
+}  // namespace
+
 NoiseModel estimate_noise(const RawImage& img) {
   NoiseModel model;
   const int w = img.width, h = img.height;
   if (w < 8 || h < 8) return model;
+  std::vector<std::pair<float, float>> sd;
+  sd.reserve(size_t(w / 2) * size_t(h / 2));
+  std::vector<float> level, dev;
   for (int c = 0; c < 3; ++c) {
     // d = I(x) - (I(x-1) + I(x+1)) / 2 has variance 1.5 σ² where the image is flat.
-    std::vector<std::pair<float, float>> sd;
-    sd.reserve(size_t(w) * h / 4);
-    for (int y = 1; y < h - 1; y += 2)
+    sd.clear();
+    for (int y = 1; y < h - 1; y += 2) {
+      const float* row = &img.rgb[size_t(y) * w * 3 + size_t(c)];
       for (int x = 1; x < w - 1; x += 2) {
-        const float i = img.at(x, y, c);
-        sd.emplace_back(i, i - 0.5f * (img.at(x - 1, y, c) + img.at(x + 1, y, c)));
+        const float i = row[x * 3];
+        sd.emplace_back(i, i - 0.5f * (row[(x - 1) * 3] + row[(x + 1) * 3]));
       }
-    std::sort(sd.begin(), sd.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    // 24 bins of equal count: the median level and the MAD-based variance of each.
+    }
+    // 24 bins of equal count in order of level: the median level and the MAD-based variance of each.
     constexpr int kBins = 24;
+    quantile_split(sd, 0, sd.size(), 0, kBins, kBins, [](const auto& a, const auto& b) { return a.first < b.first; });
     Eigen::MatrixXd A(kBins, 2);
     Eigen::VectorXd b(kBins), wt(kBins);
     for (int k = 0; k < kBins; ++k) {
       const size_t lo = sd.size() * k / kBins, hi = sd.size() * (k + 1) / kBins;
-      std::vector<float> level, dev;
+      level.clear();
+      dev.clear();
       for (size_t i = lo; i < hi; ++i) {
         level.push_back(sd[i].first);
         dev.push_back(std::abs(sd[i].second));
@@ -176,57 +175,112 @@ RegionLabels flat_regions(const RawImage& img, const FlatRegionOptions& options)
   out.label.assign(size_t(w) * h, -1);
   if (w < 5 || h < 5) return out;
   const NoiseModel noise = estimate_noise(img);
-  const std::vector<float> smooth = box3(img.rgb, w, h);
+  // The image is streamed row by row through rings of three rows (3×3 box mean, log, flat
+  // test, erosion): no image-sized intermediate buffers, whose allocation (page faults) cost
+  // more than the arithmetic. The 3×3 box mean: a horizontal pass (the mean of the pixels
+  // inside the image), then a vertical one, in this order of float operations.
+  const size_t rw = size_t(w) * 3;
+  auto horizontal = [&](int y, float* dst) {
+    const float* in = &img.rgb[size_t(y) * rw];
+    for (int x = 0; x < w; ++x) {
+      const int x0 = std::max(0, x - 1), x1 = std::min(w - 1, x + 1);
+      for (int c = 0; c < 3; ++c) {
+        float s = 0;
+        for (int xx = x0; xx <= x1; ++xx) s += in[xx * 3 + c];
+        dst[x * 3 + c] = s / float(x1 - x0 + 1);
+      }
+    }
+  };
   // log(RGB + eps): ratio edges count the same in light and shade (vignetting, uneven light).
-  std::vector<float> logs(smooth.size()), sigma(smooth.size());
+  // eps from the 99th percentile of the smoothed image on every 7th pixel.
   float eps[3];
-  for (int c = 0; c < 3; ++c) {
-    std::vector<float> v;
-    v.reserve(smooth.size() / 3 / 7 + 1);
-    for (size_t i = c; i < smooth.size(); i += 3 * 7) v.push_back(smooth[i]);
-    eps[c] = std::max(1e-6f, 0.002f * percentile(v, 0.99));
+  {
+    std::vector<float> v[3];
+    for (auto& vc : v) vc.reserve(size_t(w) * h / 7 + 1);
+    for (size_t p = 0; p < size_t(w) * h; p += 7) {
+      const int x = static_cast<int>(p % w), y = static_cast<int>(p / w);
+      const int x0 = std::max(0, x - 1), x1 = std::min(w - 1, x + 1);
+      const int y0 = std::max(0, y - 1), y1 = std::min(h - 1, y + 1);
+      for (int c = 0; c < 3; ++c) {
+        float s = 0;
+        for (int yy = y0; yy <= y1; ++yy) {
+          float t = 0;
+          for (int xx = x0; xx <= x1; ++xx) t += img.rgb[size_t(yy) * rw + size_t(xx) * 3 + c];
+          s += t / float(x1 - x0 + 1);
+        }
+        v[c].push_back(s / float(y1 - y0 + 1));
+      }
+    }
+    for (int c = 0; c < 3; ++c) eps[c] = std::max(1e-6f, 0.002f * percentile(v[c], 0.99));
   }
+  // Rings indexed by row % 3: horizontal means, logs, flat flags.
+  std::vector<float> hor(3 * rw), logs(3 * rw), sigmas(3 * rw);
+  std::vector<std::uint8_t> flat(size_t(3) * w, 0);
+  auto hrow = [&](int y) { return &hor[size_t(y % 3) * rw]; };
+  auto lrow = [&](int y) { return &logs[size_t(y % 3) * rw]; };
+  auto srow = [&](int y) { return &sigmas[size_t(y % 3) * rw]; };
+  auto frow = [&](int y) { return &flat[size_t(y % 3) * w]; };
+  // Row y of the log image (and, for the flat test, its noise): needs horizontal rows y±1.
   // Noise of half a central difference of log(3×3 mean): σ(I)/3 · √2 / 2 / (I + eps).
-  for (size_t i = 0; i < smooth.size(); ++i) {
-    const int c = static_cast<int>(i % 3);
-    const float v = std::max(0.f, smooth[i]) + eps[c];
-    logs[i] = std::log(v);
-    sigma[i] = static_cast<float>(std::sqrt(noise.gain[c] * std::max(0.f, smooth[i]) + noise.floor[c]) / 3 * 0.7071 / v);
-  }
+  auto log_row = [&](int y) {
+    const int y0 = std::max(0, y - 1), y1 = std::min(h - 1, y + 1);
+    const float n = float(y1 - y0 + 1);
+    float* L = lrow(y);
+    float* sigma = srow(y);
+    for (size_t i = 0; i < rw; ++i) {
+      float s = 0;
+      for (int yy = y0; yy <= y1; ++yy) s += hrow(yy)[i];
+      const float sm = s / n;
+      const int c = static_cast<int>(i % 3);
+      const float v = std::max(0.f, sm) + eps[c];
+      L[i] = std::log(v);
+      sigma[i] = static_cast<float>(std::sqrt(noise.gain[c] * std::max(0.f, sm) + noise.floor[c]) / 3 * 0.7071 / v);
+    }
+  };
   // Flat: in every channel both half central differences stay below noise_multiple σ (and the
-  // min_step floor).
-  std::vector<std::uint8_t> flat(size_t(w) * h, 0);
+  // min_step floor). Row y needs log rows y±1 and row y's σ.
   const float k = static_cast<float>(options.noise_multiple), floor = static_cast<float>(options.min_step);
-  for (int y = 1; y < h - 1; ++y)
+  auto flat_row = [&](int y) {
+    std::uint8_t* F = frow(y);
+    std::fill(F, F + w, std::uint8_t(0));
+    if (y < 1 || y > h - 2) return;
+    const float *up = lrow(y - 1), *mid = lrow(y), *dn = lrow(y + 1), *sigma = srow(y);
     for (int x = 1; x < w - 1; ++x) {
-      const size_t i = size_t(y) * w + x;
       bool ok = true;
       for (int c = 0; c < 3 && ok; ++c) {
-        const float g = 0.5f * std::max(std::abs(logs[(i + 1) * 3 + c] - logs[(i - 1) * 3 + c]),
-                                        std::abs(logs[(i + w) * 3 + c] - logs[(i - w) * 3 + c]));
-        ok = g < std::max(floor, k * sigma[i * 3 + c]);
+        const size_t i = size_t(x) * 3 + c;
+        const float g = 0.5f * std::max(std::abs(mid[i + 3] - mid[i - 3]), std::abs(dn[i] - up[i]));
+        ok = g < std::max(floor, k * sigma[i]);
       }
-      flat[i] = ok;
+      F[x] = ok;
     }
-  // Erode once (3×3): thin bridges between neighbouring patches break.
-  std::vector<std::uint8_t> core(flat.size(), 0);
-  for (int y = 1; y < h - 1; ++y)
-    for (int x = 1; x < w - 1; ++x) {
-      bool all_flat = true;
-      for (int dy = -1; dy <= 1 && all_flat; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-          if (!flat[size_t(y + dy) * w + x + dx]) {
-            all_flat = false;
-            break;
-          }
-      core[size_t(y) * w + x] = all_flat;
-    }
-  // 4-connected components (explicit stack).
+  };
+  // Erode once (3×3): thin bridges between neighbouring patches break. The core pixels are
+  // marked -2 in the label image (-1 elsewhere) for the connected components below.
+  auto erode_row = [&](int y) {
+    if (y < 1 || y > h - 2) return;
+    const std::uint8_t *a = frow(y - 1), *b = frow(y), *c = frow(y + 1);
+    int* L = &out.label[size_t(y) * w];
+    for (int x = 1; x < w - 1; ++x)
+      if (a[x - 1] & a[x] & a[x + 1] & b[x - 1] & b[x] & b[x + 1] & c[x - 1] & c[x] & c[x + 1]) L[x] = -2;
+  };
+  // Pipeline at step y: horizontal row y+1 -> log row y -> flat row y-1 -> eroded row y-2.
+  horizontal(0, hrow(0));
+  for (int y = 0; y < h; ++y) {
+    if (y + 1 < h) horizontal(y + 1, hrow(y + 1));
+    log_row(y);
+    if (y >= 1) flat_row(y - 1);
+    if (y >= 2) erode_row(y - 2);
+  }
+  flat_row(h - 1);
+  erode_row(h - 2);
+  // 4-connected components (explicit stack), numbered in raster order of their first pixel.
   std::vector<int> stack;
-  for (size_t start = 0; start < core.size(); ++start) {
-    if (!core[start] || out.label[start] >= 0) continue;
+  std::vector<int>& label = out.label;
+  for (size_t start = 0; start < label.size(); ++start) {
+    if (label[start] != -2) continue;
     const int id = out.count++;
-    out.label[start] = id;
+    label[start] = id;
     stack.assign(1, static_cast<int>(start));
     while (!stack.empty()) {
       const int i = stack.back();
@@ -234,8 +288,8 @@ RegionLabels flat_regions(const RawImage& img, const FlatRegionOptions& options)
       const int x = i % w, y = i / w;
       const int nb[4] = {x > 0 ? i - 1 : -1, x < w - 1 ? i + 1 : -1, y > 0 ? i - w : -1, y < h - 1 ? i + w : -1};
       for (int j : nb)
-        if (j >= 0 && core[j] && out.label[j] < 0) {
-          out.label[j] = id;
+        if (j >= 0 && label[j] == -2) {
+          label[j] = id;
           stack.push_back(j);
         }
     }

@@ -202,6 +202,38 @@ TEST_CASE("every rotation is found with A1's corner first", "[detect]") {
     }
 }
 
+TEST_CASE("a large image: a coarse pass first, the full working image when it finds nothing", "[detect]") {
+  // 2400 × 1600: the coarse pass works on 800 × 533, the working_side pass on 1200 × 800. A
+  // chart of 15 % of the frame is found by the first; an SG of 4 % (patches of ~9 px there) by
+  // the second. Either way the corners are refined on the full image, and progress never goes back.
+  const std::vector<std::pair<std::string, double>> cases = {{"cc24", 0.15}, {"sg140", 0.04}};
+  for (const auto& [chart, area] : cases) {
+    INFO(chart << " at " << area * 100 << " % of the frame");
+    SceneSpec spec = plain_spec(chart, 23, 51);
+    spec.width = 2400;
+    spec.height = 1600;
+    spec.area_fraction = area;
+    if (chart == "sg140") spec.gap = 0.2;
+    const ChartScene scene = render_chart_scene(spec);
+    DetectOptions o;
+    o.charts = {chart};
+    std::vector<std::pair<std::string, double>> stages;
+    o.progress = [&](const std::string& s, double f) { stages.emplace_back(s, f); };
+    const auto found = detect_charts(scene.image, o);
+    REQUIRE(found.size() == 1);
+    CHECK(found[0].confidence > 0.8);
+    CHECK(max_corner_error(found[0].corners, scene.corners) < 0.5);
+    bool second_pass = false, monotonic = true;
+    for (size_t i = 0; i < stages.size(); ++i) {
+      second_pass = second_pass || (stages[i].first == "segment" && stages[i].second >= 0.5);
+      monotonic = monotonic && (i == 0 || stages[i].second >= stages[i - 1].second);
+    }
+    CHECK(second_pass == (chart == "sg140"));
+    CHECK(monotonic);
+    CHECK(stages.back().second == 1.0);
+  }
+}
+
 TEST_CASE("without a hint the layout is recognised; a mirrored chart is refused", "[detect][bad]") {
   const ChartScene sg = render_chart_scene(plain_spec("sg140", 33, 21));
   const auto found = detect_charts(sg.image);
