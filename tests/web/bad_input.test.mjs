@@ -5,7 +5,7 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import { screenshot } from './harness.mjs';
-import { openPage, step, upload, fileBuffer, errorNear, noErrorNear, DNG, CR2, JPEG, fixture } from './journey.mjs';
+import { openPage, step, upload, fileBuffer, errorNear, errorFor, noErrorNear, DNG, CR2, JPEG, fixture } from './journey.mjs';
 import { withSize, withZeroRows, twoLevelFlat } from './raw_fixtures.mjs';
 
 const CHART = '#step-images input[data-slot="chart"]';
@@ -16,16 +16,6 @@ const FIT = '#step-fit button.primary';
 const A1 = '#step-images .patch-table tbody tr[data-id="A1"]';
 const rowCount = (page) => page.locator('#step-images .patch-table tbody tr').count();
 const fileState = (page, sel) => page.evaluate((s) => document.querySelector(s).closest('.field-group').querySelector('.file-state').textContent, sel);
-
-/// The coded error next to `selector` once its text names `name` (so an earlier error on the same
-/// control is not taken for this one): {code, text}.
-function errorFor(page, selector, name, timeout = 60000) {
-  return page.waitForFunction(([sel, n]) => {
-    const el = document.querySelector(sel);
-    const slot = el && document.getElementById(el.getAttribute('aria-describedby'));
-    return slot && !slot.hidden && slot.dataset.code && slot.textContent.includes(n) ? { code: slot.dataset.code, text: slot.textContent } : null;
-  }, [selector, name], { timeout }).then((h) => h.jsonValue());
-}
 
 /// Ticks exactly the given models (by id) and the first objective.
 async function choose(page, modelIds) {

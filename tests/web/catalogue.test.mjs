@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { screenshot } from './harness.mjs';
-import { openPage, step, noErrorNear } from './journey.mjs';
+import { openPage, step, noErrorNear, errorFor } from './journey.mjs';
 import { materialise, expected, readBase, passportCorners, PASSPORT, sharedData } from '../bad-inputs/inputs.mjs';
 
 const INPUT = {
@@ -21,15 +21,6 @@ const INPUT = {
 const FIT = '#step-fit button.primary';
 const DETECT_AGAIN = '#step-images .detect-panel button:not(.primary)';
 const A1 = '#step-images .patch-table tbody tr[data-id="A1"]';
-
-/// The coded error next to `selector` once its text names `name`: {code, text}.
-function errorFor(page, selector, name, timeout = 60000) {
-  return page.waitForFunction(([sel, n]) => {
-    const el = document.querySelector(sel);
-    const slot = el && document.getElementById(el.getAttribute('aria-describedby'));
-    return slot && !slot.hidden && slot.dataset.code && slot.textContent.includes(n) ? { code: slot.dataset.code, text: slot.textContent } : null;
-  }, [selector, name], { timeout }).then((h) => h.jsonValue());
-}
 
 async function fitOnce(page) {
   await step(page, 'fit');

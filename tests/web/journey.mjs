@@ -33,6 +33,16 @@ export async function upload(page, selector, name, buffer) {
 export const fileBuffer = (p, n) => (n ? fs.readFileSync(p).subarray(0, n) : fs.readFileSync(p));
 
 /// The coded error shown next to a control (its aria-describedby slot): {code, text} or null.
+/// The coded error next to `selector` once its text names `name` (so an earlier error on the same
+/// control is not taken for this one): {code, text}.
+export function errorFor(page, selector, name, timeout = 60000) {
+  return page.waitForFunction(([sel, n]) => {
+    const el = document.querySelector(sel);
+    const slot = el && document.getElementById(el.getAttribute('aria-describedby'));
+    return slot && !slot.hidden && slot.dataset.code && slot.textContent.includes(n) ? { code: slot.dataset.code, text: slot.textContent } : null;
+  }, [selector, name], { timeout }).then((h) => h.jsonValue());
+}
+
 export function errorNear(page, selector, timeout = 30000) {
   return page.waitForFunction((sel) => {
     const el = document.querySelector(sel);
