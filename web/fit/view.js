@@ -1,6 +1,6 @@
 // Step 3: pick any number of models x objectives and fit them in the worker, with progress and a
 // cancel button (which terminates the worker; the page re-sends the RAW bytes it keeps).
-import { h, field, showError, clearError, progressBar } from '../lib/ui.js';
+import { h, field, showError, clearError, progressBar, readText } from '../lib/ui.js';
 import { describe, FAMILIES, DEFAULT_MODELS } from './models/index.js';
 import { pairData } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
@@ -116,10 +116,8 @@ export function mount(section, app) {
   }
   heldInput.addEventListener('change', async () => {
     const f = heldInput.files[0];
-    if (!f) return;
-    let text;
-    try { text = await f.text(); } catch (e) { showError(heldInput, e, f.name); return; }
-    await setHeldOut({ name: f.name, text });
+    const text = f && await readText(heldInput, f);
+    if (text != null) await setHeldOut({ name: f.name, text });
   });
   heldClear.addEventListener('click', () => { heldInput.value = ''; setHeldOut(null); });
   if (app.session.heldOutFile) app.on('reference', function once() { if (!heldOut) setHeldOut(app.session.heldOutFile); });

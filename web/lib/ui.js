@@ -115,3 +115,9 @@ export const fmt = (x, d = 2) => (Number.isFinite(x) ? x.toFixed(d) : '–');
 
 /// Reads a File as bytes (Uint8Array) or text.
 export const fileBytes = async (file) => new Uint8Array(await file.arrayBuffer());
+
+/// The text of a chosen file, or null after showing why it could not be read (moved or deleted
+/// since it was chosen: FILE_UNREADABLE) next to its input.
+export async function readText(input, file) {
+  try { return await file.text(); } catch (e) { showError(input, e, file.name); return null; }
+}

@@ -1,6 +1,6 @@
 // Step 1: the reference — chart (built-in or uploaded CSV/CGATS), illuminant and observer; the
 // patches as swatches with XYZ and Lab, and the CIE xy diagram. Emits 'reference'.
-import { h, field, select, setOptions, showError, clearError, fmt } from '../lib/ui.js';
+import { h, field, select, setOptions, showError, clearError, fmt, readText } from '../lib/ui.js';
 import { options, OBSERVERS } from '../lib/catalog.js';
 import { cssColours, xyFromXYZ, figure } from '../plots/common.js';
 import { xyPlot } from '../plots/xy.js';
@@ -119,8 +119,8 @@ export function mount(section, app) {
     const f = fileInput.files[0];
     if (!f) return;
     clearError(fileInput);
-    let text;
-    try { text = await f.text(); } catch (e) { showError(fileInput, e, f.name); return; }
+    const text = await readText(fileInput, f);
+    if (text == null) return;
     const previous = settings.referenceFile;
     settings.referenceFile = { name: f.name, text };
     await update();

@@ -4,7 +4,7 @@
 // geometry presets), sees the reflectances before and after and the ΔE00 the correction makes,
 // and — with a second measurement of the chart — the Phase I ranking of every correction. The
 // choice is the recipe's `surface` stage (app.session.surface), which the fit step applies.
-import { h, field, select, setOptions, showError, clearError, fmt, progressBar } from '../lib/ui.js';
+import { h, field, select, setOptions, showError, clearError, fmt, progressBar, readText } from '../lib/ui.js';
 import { options as asOptions } from '../lib/catalog.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
 import { figure } from '../plots/common.js';
@@ -323,10 +323,8 @@ export function mount(section, app) {
   patchInput.addEventListener('change', () => { st.patches = patchInput.value; persist(); if (app.derived.surface) render(app.derived.surface, reference().settings); });
   fileInput.addEventListener('change', async () => {
     const f = fileInput.files[0];
-    if (!f) return;
-    let text;
-    try { text = await f.text(); } catch (e) { showError(fileInput, e, f.name); return; }
-    await runCompare({ name: f.name, text });
+    const text = f && await readText(fileInput, f);
+    if (text != null) await runCompare({ name: f.name, text });
   });
   exampleBtn.addEventListener('click', () => loadExample());
   table4Btn.addEventListener('click', runTable4);
