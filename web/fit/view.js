@@ -172,7 +172,7 @@ export function mount(section, app) {
     const { layout, homography, patches } = app.derived.sample;     // the engine's ChartSample
     const sample = { layout, homography, patches };
     const t0 = performance.now();
-    let done = 0, autoKey = null, frame = 0;
+    let done = 0, autoKey = null, frame = 0, shownFirst = null;
     // The results step redraws at most once per frame while rows arrive.
     const stream = () => { frame ||= requestAnimationFrame(() => { frame = 0; app.emit('results', results); }); };
     try {
@@ -180,7 +180,8 @@ export function mount(section, app) {
         job.recipe = recipeFor(job.mId, job.obj, ref, data);
         job.t1 = performance.now();
         return client.call('fit', { recipe: job.recipe, sample, reference, heldOut });
-      }, ({ mId, obj, recipe, t1 }, { result: fit, error }) => {
+      }, (job, { result: fit, error }) => {
+        const { mId, obj, recipe, t1 } = job;
         done++;
         const m = models.find((x) => x.id === mId) ?? describe(mId);
         const label = `${m.label} · ${objectives.find((o) => o.id === obj)?.label ?? obj}`;
@@ -193,13 +194,17 @@ export function mount(section, app) {
           const { status, message } = fit.evaluation.fit;
           const joint = jointSurface(recipe.surface, ref.settings) ? `; surface fitted jointly (Phase II): ${choiceText(fit.surface)} (${fit.surface_status})` : '';
           log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}${joint}`));
-          if (results.length === 1) {   // the first row replaces the previous results and is shown
-            app.session.results = results;
-            app.session.selected = autoKey = results[0].key;
-            app.emit('results', results);
-            onFirst?.();
-          } else stream();
         }
+        // The first job's row (the default model) replaces the previous results and is shown; rows
+        // that end before it wait for it (or for its error), so the first plots are the default's.
+        const row = error ? null : results[results.length - 1];
+        if (!autoKey && (job === jobs[0] || shownFirst === false) && results.length) {
+          app.session.results = results;
+          app.session.selected = autoKey = (row && job === jobs[0] ? row : results[0]).key;
+          app.emit('results', results);
+          onFirst?.();
+        } else if (autoKey) stream();
+        if (job === jobs[0] && error) shownFirst = false;   // the default failed: show the next row to arrive
         say(done);
       });
       running = false;
