@@ -176,11 +176,12 @@ export function mount(section, app) {
     // The results step redraws at most once per frame while rows arrive.
     const stream = () => { frame ||= requestAnimationFrame(() => { frame = 0; app.emit('results', results); }); };
     try {
-      const finished = await pool.map(jobs, (client, job) => {
+      const task = (client, job) => {
         job.recipe = recipeFor(job.mId, job.obj, ref, data);
         job.t1 = performance.now();
         return client.call('fit', { recipe: job.recipe, sample, reference, heldOut });
-      }, (job, { result: fit, error }) => {
+      };
+      const onRow = (job, { result: fit, error }) => {
         const { mId, obj, recipe, t1 } = job;
         done++;
         const m = models.find((x) => x.id === mId) ?? describe(mId);
@@ -206,7 +207,9 @@ export function mount(section, app) {
         } else if (autoKey) stream();
         if (job === jobs[0] && error) shownFirst = false;   // the default failed: show the next row to arrive
         say(done);
-      });
+      };
+      // The first row alone, then the others: its plots are drawn before the long rows take the cores.
+      const finished = await pool.map(jobs.slice(0, 1), task, onRow) && await pool.map(jobs.slice(1), task, onRow);
       running = false;
       app.emit('compare', { done, total, running });
       const seconds = ((performance.now() - t0) / 1000).toFixed(2);
