@@ -560,7 +560,7 @@ EMSCRIPTEN_BINDINGS(tristim_absolute) {
   { using S = RegionFigures; value_object<S>("RegionFigures") FIELD(ids) FIELD(estimated) FIELD(reference)
       FIELD(relative_Y) FIELD(source) FIELD(metrics); }
   { using S = AbsoluteExampleOptions; value_object<S>("AbsoluteExampleOptions") FIELD(camera) FIELD(cell)
-      FIELD(white_luminance) FIELD(seed); }
+      FIELD(white_luminance) FIELD(illuminant) FIELD(colour_training) FIELD(seed); }
 
   class_<AbsoluteMaps>("AbsoluteMaps")
       .function("summary", optional_override([](const AbsoluteMaps& m) { return guard([&] { return val(maps_summary(m)); }); }))
