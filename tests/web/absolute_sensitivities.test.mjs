@@ -107,3 +107,23 @@ test('absolute sensitivities: upload (bad CSV coded), estimate from a patch file
     await b.close();
   }
 });
+
+test('absolute example under F2 with reflective colour training (T2R chosen with it): the chart cells within Table 4', async () => {
+  const b = await openPage();
+  try {
+    const { page } = b;
+    await step(page, 'absolute');
+    await page.selectOption(`${S} [data-role="abs-example-light"]`, 'F2');
+    await page.selectOption(`${S} [data-role="abs-example-training"]`, 'reflective');
+    await page.click(`${S} [data-role="abs-example"]`);
+    await page.waitForSelector(`${S} .abs-maps:not([hidden])`, { timeout: 180000 });
+    assert.match(await page.textContent(`${S} [data-role="abs-stimuli-info"]`), /ColorChecker under F2/);
+    assert.match(await page.textContent(`${S} [data-role="abs-fit-summary"]`), /Colour matrix T2R/);
+    const relY = await page.$$eval(`${S} [data-role="abs-figures"] [data-col="relY"]`, (e) => e.map((x) => parseFloat(x.textContent)));
+    assert.ok(relY[1] < 2.4, `relative Y error on the scene's cells under F2 ${relY[1]} %`);
+    await screenshot(page, 'absolute-sensitivities-3-f2-reflective');
+    assert.deepEqual(b.problems, []);
+  } finally {
+    await b.close();
+  }
+});

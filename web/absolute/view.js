@@ -56,6 +56,15 @@ export function mount(section, app) {
   const transformSel = select(transforms, 'T1');
   const fusionSel = select([{ value: 'weighted', label: 'weighted (every reliable exposure)' }, { value: 'recursive', label: 'Algorithm 1 (recursive selection)' }], 'weighted');
   const exampleBtn = h('button', { type: 'button', 'data-role': 'abs-example' }, 'Example (virtual camera)');
+  // The example's scene light and colour training. Projected colours (the paper's) leave a
+  // metameric floor under A and F2 for this camera; reflective colours under the scene's light
+  // with T2R meet Table 4 (tests/core/absolute/example_test.cpp).
+  const exLightSel = select([{ value: 'D65', label: 'D65' }, { value: 'A', label: 'A' }, { value: 'F2', label: 'F2' }], 'D65');
+  exLightSel.dataset.role = 'abs-example-light';
+  const exTrainingSel = select([{ value: 'projector', label: '24 projected ColorChecker colours (the paper\'s)' },
+    { value: 'reflective', label: 'reflective ColorChecker SG patches under the scene\'s light' }], 'projector');
+  exTrainingSel.dataset.role = 'abs-example-training';
+  exTrainingSel.addEventListener('change', () => { if (exTrainingSel.value === 'reflective' && transforms.some((t) => t.value === 'T2R')) transformSel.value = 'T2R'; });
   const fitBtn = h('button', { type: 'button', class: 'primary', 'data-role': 'abs-fit' }, 'Fit and measure the series');
   const progress = progressBar('Absolute');
 
@@ -71,6 +80,8 @@ export function mount(section, app) {
       h('div', { class: 'abs-ssf-box' }, ssf.el),
       field('Colour matrix', transformSel),
       field('Exposure fusion', fusionSel),
+      field('Example: light on the chart', exLightSel, 'The paper\'s booth lights'),
+      field('Example: colour training', exTrainingSel, 'Under A and F2 projected colours cannot meet Table 4 with this camera (metamerism); reflective colours under the scene\'s light with T2R do'),
       h('div', { class: 'buttons' }, exampleBtn, fitBtn)),
     progress.el);
   fitBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'abs-fit-error' });
@@ -250,7 +261,7 @@ export function mount(section, app) {
     fitBtn.disabled = exampleBtn.disabled = true;
     let ex;
     try {
-      ex = await engine.call('absExample', {}, { onProgress: progress.update });
+      ex = await engine.call('absExample', { options: { illuminant: exLightSel.value, colour_training: exTrainingSel.value } }, { onProgress: progress.update });
     } catch (e) { showError(exampleBtn, e, 'Example'); return null; } finally { progress.done(); fitBtn.disabled = exampleBtn.disabled = false; }
     for (const i of [seriesInput, stimuliInput, capInput, flatInput]) i.value = '';
     seriesRows(ex.frames);
@@ -260,7 +271,7 @@ export function mount(section, app) {
     noiseInput.value = ''; satInput.value = '';
     setOptions(cameraSel, cameraOptions(), ex.camera);
     if (!(await loadStimuli(ex.stimuliCsv, 'example-stimuli.csv'))) return null;
-    stimuliInfo.textContent += ` Scene: a ColorChecker under D65 (white ${num(ex.regions.find((r) => r.id === ex.whiteId).XYZ[1])} cd/m²) and 12 equal-tristimulus cells from 0.3 to 3000 cd/m², with their true X, Y, Z.`;
+    stimuliInfo.textContent += ` Scene: a ColorChecker under ${exLightSel.value} (white ${num(ex.regions.find((r) => r.id === ex.whiteId).XYZ[1])} cd/m²) and 12 equal-tristimulus cells from 0.3 to 3000 cd/m², with their true X, Y, Z.`;
     return run();
   }
   exampleBtn.addEventListener('click', example);
