@@ -139,7 +139,12 @@ export const handlers = {
       const yMax = Math.max(...a.regions.map((r) => r.XYZ[1]));
       // eq (16): the white patch's chromaticity at the largest luminance of the scene
       const w = T.whiteGuarnera2018(white.XYZ, yMax);
-      figures = { ...a.maps.measure(a.regions, w), whiteId: a.whiteId, yMax };
+      // and per kind of cell: the chart's reflective colours, the equal-tristimulus ladder (ids E<Y>)
+      const ladder = (r) => /^E[\d.]/.test(r.id);
+      const parts = [['ColorChecker cells', a.regions.filter((r) => !ladder(r))], ['Equal-tristimulus ladder', a.regions.filter(ladder)]]
+        .filter(([, rs]) => rs.length && rs.length < a.regions.length)
+        .map(([label, rs]) => ({ label, count: rs.length, metrics: a.maps.measure(rs, w).metrics }));
+      figures = { ...a.maps.measure(a.regions, w), whiteId: a.whiteId, yMax, parts };
     }
     return reply({ summary: a.summary, ms, figures, ...renderAll(a, render) });
   },

@@ -367,7 +367,10 @@ export function mount(section, app) {
   // ---- figures (section 4.1) ----
   function showFigures(fit, figures) {
     const cols = [['Training stimuli (fit)', fit.training, `white: E at ${num(fit.training.white[1])} cd/m²`]];
-    if (figures) cols.push([`Scene cells (${figures.ids.length}, measured vs true)`, figures.metrics, `white per eq (16): ${figures.whiteId} at ${num(figures.yMax)} cd/m²`]);
+    if (figures) {
+      cols.push([`Scene cells (${figures.ids.length}, measured vs true)`, figures.metrics, `white per eq (16): ${figures.whiteId} at ${num(figures.yMax)} cd/m²`]);
+      for (const p of figures.parts ?? []) cols.push([`${p.label} (${p.count})`, p.metrics, 'the same white']);
+    }
     const row = (label, f) => h('tr', {}, h('th', {}, label), cols.map(([, m]) => h('td', {}, f(m))));
     const s3 = (s) => `${s.mean.toFixed(2)} / ${s.median.toFixed(2)} / ${s.max.toFixed(2)}`;
     figuresBox.replaceChildren(h('h3', {}, 'Figures (Guarnera 2018 section 4.1)'),
