@@ -15,6 +15,7 @@
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/json.hpp"
+#include "../large_buffer.hpp"
 
 namespace tristim {
 
@@ -338,8 +339,8 @@ RawImage build_image(LibRaw& p, const DecodeOptions& options) {
   if (img.width < 1 || img.height < 1)
     throw Error(ErrorCode::RawCorrupt, "the RAW image is smaller than one CFA block");
   const size_t npix = static_cast<size_t>(img.width) * img.height;
-  img.rgb.assign(npix * 3, 0.0f);
-  img.saturated.assign(npix, 0);
+  detail::assign_large(img.rgb, npix * 3, 0.0f);  // huge pages natively: first touch is the cost
+  detail::assign_large(img.saturated, npix, std::uint8_t{0});
 
   // Black and saturation per channel, reported in metadata (means over the CFA repeat).
   std::array<double, 3> bsum{}, bcount{};
