@@ -28,8 +28,11 @@ void add_column(SpectralData& to, const SpectralData& from, size_t k, const std:
   to.names.push_back(name);
 }
 
-/// The ColorChecker SG patches whose reflectance differs from every ColorChecker Classic patch
-/// (spectral RMS difference > 0.03): training colours that are not the test colours.
+
+}  // namespace
+
+// The ColorChecker SG patches whose reflectance differs from every ColorChecker Classic patch
+// (spectral RMS difference > 0.03): training colours that are not the test colours.
 SpectralData sg_unlike_classic() {
   const SpectralData sg = chart_reflectances("sg140"), cc = align_spectra(chart_reflectances("cc24"), sg.wavelengths);
   SpectralData keep;
@@ -48,8 +51,6 @@ SpectralData sg_unlike_classic() {
   }
   return keep;
 }
-
-}  // namespace
 
 AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
   if (o.cell < 8) throw Error(ErrorCode::InvalidArgument, "example: cells need at least 8 pixels");

@@ -59,6 +59,10 @@ struct AbsoluteExample {
 
 /// Generates the example. Error(UnknownId) for a camera or illuminant that is not built in;
 /// InvalidArgument for a cell < 8 pixels, a non-positive white luminance or another colour training.
+/// The ColorChecker SG patches whose reflectance differs from every ColorChecker Classic patch
+/// (spectral RMS difference > 0.03): reflective training colours that are not the test colours.
+SpectralData sg_unlike_classic();
+
 AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& options = {});
 
 }  // namespace tristim
