@@ -55,11 +55,12 @@ int run_evaluate(const Args& args, std::ostream& out) {
 const char* kCompareUsage =
     "tristim compare --rgb patches.csv --xyz reference.csv [--objectives ls,psm,de2000]\n"
     "                [--models id,id,...] [--white <patch>] [--lab-white ...] [--ref-white ...]\n"
-    "                [--test-rgb other.csv --test-xyz other_ref.csv] [--json]\n"
+    "                [--test-rgb other.csv --test-xyz other_ref.csv] [--json] [--threads N]\n"
     "                [--linearisation <id>[:options]|fitted.json [--reflectances spectra.csv|<chart>] [--full-scale 255]]\n"
     "  Every model × objective on the same patches: training and leave-one-out CIEDE2000,\n"
     "  sorted by the held-out mean. With --test-rgb/--test-xyz also the train-on-one /\n"
-    "  test-on-another table (Abed 2013 Table IV layout).";
+    "  test-on-another table (Abed 2013 Table IV layout). The rows run on --threads threads\n"
+    "  (default 0: one per hardware thread, at most 16); the numbers do not depend on it.";
 
 json::Value compare_row_json(const CompareRow& r) {
   json::Value o = json::Value::object();
@@ -86,7 +87,15 @@ json::Value compare_row_json(const CompareRow& r) {
 int run_compare(const Args& args, std::ostream& out) {
   args.allow_only({"rgb", "xyz", "objectives", "models", "white", "lab-white", "ref-white", "test-rgb",
                    "test-xyz", "json", "objective", "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol",
-                   "de-ftol", "de-max-evaluations", "de-rms", "de-step", "linearisation", "reflectances", "full-scale"});
+                   "de-ftol", "de-max-evaluations", "de-rms", "de-step", "linearisation", "reflectances", "full-scale",
+                   "threads"});
+  if (args.has("threads")) {
+    const double n = args.get_double("threads", 0);
+    if (!(n >= 0 && n <= 256 && n == static_cast<int>(n)))
+      throw Error(ErrorCode::InvalidArgument, "--threads must be a whole number from 0 (one per hardware thread) to 256, got '" +
+                                                  args.get("threads") + "'");
+    set_compare_threads(static_cast<int>(n));
+  }
   const Vec3 ref_white = parse_white(args, "ref-white", whites::D50());
   PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), ref_white);
   const Linearisation lin = linearisation_option(args, "compare", d.ids, d.rgb, d.xyz, ref_white);  // linearise_option.hpp

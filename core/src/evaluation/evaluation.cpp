@@ -156,6 +156,17 @@ ModelEvaluation evaluate_model(const std::string& model_id, const PatchMatrix& r
   return ev;
 }
 
+namespace {
+std::atomic<int> g_compare_threads{0};
+}  // namespace
+
+void set_compare_threads(int n) {
+  if (n < 0) throw Error(ErrorCode::InvalidArgument, "compare threads must be 0 (one per hardware thread) or more, got " + std::to_string(n));
+  g_compare_threads = n;
+}
+
+int compare_threads() { return g_compare_threads; }
+
 std::vector<CompareRow> compare_models(const PatchMatrix& rgb, const PatchMatrix& xyz, const FitOptions& options,
                                        std::vector<std::string> model_ids, std::vector<Objective> objectives,
                                        int white_patch_index) {
@@ -208,8 +219,9 @@ std::vector<CompareRow> compare_models(const PatchMatrix& rgb, const PatchMatrix
 #ifdef __EMSCRIPTEN__
   for (std::size_t t = 0; t < tasks.size(); ++t) run_row(t);
 #else
-  const std::size_t n_threads =
-      std::min<std::size_t>(tasks.size(), std::max(1u, std::min(16u, std::thread::hardware_concurrency())));
+  const unsigned cap = g_compare_threads > 0 ? static_cast<unsigned>(g_compare_threads)
+                                             : std::max(1u, std::min(16u, std::thread::hardware_concurrency()));
+  const std::size_t n_threads = std::min<std::size_t>(tasks.size(), cap);
   std::atomic<std::size_t> next{0};
   std::vector<std::exception_ptr> failures(n_threads);
   auto worker = [&](std::size_t w) {

@@ -93,6 +93,34 @@ TEST_CASE("compare: every model × objective, sorted by held-out error, refusals
   CHECK(rows.front().loo_dE00.mean < 1e-6);
 }
 
+TEST_CASE("compare: the numbers do not depend on the thread count", "[evaluation]") {
+  // Natively the rows are spread over threads (wasm: in order). One thread and three threads must
+  // give the same rows in the same order, bit for bit.
+  const PatchMatrix rgb = rgb_grid(24, 7);
+  Model truth{"matrix-3x3", Eigen::Matrix3d()};
+  truth.coefficients << 40, 30, 15, 20, 70, 8, 2, 10, 90;
+  PatchMatrix xyz = predict(truth, rgb);
+  for (Eigen::Index i = 0; i < xyz.rows(); ++i) xyz(i, static_cast<int>(i % 3)) *= 1.0 + 0.01 * static_cast<double>(i % 5);
+  const std::vector<std::string> models = {"matrix-3x3", "matrix-3x4", "Finlayson2015-2", "Cheung2004-35"};
+  const std::vector<Objective> objectives = {Objective::LeastSquares, Objective::PatternSearch, Objective::DeltaE2000};
+  set_compare_threads(1);
+  const auto one = compare_models(rgb, xyz, {}, models, objectives);
+  set_compare_threads(3);
+  const auto three = compare_models(rgb, xyz, {}, models, objectives);
+  set_compare_threads(0);
+  CHECK(compare_threads() == 0);
+  REQUIRE(one.size() == 12);
+  REQUIRE(three.size() == one.size());
+  for (std::size_t k = 0; k < one.size(); ++k) {
+    CHECK(one[k].model_id == three[k].model_id);
+    CHECK(one[k].objective == three[k].objective);
+    CHECK(one[k].ok == three[k].ok);
+    CHECK(one[k].train_dE00.mean == three[k].train_dE00.mean);
+    CHECK(one[k].loo_dE00.mean == three[k].loo_dE00.mean);
+  }
+  CHECK_THROWS_AS(set_compare_threads(-1), Error);
+}
+
 TEST_CASE("transfer table: train on one set, test on another (Abed 2013 Table IV layout)", "[evaluation]") {
   const PatchMatrix a = rgb_grid(24, 1), b = rgb_grid(40, 2), test = rgb_grid(10, 3);
   Model truth{"matrix-3x3", Eigen::Matrix3d()};

@@ -91,6 +91,12 @@ std::vector<CompareRow> compare_models(const PatchMatrix& camera_RGB, const Patc
                                        std::vector<std::string> model_ids = {},
                                        std::vector<Objective> objectives = {}, int white_patch_index = -1);
 
+/// Natively, compare_models spreads its rows over at most this many threads (0, the default: one
+/// per hardware thread, at most 16). The wasm build always runs the rows in order on one thread
+/// (the page spreads them over workers instead). Process-wide; Error(InvalidArgument) if n < 0.
+void set_compare_threads(int n);
+int compare_threads();
+
 /// A named training set (for the transfer table).
 struct NamedPatches {
   std::string name;
