@@ -123,8 +123,8 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
     // A candidate per layout; the group keeps the best.
     ChartCandidate best;
     bool have = false;
+    progress("orient", 0.4 + 0.55 * gi / groups.size());
     for (const Target& t : wanted) {
-      progress("orient", 0.4 + 0.55 * gi / groups.size());
       const std::vector<Placement> placements = place_layout(work, group, t.grid, t.reference);
       if (placements.empty()) continue;
       const Placement& p = placements.front();
