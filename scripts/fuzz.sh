@@ -14,6 +14,7 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-short}
 out=build/fuzz
+mkdir -p "$out"
 # -O1 and line tables only: the usual libFuzzer build (stack traces with lines, a build ~2x faster
 # than -O2 -g on 2 cores).
 cmake -S . -B "$out" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \

@@ -18,7 +18,7 @@ node --test --test-concurrency=1 tests/web/ || status=1
 # libFuzzer, every parser, FUZZ_SECONDS each (scripts/fuzz.sh; clang build in build/fuzz, LibRaw
 # with the sanitizers): a crash fails the run.
 echo "[test] fuzz (short run)"
-FUZZ_SECONDS=${FUZZ_SECONDS:-30} bash scripts/fuzz.sh short || status=1
+FUZZ_SECONDS=${FUZZ_SECONDS:-20} bash scripts/fuzz.sh short || status=1
 
 if [ $status -eq 0 ]; then echo "[test] all suites passed"; else echo "[test] FAILED"; fi
 exit $status

@@ -1,6 +1,6 @@
 // Declarations: the absolute tele-colorimeter (Guarnera, Bianco & Schettini 2018) — the training
 // stimuli CSV, the fit of an absolute profile (noise floor from lens-cap frames, S measured from
-// the frames, f(r) from a flat, areas from built-in sensitivities, eq 8 per channel across every
+// the frames, f(r) from a flat, areas from built-in or given sensitivities, eq 8 per channel across every
 // exposure, the colour matrix), OECF samples per channel and exposure (fig 5), the profile applied
 // to a bracketed series of decoded RAWs (the AbsoluteMaps handle: X, Y, Z in cd/m², the source
 // exposure per pixel, read-outs, region figures as section 4.1) and the virtual-camera example.
@@ -85,6 +85,8 @@ struct AbsoluteFitInput {
   double noise_floor = 0;       ///< n in DN when no lens-cap frames are given
   double saturation = 0;        ///< S in DN; 0: measured from the frames (LibRaw's level without a pile-up)
   std::string camera;           ///< built-in sensitivities for A_R, A_G, A_B ("": none, 1, 1, 1)
+  SpectralData ssf;             ///< given sensitivities (an uploaded CSV, an estimate); used when set, before `camera`
+  std::string ssf_source;       ///< what they are, recorded in the profile's areas_source ("file:x.csv", "estimate:…")
   double w = 10;                ///< zone parameter
   std::string transform = "T1"; ///< T1 | To | T2R (eqs 13-15)
   FusionMode fusion = FusionMode::Weighted;
@@ -207,7 +209,10 @@ AbsoluteFitOutcome fit_absolute(const AbsoluteFitInput& in, const Handles& frame
   fi.series = images_of(series);
   fi.saturation = in.saturation;
   fi.noise_floor = in.noise_floor;
-  if (!in.camera.empty()) {
+  if (!in.ssf.names.empty()) {
+    fi.ssf = in.ssf;
+    fi.areas_source = in.ssf_source.empty() ? "given" : in.ssf_source;
+  } else if (!in.camera.empty()) {
     fi.ssf = camera_ssf(in.camera);
     fi.areas_source = "camera:" + in.camera;
   }
@@ -531,7 +536,7 @@ EMSCRIPTEN_BINDINGS(tristim_absolute) {
   { using S = AbsoluteStimulus; value_object<S>("AbsoluteStimulus") FIELD(id) FIELD(set) FIELD(exposure) FIELD(RGB)
       FIELD(falloff) FIELD(file) FIELD(frame) FIELD(x) FIELD(y) FIELD(w) FIELD(h) FIELD(XYZ) FIELD(line); }
   { using S = AbsoluteFitInput; value_object<S>("AbsoluteFitInput") FIELD(stimuli) FIELD(noise_floor) FIELD(saturation)
-      FIELD(camera) FIELD(w) FIELD(transform) FIELD(fusion); }
+      FIELD(camera) FIELD(ssf) FIELD(ssf_source) FIELD(w) FIELD(transform) FIELD(fusion); }
   { using S = ChannelFit; value_object<S>("ChannelFit") FIELD(k1) FIELD(k2) FIELD(k3) FIELD(samples) FIELD(rms_relative)
       FIELD(max_relative) FIELD(r_squared) FIELD(message); }
   { using S = OecfPanel; value_object<S>("OecfPanel") FIELD(exposure) FIELD(label) FIELD(factor) FIELD(parallel)
@@ -555,7 +560,7 @@ EMSCRIPTEN_BINDINGS(tristim_absolute) {
   { using S = RegionFigures; value_object<S>("RegionFigures") FIELD(ids) FIELD(estimated) FIELD(reference)
       FIELD(relative_Y) FIELD(source) FIELD(metrics); }
   { using S = AbsoluteExampleOptions; value_object<S>("AbsoluteExampleOptions") FIELD(camera) FIELD(cell)
-      FIELD(white_luminance) FIELD(seed); }
+      FIELD(white_luminance) FIELD(illuminant) FIELD(colour_training) FIELD(seed); }
 
   class_<AbsoluteMaps>("AbsoluteMaps")
       .function("summary", optional_override([](const AbsoluteMaps& m) { return guard([&] { return val(maps_summary(m)); }); }))

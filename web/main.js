@@ -101,10 +101,11 @@ async function start() {
   if (fresh) app.views.results.setStatus('Loading the example: a ColorChecker Passport photographed as DNG, decoding and sampling it in the worker…');
   await app.views.images.restore(fresh);
   if (fresh) {
-    app.views.results.setStatus('Fitting the example with three models…');
-    const r = await app.views.fit.runDefault();
+    app.views.results.setStatus('Fitting the example: every model × objective, the first one shown as soon as it is in…');
+    const r = await app.views.fit.runDefault({ onFirst: () => { performance.mark('tristim:first-screen'); document.body.dataset.firstScreen = 'true'; } });
     if (!r) app.views.results.setStatus('No fitted model yet: the example could not be fitted (see steps 1–3).');
   } else app.views.results.refresh();
+  performance.mark('tristim:ready');
   document.body.dataset.ready = 'true';
 }
 

@@ -97,30 +97,16 @@ int run_sensitivities(const Args& args, std::ostream& out) {
     refl = t.spectra;
     reflectance_to_fraction(refl);
   }
-  // Pair by patch id: the reflectance columns in the order of the RGB rows.
-  SpectralData paired;
-  paired.wavelengths = refl.wavelengths;
-  std::vector<Vec3> camera_RGB;
-  for (size_t i = 0; i < rgb.ids.size(); ++i) {
-    for (size_t k = 0; k < refl.names.size(); ++k)
-      if (normalise_patch_id(refl.names[k]) == rgb.ids[i]) {
-        paired.names.push_back(rgb.ids[i]);
-        paired.values.push_back(refl.values[k]);
-        camera_RGB.push_back(rgb.RGB[i]);
-        break;
-      }
-  }
-  if (camera_RGB.empty())
-    throw Error(ErrorCode::PatchMismatch, rgb_path + " and " + refl_arg + " share no patch id");
   SensitivityOptions o;
   o.components = static_cast<int>(args.get_double("components", o.components));
   o.smoothness = args.get_double("smoothness", o.smoothness);
   for (const auto& e : args.all("exclude")) o.exclude_cameras.push_back(e);
-  const SensitivityEstimate e = estimate_sensitivities_Jiang2013(camera_RGB, paired, illuminant_from(args.get("illuminant")), o);
+  // Paired by patch id: the reflectance columns in the order of the RGB rows.
+  const SensitivityEstimate e = estimate_sensitivities_by_id(rgb.ids, rgb.RGB, refl, illuminant_from(args.get("illuminant")), o);
   json::Value s = json::Value::object();
   s.set("method", "Jiang2013");
   s.set("patches", e.patches);
-  s.set("unpaired_rgb_rows", static_cast<int>(rgb.ids.size() - camera_RGB.size()));
+  s.set("unpaired_rgb_rows", e.unpaired);
   s.set("components", e.components);
   s.set("basis_cameras", e.basis_cameras);
   s.set("residual", json::Value(std::vector<double>{e.residual[0], e.residual[1], e.residual[2]}));

@@ -6,6 +6,7 @@
 
 #include "cli.hpp"
 #include "tristim/error.hpp"
+#include "tristim/memory.hpp"
 #include "tristim/version.hpp"
 
 namespace tristim::cli {
@@ -81,6 +82,7 @@ int main(int argc, char** argv) {
   using namespace tristim;
   using namespace tristim::cli;
   std::ios::sync_with_stdio(false);
+  keep_freed_memory();  // decoded frames reuse freed memory instead of fresh pages (memory.hpp)
   if (argc < 2) {
     print_help(std::cerr);
     return 2;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <chrono>
 
+#include "tristim/memory.hpp"
+
 #ifdef __EMSCRIPTEN__
 #include <emscripten/heap.h>
 #else
@@ -13,6 +15,10 @@
 namespace tristim::bench {
 
 using Clock = std::chrono::steady_clock;
+
+/// The CLI's memory policy (keep_freed_memory, set in its main) in every benchmark, before main:
+/// natively freed images are reused as the wasm heap reuses them.
+[[maybe_unused]] static const bool kMemoryPolicy = (keep_freed_memory(), true);
 
 /// Peak memory so far, MiB: the wasm heap's size (it only grows, so its size is the peak), or
 /// natively the process's peak resident set.

@@ -142,3 +142,29 @@ test('absolute: mismatched brackets, a dark series, non-monotonic stimuli and ba
     del(small.frames, small.lens_cap, small.flat, nikon.frames, nikon.lens_cap, nikon.flat);
   }
 });
+
+test('absolute example under F2 with reflective colour training: SG colours under the scene light, T2R meets Table 4 on the chart', async () => {
+  const T = await loadTristim();
+  const ex = T.absoluteExample({ illuminant: 'F2', colour_training: 'reflective', cell: 16, seed: 4 });
+  let maps = null;
+  try {
+    const stimuli = T.readAbsoluteStimuli(ex.stimuli_csv, 'f2.csv');
+    const colour = stimuli.filter((s) => s.set === 'colour');
+    assert.ok(colour.length > 60, `${colour.length} colour stimuli`);
+    assert.ok(colour.every((s) => /^colour SG /.test(s.id)), colour[0].id);
+    const fit = T.fitAbsolute({ stimuli, camera: ex.camera, transform: 'T2R' }, [], ex.lens_cap, [ex.flat], ex.frames);
+    maps = T.applyAbsolute(fit.profile, ex.frames);
+    const cells = ex.regions.filter((r) => r.id[0] !== 'E');
+    const white = ex.regions.find((r) => r.id === ex.white_id);
+    const yMax = Math.max(...ex.regions.map((r) => r.XYZ[1]));
+    const m = maps.measure(cells, T.whiteGuarnera2018(white.XYZ, yMax));
+    assert.ok(m.metrics.relative_Y_error < 0.024, `F2, reflective training, T2R: relative Y error ${m.metrics.relative_Y_error}`);
+    const nrmse = Array.from(m.metrics.metrics.NRMSE).reduce((a, b) => a + b) / 3;
+    assert.ok(nrmse < 0.013, `F2, reflective training, T2R: mean NRMSE ${nrmse} (Table 4, multi-shot: 1.3 %)`);
+  } finally {
+    maps?.delete();
+    del(ex.frames, ex.lens_cap, ex.flat);
+  }
+  throwsCode(assert, () => T.absoluteExample({ colour_training: 'printed' }), 'INVALID_ARGUMENT');
+  throwsCode(assert, () => T.absoluteExample({ illuminant: 'D1' }), 'UNKNOWN_ID');
+});

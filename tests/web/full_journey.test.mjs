@@ -91,6 +91,8 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await page.waitForFunction(() => /24 patches held out/.test(document.querySelector('#step-fit')?.textContent ?? ''));
     await page.click('#step-fit button.primary');
     await page.waitForSelector('#step-results:not([hidden]) table.compare', { timeout: 120000 });
+    // the rows stream in: wait for the run's summary line
+    await page.waitForFunction(() => /^3 of 3 fits in/.test(document.querySelector('#step-fit .fit-log li:last-child')?.textContent ?? ''), null, { timeout: 120000 });
     const held = await page.locator('#step-results table.compare tbody td[data-col="held-mean"]').allTextContents();
     assert.ok(held.length >= 3 && held.every((v) => Number.isFinite(Number(v))), `held-out means are numbers: ${held}`);
     const rows = await page.locator('#step-results table.compare tbody tr').count();

@@ -43,12 +43,20 @@ test('first screen: the example is sampled and fitted, engine in a worker, no co
     // Sampled: 24 patches of the Passport, with the example's preset corners.
     assert.equal(await page.evaluate(() => window.tristim.derived.sample?.ids.length), 24);
     assert.equal(await page.locator('#step-images .patch-table tbody tr').count(), 24);
-    // Fitted: one comparison row per default model, each with finite training and LOO errors.
+    // Fitted: every model × objective compared (refused rows are in the fit log), each row with
+    // finite training and LOO errors.
+    const total = T.listModels().filter((m) => !m.duplicate_of).length * T.listObjectives().length;
+    const n = await page.evaluate(() => window.tristim.session.results.length);
+    assert.match(await page.textContent('#step-fit .fit-log li:last-child'), new RegExp(`^${n} of ${total} fits in`));
     const rows = page.locator('#step-results table.compare tbody tr');
-    assert.equal(await rows.count(), 3);
-    for (const col of ['train-mean', 'loo-mean']) {
-      const v = (await page.locator(`#step-results table.compare tbody td[data-col="${col}"]`).allTextContents()).map(Number);
-      assert.ok(v.length === 3 && v.every((x) => Number.isFinite(x) && x >= 0), `${col}: ${v}`);
+    assert.ok(n > total / 2, `${n} of ${total} rows fitted`);
+    assert.equal(await rows.count(), n);
+    // (a model with as many terms as patches less one has no leave-one-out figure: '–')
+    const withLoo = await page.evaluate(() => window.tristim.session.results.filter((r) => r.fit.evaluation.has_loo).length);
+    assert.ok(withLoo > n - 5, `${withLoo} of ${n} rows have a leave-one-out figure`);
+    for (const [col, count] of [['train-mean', n], ['loo-mean', withLoo]]) {
+      const v = (await page.locator(`#step-results table.compare tbody td[data-col="${col}"]`).allTextContents()).map(Number).filter(Number.isFinite);
+      assert.ok(v.length === count && v.every((x) => x >= 0), `${col}: ${v}`);
     }
     // Every plot of the selected model has its data marks (24 patches).
     const need = { 'xy-arrows': 24, 'lab-a-L': 48, 'lab-C-L': 48, 'de2000-bars': 72, 'xyz-scatter': 72, 'swatch-pairs': 48 };
@@ -63,7 +71,7 @@ test('first screen: the example is sampled and fitted, engine in a worker, no co
     // The session holds the Recipe the selected fit was made with.
     const recipe = await page.evaluate(() => window.tristim.store.get('recipe'));
     assert.equal(recipe.sampling.layout.chart, 'passport');
-    assert.equal(recipe.characterisation.objective.method, 'ls');
+    assert.ok(T.listObjectives().some((o) => o.id === recipe.characterisation.objective.method), recipe.characterisation.objective.method);
     assert.equal(recipe.reference.illuminant, 'D50');
     await screenshot(page, 'first-screen');
     assert.deepEqual(b.problems, []);

@@ -11,6 +11,8 @@ async function fitMatrix(page) {
   await step(page, 'fit');
   const models = page.locator('#step-fit input[data-model]');
   for (let i = 0; i < await models.count(); i++) await models.nth(i).setChecked(await models.nth(i).getAttribute('data-model') === 'matrix-3x3');
+  const objs = page.locator('#step-fit input[data-objective]');
+  for (let i = 0; i < await objs.count(); i++) await objs.nth(i).setChecked(i === 0);
   await page.evaluate(() => document.querySelector('#step-fit .fit-log').replaceChildren());  // the run's lines only
   await page.click('#step-fit button.primary');
   // The fit log's summary line ("… fits in N s.") ends the run; no error next to the button.
@@ -52,3 +54,20 @@ for (const how of ['abort', 'uncaught']) {
     }
   });
 }
+
+test('a compare worker that dies is replaced, the page says so, and the next compare runs', async () => {
+  const b = await openPage();
+  try {
+    const { page } = b;
+    const size = await page.evaluate(() => window.tristim.views.fit.pool.size);
+    const code = await page.evaluate(() => window.tristim.views.fit.pool.clients[0].call('testCrash', { how: 'abort' }).then(() => 'OK', (e) => e.code));
+    assert.equal(code, 'ENGINE_CRASHED');
+    await page.waitForFunction(() => document.getElementById('engine-status').dataset.crashes === '1', null, { timeout: 30000 });
+    assert.match(await page.textContent('#engine-status'), /stopped .* restarted/);
+    assert.equal(await page.evaluate(() => window.tristim.views.fit.pool.clients.length), size, 'the dead worker was replaced');
+    await fitMatrix(page);
+    assert.deepEqual(b.problems.filter((p) => !/test: the module was made to abort/.test(p)), []);
+  } finally {
+    await b.close();
+  }
+});

@@ -5,11 +5,15 @@
 // example comes from the engine's virtual bracket camera.
 import { reply, coded } from '../lib/reply.js';
 import { renderLuminance, renderSource } from './render.js';
+import { handlers as sensitivities, chosenSensitivities } from './sensitivities_handlers.js';
 
 const free = (...hs) => { for (const h of hs.flat()) h?.delete?.(); };
 
 function abs(state) {
-  state.abs ??= { series: [], names: [], lensCap: [], flat: null, stimuli: null, fit: null, maps: null, regions: null };
+  state.abs ??= {};
+  state.abs.series ??= [];
+  state.abs.names ??= [];
+  state.abs.lensCap ??= [];
   return state.abs;
 }
 
@@ -42,6 +46,7 @@ function checkSeries(T, a, exposures) {
 }
 
 export const handlers = {
+  ...sensitivities,
   /// Decodes a bracketed series (several RAWs of one scene). Errors name the file: RAW decoding
   /// codes, FRAME_MISMATCH (another camera or size), MISSING_METADATA (no t or N: the rows are
   /// still returned so the page can ask for them, with `missing` set).
@@ -104,7 +109,11 @@ export const handlers = {
     const regionRows = a.stimuli.filter((s) => s.file);
     if (regionRows.length) throw coded(`${regionRows.length} rows name a RAW region (e.g. '${regionRows[0].file}'): this page takes per-patch R, G, B rows; sample the regions with \`tristim absolute fit\``, 'INVALID_ARGUMENT');
     progress(NaN, 'fitting eq (8) per channel across every exposure, then the colour matrix');
-    const fit = T.fitAbsolute({ ...options, stimuli: a.stimuli }, [], a.lensCap, a.flat ? [a.flat] : [], a.series);
+    // The sensitivities for A_R, A_G, A_B: an uploaded CSV or an estimate kept here, else a built-in camera.
+    const { sensitivities, ...rest } = options;
+    const given = chosenSensitivities(state, sensitivities);
+    const input = given ? { ...rest, camera: '', ssf: given.ssf, ssf_source: given.source } : rest;
+    const fit = T.fitAbsolute({ ...input, stimuli: a.stimuli }, [], a.lensCap, a.flat ? [a.flat] : [], a.series);
     a.fit = fit;
     clearResults(a);
     return reply(fit);
@@ -130,7 +139,12 @@ export const handlers = {
       const yMax = Math.max(...a.regions.map((r) => r.XYZ[1]));
       // eq (16): the white patch's chromaticity at the largest luminance of the scene
       const w = T.whiteGuarnera2018(white.XYZ, yMax);
-      figures = { ...a.maps.measure(a.regions, w), whiteId: a.whiteId, yMax };
+      // and per kind of cell: the chart's reflective colours, the equal-tristimulus ladder (ids E<Y>)
+      const ladder = (r) => /^E[\d.]/.test(r.id);
+      const parts = [['ColorChecker cells', a.regions.filter((r) => !ladder(r))], ['Equal-tristimulus ladder', a.regions.filter(ladder)]]
+        .filter(([, rs]) => rs.length && rs.length < a.regions.length)
+        .map(([label, rs]) => ({ label, count: rs.length, metrics: a.maps.measure(rs, w).metrics }));
+      figures = { ...a.maps.measure(a.regions, w), whiteId: a.whiteId, yMax, parts };
     }
     return reply({ summary: a.summary, ms, figures, ...renderAll(a, render) });
   },

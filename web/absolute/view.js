@@ -8,6 +8,7 @@ import { h, field, select, setOptions, showError, clearError, progressBar, fmt, 
 import { figure } from '../plots/common.js';
 import { oecfPlot } from '../plots/oecf.js';
 import { NO_VALUE_RGB } from './render.js';
+import { mountSensitivities } from './sensitivities.js';
 
 const MAPS = {
   viridis: { label: 'viridis', interp: () => globalThis.d3.interpolateViridis },
@@ -40,13 +41,30 @@ export function mount(section, app) {
   const flatInfo = h('span', { class: 'file-state' });
   const noiseInput = h('input', { type: 'number', min: 0, step: 'any', placeholder: '0', 'data-role': 'abs-noise' });
   const satInput = h('input', { type: 'number', min: 0, step: 'any', placeholder: 'measured', 'data-role': 'abs-saturation' });
-  const cameraSel = select([{ value: '', label: 'none (A_R = A_G = A_B)' }, ...(app.catalog?.cameras ?? []).map((c) => ({ value: c.id, label: c.name }))], '');
+  // Sensitivities for eq (7)'s areas: none, an uploaded CSV or an estimate ('@upload', '@estimate':
+  // held by the worker, see sensitivities.js), or a built-in camera (its id).
+  const builtIn = (app.catalog?.cameras ?? []).map((c) => ({ value: c.id, label: c.name }));
+  const givenSets = {};
+  const cameraOptions = () => [{ value: '', label: 'none (A_R = A_G = A_B)' },
+    ...Object.entries(givenSets).map(([k, label]) => ({ value: `@${k}`, label })), ...builtIn];
+  const cameraSel = select(cameraOptions(), '');
+  cameraSel.dataset.role = 'abs-camera';
+  const ssf = mountSensitivities(app, { onChoice: (which, label) => { givenSets[which] = label; setOptions(cameraSel, cameraOptions(), `@${which}`); } });
   // The colour matrix: the Guarnera2018-<transform> rows of the engine's model table.
   const transforms = (app.catalog?.models ?? []).filter((m) => m.id.startsWith('Guarnera2018-'))
     .map((m) => ({ value: m.id.slice('Guarnera2018-'.length), label: `${m.label} — ${m.reference}` }));
   const transformSel = select(transforms, 'T1');
   const fusionSel = select([{ value: 'weighted', label: 'weighted (every reliable exposure)' }, { value: 'recursive', label: 'Algorithm 1 (recursive selection)' }], 'weighted');
   const exampleBtn = h('button', { type: 'button', 'data-role': 'abs-example' }, 'Example (virtual camera)');
+  // The example's scene light and colour training. Projected colours (the paper's) leave a
+  // metameric floor under A and F2 for this camera; reflective colours under the scene's light
+  // with T2R meet Table 4 (tests/core/absolute/example_test.cpp).
+  const exLightSel = select([{ value: 'D65', label: 'D65' }, { value: 'A', label: 'A' }, { value: 'F2', label: 'F2' }], 'D65');
+  exLightSel.dataset.role = 'abs-example-light';
+  const exTrainingSel = select([{ value: 'projector', label: '24 projected ColorChecker colours (the paper\'s)' },
+    { value: 'reflective', label: 'reflective ColorChecker SG patches under the scene\'s light' }], 'projector');
+  exTrainingSel.dataset.role = 'abs-example-training';
+  exTrainingSel.addEventListener('change', () => { if (exTrainingSel.value === 'reflective' && transforms.some((t) => t.value === 'T2R')) transformSel.value = 'T2R'; });
   const fitBtn = h('button', { type: 'button', class: 'primary', 'data-role': 'abs-fit' }, 'Fit and measure the series');
   const progress = progressBar('Absolute');
 
@@ -58,9 +76,12 @@ export function mount(section, app) {
       h('div', {}, field('Flat field (RAW, optional)', flatInput, 'Evenly lit: the radial fall-off f(r) of eq (7)'), flatInfo),
       field('Noise floor n (DN, without lens cap)', noiseInput),
       field('Saturation S (DN)', satInput, 'Empty: measured from the frames (where the body clips)'),
-      field('Sensitivities for A_R, A_G, A_B', cameraSel, 'Eq (7) channel areas from built-in measured sensitivities'),
+      field('Sensitivities for A_R, A_G, A_B', cameraSel, 'Eq (7) channel areas: built-in measured sensitivities, or an upload or estimate (below)'),
+      h('div', { class: 'abs-ssf-box' }, ssf.el),
       field('Colour matrix', transformSel),
       field('Exposure fusion', fusionSel),
+      field('Example: light on the chart', exLightSel, 'The paper\'s booth lights'),
+      field('Example: colour training', exTrainingSel, 'Under A and F2 projected colours cannot meet Table 4 with this camera (metamerism); reflective colours under the scene\'s light with T2R do'),
       h('div', { class: 'buttons' }, exampleBtn, fitBtn)),
     progress.el);
   fitBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'abs-fit-error' });
@@ -75,6 +96,11 @@ export function mount(section, app) {
   const logBox = h('input', { type: 'checkbox', checked: true, 'data-role': 'abs-log' });
   const lumCanvas = h('canvas', { class: 'apply-img abs-map', 'data-role': 'abs-luminance', 'aria-label': 'Luminance Y in cd/m² (false colour)' });
   const srcCanvas = h('canvas', { class: 'apply-img abs-map', 'data-role': 'abs-source', 'aria-label': 'The exposure that served each pixel' });
+  // Cell labels over both maps (the measured cells, when they are known: the example's).
+  const SVG = 'http://www.w3.org/2000/svg';
+  const labelLayer = (role) => { const g = document.createElementNS(SVG, 'svg'); g.setAttribute('class', 'abs-labels'); g.dataset.role = role; g.setAttribute('aria-hidden', 'true'); return g; };
+  const lumLabels = labelLayer('abs-luminance-labels'), srcLabels = labelLayer('abs-source-labels');
+  const labelsBox = h('input', { type: 'checkbox', checked: true, 'data-role': 'abs-labels' });
   const lumLegend = h('div', { class: 'legend', 'data-role': 'abs-colourbar' });
   const srcLegend = h('div', { class: 'legend abs-source-legend', 'data-role': 'abs-source-legend' });
   const readout = h('output', { class: 'readout', 'data-role': 'abs-readout', 'aria-live': 'polite' }, 'Move the pointer over a map (or focus it and use the arrow keys) to read X, Y, Z in cd/m² and the exposure that served the pixel.');
@@ -94,11 +120,11 @@ export function mount(section, app) {
   });
   const maps = h('div', { class: 'abs-maps', hidden: true },
     h('div', { class: 'controls' }, field('Colour map', mapSel, 'Perceptually uniform, readable with colour-vision deficiencies'),
-      h('label', { class: 'check' }, logBox, ' log scale'), h('div', { class: 'buttons' }, tiffBtn, tiffBtn._errorSlot)),
+      h('label', { class: 'check' }, logBox, ' log scale'), h('label', { class: 'check' }, labelsBox, ' cell labels'), h('div', { class: 'buttons' }, tiffBtn, tiffBtn._errorSlot)),
     mapSummary, readout,
     h('div', { class: 'apply-images' },
-      h('figure', {}, lumCanvas, h('figcaption', {}, 'Luminance Y (cd/m²)'), lumLegend),
-      h('figure', {}, srcCanvas, h('figcaption', {}, 'Dominant exposure per pixel (largest reliability × t/N²)'), srcLegend)));
+      h('figure', {}, h('div', { class: 'abs-map-wrap' }, lumCanvas, lumLabels), h('figcaption', {}, 'Luminance Y (cd/m²)'), lumLegend),
+      h('figure', {}, h('div', { class: 'abs-map-wrap' }, srcCanvas, srcLabels), h('figcaption', {}, 'Dominant exposure per pixel (largest reliability × t/N²)'), srcLegend)));
   const figuresBox = h('div', { class: 'abs-figures', 'data-role': 'abs-figures' });
   section.append(fitSummary, oecfBox, maps, figuresBox);
 
@@ -146,6 +172,7 @@ export function mount(section, app) {
       const files = await readFiles(seriesInput);
       const r = await engine.call('absSeries', { files }, { transfer: files.map((f) => f.bytes), onProgress: progress.update });
       seriesRows(r.frames);
+      if (r.frames[0]) ssf.cameraHint(r.frames[0].make, r.frames[0].model);
       if (r.missing) showError(seriesInput, Object.assign(new Error(`${r.missing.message}: type it in the table`), { code: r.missing.code }), 'Series');
     } catch (e) { seriesRows([]); showError(seriesInput, e, 'Series'); } finally { progress.done(); }
   });
@@ -205,7 +232,8 @@ export function mount(section, app) {
     let stage = 'fit';
     try {
       progress.start('Fitting the absolute profile…');
-      const options = { camera: cameraSel.value, transform: transformSel.value, fusion: fusionSel.value,
+      const given = cameraSel.value.startsWith('@');
+      const options = { camera: given ? '' : cameraSel.value, sensitivities: given ? cameraSel.value.slice(1) : '', transform: transformSel.value, fusion: fusionSel.value,
         noise_floor: Number(noiseInput.value) || 0, saturation: Number(satInput.value) || 0 };
       const fit = await engine.call('absFit', { options }, { onProgress: progress.update });
       st.fit = fit;
@@ -233,7 +261,7 @@ export function mount(section, app) {
     fitBtn.disabled = exampleBtn.disabled = true;
     let ex;
     try {
-      ex = await engine.call('absExample', {}, { onProgress: progress.update });
+      ex = await engine.call('absExample', { options: { illuminant: exLightSel.value, colour_training: exTrainingSel.value } }, { onProgress: progress.update });
     } catch (e) { showError(exampleBtn, e, 'Example'); return null; } finally { progress.done(); fitBtn.disabled = exampleBtn.disabled = false; }
     for (const i of [seriesInput, stimuliInput, capInput, flatInput]) i.value = '';
     seriesRows(ex.frames);
@@ -241,9 +269,9 @@ export function mount(section, app) {
     capInfo.textContent = `${ex.lensCap.length} virtual lens-cap frames`;
     flatInfo.textContent = 'virtual flat field (equal-tristimulus light, 450 cd/m²)';
     noiseInput.value = ''; satInput.value = '';
-    setOptions(cameraSel, [...cameraSel.options].map((o) => ({ value: o.value, label: o.textContent })), ex.camera);
+    setOptions(cameraSel, cameraOptions(), ex.camera);
     if (!(await loadStimuli(ex.stimuliCsv, 'example-stimuli.csv'))) return null;
-    stimuliInfo.textContent += ` Scene: a ColorChecker under D65 (white ${num(ex.regions.find((r) => r.id === ex.whiteId).XYZ[1])} cd/m²) and 12 equal-tristimulus cells from 0.3 to 3000 cd/m², with their true X, Y, Z.`;
+    stimuliInfo.textContent += ` Scene: a ColorChecker under ${exLightSel.value} (white ${num(ex.regions.find((r) => r.id === ex.whiteId).XYZ[1])} cd/m²) and 12 equal-tristimulus cells from 0.3 to 3000 cd/m², with their true X, Y, Z.`;
     return run();
   }
   exampleBtn.addEventListener('click', example);
@@ -286,8 +314,33 @@ export function mount(section, app) {
     return [h('ul', { class: 'abs-legend-list' }, summary.labels.map((l, i) => h('li', {}, h('span', { class: 'abs-swatch', style: { background: exposureColour(i) } }), ` ${l}: ${pct(summary.dominant_pixels[i] / (summary.width * summary.height), 1)} of the pixels`)),
       h('li', {}, h('span', { class: 'abs-swatch', style: { background: `rgb(${NO_VALUE_RGB.join(',')})`, border: '1px solid #999' } }), ' none (no reliable value)'))];
   }
+  /// The known cells (id, x, y, w, h in image pixels) outlined and named over a map.
+  function drawLabels(svg, regions, width, height) {
+    svg.setAttribute('viewBox', `0 0 ${width} ${height}`);
+    svg.setAttribute('preserveAspectRatio', 'none');
+    svg.replaceChildren();
+    svg.style.display = regions?.length && labelsBox.checked ? '' : 'none';
+    for (const r of regions ?? []) {
+      const rect = document.createElementNS(SVG, 'rect');
+      for (const [k, v] of Object.entries({ x: r.x + 0.5, y: r.y + 0.5, width: r.w - 1, height: r.h - 1, fill: 'none', stroke: 'rgba(255,255,255,0.55)', 'stroke-width': 0.6 })) rect.setAttribute(k, v);
+      const t = document.createElementNS(SVG, 'text');
+      // small, in the cell's top-left corner: the colour of the cell's centre stays visible
+      const size = Math.max(3, Math.min(0.2 * r.h, (1.1 * r.w) / Math.max(2, r.id.length)));
+      for (const [k, v] of Object.entries({ x: r.x + 0.08 * r.w, y: r.y + 0.06 * r.h, 'font-size': size, 'text-anchor': 'start', 'dominant-baseline': 'hanging',
+        fill: '#fff', stroke: '#000', 'stroke-width': size / 6, 'paint-order': 'stroke', 'font-family': 'system-ui, sans-serif', 'font-weight': 600 })) t.setAttribute(k, v);
+      t.textContent = r.id;
+      svg.append(rect, t);
+    }
+  }
+  function showLabels() {
+    const s = st.shown?.summary;
+    if (!s) return;
+    for (const svg of [lumLabels, srcLabels]) drawLabels(svg, st.regions, s.width, s.height);
+  }
+  labelsBox.addEventListener('change', showLabels);
   function showMaps(out) {
     st.shown = out;
+    showLabels();
     draw(lumCanvas, out.luminance);
     draw(srcCanvas, out.source);
     lumLegend.replaceChildren(colourBar(out.luminance.range, out.luminance.log));
@@ -314,7 +367,10 @@ export function mount(section, app) {
   // ---- figures (section 4.1) ----
   function showFigures(fit, figures) {
     const cols = [['Training stimuli (fit)', fit.training, `white: E at ${num(fit.training.white[1])} cd/m²`]];
-    if (figures) cols.push([`Scene cells (${figures.ids.length}, measured vs true)`, figures.metrics, `white per eq (16): ${figures.whiteId} at ${num(figures.yMax)} cd/m²`]);
+    if (figures) {
+      cols.push([`Scene cells (${figures.ids.length}, measured vs true)`, figures.metrics, `white per eq (16): ${figures.whiteId} at ${num(figures.yMax)} cd/m²`]);
+      for (const p of figures.parts ?? []) cols.push([`${p.label} (${p.count})`, p.metrics, 'the same white']);
+    }
     const row = (label, f) => h('tr', {}, h('th', {}, label), cols.map(([, m]) => h('td', {}, f(m))));
     const s3 = (s) => `${s.mean.toFixed(2)} / ${s.median.toFixed(2)} / ${s.max.toFixed(2)}`;
     figuresBox.replaceChildren(h('h3', {}, 'Figures (Guarnera 2018 section 4.1)'),
@@ -370,6 +426,11 @@ export function mount(section, app) {
   }
 
   // A cancelled job restarts the worker: what it held is gone.
-  engine.addEventListener('restart', () => { st.shown = null; maps.hidden = true; });
-  return { run, example, read, seriesInput, stimuliInput, fitBtn, exampleBtn };
+  engine.addEventListener('restart', () => {
+    st.shown = null; maps.hidden = true;
+    for (const k of Object.keys(givenSets)) delete givenSets[k];
+    setOptions(cameraSel, cameraOptions(), cameraSel.value.startsWith('@') ? '' : cameraSel.value);
+    ssf.forget();
+  });
+  return { run, example, read, seriesInput, stimuliInput, fitBtn, exampleBtn, sensitivities: ssf };
 }

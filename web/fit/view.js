@@ -1,10 +1,12 @@
-// Step 3: pick any number of models x objectives and fit them in the worker, with progress and a
-// cancel button (which terminates the worker; the page re-sends the RAW bytes it keeps).
+// Step 3: pick any number of models x objectives (all of them by default: compare everything) and
+// fit them in a few workers side by side, with progress, a cancel button (which terminates those
+// workers) and the rows streaming into the results as each finishes.
 import { h, field, showError, clearError, progressBar, readText } from '../lib/ui.js';
 import { describe, FAMILIES, DEFAULT_MODELS } from './models/index.js';
 import { pairData } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
+import { WorkerPool } from './pool.js';
 
 export function mount(section, app) {
   const { engine } = app;
@@ -52,8 +54,8 @@ export function mount(section, app) {
   const heldClear = h('button', { type: 'button', hidden: true }, 'Remove');
   const heldField = field('Held-out chart (optional): camera RGB per patch, CSV or CGATS', heldInput,
     'Another photograph or chart, e.g. the CSV of `tristim sample`. Its X, Y, Z columns are used when present, otherwise its ids are paired with the reference. Every fit is also evaluated on it.');
-  const runBtn = h('button', { type: 'button', class: 'primary' }, 'Fit selected');
-  const cancelBtn = h('button', { type: 'button', disabled: true }, 'Cancel');
+  const runBtn = h('button', { type: 'button', class: 'primary' }, 'Fit and compare the selected');
+  const cancelBtn = h('button', { type: 'button', class: 'cancel', disabled: true }, 'Cancel');
   const progress = progressBar('Fitting');
   const log = h('ul', { class: 'fit-log', 'aria-live': 'polite' });
   const dataNote = h('p', { class: 'summary' });
@@ -122,15 +124,27 @@ export function mount(section, app) {
   heldClear.addEventListener('click', () => { heldInput.value = ''; setHeldOut(null); });
   if (app.session.heldOutFile) app.on('reference', function once() { if (!heldOut) setHeldOut(app.session.heldOutFile); });
 
+  // The rows run in a few workers of their own (pool.js), side by side; the engine's worker, which
+  // keeps the decoded images, is left alone, so Cancel stops the rows and nothing else.
+  const pool = new WorkerPool(Math.max(2, Math.min(8, navigator.hardwareConcurrency || 2)), {
+    onCrash: (reason) => {   // said on the page's status line, as for the engine's own worker
+      engine.crashes++;
+      engine.dispatchEvent(new CustomEvent('crashed', { detail: reason }));
+    },
+  });
+  pool.warm();
+  const nTerms = new Map(app.catalog.models.map((m) => [m.id, m.n_terms]));
   let running = false;
   cancelBtn.addEventListener('click', () => {
     if (!running) return;
-    engine.restart();    // pending calls reject with CANCELLED; images are re-sent on demand
-    log.append(h('li', {}, 'Cancelled; the colour engine was restarted.'));
+    pool.stop();   // the workers are terminated: the rows in flight stop now
   });
 
-  /// Fits every selected model x objective; returns the results (also kept in the session).
-  async function run() {
+  /// Fits every selected model x objective (each row with leave-one-out), spread over the pool's
+  /// workers; rows stream into the results as each one finishes. `onFirst()` runs once the first
+  /// row is in (the results step then shows it while the others run). Returns the results (also
+  /// kept in the session), the rows finished so far when cancelled, or null.
+  async function run({ onFirst } = {}) {
     clearError(runBtn);
     const data = describeData();
     if (!data) { showError(runBtn, new Error('no paired data yet: set the reference and sample the chart first'), 'Fit'); return null; }
@@ -141,59 +155,90 @@ export function mount(section, app) {
       showError(runBtn, Object.assign(new Error(`no sampled patch id (${some(s.ids)}) is in the reference (${some(r.ids)}): choose the chart layout or reference that belong together`), { code: 'PATCH_MISMATCH' }), 'Fit');
       return null;
     }
-    const jobs = [];
-    for (const mId of choice.models) for (const obj of choice.objectives) jobs.push({ mId, obj });
+    const jobs = rowOrder(choice.models, objectives.map((o) => o.id).filter((id) => choice.objectives.includes(id)), nTerms);
     if (!jobs.length) { showError(runBtn, Object.assign(new Error('choose at least one model and one objective'), { code: 'NOTHING_SELECTED' }), 'Fit'); return null; }
     running = true; runBtn.disabled = true; cancelBtn.disabled = false;
+    const total = jobs.length;
+    const say = (done) => {
+      progress.update({ fraction: done / total, stage: `${done} of ${total} rows (model × objective, each with leave-one-out) on ${pool.size} workers` });
+      app.emit('compare', { done, total, running });
+    };
     progress.start('Fitting…');
+    say(0);
     log.replaceChildren();
     const results = [];
     const ref = app.derived.reference;
+    const { source, settings, data_digest, ...reference } = ref;   // the engine's ReferenceChart
+    const { layout, homography, patches } = app.derived.sample;     // the engine's ChartSample
+    const sample = { layout, homography, patches };
     const t0 = performance.now();
+    let done = 0, autoKey = null, frame = 0, shownFirst = null;
+    // The results step redraws at most once per frame while rows arrive.
+    const stream = () => { frame ||= requestAnimationFrame(() => { frame = 0; app.emit('results', results); }); };
     try {
-      for (const [k, { mId, obj }] of jobs.entries()) {
+      const task = (client, job) => {
+        job.recipe = recipeFor(job.mId, job.obj, ref, data);
+        job.t1 = performance.now();
+        return client.call('fit', { recipe: job.recipe, sample, reference, heldOut });
+      };
+      const onRow = (job, { result: fit, error }) => {
+        const { mId, obj, recipe, t1 } = job;
+        done++;
         const m = models.find((x) => x.id === mId) ?? describe(mId);
         const label = `${m.label} · ${objectives.find((o) => o.id === obj)?.label ?? obj}`;
-        progress.update({ fraction: k / jobs.length, stage: `Fitting ${label} (${k + 1} of ${jobs.length})` });
-        const recipe = recipeFor(mId, obj, ref, data);
-        try {
-          const t1 = performance.now();
-          const { source, settings, data_digest, ...reference } = ref;   // the engine's ReferenceChart
-          const { layout, homography, patches } = app.derived.sample;     // the engine's ChartSample
-          const fit = await engine.call('fit', { recipe, sample: { layout, homography, patches }, reference, heldOut });
+        if (error) {
+          log.append(h('li', { class: 'error', dataset: { code: error.code } }, `${label}: ${error.message} (${error.code})`));
+        } else {
           results.push({ key: `${mId}|${obj}|${JSON.stringify(recipe.characterisation.objective)}`, modelId: mId, objective: obj, label,
             recipe: fit.recipe, white: fit.recipe.characterisation.lab_white, ids: fit.ids, rgb: fit.linear_RGB, xyz: fit.reference_XYZ,
             fit, heldOut: fit.held_out ?? null, referenceText: referenceText(ref), camera: cameraOf(app.derived.image?.metadata) });
           const { status, message } = fit.evaluation.fit;
           const joint = jointSurface(recipe.surface, ref.settings) ? `; surface fitted jointly (Phase II): ${choiceText(fit.surface)} (${fit.surface_status})` : '';
           log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}${joint}`));
-        } catch (e) {
-          if (e.code === 'CANCELLED') throw e;
-          log.append(h('li', { class: 'error', dataset: { code: e.code } }, `${label}: ${e.message} (${e.code})`));
         }
-      }
-      progress.update({ fraction: 1, stage: 'done' });
-      log.append(h('li', {}, `${results.length} of ${jobs.length} fits in ${((performance.now() - t0) / 1000).toFixed(2)} s.`));
+        // The first job's row (the default model) replaces the previous results and is shown; rows
+        // that end before it wait for it (or for its error), so the first plots are the default's.
+        const row = error ? null : results[results.length - 1];
+        if (!autoKey && (job === jobs[0] || shownFirst === false) && results.length) {
+          app.session.results = results;
+          app.session.selected = autoKey = (row && job === jobs[0] ? row : results[0]).key;
+          app.emit('results', results);
+          onFirst?.();
+        } else if (autoKey) stream();
+        if (job === jobs[0] && error) shownFirst = false;   // the default failed: show the next row to arrive
+        say(done);
+      };
+      // The first row alone, then the others: its plots are drawn before the long rows take the cores.
+      const finished = await pool.map(jobs.slice(0, 1), task, onRow) && await pool.map(jobs.slice(1), task, onRow);
+      running = false;
+      app.emit('compare', { done, total, running });
+      const seconds = ((performance.now() - t0) / 1000).toFixed(2);
+      progress.update({ fraction: done / total, stage: finished ? 'done' : `cancelled after ${done} of ${total} rows` });
+      log.append(h('li', {}, finished ? `${results.length} of ${total} fits in ${seconds} s.`
+        : `Cancelled after ${done} of ${total} rows (${seconds} s); the ${results.length} fitted rows are kept.`));
       if (results.length) {
+        cancelAnimationFrame(frame);
         await app.save('results', results);
-        const best = bestByLoo(results);
-        await app.save('selected', best.key);
-        await app.save('recipe', best.recipe);   // how the selected profile was made
+        // The best by leave-one-out is shown, unless another row was picked while the rows arrived.
+        const shown = app.session.selected === autoKey ? bestByLoo(results) : results.find((r) => r.key === app.session.selected) ?? bestByLoo(results);
+        await app.save('selected', shown.key);
+        await app.save('recipe', shown.recipe);   // how the selected profile was made
         app.mark('fit', 'done');
         app.emit('results', results);
-      } else if (jobs.length) {
+      } else if (finished) {
         showError(runBtn, Object.assign(new Error('no fit succeeded; see the list below'), { code: 'FIT_FAILED' }), 'Fit');
       }
-      return results;
+      return results.length || finished ? results : null;
     } catch (e) {
-      if (e.code !== 'CANCELLED') showError(runBtn, e, 'Fit');
+      showError(runBtn, e, 'Fit');
       return null;
     } finally {
+      if (running) app.emit('compare', { done, total, running: false });
       running = false; runBtn.disabled = false; cancelBtn.disabled = true;
       progress.done();
     }
   }
-  runBtn.addEventListener('click', async () => { if ((await run())?.length) app.goto('results'); });
+  runBtn.addEventListener('click', () => { run({ onFirst: () => app.goto('results') }); });
 
   /// The recipe of one fit: every setting of steps 1–3 that decides the profile.
   function recipeFor(model, objective, ref, data) {
@@ -220,13 +265,13 @@ export function mount(section, app) {
     };
   }
 
-  /// First visit: fit the default models with the first objective, then show the results.
-  async function runDefault() {
+  /// First visit: compare everything; `onFirst` runs when the first row is shown.
+  async function runDefault({ onFirst } = {}) {
     if (!app.derived.sample || !app.derived.reference) return null;
-    return run();
+    return run({ onFirst });
   }
   describeData();
-  return { run, runDefault, cancel: () => cancelBtn.click(), runBtn };
+  return { run, runDefault, cancel: () => cancelBtn.click(), runBtn, pool };
 }
 
 /// True when the surface stage is fitted in the fit step (Phase II, a built-in chart only).
@@ -271,8 +316,22 @@ function toggle(list, v, on) {
   if (!on && i >= 0) list.splice(i, 1);
 }
 
+/// A fresh session compares everything: every model (duplicates of another's span left out, as
+/// in `tristim compare`) with every objective.
 function defaultChoice(models, objectives) {
-  const picked = DEFAULT_MODELS.filter((id) => models.some((m) => m.id === id));
-  for (const m of models) if (picked.length < 3 && !picked.includes(m.id)) picked.push(m.id);
-  return { models: picked, objectives: [objectives[0].id], excludeSaturated: true, excludeAllFlagged: false, preserveWhite: false };
+  return { models: models.filter((m) => !m.duplicate_of).map((m) => m.id), objectives: objectives.map((o) => o.id),
+    excludeSaturated: true, excludeAllFlagged: false, preserveWhite: false };
+}
+
+/// The rows (model × objective) in the order they are handed to the workers: first the first
+/// default model with the first objective (the first screen shows it while the others run), then
+/// the most expensive first — terms × objective weight (least squares has a closed-form
+/// leave-one-out; the iterative objectives refit once per fold) — so the last rows are short ones
+/// and the workers finish together.
+export function rowOrder(modelIds, objectiveIds, nTerms) {
+  const weight = { ls: 1, psm: 4, de2000: 10 };
+  const cost = (j) => (nTerms.get(j.mId) ?? 10) * (weight[j.obj] ?? 10);
+  const jobs = modelIds.flatMap((mId) => objectiveIds.map((obj) => ({ mId, obj })));
+  const first = DEFAULT_MODELS.map((id) => jobs.find((j) => j.mId === id && j.obj === objectiveIds[0])).find(Boolean);
+  return [...(first ? [first] : []), ...jobs.filter((j) => j !== first).sort((a, b) => cost(b) - cost(a))];
 }

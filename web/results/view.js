@@ -15,22 +15,34 @@ export function mount(section, app) {
   const tableBox = h('div', { class: 'table-box' });
   const detail = h('div', { class: 'result-detail' });
   const empty = h('p', { class: 'summary' }, 'No fitted model yet: pick models in step 3 and fit them.');
-  section.append(empty, tableBox, detail);
+  // While step 3 compares, rows stream in: how many are done, and a Cancel (step 3's).
+  const compareText = h('span', {});
+  const compareCancel = h('button', { type: 'button', onclick: () => app.views.fit.cancel() }, 'Cancel');
+  const compareNote = h('p', { class: 'summary compare-progress', role: 'status', hidden: true }, compareText, ' ', compareCancel);
+  app.on('compare', ({ done, total, running }) => {
+    compareNote.hidden = !running;
+    compareText.textContent = `Comparing every model × objective: ${done} of ${total} rows done; the table fills as they finish.`;
+  });
+  section.append(empty, compareNote, tableBox, detail);
   let sort = { key: 'loo-mean', dir: 1 };
+  let shown = null;   // the result whose plots are drawn (redrawn only when it or the reference changes)
 
-  function refresh() {
+  function refresh({ redraw = false } = {}) {
     const results = app.session.results ?? [];
     empty.hidden = results.length > 0;
-    if (!results.length) { tableBox.replaceChildren(); detail.replaceChildren(); return; }
+    if (!results.length) { tableBox.replaceChildren(); detail.replaceChildren(); shown = null; return; }
     const selected = results.find((r) => r.key === app.session.selected) ?? results[0];
     tableBox.replaceChildren(comparisonTable(results, selected));
-    renderDetail(selected);
+    if (redraw || selected !== shown) renderDetail(selected);
+    shown = selected;
     app.mark('results', 'done');
   }
 
   function comparisonTable(results, selected) {
     const col = COLUMNS.find((c) => c.key === sort.key);
     const val = (r) => (col ? metric(r, col.set, col.stat) : 0);
+    const loo = (r) => metric(r, 'loo', 'mean');
+    const best = results.reduce((a, b) => (Number.isFinite(loo(b)) && !(loo(a) <= loo(b)) ? b : a), results[0]);
     const rows = [...results].sort((a, b) => {
       const va = val(a), vb = val(b);
       if (!Number.isFinite(va)) return 1;
@@ -44,8 +56,8 @@ export function mount(section, app) {
     return h('table', { class: 'compare' },
       h('caption', {}, 'CIEDE2000 errors of every fitted model (lower is better). Leave-one-out: each patch predicted by a fit made without it — the honest estimate for colours the model was not trained on. Held-out chart: a second chart the fit never saw (– when none was given). Click a heading to sort.'),
       h('thead', {}, h('tr', {}, h('th', { scope: 'col' }, 'Model · objective'), COLUMNS.map(th), h('th', { scope: 'col' }, 'status'), h('th', { scope: 'col' }, 'show'))),
-      h('tbody', {}, rows.map((r) => h('tr', { class: r === selected ? 'selected' : '', dataset: { key: r.key } },
-        h('th', { scope: 'row' }, r.label),
+      h('tbody', {}, rows.map((r) => h('tr', { class: [r === selected ? 'selected' : '', r === best && Number.isFinite(loo(r)) ? 'best' : ''].join(' ').trim(), dataset: { key: r.key } },
+        h('th', { scope: 'row' }, r.label, r === best && Number.isFinite(loo(r)) ? h('small', { class: 'best-mark', title: 'the lowest leave-one-out mean CIEDE2000' }, ' best') : null),
         COLUMNS.map((c) => h('td', { dataset: { col: c.key } }, fmt(metric(r, c.set, c.stat)))),
         h('td', {}, `${r.fit.evaluation.fit.status}${r.fit.evaluation.fit.message ? ': ' + r.fit.evaluation.fit.message : ''}`),
         h('td', {}, h('button', { type: 'button', 'aria-pressed': String(r === selected), 'aria-label': `Show the plots of ${r.label}`, onclick: () => { app.save('selected', r.key); refresh(); } }, r === selected ? 'shown' : 'show'))))));
@@ -97,8 +109,8 @@ export function mount(section, app) {
     detail.replaceChildren(...parts);
   }
 
-  app.on('results', refresh);
-  app.on('reference', () => { if (app.session.results?.length) refresh(); });
+  app.on('results', () => refresh());
+  app.on('reference', () => { if (app.session.results?.length) refresh({ redraw: true }); });
   /// A line shown while there is nothing to show yet (e.g. the example being fitted).
   const setStatus = (text) => { empty.textContent = text; };
   return { refresh, setStatus };

@@ -2,6 +2,7 @@
 // tristim/absolute/example.hpp).
 #include "tristim/absolute/example.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "tristim/chart/reference.hpp"
@@ -27,11 +28,36 @@ void add_column(SpectralData& to, const SpectralData& from, size_t k, const std:
   to.names.push_back(name);
 }
 
+
 }  // namespace
+
+// The ColorChecker SG patches whose reflectance differs from every ColorChecker Classic patch
+// (spectral RMS difference > 0.03): training colours that are not the test colours.
+SpectralData sg_unlike_classic() {
+  const SpectralData sg = chart_reflectances("sg140"), cc = align_spectra(chart_reflectances("cc24"), sg.wavelengths);
+  SpectralData keep;
+  keep.wavelengths = sg.wavelengths;
+  for (size_t k = 0; k < sg.size(); ++k) {
+    double nearest = 1e9;
+    for (const auto& c : cc.values) {
+      double ss = 0;
+      for (size_t i = 0; i < c.size(); ++i) ss += (c[i] - sg.values[k][i]) * (c[i] - sg.values[k][i]);
+      nearest = std::min(nearest, std::sqrt(ss / c.size()));
+    }
+    if (nearest > 0.03) {
+      keep.names.push_back(sg.names[k]);
+      keep.values.push_back(sg.values[k]);
+    }
+  }
+  return keep;
+}
 
 AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
   if (o.cell < 8) throw Error(ErrorCode::InvalidArgument, "example: cells need at least 8 pixels");
   if (!(o.white_luminance > 0)) throw Error(ErrorCode::InvalidArgument, "example: the white luminance must be positive");
+  if (o.colour_training != "projector" && o.colour_training != "reflective")
+    throw Error(ErrorCode::InvalidArgument, "example: colour training is 'projector' or 'reflective', not '" + o.colour_training + "'");
+  const SpectralData light = illuminant_spd(o.illuminant);  // UnknownId for an illuminant that is not built in
   AbsoluteExample ex;
   ex.camera = o.camera;
   ex.sensor.ssf = camera_ssf(o.camera);
@@ -41,9 +67,9 @@ AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
   const ExposureSettings mid = ex.bracket[2];
   std::uint64_t seed = o.seed * 100000;
 
-  // The scene: 24 ColorChecker patches under D65, then a 12-step ladder of equal-tristimulus light.
+  // The scene: 24 ColorChecker patches under the light, then a 12-step ladder of equal-tristimulus light.
   const SpectralData refl = chart_reflectances("cc24");
-  const SpectralData cc = reflected_spectra(refl, illuminant_spd("D65"));
+  const SpectralData cc = reflected_spectra(refl, light);
   const SpectralData E = projector_spectra({Vec3(1, 1, 1)}, {"E"});
   size_t white = 0;
   for (size_t k = 1; k < cc.size(); ++k)
@@ -104,6 +130,21 @@ AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
       keep(sample_stimulus(f, rx, ry, 8, 8, n, ex.bracket[e], Vec3(Y, Y, Y),
                            "Y" + std::to_string(static_cast<int>(Y)) + "@" + std::to_string(e + 1)));
     }
+  }
+  if (o.colour_training == "reflective") {
+    // Reflective colours under the scene's light (ColorChecker SG patches unlike the Classic's),
+    // the brightest at 700 cd/m², each photographed at the middle exposure.
+    const SpectralData sg = reflected_spectra(sg_unlike_classic(), light);
+    double top = 0;
+    for (size_t k = 0; k < sg.size(); ++k) top = std::max(top, luminance_sum(sg, k));
+    for (size_t k = 0; k < sg.size(); ++k) {
+      VirtualScene s = uniform_scene(W, H, sg, 700.0 * luminance_sum(sg, k) / top);
+      s.stimuli.values = {sg.values[k]};
+      s.stimuli.names = {sg.names[k]};
+      const RawImage f = capture_virtual(ex.sensor, s, mid, seed++);
+      keep(sample_stimulus(f, rx, ry, 8, 8, n, mid, virtual_XYZ(ex.sensor, s, 0), "colour SG " + sg.names[k], false));
+    }
+    return ex;
   }
   const ReferenceChart ref = reference_chart("cc24", "D65");
   std::vector<Vec3> targets;

@@ -7,7 +7,7 @@
 #include <limits>
 #include <numeric>
 
-#include "large_buffer.hpp"
+#include "../large_buffer.hpp"
 #include "tristim/error.hpp"
 
 namespace tristim {

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "large_buffer.hpp"
+#include "../large_buffer.hpp"
 #include "tristim/error.hpp"
 
 namespace tristim {

@@ -9,6 +9,7 @@
 
 #include "tristim/absolute/normalisation.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/patch_files.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
 namespace tristim {
@@ -121,6 +122,34 @@ SensitivityEstimate estimate_sensitivities_Jiang2013(const std::vector<Vec3>& rg
     for (auto& x : v) x /= peak;
   out.areas = channel_areas(out.ssf);
   return out;
+}
+
+SensitivityEstimate estimate_sensitivities_by_id(const std::vector<std::string>& ids, const std::vector<Vec3>& rgb,
+                                                 const SpectralData& reflectances, const SpectralData& illuminant,
+                                                 const SensitivityOptions& o) {
+  if (ids.size() != rgb.size())
+    throw Error(ErrorCode::PatchMismatch, std::to_string(ids.size()) + " patch ids but " + std::to_string(rgb.size()) +
+                                              " camera RGB rows");
+  std::vector<std::string> names;
+  for (const auto& n : reflectances.names) names.push_back(normalise_patch_id(n));
+  SpectralData paired;
+  paired.wavelengths = reflectances.wavelengths;
+  paired.linear = reflectances.linear;
+  std::vector<Vec3> camera_RGB;
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const auto k = std::find(names.begin(), names.end(), normalise_patch_id(ids[i]));
+    if (k == names.end()) continue;
+    paired.names.push_back(ids[i]);
+    paired.values.push_back(reflectances.values[k - names.begin()]);
+    camera_RGB.push_back(rgb[i]);
+  }
+  if (camera_RGB.empty())
+    throw Error(ErrorCode::PatchMismatch, "no camera RGB patch id matches a reflectance (" +
+                                              (ids.empty() ? std::string("no patches") : "e.g. '" + ids[0] + "'") + ")");
+  SensitivityEstimate e = estimate_sensitivities_Jiang2013(camera_RGB, paired, illuminant, o);
+  e.ids = paired.names;
+  e.unpaired = static_cast<int>(ids.size() - camera_RGB.size());
+  return e;
 }
 
 double sensitivity_rms(const SpectralData& a, const SpectralData& b) {

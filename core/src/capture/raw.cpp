@@ -6,13 +6,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <memory>
+#include <new>
 #include <sstream>
 
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/json.hpp"
+#include "../large_buffer.hpp"
 
 namespace tristim {
 
@@ -68,15 +71,66 @@ std::string format_timestamp(std::int64_t t) {
   return buf;
 }
 
+/// A LibRaw object is large (about 0.75 MB, plus 0.28 MB of tables it allocates itself), and
+/// identify() and unpack() write most of it. Fresh memory costs a page fault per 4 KB: a few ms per
+/// file on some VMs, and most of the RAW fuzzer's time under AddressSanitizer, which maps every
+/// large allocation anew. So each thread keeps the storage of its last LibRaw and constructs the
+/// next one in it. The object is still constructed and destroyed as usual, on storage zeroed
+/// first (as fresh pages are: LibRaw leaves some members, e.g. its IFD table, to identify()), so
+/// nothing carries over from one file to the next.
+class LibRawStorage {
+ public:
+  ~LibRawStorage() { ::operator delete(block_); }
+  void* acquire() {
+    if (busy_) return nullptr;  // a second LibRaw alive on this thread: it gets fresh memory
+    if (block_ == nullptr) block_ = ::operator new(sizeof(LibRaw));
+    std::memset(block_, 0, sizeof(LibRaw));
+    busy_ = true;
+    return block_;
+  }
+  bool owns(const void* p) const { return p == block_ && busy_; }
+  void release() { busy_ = false; }
+
+ private:
+  void* block_ = nullptr;
+  bool busy_ = false;
+};
+
+thread_local LibRawStorage libraw_storage;
+
+struct LibRawDelete {
+  void operator()(LibRaw* p) const {
+    if (libraw_storage.owns(p)) {
+      p->~LibRaw();
+      libraw_storage.release();
+    } else {
+      delete p;
+    }
+  }
+};
+using LibRawPtr = std::unique_ptr<LibRaw, LibRawDelete>;
+
+LibRawPtr make_libraw() {
+  if (void* block = libraw_storage.acquire()) {
+    try {
+      return LibRawPtr(new (block) LibRaw(LIBRAW_OPTIONS_NONE));
+    } catch (...) {
+      libraw_storage.release();
+      throw;
+    }
+  }
+  return LibRawPtr(new LibRaw(LIBRAW_OPTIONS_NONE));
+}
+
 /// Opens the buffer (and unpacks when `unpack`), with our size limits. The buffer must outlive
 /// the returned processor until unpack is done.
-std::unique_ptr<LibRaw> open_and_unpack(const std::uint8_t* data, std::size_t size,
+LibRawPtr open_and_unpack(const std::uint8_t* data, std::size_t size,
                                         const DecodeOptions& options, bool unpack) {
   if (size == 0 || data == nullptr) throw Error(ErrorCode::EmptyFile, "the RAW file is empty (0 bytes)");
   if (size < 64)
     throw Error(ErrorCode::RawUnsupported,
                 "the file is only " + std::to_string(size) + " bytes: not a RAW file");
-  auto proc = std::make_unique<LibRaw>(LIBRAW_OPTIONS_NONE);
+  LibRawPtr proc = make_libraw();
   // LibRaw's own allocation limit, aligned with ours (bytes of the raw raster, MB).
   // (8 bytes per pixel covers 4-channel linear DNGs; Bayer rasters need 2.)
   proc->imgdata.params.max_raw_memory_mb =
@@ -285,8 +339,8 @@ RawImage build_image(LibRaw& p, const DecodeOptions& options) {
   if (img.width < 1 || img.height < 1)
     throw Error(ErrorCode::RawCorrupt, "the RAW image is smaller than one CFA block");
   const size_t npix = static_cast<size_t>(img.width) * img.height;
-  img.rgb.assign(npix * 3, 0.0f);
-  img.saturated.assign(npix, 0);
+  detail::assign_large(img.rgb, npix * 3, 0.0f);  // huge pages natively: first touch is the cost
+  detail::assign_large(img.saturated, npix, std::uint8_t{0});
 
   // Black and saturation per channel, reported in metadata (means over the CFA repeat).
   std::array<double, 3> bsum{}, bcount{};
@@ -427,7 +481,7 @@ RawImage decode_raw(const std::uint8_t* data, std::size_t size, const DecodeOpti
 
 bool libraw_identifies(const std::uint8_t* data, std::size_t size, int* raw_width, int* raw_height) {
   if (data == nullptr || size < 64) return false;
-  auto proc = std::make_unique<LibRaw>(LIBRAW_OPTIONS_NONE);  // large: not on the (wasm) stack
+  LibRawPtr proc = make_libraw();  // large: not on the (wasm) stack
   if (proc->open_buffer(const_cast<std::uint8_t*>(data), size) != LIBRAW_SUCCESS) return false;
   if (raw_width) *raw_width = proc->imgdata.sizes.raw_width;
   if (raw_height) *raw_height = proc->imgdata.sizes.raw_height;

@@ -25,6 +25,7 @@
 #include "absolute_bench.hpp"
 #include "matrix_floor.hpp"
 #include "test_support.hpp"
+#include "tristim/absolute/example.hpp"
 #include "tristim/absolute/profile.hpp"
 
 using namespace tristim;
@@ -105,21 +106,7 @@ std::vector<double> luminances_up_to(const SpectralData& spectra, double top) {
 /// The colour module trained on the ColorChecker SG patches unlike every ColorChecker Classic
 /// patch (spectral RMS difference > 0.03), under `illuminant`, photographed at 1/60 s f/8.
 Model colour_from_sg(const test::AbsoluteBench& b, const std::string& illuminant, const std::string& transform) {
-  const SpectralData sg = chart_reflectances("sg140"), cc = align_spectra(chart_reflectances("cc24"), sg.wavelengths);
-  SpectralData keep;
-  keep.wavelengths = sg.wavelengths;
-  for (size_t k = 0; k < sg.size(); ++k) {
-    double nearest = 1e9;
-    for (const auto& c : cc.values) {
-      double ss = 0;
-      for (size_t i = 0; i < c.size(); ++i) ss += (c[i] - sg.values[k][i]) * (c[i] - sg.values[k][i]);
-      nearest = std::min(nearest, std::sqrt(ss / c.size()));
-    }
-    if (nearest > 0.03) {
-      keep.names.push_back(sg.names[k]);
-      keep.values.push_back(sg.values[k]);
-    }
-  }
+  const SpectralData keep = sg_unlike_classic();
   const SpectralData spectra = reflected_spectra(keep, illuminant_spd(illuminant));
   const test::GridScene g = test::grid_scene(b.sensor, spectra, luminances_up_to(spectra, 600), 14, 16);
   const AbsoluteProfile p = test::profile_for(b, g.scene.width, g.scene.height);

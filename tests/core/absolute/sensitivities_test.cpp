@@ -85,3 +85,29 @@ TEST_CASE("absolute: sensitivity estimation refuses bad input with codes", "[abs
   std::vector<Vec3> dark(rgb.size(), Vec3(0.1, 0, 0.1));
   test::require_code([&] { estimate_sensitivities_Jiang2013(dark, refl, d65); }, ErrorCode::InvalidArgument);
 }
+
+TEST_CASE("absolute: sensitivities paired by patch id (rows in any order, extra rows left out)", "[absolute][sensitivities]") {
+  const SpectralData refl = chart_reflectances("cc24");
+  const SpectralData d65 = illuminant_spd("D65");
+  const auto rgb = simulate_camera_RGB(camera_ssf("Nikon_D850"), refl, d65);
+  const SensitivityEstimate direct = estimate_sensitivities_Jiang2013(rgb, refl, d65);
+  // Reversed rows, ids written with a leading zero ("A01"), plus one id no reflectance has.
+  std::vector<std::string> ids;
+  std::vector<Vec3> rows;
+  for (size_t i = refl.names.size(); i-- > 0;) {
+    std::string id = refl.names[i];
+    if (id.size() == 2) id = id.substr(0, 1) + "0" + id.substr(1);
+    ids.push_back(id);
+    rows.push_back(rgb[i]);
+  }
+  ids.push_back("Z99");
+  rows.push_back(Vec3(1, 1, 1));
+  const SensitivityEstimate e = estimate_sensitivities_by_id(ids, rows, refl, d65);
+  CHECK(e.patches == static_cast<int>(refl.names.size()));
+  CHECK(e.unpaired == 1);
+  REQUIRE(e.ids.size() == refl.names.size());
+  CHECK(e.ids.front() == ids.front());
+  CHECK(sensitivity_rms(e.ssf, direct.ssf) < 1e-9);
+  test::require_code([&] { estimate_sensitivities_by_id({"A1"}, rows, refl, d65); }, ErrorCode::PatchMismatch);
+  test::require_code([&] { estimate_sensitivities_by_id({"Z98", "Z99"}, {rows[0], rows[1]}, refl, d65); }, ErrorCode::PatchMismatch);
+}

@@ -16,5 +16,5 @@ export function describe(model) {
   return { id: m.id, label: m.label ?? m.id, family: d.family, about: m.reference ?? d.about, duplicate_of: m.duplicate_of ?? '' };
 }
 
-/// The models a fresh session fits: these ids when the engine has them, else the first three.
+/// The model a fresh session shows first (the first of these the engine has) while the compare runs.
 export const DEFAULT_MODELS = ['matrix-3x3', 'Finlayson2015-2', 'Shen2008'];

@@ -6,8 +6,12 @@
 //  * training stimuli, sampled per patch (centre of the frame): the luminance set (equal-
 //    tristimulus projector light 0-890 cd/m² in 30 cd/m² steps at every exposure of the bracket)
 //    and the colour set (the 24 ColorChecker colours projected, white 700 cd/m², at the middle
-//    exposure); stimuli with a channel in the saturated zone are left out, as a user would;
-//  * the scene: a 6 × 6 grid of cells — rows 1-4 a ColorChecker under D65 (white patch at
+//    exposure — the paper's training; or, with colour_training "reflective", the ColorChecker SG
+//    patches unlike the Classic's under the scene's light, brightest 700 cd/m²: with this camera
+//    only such training meets Table 4 under A and F2, since projector light of three primaries
+//    leaves a metameric floor above it); stimuli with a channel in the saturated zone are left
+//    out, as a user would;
+//  * the scene: a 6 × 6 grid of cells — rows 1-4 a ColorChecker under `illuminant` (white patch at
 //    `white_luminance`), rows 5-6 a ladder of 12 equal-tristimulus cells from 0.3 to 3000 cd/m²
 //    (four decades; log-spaced) — photographed at every exposure of the bracket
 //    (1/250 … 1/15 s, f/8, ISO 100, one-stop steps);
@@ -29,6 +33,8 @@ struct AbsoluteExampleOptions {
   std::string camera = "Canon_EOS_5D_Mark_II";  ///< built-in sensitivities (camera_names())
   int cell = 32;                 ///< cell size of the scene grid, measurement pixels (≥ 8)
   double white_luminance = 600;  ///< Y of the ColorChecker's white patch, cd/m²
+  std::string illuminant = "D65";           ///< the light on the scene's ColorChecker (built-in id: D65, A, F2, …)
+  std::string colour_training = "projector";  ///< "projector" (24 projected ColorChecker colours) | "reflective"
   std::uint64_t seed = 1;
 };
 
@@ -51,8 +57,12 @@ struct AbsoluteExample {
   std::string white_id;                     ///< the ColorChecker's white patch (eq 16)
 };
 
-/// Generates the example. Error(UnknownId) for a camera that is not built in;
-/// InvalidArgument for a cell < 8 pixels or a non-positive white luminance.
+/// Generates the example. Error(UnknownId) for a camera or illuminant that is not built in;
+/// InvalidArgument for a cell < 8 pixels, a non-positive white luminance or another colour training.
+/// The ColorChecker SG patches whose reflectance differs from every ColorChecker Classic patch
+/// (spectral RMS difference > 0.03): reflective training colours that are not the test colours.
+SpectralData sg_unlike_classic();
+
 AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& options = {});
 
 }  // namespace tristim

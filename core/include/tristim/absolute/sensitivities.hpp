@@ -36,6 +36,8 @@ struct SensitivityEstimate {
   int patches = 0, components = 0, basis_cameras = 0;
   std::array<double, 3> areas{};  ///< A_R, A_G, A_B of the estimate (channel_areas)
   int clipped = 0;             ///< samples set to 0 because the solve went negative
+  std::vector<std::string> ids;  ///< the patches used, in order (estimate_sensitivities_by_id)
+  int unpaired = 0;            ///< camera RGB rows without a reflectance of the same id (by_id)
 };
 
 /// Estimates the sensitivities from linear camera RGB (N patches, black-subtracted, no white
@@ -47,6 +49,17 @@ SensitivityEstimate estimate_sensitivities_Jiang2013(const std::vector<Vec3>& ca
                                                      const SpectralData& reflectances,
                                                      const SpectralData& illuminant,
                                                      const SensitivityOptions& options = {});
+
+/// Pairs per-patch camera RGB (`ids`, one per row) with the reflectance columns of the same
+/// patch id (compared after normalise_patch_id: "A01" = "A1"), then
+/// estimate_sensitivities_Jiang2013 on the pairs. Rows without a reflectance are left out and
+/// counted in `unpaired`. Errors: PatchMismatch (ids and rows differ in count, or no id pairs),
+/// and those of estimate_sensitivities_Jiang2013.
+SensitivityEstimate estimate_sensitivities_by_id(const std::vector<std::string>& ids,
+                                                 const std::vector<Vec3>& camera_RGB,
+                                                 const SpectralData& reflectances,
+                                                 const SpectralData& illuminant,
+                                                 const SensitivityOptions& options = {});
 
 /// RMS difference of two sets of sensitivities with each channel scaled to peak 1, over the
 /// common 5 nm grid of `a` (b interpolated): how well the shapes agree.

@@ -1,0 +1,26 @@
+// Declarations: camera spectral sensitivities for eq (7)'s channel areas A_R, A_G, A_B (Guarnera
+// 2018) — a built-in camera's curves, a CSV read by the core's parser, the Jiang 2013 estimate
+// from per-patch camera RGB paired by id with reflectances under an illuminant, the comparison of
+// two sets (RMS with each channel at peak 1; areas) and the CSV the CLI writes.
+#include "tristim/absolute/normalisation.hpp"
+#include "tristim/absolute/sensitivities.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+#include "types.hpp"
+
+using namespace tristim;
+using emscripten::value_object;
+using wasm::def;
+
+EMSCRIPTEN_BINDINGS(tristim_sensitivities) {
+  { using S = SensitivityOptions; value_object<S>("SensitivityOptions") FIELD(components) FIELD(smoothness) FIELD(exclude_cameras); }
+  { using S = SensitivityEstimate; value_object<S>("SensitivityEstimate") FIELD(ssf) FIELD(residual) FIELD(residual_rms)
+      FIELD(patches) FIELD(components) FIELD(basis_cameras) FIELD(areas) FIELD(clipped) FIELD(ids) FIELD(unpaired); }
+
+  def<&camera_ssf>("cameraSensitivities");
+  def<&read_ssf_csv>("readSensitivitiesCsv");
+  def<&illuminant_spd>("illuminantSpectrum");
+  def<&estimate_sensitivities_by_id>("estimateSensitivities");
+  def<&sensitivity_rms>("sensitivityRms");
+  def<&channel_areas>("channelAreas");
+  def<&sensitivities_to_csv>("sensitivitiesToCsv");
+}
