@@ -12,6 +12,8 @@
 //                                detection works on a downsampled image; the same scenes otherwise)
 //                  [--pairs]    (two charts per image instead: one of 10-30 % of the frame, any
 //                                layout, and a Classic or SG of 3-6 %; both must be reported)
+//                  [--dump]     (every candidate's corners and confidence per scene, one line each:
+//                                to compare two builds of the detector exactly, e.g. with diff)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,6 +31,16 @@
 using namespace tristim;
 
 namespace {
+
+// "DUMP <scene> <chart> x1 y1 ... x4 y4 <confidence> <gap>" per candidate, or "DUMP <scene> none".
+void dump(int scene, const std::vector<ChartCandidate>& cands) {
+  if (cands.empty()) std::printf("DUMP %d none\n", scene);
+  for (const auto& c : cands) {
+    std::printf("DUMP %d %s", scene, c.chart.c_str());
+    for (double v : c.corners) std::printf(" %.6f", v);
+    std::printf(" %.6f %.6f\n", c.confidence, c.gap);
+  }
+}
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return NAN;
@@ -58,7 +70,8 @@ void write_ppm(const std::string& path, const ChartScene& s) {
 
 // Two charts per scene (random_two_chart_scene): every chart must come out as a candidate of its
 // own, in the right orientation. Prints the rates per size and in all; returns the exit status.
-int run_pairs(int count, std::uint64_t seed, double scale, const std::vector<const RawImage*>& photos, bool verbose) {
+int run_pairs(int count, std::uint64_t seed, double scale, const std::vector<const RawImage*>& photos, bool verbose,
+              bool dumping) {
   const char* larges[3] = {"cc24", "passport", "sg140"};
   const char* smalls[2] = {"sg140", "cc24"};
   const int widths[3] = {900, 1200, 1600};
@@ -85,6 +98,7 @@ int run_pairs(int count, std::uint64_t seed, double scale, const std::vector<con
       if (e.code() != ErrorCode::ChartNotFound) throw;
     }
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    if (dumping) dump(i, cands);
     const ChartScene* truths[2] = {&scene.large, &scene.small};
     bool ok[2] = {false, false};
     std::vector<bool> used(cands.size(), false);
@@ -134,7 +148,7 @@ int main(int argc, char** argv) {
   bool verbose = false;
   int only = -1;
   double scale = 1;
-  bool pairs = false;
+  bool pairs = false, dumping = false;
   if (const char* env = std::getenv("TRISTIM_SHARED_DATA")) shared = env;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -146,8 +160,9 @@ int main(int argc, char** argv) {
     else if (a == "--only" && i + 1 < argc) only = std::atoi(argv[++i]), verbose = true;
     else if (a == "--scale" && i + 1 < argc) scale = std::atof(argv[++i]);
     else if (a == "--pairs") pairs = true;
+    else if (a == "--dump") dumping = true;
     else {
-      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--shared DIR] [--write DIR] [--verbose] [--only i] [--scale k] [--pairs]\n");
+      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--shared DIR] [--write DIR] [--verbose] [--only i] [--scale k] [--pairs] [--dump]\n");
       return 2;
     }
   }
@@ -159,7 +174,7 @@ int main(int argc, char** argv) {
   std::vector<const RawImage*> photo_ptrs;
   for (const auto& p : photos) photo_ptrs.push_back(&p);
   if (photos.empty()) std::printf("note: no real photos found under %s: synthetic backgrounds only\n", shared.c_str());
-  if (pairs) return run_pairs(count, seed, scale, photo_ptrs, verbose);
+  if (pairs) return run_pairs(count, seed, scale, photo_ptrs, verbose, dumping);
   FILE* truth = nullptr;
   if (!write_dir.empty()) {
     truth = std::fopen((write_dir + "/truth.csv").c_str(), "w");
@@ -195,6 +210,7 @@ int main(int argc, char** argv) {
       if (verbose) std::printf("  %3d %-8s not found: %s\n", i, chart.c_str(), e.what());
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (dumping) dump(i, found);
     const DetectionScore s = score_detection(scene, found.empty() ? nullptr : &found[0].corners,
                                              found.empty() ? 0.0 : found[0].confidence);
     for (const std::string key : {chart, std::string("all")}) {
