@@ -452,3 +452,55 @@ TEST_CASE("apply_to_image on a large image (streaming stores) agrees with predic
     CHECK(worst < 1e-6);
   }
 }
+
+TEST_CASE("apply_to_image: vector kernels equal the scalar float formula bit for bit (native SSE2, wasm SIMD128)", "[models]") {
+  // The 4-lane kernels (core/src/simd4.hpp) use only IEEE add, mul and sqrt, associated as below,
+  // so native SSE2 and wasm SIMD give the same floats as this scalar loop: exact equality, the
+  // same test in both builds. Natively on a CPU with AVX2+FMA the root-polynomial runs 8-wide with
+  // fused multiply-adds: there the stated tolerance is 1e-6 relative to the terms' magnitudes.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+  const bool fma_path = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+  const bool fma_path = false;
+#endif
+  const size_t n = 4099;  // a tail after the 4- and 8-pixel steps
+  std::vector<float> img(3 * n), out(3 * n);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-0.05f, 1.2f);  // some negative values: signed roots
+  for (float& v : img) v = u(rng);
+  const auto ssqrt = [](float p) { const float r = std::sqrt(std::fabs(p)); return p < 0.f ? -r : r; };
+  for (const char* id : {"matrix-3x3", "matrix-3x4", "Finlayson2015-2"}) {
+    const ModelInfo& info = model_info(id);
+    Model m{id, Eigen::MatrixXd(3, info.n_terms)};
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < info.n_terms; ++j) m.coefficients(c, j) = 0.3 * (1 + c) - 0.17 * j + 0.01 * c * j;
+    apply_to_image(m, img.data(), n, out.data());
+    const bool root2 = std::string(id) == "Finlayson2015-2";
+    float a[3][6] = {};  // (R, G, B, 1 or √RG, √RB, √GB) as the kernels order them
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < info.n_terms; ++j) {
+        const Monomial& t = info.terms[j];
+        const int slot = j < 3 ? j : !root2 ? 3 : (t.r && t.g ? 3 : (t.r && t.b ? 4 : 5));
+        a[c][slot] = static_cast<float>(m.coefficients(c, j));
+      }
+    size_t differ = 0;
+    double worst = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const float R = img[3 * i], G = img[3 * i + 1], B = img[3 * i + 2];
+      const float P = ssqrt(R * G), Q = ssqrt(R * B), S = ssqrt(G * B);
+      for (int c = 0; c < 3; ++c) {
+        const float want = root2 ? ((a[c][0] * R + a[c][1] * G) + (a[c][2] * B + a[c][3] * P)) + (a[c][4] * Q + a[c][5] * S)
+                                 : (a[c][0] * R + a[c][1] * G) + (a[c][2] * B + a[c][3]);
+        const float got = out[3 * i + c];
+        if (got != want) ++differ;
+        const double mag = std::fabs(a[c][0] * R) + std::fabs(a[c][1] * G) + std::fabs(a[c][2] * B) +
+                           std::fabs(a[c][3] * (root2 ? P : 1.f)) + std::fabs(a[c][4] * Q) + std::fabs(a[c][5] * S);
+        worst = std::max(worst, std::fabs(double(got) - want) / mag);
+      }
+    }
+    INFO(id << ": " << differ << " of " << 3 * n << " values differ from the scalar formula, worst by " << worst
+            << " of the terms' magnitude (FMA path: " << fma_path << ")");
+    if (root2 && fma_path) CHECK(worst < 1e-6);
+    else CHECK(differ == 0);
+  }
+}
