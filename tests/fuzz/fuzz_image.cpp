@@ -10,7 +10,12 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   tristim::ImageDecodeOptions options;
-  options.max_megapixels = 4;  // keep each run small: big claims must still be refused early
+  // 1 MP (was 4): a header's claimed size, not the file, sets the work of one input (the image is
+  // allocated and zeroed, then every row stored, even for 500 bytes of data), so this cap sets the
+  // fuzzer's speed (fuzz_tiff ~4x faster than at 4 MP). Nothing is lost: a larger claim still
+  // runs the refusal (LIMIT_EXCEEDED), and no code path depends on the size beyond it.
+  // OSS-Fuzz's libjpeg-turbo fuzzer skips images over 1024 x 1024 for the same reason.
+  options.max_megapixels = 1;
   try {
 #if TRISTIM_FUZZ_FORMAT == 1
     tristim::decode_tiff(data, size, options);

@@ -28,6 +28,12 @@ std::vector<StimulusRow> read_stimuli_csv(std::string_view text, const std::stri
     const int line = t.lines[r];
     auto num = [&](int c, const char* name) { return parse_cell(row[c], path, line, name); };
     auto opt = [&](int c, const char* name, double fallback) { return c >= 0 && !row[c].empty() ? num(c, name) : fallback; };
+    auto pixel = [&](int c, const char* name) {  // a region coordinate: a number an int holds
+      const double v = num(c, name);
+      if (!(std::fabs(v) < 2147483647.0))
+        throw Error(ErrorCode::InvalidArgument, path + ", line " + std::to_string(line) + ": " + name + " is not a pixel position");
+      return static_cast<int>(v);
+    };
     StimulusRow s;
     s.line = line;
     s.stimulus.id = id >= 0 ? row[id] : std::to_string(r + 1);
@@ -45,12 +51,13 @@ std::vector<StimulusRow> read_stimuli_csv(std::string_view text, const std::stri
     if (file >= 0 && !row[file].empty()) {
       if (x < 0 || y < 0 || w < 0 || h < 0) throw Error(ErrorCode::MissingColumn, path + ": a file row needs x, y, w, h");
       s.file = row[file];
-      s.x = static_cast<int>(num(x, "x"));
-      s.y = static_cast<int>(num(y, "y"));
-      s.w = static_cast<int>(num(w, "w"));
-      s.h = static_cast<int>(num(h, "h"));
+      s.x = pixel(x, "x");
+      s.y = pixel(y, "y");
+      s.w = pixel(w, "w");
+      s.h = pixel(h, "h");
     } else {
-      if (R < 0) throw Error(ErrorCode::MissingColumn, path + ", line " + std::to_string(line) + ": no file and no R, G, B");
+      if (R < 0 || G < 0 || B < 0)
+        throw Error(ErrorCode::MissingColumn, path + ", line " + std::to_string(line) + ": no file and no R, G, B");
       s.stimulus.raw_RGB = Vec3(num(R, "R"), num(G, "G"), num(B, "B"));
       s.stimulus.falloff = opt(fall, "falloff", 1.0);
       if (!(s.stimulus.exposure.exposure_s > 0) || !(s.stimulus.exposure.f_number > 0))

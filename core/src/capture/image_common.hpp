@@ -15,6 +15,14 @@ namespace tristim::image_detail {
 RawImage new_image(const char* format, std::uint64_t width, std::uint64_t height, int channels,
                    int bits, const ImageDecodeOptions& options);
 
+/// new_image without the pixels (rgb and saturated empty; same checks, same metadata), for a
+/// decoder that first sees whether the data decodes at all: a file refused at its first strip
+/// costs no image-sized allocation (up to ~2 GB at the 160 MP limit). allocate_pixels() then
+/// sizes rgb and saturated as new_image does.
+RawImage new_image_header(const char* format, std::uint64_t width, std::uint64_t height, int channels,
+                          int bits, const ImageDecodeOptions& options);
+void allocate_pixels(RawImage& img);
+
 /// Sets sample `channel` (0..2; -1 = all three, for grey) of pixel (x, y) to the stored value v
 /// and marks it saturated when v is the full scale.
 inline void store(RawImage& img, std::size_t x, std::size_t y, int channel, std::uint32_t v,

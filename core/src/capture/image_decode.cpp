@@ -11,8 +11,8 @@ namespace tristim {
 
 namespace image_detail {
 
-RawImage new_image(const char* format, std::uint64_t width, std::uint64_t height, int channels,
-                   int bits, const ImageDecodeOptions& options) {
+RawImage new_image_header(const char* format, std::uint64_t width, std::uint64_t height, int channels,
+                          int bits, const ImageDecodeOptions& options) {
   if (width == 0 || height == 0)
     throw Error(ErrorCode::ImageCorrupt, std::string("the ") + format + " header gives a zero image size (" +
                                              std::to_string(width) + " x " + std::to_string(height) + ")");
@@ -38,9 +38,19 @@ RawImage new_image(const char* format, std::uint64_t width, std::uint64_t height
   m.saturation = {m.white_level, m.white_level, m.white_level};
   m.as_shot_wb = m.daylight_wb = {1.0, 1.0, 1.0};
   m.decoder = format;
-  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  return img;
+}
+
+void allocate_pixels(RawImage& img) {
+  const std::size_t n = static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
   img.rgb.assign(n * 3, 0.0f);
   img.saturated.assign(n, 0);
+}
+
+RawImage new_image(const char* format, std::uint64_t width, std::uint64_t height, int channels,
+                   int bits, const ImageDecodeOptions& options) {
+  RawImage img = new_image_header(format, width, height, channels, bits, options);
+  allocate_pixels(img);
   return img;
 }
 

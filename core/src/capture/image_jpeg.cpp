@@ -105,7 +105,9 @@ bool run(JpegJob* job, j_decompress_ptr cinfo, const std::uint8_t* data, std::si
                     (cmyk ? "CMYK/YCCK colour" : std::to_string(cinfo->num_components) + " colour components") +
                     " (grey and RGB/YCbCr are read)");
   }
-  job->image = image_detail::new_image("jpeg", cinfo->image_width, cinfo->image_height, channels, 8, job->options);
+  // Pixels allocated after jpeg_start_decompress: a file libjpeg gives up on there (a progressive
+  // JPEG is read whole there) is refused without an image-sized allocation.
+  job->image = image_detail::new_image_header("jpeg", cinfo->image_width, cinfo->image_height, channels, 8, job->options);
   JOCTET* icc = nullptr;
   unsigned int icc_len = 0;
   if (jpeg_read_icc_profile(cinfo, &icc, &icc_len)) {
@@ -118,6 +120,7 @@ bool run(JpegJob* job, j_decompress_ptr cinfo, const std::uint8_t* data, std::si
   cinfo->dct_method = JDCT_ISLOW;
   cinfo->do_fancy_upsampling = TRUE;
   jpeg_start_decompress(cinfo);
+  image_detail::allocate_pixels(job->image);
   job->row.resize(static_cast<std::size_t>(cinfo->output_width) * cinfo->output_components);
   while (cinfo->output_scanline < cinfo->output_height) {
     JSAMPROW rows[1] = {job->row.data()};

@@ -208,7 +208,9 @@ RawImage decode_tiff(const std::uint8_t* data, std::size_t size, const ImageDeco
                 " samples (unsigned integers are read)");
   if (compression == COMPRESSION_JPEG && bps != 8) unsupported("JPEG compression of " + std::to_string(bps) + "-bit samples");
 
-  RawImage img = image_detail::new_image("tiff", width, height, channels, bps, options);
+  // The pixels are allocated once the first strip or tile has decoded (a corrupt file is refused
+  // without an image-sized allocation); the refusals and their order are as before.
+  RawImage img = image_detail::new_image_header("tiff", width, height, channels, bps, options);
   read_text_tags(t, img.meta);
 
   // Decode every strip or tile (either planar configuration) and place its samples.
@@ -247,6 +249,7 @@ RawImage decode_tiff(const std::uint8_t* data, std::size_t size, const ImageDeco
         const std::uint64_t need = tiled ? static_cast<std::uint64_t>(chunk) : static_cast<std::uint64_t>(rows) * row_bytes;
         if (got < 0 || static_cast<std::uint64_t>(got) < need)
           corrupt(src, std::string(tiled ? "tile " : "strip ") + std::to_string(index) + " cannot be decoded in full");
+        if (img.rgb.empty()) image_detail::allocate_pixels(img);
         for (std::uint32_t r = 0; r < rows; ++r) {
           const std::uint8_t* line = buf.data() + r * row_bytes;
           for (std::uint32_t x = 0; x < cols; ++x)

@@ -37,10 +37,10 @@ std::string where(std::string_view source, int line) {
                                             ", over the limit of " + std::to_string(limit));
 }
 
-/// Splits text into lines (\n, \r\n or \r), dropping a UTF-8 BOM. Error(LimitExceeded) for text
-/// over limits::kMaxTextFileBytes or with more lines than a table of limits::kMaxTableRows rows can
-/// have (checked before any line is copied).
-std::vector<std::string> split_lines(std::string_view text, std::string_view source) {
+/// Splits text into lines (\n, \r\n or \r), dropping a UTF-8 BOM: views into `text`, nothing
+/// copied. Error(LimitExceeded) for text over limits::kMaxTextFileBytes or with more lines than a
+/// table of limits::kMaxTableRows rows can have.
+std::vector<std::string_view> split_lines(std::string_view text, std::string_view source) {
   if (text.size() > limits::kMaxTextFileBytes)
     too_large(source, std::to_string(text.size()) + " bytes", limits::kMaxTextFileBytes);
   // Headers, keywords and comments: a few hundred lines at most in real files.
@@ -51,24 +51,22 @@ std::vector<std::string> split_lines(std::string_view text, std::string_view sou
   if (text.size() >= 3 && static_cast<unsigned char>(text[0]) == 0xEF &&
       static_cast<unsigned char>(text[1]) == 0xBB && static_cast<unsigned char>(text[2]) == 0xBF)
     text.remove_prefix(3);
-  std::vector<std::string> lines;
-  std::string cur;
+  std::vector<std::string_view> lines;
+  size_t start = 0;
   for (size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (c == '\n' || c == '\r') {
-      lines.push_back(cur);
-      cur.clear();
+      lines.push_back(text.substr(start, i - start));
       if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
-    } else {
-      cur.push_back(c);
+      start = i + 1;
     }
   }
-  if (!cur.empty()) lines.push_back(cur);
+  if (start < text.size()) lines.push_back(text.substr(start));
   if (lines.size() > max_lines) too_large(source, std::to_string(lines.size()) + " lines", max_lines);
   return lines;
 }
 
-std::vector<std::string> split_delimited(const std::string& line, char delim) {
+std::vector<std::string> split_delimited(std::string_view line, char delim) {
   std::vector<std::string> cells;
   std::string cur;
   bool quoted = false;
@@ -121,8 +119,15 @@ std::vector<std::string> split_ws(const std::string& line) {
   return out;
 }
 
-bool is_blank(const std::string& s) {
+bool is_blank(std::string_view s) {
   return std::all_of(s.begin(), s.end(), [](char c) { return std::isspace(static_cast<unsigned char>(c)); });
+}
+
+/// A comment line: '#' after any leading white space (no copy of the line).
+bool is_comment(std::string_view s) {
+  size_t a = 0;
+  while (a < s.size() && std::isspace(static_cast<unsigned char>(s[a]))) ++a;
+  return a < s.size() && s[a] == '#';
 }
 
 /// Wavelength encoded in a column name ("380", "nm380", "SPECTRAL_380", "SPEC_380",
@@ -330,9 +335,9 @@ TextTable parse_delimited(std::string_view text, std::string_view source) {
   t.source = std::string(source);
   const auto lines = split_lines(text, source);
   size_t i = 0;
-  while (i < lines.size() && (is_blank(lines[i]) || trim(lines[i])[0] == '#')) ++i;
+  while (i < lines.size() && (is_blank(lines[i]) || is_comment(lines[i]))) ++i;
   if (i >= lines.size()) throw Error(ErrorCode::EmptyFile, std::string(source.empty() ? "input" : source) + ": empty file");
-  const std::string& head = lines[i];
+  const std::string_view head = lines[i];
   const size_t commas = std::count(head.begin(), head.end(), ','), semis = std::count(head.begin(), head.end(), ';'),
                tabs = std::count(head.begin(), head.end(), '\t');
   const char delim = (tabs > commas && tabs > semis) ? '\t' : (semis > commas ? ';' : ',');
@@ -347,7 +352,7 @@ TextTable parse_delimited(std::string_view text, std::string_view source) {
     if (t.header[k].empty() && t.header.size() > 1)
       throw Error(ErrorCode::ParseError, where(source, t.header_line) + ": column " + std::to_string(k + 1) + " has no name");
   for (++i; i < lines.size(); ++i) {
-    if (is_blank(lines[i]) || trim(lines[i])[0] == '#') continue;
+    if (is_blank(lines[i]) || is_comment(lines[i])) continue;
     auto cells = split_delimited(lines[i], delim);
     if (trailing && cells.size() == t.header.size() + 1 && cells.back().empty()) cells.pop_back();
     if (cells.size() != t.header.size())
@@ -362,9 +367,9 @@ TextTable parse_delimited(std::string_view text, std::string_view source) {
 
 double parse_cell(const std::string& cell, std::string_view source, int line, std::string_view column) {
   const std::string s = trim(cell);
-  const std::string l = lower(s);
-  const std::string at = where(source, line) + ", column '" + std::string(column) + "'";
-  if (s.empty()) throw Error(ErrorCode::NonNumeric, at + ": empty cell where a number is needed");
+  // Only built for a message (a cell is parsed once per number of a table: no allocation on success).
+  auto at = [&] { return where(source, line) + ", column '" + std::string(column) + "'"; };
+  if (s.empty()) throw Error(ErrorCode::NonNumeric, at() + ": empty cell where a number is needed");
   char* end = nullptr;
   double v = std::strtod(s.c_str(), &end);
   bool whole = end != s.c_str() && *end == '\0';  // the cell is one number
@@ -378,8 +383,8 @@ double parse_cell(const std::string& cell, std::string_view source, int line, st
       whole = true;
     }
   }
-  if (!whole) throw Error(ErrorCode::NonNumeric, at + ": '" + s + "' is not a number");
-  if (!std::isfinite(v)) throw Error(ErrorCode::NonFinite, at + ": '" + s + "' is not finite");
+  if (!whole) throw Error(ErrorCode::NonNumeric, at() + ": '" + s + "' is not a number");
+  if (!std::isfinite(v)) throw Error(ErrorCode::NonFinite, at() + ": '" + s + "' is not finite");
   return v;
 }
 

@@ -42,6 +42,10 @@ TEST_CASE("absolute: the stimuli CSV of the example reads back exactly, bad rows
   test::require_code([] { read_stimuli_csv("id,set,exposure_s,f_number,R,G,B,X,Y,Z\n1,grey,0.01,8,1,2,3,4,4,4\n", "s.csv"); },
                      ErrorCode::InvalidArgument);
   test::require_code([] { read_stimuli_csv("id,exposure_s,f_number,R,G,B,X,Y,Z\n", "s.csv"); }, ErrorCode::EmptyFile);
+  // Found by fuzz_stimuli: a file column, a row without a file, R but no G column (was a read
+  // before the row), and a region coordinate no int holds (was an out-of-range cast).
+  test::require_code([] { read_stimuli_csv("R,B,X,Y,Z,file\n1,2,3,4,5,\n", "s.csv"); }, ErrorCode::MissingColumn);
+  test::require_code([] { read_stimuli_csv("file,x,y,w,h,X,Y,Z\na.dng,1e300,0,8,8,1,1,1\n", "s.csv"); }, ErrorCode::InvalidArgument);
 }
 
 TEST_CASE("absolute: the example, fitted as a user would, measures Y within 2.4 %", "[absolute]") {
