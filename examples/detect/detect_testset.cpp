@@ -9,7 +9,11 @@
 //   detect_testset [--count 300] [--seed 1] [--shared ../shared/data] [--write DIR] [--verbose]
 //                  [--only i]   (one scene, verbose: for debugging)
 //                  [--scale k]  (images k times wider and higher, e.g. 2: 1800-3200 px wide, where
-//                                detection starts with its coarse pass; the same scenes otherwise)
+//                                detection works on a downsampled image; the same scenes otherwise)
+//                  [--pairs]    (two charts per image instead: one of 10-30 % of the frame, any
+//                                layout, and a Classic or SG of 3-6 %; both must be reported)
+//                  [--dump]     (every candidate's corners and confidence per scene, one line each:
+//                                to compare two builds of the detector exactly, e.g. with diff)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,6 +31,16 @@
 using namespace tristim;
 
 namespace {
+
+// "DUMP <scene> <chart> x1 y1 ... x4 y4 <confidence> <gap>" per candidate, or "DUMP <scene> none".
+void dump(int scene, const std::vector<ChartCandidate>& cands) {
+  if (cands.empty()) std::printf("DUMP %d none\n", scene);
+  for (const auto& c : cands) {
+    std::printf("DUMP %d %s", scene, c.chart.c_str());
+    for (double v : c.corners) std::printf(" %.6f", v);
+    std::printf(" %.6f %.6f\n", c.confidence, c.gap);
+  }
+}
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return NAN;
@@ -54,6 +68,72 @@ void write_ppm(const std::string& path, const ChartScene& s) {
   std::fclose(f);
 }
 
+// Two charts per scene (random_two_chart_scene): every chart must come out as a candidate of its
+// own, in the right orientation. Prints the rates per size and in all; returns the exit status.
+int run_pairs(int count, std::uint64_t seed, double scale, const std::vector<const RawImage*>& photos, bool verbose,
+              bool dumping) {
+  const char* larges[3] = {"cc24", "passport", "sg140"};
+  const char* smalls[2] = {"sg140", "cc24"};
+  const int widths[3] = {900, 1200, 1600};
+  int both = 0, found[2] = {0, 0}, wrong = 0, stray = 0, n = 0;
+  std::vector<double> errors[2], ms;
+  for (int i = 0; i < count; ++i) {
+    SceneRandom pick(seed * 7919 + static_cast<std::uint64_t>(i) + 1000003);
+    const int w = static_cast<int>(std::lround(scale * widths[pick.integer(3)])), h = w * 2 / 3;
+    const std::string large = larges[i % 3], small = smalls[i % 2];
+    const TwoChartScene scene = random_two_chart_scene(large, small, seed * 100003 + static_cast<std::uint64_t>(i), w, h, photos);
+    if (!scene.ok) {
+      std::printf("  %3d skipped: the two charts overlap\n", i);
+      continue;
+    }
+    ++n;
+    DetectOptions options;
+    options.charts = {large};
+    if (small != large) options.charts.push_back(small);
+    std::vector<ChartCandidate> cands;
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      cands = detect_charts(scene.image, options);
+    } catch (const Error& e) {
+      if (e.code() != ErrorCode::ChartNotFound) throw;
+    }
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    if (dumping) dump(i, cands);
+    const ChartScene* truths[2] = {&scene.large, &scene.small};
+    bool ok[2] = {false, false};
+    std::vector<bool> used(cands.size(), false);
+    double err[2] = {NAN, NAN};
+    for (int k = 0; k < 2; ++k)
+      for (size_t j = 0; j < cands.size(); ++j) {
+        const DetectionScore sc = score_detection(*truths[k], &cands[j].corners, cands[j].confidence);
+        if (!sc.located) continue;
+        used[j] = true;
+        if (sc.oriented) {
+          ok[k] = true;
+          err[k] = sc.corner_error;
+          errors[k].push_back(sc.corner_error);
+        } else {
+          ++wrong;
+        }
+      }
+    for (size_t j = 0; j < cands.size(); ++j) stray += !used[j];
+    found[0] += ok[0];
+    found[1] += ok[1];
+    both += ok[0] && ok[1];
+    if (verbose)
+      std::printf("  %3d %4dx%-4d %-8s %5.1f%% + %-5s %4.1f%% (tilt %4.1f): %zu candidates, large %s %.2f px, small %s %.2f px, %.0f ms\n",
+                  i, w, h, large.c_str(), 100 * scene.large.area_fraction, small.c_str(), 100 * scene.small.area_fraction,
+                  scene.small.spec.tilt_deg, cands.size(), ok[0] ? "ok" : "MISS", err[0], ok[1] ? "ok" : "MISS", err[1], ms.back());
+  }
+  std::printf("tristim chart detection, %d two-chart scenes (seed %llu, scale %g)\n", n, static_cast<unsigned long long>(seed), scale);
+  std::printf("both found %.1f%%, large %.1f%%, small %.1f%%, wrong orientations %d, candidates at no chart %d\n",
+              100.0 * both / std::max(1, n), 100.0 * found[0] / std::max(1, n), 100.0 * found[1] / std::max(1, n), wrong, stray);
+  std::printf("corner error median/p95 px: large %.3f/%.3f, small %.3f/%.3f; median time %.1f ms\n", percentile(errors[0], 0.5),
+              percentile(errors[0], 0.95), percentile(errors[1], 0.5), percentile(errors[1], 0.95), percentile(ms, 0.5));
+  std::printf("RESULT pairs=%d both=%.4f wrong_orientation=%d stray=%d\n", n, double(both) / std::max(1, n), wrong, stray);
+  return 0;
+}
+
 struct Tally {
   int n = 0, detected = 0, correct = 0, wrong_orientation = 0, misplaced = 0;
   std::vector<double> errors, ms;
@@ -68,6 +148,7 @@ int main(int argc, char** argv) {
   bool verbose = false;
   int only = -1;
   double scale = 1;
+  bool pairs = false, dumping = false;
   if (const char* env = std::getenv("TRISTIM_SHARED_DATA")) shared = env;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -78,8 +159,10 @@ int main(int argc, char** argv) {
     else if (a == "--verbose") verbose = true;
     else if (a == "--only" && i + 1 < argc) only = std::atoi(argv[++i]), verbose = true;
     else if (a == "--scale" && i + 1 < argc) scale = std::atof(argv[++i]);
+    else if (a == "--pairs") pairs = true;
+    else if (a == "--dump") dumping = true;
     else {
-      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--shared DIR] [--write DIR] [--verbose] [--only i] [--scale k]\n");
+      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--shared DIR] [--write DIR] [--verbose] [--only i] [--scale k] [--pairs] [--dump]\n");
       return 2;
     }
   }
@@ -91,6 +174,7 @@ int main(int argc, char** argv) {
   std::vector<const RawImage*> photo_ptrs;
   for (const auto& p : photos) photo_ptrs.push_back(&p);
   if (photos.empty()) std::printf("note: no real photos found under %s: synthetic backgrounds only\n", shared.c_str());
+  if (pairs) return run_pairs(count, seed, scale, photo_ptrs, verbose, dumping);
   FILE* truth = nullptr;
   if (!write_dir.empty()) {
     truth = std::fopen((write_dir + "/truth.csv").c_str(), "w");
@@ -126,6 +210,7 @@ int main(int argc, char** argv) {
       if (verbose) std::printf("  %3d %-8s not found: %s\n", i, chart.c_str(), e.what());
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (dumping) dump(i, found);
     const DetectionScore s = score_detection(scene, found.empty() ? nullptr : &found[0].corners,
                                              found.empty() ? 0.0 : found[0].confidence);
     for (const std::string key : {chart, std::string("all")}) {

@@ -348,6 +348,82 @@ std::vector<RawImage> background_photos(const std::string& dir) {
   return out;
 }
 
+namespace {
+
+// Axis-aligned box [x0, x1) × [y0, y1) around a scene's chart board (the Passport's creative side
+// included) plus `margin` px, clipped to the image.
+std::array<int, 4> board_box(const ChartScene& s, double margin) {
+  LayoutOptions lo;
+  lo.chart = s.spec.chart;
+  lo.gap = s.spec.gap;
+  const ChartLayout layout = chart_layout(lo);
+  const double mu = 0.4 * (layout.patches[0].u1 - layout.patches[0].u0);
+  const double mv = 0.4 * (layout.patches[0].v1 - layout.patches[0].v0);
+  const double top = s.spec.chart == "passport" ? -1.25 : -mv;
+  const auto h9 = homography_unit_square(s.corners);
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (double u : {-mu, 1 + mu})
+    for (double v : {top, 1 + mv}) {
+      const double w = h9[6] * u + h9[7] * v + h9[8];
+      const double x = (h9[0] * u + h9[1] * v + h9[2]) / w, y = (h9[3] * u + h9[4] * v + h9[5]) / w;
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+  const int W = s.spec.width, H = s.spec.height;
+  return {std::max(0, static_cast<int>(std::floor(x0 - margin))), std::max(0, static_cast<int>(std::floor(y0 - margin))),
+          std::min(W, static_cast<int>(std::ceil(x1 + margin))), std::min(H, static_cast<int>(std::ceil(y1 + margin)))};
+}
+
+}  // namespace
+
+TwoChartScene render_two_chart_scene(const SceneSpec& large, const SceneSpec& small,
+                                     const std::vector<const RawImage*>& photos) {
+  TwoChartScene out;
+  out.large = render_chart_scene(large, photos);
+  out.small = render_chart_scene(small, photos);
+  out.image = std::move(out.large.image);
+  out.large.image = RawImage();
+  const double margin = 4 + 3 * small.blur_sigma;
+  const auto a = board_box(out.large, margin), b = board_box(out.small, margin);
+  out.ok = small.width == large.width && small.height == large.height &&
+           (a[2] <= b[0] || b[2] <= a[0] || a[3] <= b[1] || b[3] <= a[1]);
+  if (out.ok) {
+    const int W = out.image.width;
+    for (int y = b[1]; y < b[3]; ++y)
+      for (int x = b[0]; x < b[2]; ++x) {
+        const size_t i = size_t(y) * W + size_t(x);
+        for (int c = 0; c < 3; ++c) out.image.rgb[3 * i + c] = out.small.image.rgb[3 * i + c];
+        out.image.saturated[i] = out.small.image.saturated[i];
+      }
+  }
+  out.small.image = RawImage();
+  return out;
+}
+
+TwoChartScene random_two_chart_scene(const std::string& large_chart, const std::string& small_chart,
+                                     std::uint64_t seed, int width, int height,
+                                     const std::vector<const RawImage*>& photos) {
+  SceneSpec a = random_scene_spec(large_chart, seed, width, height, !photos.empty());
+  SceneSpec b = random_scene_spec(small_chart, seed ^ 0x5DEECE66Dull, width, height, !photos.empty());
+  SceneRandom rng(seed * 0x2545F4914F6CDD1Dull + 3);
+  a.area_fraction = rng.uniform(0.1, 0.3);
+  a.cx = rng.uniform(0.3, 0.38);
+  a.cy = rng.uniform(0.4, 0.6);
+  b.area_fraction = rng.uniform(0.03, 0.06);
+  b.cx = rng.uniform(0.8, 0.86);
+  b.cy = rng.uniform(0.25, 0.75);
+  b.camera = a.camera;
+  b.illuminant = a.illuminant;
+  b.exposure = a.exposure;
+  b.photo_background = a.photo_background;
+  TwoChartScene s;
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    s = render_two_chart_scene(a, b, photos);
+    if (s.ok) break;
+    a.area_fraction *= 0.8;
+  }
+  return s;
+}
+
 DetectionScore score_detection(const ChartScene& scene, const std::array<double, 8>* corners, double confidence) {
   DetectionScore s;
   LayoutOptions lo;

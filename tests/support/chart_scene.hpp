@@ -80,6 +80,26 @@ struct DetectionScore {
 };
 DetectionScore score_detection(const ChartScene& scene, const std::array<double, 8>* corners, double confidence);
 
+/// Two charts in one frame (issue 12: several charts give several candidates): the scene `large`,
+/// and over it the part of the scene `small` (rendered at the same size) around its chart — the
+/// chart's board with a margin. `ok` is false when the two boards would overlap. Each scene's
+/// `corners` is a truth in `image`; their own images are dropped.
+struct TwoChartScene {
+  RawImage image;
+  ChartScene large, small;
+  bool ok = false;
+};
+TwoChartScene render_two_chart_scene(const SceneSpec& large, const SceneSpec& small,
+                                     const std::vector<const RawImage*>& photos = {});
+
+/// A random two-chart scene from `seed`: a chart of 10-30 % of the frame on the left (any of the
+/// three layouts, `large_chart`) and a ColorChecker Classic or Digital SG of 3-6 % on the right,
+/// both drawn as by random_scene_spec (tilt, rotation, light, noise, blur, glare) under one camera,
+/// illuminant and exposure; the large chart shrinks until the two do not overlap.
+TwoChartScene random_two_chart_scene(const std::string& large_chart, const std::string& small_chart,
+                                     std::uint64_t seed, int width, int height,
+                                     const std::vector<const RawImage*>& photos = {});
+
 /// Portable uniform [0, 1) from mt19937_64 (53 bits).
 class SceneRandom {
  public:

@@ -123,8 +123,8 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
     // A candidate per layout; the group keeps the best.
     ChartCandidate best;
     bool have = false;
+    progress("orient", 0.4 + 0.55 * gi / groups.size());
     for (const Target& t : wanted) {
-      progress("orient", 0.4 + 0.55 * gi / groups.size());
       const std::vector<Placement> placements = place_layout(work, group, t.grid, t.reference);
       if (placements.empty()) continue;
       const Placement& p = placements.front();
@@ -274,31 +274,33 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
   const std::vector<Target> wanted = targets(options);
   if (image.width < 1 || image.height < 1 || image.rgb.size() != size_t(image.width) * image.height * 3)
     throw Error(ErrorCode::InvalidArgument, "chart detection needs a non-empty RGB image");
-  // A coarse pass first on a working image of longer side <= kCoarseSide when that is smaller
-  // than the one of `working_side` (a 3000 × 2000 image: 1000 × 666 instead of 1500 × 1000,
-  // less than half the pixels); when it finds no chart, the pass at `working_side`. Either way
-  // the corners are refined on the full image. A chart too small for the coarse pass (a few %
-  // of the frame) is found by the second one, unless the coarse pass found another chart.
+  // The pass at `working_side` first: it finds every chart from a few % of the frame up, so
+  // several charts give several candidates. When it finds none and a coarser working image
+  // (longer side <= kCoarseSide) is smaller, a pass on that: a large chart whose patches show
+  // texture, noise or glare at the finer scale can still be flat there (scene 114 of the test
+  // set). Either way the corners are refined on the full image. (A coarse pass first was faster
+  // but, once it had found a chart, never looked for one too small for it.)
   constexpr int kCoarseSide = 1000;
   const int side = std::max(image.width, image.height), fine = std::max(1, options.working_side);
-  std::vector<ChartCandidate> out;
   const bool coarse = (side + kCoarseSide - 1) / kCoarseSide > (side + fine - 1) / fine;
-  if (coarse) {
+  std::vector<ChartCandidate> out;
+  try {
+    out = detect_pass(image, wanted, options, fine, 0.0, coarse ? 0.7 : 1.0);
+  } catch (const Error& e) {
+    if (e.code() != ErrorCode::ChartNotFound || !coarse) throw;
     try {
-      out = detect_pass(image, wanted, options, kCoarseSide, 0.0, 0.5);
-    } catch (const Error& e) {
-      if (e.code() != ErrorCode::ChartNotFound) throw;
+      out = detect_pass(image, wanted, options, kCoarseSide, 0.7, 1.0);
+    } catch (const Error& e2) {
+      if (e2.code() != ErrorCode::ChartNotFound) throw;
     }
-    // The coarse pass decides only when every candidate is confident and its lattice holds at
-    // least half of the layout's patches: a chart whose patches are too small for it may show a
-    // few cells, and a layout extrapolated from those can sit one cell off.
-    for (const auto& c : out)
-      if (c.coverage < 0.5 || c.confidence < 0.9) {
-        out.clear();
-        break;
-      }
+    // Only confident candidates whose lattice holds at least half of the layout's patches: a
+    // chart whose patches are small in the coarse image may show a few cells, and a layout
+    // extrapolated from those can sit one cell off.
+    out.erase(std::remove_if(out.begin(), out.end(),
+                             [](const ChartCandidate& c) { return c.coverage < 0.5 || c.confidence < 0.9; }),
+              out.end());
+    if (out.empty()) throw;  // the finer pass's reason
   }
-  if (out.empty()) out = detect_pass(image, wanted, options, fine, coarse ? 0.5 : 0.0, 1.0);
   if (options.progress) options.progress("done", 1.0);
   return out;
 }

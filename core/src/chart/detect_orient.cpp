@@ -16,12 +16,21 @@ using Point = Eigen::Vector2d;
 namespace {
 
 // Weighted least squares M (3×3) with camera ≈ M · reference, weights per pair.
+// The sums of w·ref·refᵀ and w·ref·rgbᵀ are kept in scalars: each term is (w·ref_i)·x_j, added in
+// the order of k, as with Eigen's outer products, but without a round trip through memory per term.
 Mat3 fit_matrix(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref, const std::vector<double>& weight) {
-  Mat3 AtA = Mat3::Zero(), AtB = Mat3::Zero();
+  double a[3][3] = {}, b[3][3] = {};
   for (size_t k = 0; k < rgb.size(); ++k) {
-    AtA += weight[k] * ref[k] * ref[k].transpose();
-    AtB += weight[k] * ref[k] * rgb[k].transpose();
+    const double wr[3] = {weight[k] * ref[k][0], weight[k] * ref[k][1], weight[k] * ref[k][2]};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        a[i][j] += wr[i] * ref[k][j];
+        b[i][j] += wr[i] * rgb[k][j];
+      }
   }
+  Mat3 AtA, AtB;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) AtA(i, j) = a[i][j], AtB(i, j) = b[i][j];
   AtA += 1e-12 * AtA.trace() * Mat3::Identity();
   return (AtA.ldlt().solve(AtB)).transpose();
 }

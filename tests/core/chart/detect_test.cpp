@@ -202,36 +202,40 @@ TEST_CASE("every rotation is found with A1's corner first", "[detect]") {
     }
 }
 
-TEST_CASE("a large image: a coarse pass first, the full working image when it finds nothing", "[detect]") {
-  // 2400 × 1600: the coarse pass works on 800 × 533, the working_side pass on 1200 × 800. A
-  // chart of 15 % of the frame is found by the first; an SG of 4 % (patches of ~9 px there) by
-  // the second. Either way the corners are refined on the full image, and progress never goes back.
-  const std::vector<std::pair<std::string, double>> cases = {{"cc24", 0.15}, {"sg140", 0.04}};
-  for (const auto& [chart, area] : cases) {
-    INFO(chart << " at " << area * 100 << " % of the frame");
-    SceneSpec spec = plain_spec(chart, 23, 51);
-    spec.width = 2400;
-    spec.height = 1600;
-    spec.area_fraction = area;
-    if (chart == "sg140") spec.gap = 0.2;
-    const ChartScene scene = render_chart_scene(spec);
-    DetectOptions o;
-    o.charts = {chart};
-    std::vector<std::pair<std::string, double>> stages;
-    o.progress = [&](const std::string& s, double f) { stages.emplace_back(s, f); };
-    const auto found = detect_charts(scene.image, o);
-    REQUIRE(found.size() == 1);
-    CHECK(found[0].confidence > 0.8);
-    CHECK(max_corner_error(found[0].corners, scene.corners) < 0.5);
-    bool second_pass = false, monotonic = true;
-    for (size_t i = 0; i < stages.size(); ++i) {
-      second_pass = second_pass || (stages[i].first == "segment" && stages[i].second >= 0.5);
-      monotonic = monotonic && (i == 0 || stages[i].second >= stages[i - 1].second);
-    }
-    CHECK(second_pass == (chart == "sg140"));
-    CHECK(monotonic);
-    CHECK(stages.back().second == 1.0);
+TEST_CASE("a large image with a large and a small chart: both are candidates", "[detect]") {
+  // 2400 × 1600 (twice the test set's 1200 × 800): a Classic of 20 % of the frame and a Digital
+  // SG of 4 % (patches of ~30 px; ~10 px in a 1000 px working image, too small for a coarse
+  // pass). Both must be reported, each at its chart with A1 first, refined on the full image;
+  // progress never goes back.
+  SceneSpec large = plain_spec("cc24", 23, 51), small = plain_spec("sg140", 200, 52);
+  for (SceneSpec* s : {&large, &small}) s->width = 2400, s->height = 1600;
+  large.area_fraction = 0.2;
+  large.cx = 0.33;
+  small.area_fraction = 0.04;
+  small.gap = 0.2;
+  small.cx = 0.82;
+  small.cy = 0.3;
+  small.tilt_deg = 25;
+  const TwoChartScene scene = render_two_chart_scene(large, small);
+  REQUIRE(scene.ok);
+  DetectOptions o;
+  o.charts = {"cc24", "sg140"};
+  std::vector<std::pair<std::string, double>> stages;
+  o.progress = [&](const std::string& s, double f) { stages.emplace_back(s, f); };
+  const auto found = detect_charts(scene.image, o);
+  REQUIRE(found.size() == 2);
+  for (const ChartScene* truth : {&scene.large, &scene.small}) {
+    INFO(truth->spec.chart << " at " << truth->area_fraction * 100 << " % of the frame");
+    const auto it = std::find_if(found.begin(), found.end(), [&](const ChartCandidate& c) { return c.chart == truth->spec.chart; });
+    REQUIRE(it != found.end());
+    CHECK(it->confidence > 0.8);
+    CHECK(it->orientation == (truth == &scene.large ? 0 : 180));
+    CHECK(max_corner_error(it->corners, truth->corners) < 0.5);
   }
+  bool monotonic = true;
+  for (size_t i = 1; i < stages.size(); ++i) monotonic = monotonic && stages[i].second >= stages[i - 1].second;
+  CHECK(monotonic);
+  CHECK(stages.back().second == 1.0);
 }
 
 TEST_CASE("without a hint the layout is recognised; a mirrored chart is refused", "[detect][bad]") {

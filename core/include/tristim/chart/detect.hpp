@@ -7,8 +7,8 @@
 // resolution for a Bayer RAW: what `tristim sample --corners` takes).
 //
 // The pipeline, one function per step (each testable on its own):
-//   1. working_image      box-downsamples the image so its longer side is <= 1000 px (a coarse
-//                         pass), or <= DetectOptions::working_side when the coarse pass finds nothing;
+//   1. working_image      box-downsamples the image so its longer side is <= DetectOptions::
+//                         working_side, or <= 1000 px (a coarse pass) when that finds nothing;
 //   2. flat_regions       labels the connected regions where the log image is flat (patch interiors),
 //                         the threshold following a noise level estimated per brightness band;
 //   3. patch_quads        keeps the regions shaped like a filled convex quadrilateral (a patch);
@@ -51,9 +51,9 @@ struct DetectOptions {
   /// cannot be told from its colours; it is then reported with A1 nearest the image's top-left
   /// and `orientation_resolved` false.
   std::vector<Vec3> custom_reference;
-  /// Longer side of the working image of steps 1-5 (the refinement uses the full image). A
-  /// larger image is first searched at a longer side of <= 1000 px (a coarse pass, less than half
-  /// the pixels), and at working_side only when that finds no chart.
+  /// Longer side of the working image of steps 1-5 (the refinement uses the full image). When
+  /// that finds no chart in a larger image, a coarse pass at a longer side of <= 1000 px follows
+  /// (it keeps only confident candidates whose lattice holds half of the layout).
   int working_side = 1600;
   /// Candidates below this confidence are dropped.
   double min_confidence = 0.5;
