@@ -84,8 +84,12 @@ test('every catalogue case shows its code next to its input, and the page still 
             const slot = document.getElementById(document.querySelector(sel)?.getAttribute('aria-describedby'));
             return slot && !slot.hidden && slot.dataset.code ? slot.dataset.code : null;
           }, DETECT_AGAIN, { timeout: 60000 }).then((h) => h.jsonValue(), () => 'no coded error shown');
+          // Its own detection must have finished before the corners are set, or a late detection
+          // moves them again (seen under load: A1 then never matched).
+          const runs = await page.evaluate(() => Number(document.querySelector('#step-images .detect-panel').dataset.runs ?? 0));
           await page.setInputFiles(selector, path.join(sharedData, PASSPORT.slice('shared:'.length)));
           await page.waitForFunction(() => document.querySelectorAll('#step-images .patch-table tbody tr').length === 24, null, { timeout: 60000 });
+          await page.waitForFunction((r) => Number(document.querySelector('#step-images .detect-panel').dataset.runs ?? 0) > r, runs, { timeout: 60000 });
           await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, passportCorners);
           await page.waitForFunction((t) => document.querySelector('#step-images .patch-table tbody tr[data-id="A1"]')?.textContent === t, plainA1, { timeout: 30000 });
         } else {
