@@ -48,6 +48,23 @@ TEST_CASE("absolute: the stimuli CSV of the example reads back exactly, bad rows
   test::require_code([] { read_stimuli_csv("file,x,y,w,h,X,Y,Z\na.dng,1e300,0,8,8,1,1,1\n", "s.csv"); }, ErrorCode::InvalidArgument);
 }
 
+namespace {
+// The sum of the finite X, Y, Z in the central half (each way) of a cell, and how many there were.
+Vec3 central_sum(const AbsoluteImage& img, const ExampleRegion& g, int& count) {
+  const int W = img.luminance.width;
+  Vec3 sum = Vec3::Zero();
+  count = 0;
+  for (int y = g.y + g.h / 4; y < g.y + g.h - g.h / 4; ++y)
+    for (int x = g.x + g.w / 4; x < g.x + g.w - g.w / 4; ++x) {
+      const size_t q = static_cast<size_t>(y) * W + x;
+      const Vec3 v(img.XYZ[q * 3], img.XYZ[q * 3 + 1], img.XYZ[q * 3 + 2]);
+      if (v.allFinite()) sum += v, ++count;
+    }
+  return sum;
+}
+
+}  // namespace
+
 TEST_CASE("absolute: the example, fitted as a user would, measures Y within 2.4 %", "[absolute]") {
   const AbsoluteExample ex = make_absolute_example();
   std::vector<const RawImage*> caps, series;
@@ -73,17 +90,10 @@ TEST_CASE("absolute: the example, fitted as a user would, measures Y within 2.4 
   // The scene's chart spectra, as make_absolute_example builds them (cc24 under D65).
   const SpectralData chart = reflected_spectra(chart_reflectances("cc24"), illuminant_spd("D65"));
   std::vector<double> err, floor_err, chain_err;
-  const int W = img.luminance.width;
   std::printf("  cell     truth Y cd/m2   measured (rel)        M floor (rel)      measured vs floor\n");
   for (const auto& g : ex.regions) {
-    Vec3 sum = Vec3::Zero();
     int count = 0;
-    for (int y = g.y + g.h / 4; y < g.y + g.h - g.h / 4; ++y)
-      for (int x = g.x + g.w / 4; x < g.x + g.w - g.w / 4; ++x) {
-        const size_t q = static_cast<size_t>(y) * W + x;
-        const Vec3 v(img.XYZ[q * 3], img.XYZ[q * 3 + 1], img.XYZ[q * 3 + 2]);
-        if (v.allFinite()) sum += v, ++count;
-      }
+    const Vec3 sum = central_sum(img, g, count);
     REQUIRE(count > 0);
     const double Y = sum[1] / count, rel = (Y - g.XYZ[1]) / g.XYZ[1];
     err.push_back(std::fabs(rel));
@@ -130,7 +140,6 @@ AbsoluteMetrics chart_cells(const AbsoluteExample& ex, const std::string& transf
   o.transform = transform;
   const AbsoluteProfile p = fit_absolute_Guarnera2018(stimuli, n, o);
   const AbsoluteImage img = apply_absolute(p, series);
-  const int W = img.luminance.width;
   std::vector<Vec3> est, ref;
   double y_max = 0;
   Vec3 white = Vec3::Zero();
@@ -138,14 +147,8 @@ AbsoluteMetrics chart_cells(const AbsoluteExample& ex, const std::string& transf
     y_max = std::max(y_max, g.XYZ[1]);
     if (g.id == ex.white_id) white = g.XYZ;
     if (g.id[0] == 'E') continue;
-    Vec3 sum = Vec3::Zero();
     int count = 0;
-    for (int y = g.y + g.h / 4; y < g.y + g.h - g.h / 4; ++y)
-      for (int x = g.x + g.w / 4; x < g.x + g.w - g.w / 4; ++x) {
-        const size_t q = static_cast<size_t>(y) * W + x;
-        const Vec3 v(img.XYZ[q * 3], img.XYZ[q * 3 + 1], img.XYZ[q * 3 + 2]);
-        if (v.allFinite()) sum += v, ++count;
-      }
+    const Vec3 sum = central_sum(img, g, count);
     est.push_back(sum / count);
     ref.push_back(g.XYZ);
   }
