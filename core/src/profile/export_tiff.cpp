@@ -67,6 +67,13 @@ int on_error(TIFF*, void* user, const char* module, const char* fmt, va_list ap)
 }
 int on_warning(TIFF*, void*, const char*, const char*, va_list) { return 1; }
 
+bool host_big_endian() {
+  const std::uint16_t one = 1;
+  std::uint8_t first;
+  std::memcpy(&first, &one, 1);
+  return first == 0;
+}
+
 struct OptionsFree {
   void operator()(TIFFOpenOptions* o) const { TIFFOpenOptionsFree(o); }
 };
@@ -82,7 +89,6 @@ std::vector<std::uint8_t> write_float_tiff(const float* pixels, int width, int h
   // Classic TIFF addresses 4 GB; one strip's byte count is a LONG.
   if (data_bytes > 0xF0000000ULL) throw Error(ErrorCode::ExportFailed, "TIFF: image larger than 4 GB");
 
-  std::vector<float> row(static_cast<std::size_t>(width) * static_cast<std::size_t>(bands));
   const int extra = rgb ? bands - 3 : bands - 1;
   const std::vector<std::uint16_t> kinds(static_cast<std::size_t>(std::max(extra, 0)), EXTRASAMPLE_UNSPECIFIED);
   TiffSink sink;
@@ -110,11 +116,16 @@ std::vector<std::uint8_t> write_float_tiff(const float* pixels, int width, int h
             TIFFSetField(t, TIFFTAG_IMAGEDESCRIPTION, description.c_str()) == 1;
   if (ok && extra > 0)
     ok = TIFFSetField(t, TIFFTAG_EXTRASAMPLES, static_cast<std::uint16_t>(extra), kinds.data()) == 1;
-  // Row by row into the one strip (libtiff may byte-swap what it is given, so it gets a copy).
-  for (int y = 0; ok && y < height; ++y) {
-    std::memcpy(row.data(), pixels + static_cast<std::size_t>(y) * row.size(), row.size() * sizeof(float));
-    ok = TIFFWriteScanline(t, row.data(), static_cast<std::uint32_t>(y), 0) == 1;
+  // The pixels as the one strip's raw bytes: libtiff neither buffers nor copies them. TIFFWriteRawStrip
+  // writes them as given, so on a big-endian host (none we build for) they are swapped first.
+  std::vector<float> swapped;
+  const float* strip = pixels;
+  if (ok && TIFFIsBigEndian(t) != host_big_endian()) {
+    swapped.assign(pixels, pixels + data_bytes / 4);
+    TIFFSwabArrayOfFloat(swapped.data(), static_cast<tmsize_t>(swapped.size()));
+    strip = swapped.data();
   }
+  if (ok) ok = TIFFWriteRawStrip(t, 0, const_cast<float*>(strip), static_cast<tmsize_t>(data_bytes)) == static_cast<tmsize_t>(data_bytes);
   if (!ok) {
     TIFFCleanup(t);
     fail("libtiff refused the image");
