@@ -33,15 +33,24 @@ export function serve(root, port = 0) {
     if (p.endsWith('/')) p += 'index.html';
     const file = path.join(root, path.normalize(p));
     if (!file.startsWith(root + path.sep)) { res.writeHead(403).end(); return; }
-    fs.readFile(file, (err, data) => {
-      if (err) { res.writeHead(404, { 'Content-Type': 'text/plain' }).end('not found'); return; }
-      res.writeHead(200, {
+    fs.stat(file, (err, st) => {
+      if (err || !st.isFile()) { res.writeHead(404, { 'Content-Type': 'text/plain' }).end('not found'); return; }
+      // Like a static host: a validator, so the browser revalidates (no-cache) and reuses what it
+      // has when the file is unchanged (304) — and V8 its compiled code of the wasm module.
+      const etag = `"${st.size.toString(16)}-${Math.round(st.mtimeMs).toString(16)}"`;
+      const headers = {
         'Content-Type': TYPES[path.extname(file).toLowerCase()] || 'application/octet-stream',
         'Content-Security-Policy': CSP,
         'X-Content-Type-Options': 'nosniff',
         'Cache-Control': 'no-cache',
+        ETag: etag,
+      };
+      if (req.headers['if-none-match'] === etag) { res.writeHead(304, headers).end(); return; }
+      fs.readFile(file, (err2, data) => {
+        if (err2) { res.writeHead(404, { 'Content-Type': 'text/plain' }).end('not found'); return; }
+        res.writeHead(200, headers);
+        res.end(data);
       });
-      res.end(data);
     });
   });
   return new Promise((resolve) => server.listen(port, '127.0.0.1', () => resolve(server)));

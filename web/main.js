@@ -3,23 +3,22 @@
 import { Engine } from './lib/engine.js';
 import { store } from './store.js';
 import { h } from './lib/ui.js';
-import * as reference from './reference/view.js';
-import * as surface from './surface/view.js';
-import * as images from './images/view.js';
-import * as linearisation from './linearisation/view.js';
-import * as fit from './fit/view.js';
-import * as results from './results/view.js';
-import * as apply from './apply/view.js';
-import * as exporter from './export/view.js';
-import * as absolute from './absolute/view.js';
+
+// The engine's worker (and the compile of the wasm module, protocol.js) starts before the views
+// and their plotting code are loaded: they load meanwhile.
+const engine = new Engine();
+// read while the engine starts (a fresh session loads the example)
+const storedSession = store.all().catch((e) => { console.warn(`session storage unavailable: ${e.message}`); return {}; });
 
 // The features, in journey order: web/<feature>/view.js, each mounted into <section id="step-<feature>">.
-const FEATURES = { reference, surface, images, linearisation, fit, results, apply, export: exporter, absolute };
-const STEPS = Object.keys(FEATURES);
+const STEPS = ['reference', 'surface', 'images', 'linearisation', 'fit', 'results', 'apply', 'export', 'absolute'];
+const FEATURES = Promise.all(STEPS.map((s) => import(`./${s}/view.js`)))
+  .then((mods) => Object.fromEntries(STEPS.map((s, i) => [s, mods[i]])));
+FEATURES.catch(() => {});   // a failed load is reported by start()
 const status = document.getElementById('engine-status');
 
 const app = {
-  engine: new Engine(),
+  engine,
   store,
   session: {},        // persisted: settings, surface, surfaceSettings, surfaceCompare, linearisation, linearisationSettings, files.*, corners, layout, fitChoice, results (each with its recipe), selected, recipe, step
   derived: {},        // recomputed: reference, locus, sample, preview
@@ -84,12 +83,14 @@ async function start() {
     status.classList.add('error');
     return;
   }
-  let saved = {};
-  try { saved = await store.all(); } catch (e) { console.warn(`session storage unavailable: ${e.message}`); }
+  const saved = await storedSession;
   const fresh = !saved.settings;
   Object.assign(app.session, saved);
 
-  for (const [step, mod] of Object.entries(FEATURES)) {
+  const features = await FEATURES;
+  // The plotting library (deferred scripts) has run once the document is parsed.
+  if (document.readyState === 'loading') await new Promise((r) => document.addEventListener('DOMContentLoaded', r, { once: true }));
+  for (const [step, mod] of Object.entries(features)) {
     app.views[step] = mod.mount(document.getElementById(`step-${step}`), app);
   }
   if (fresh) await app.save('settings', { ...app.session.settings });   // the session now exists
@@ -99,10 +100,14 @@ async function start() {
   // Restore (or, on a first visit, load the example), one step after the other.
   await app.views.reference.ready;
   if (fresh) app.views.results.setStatus('Loading the example: a ColorChecker Passport photographed as DNG, decoding and sampling it in the worker…');
-  await app.views.images.restore(fresh);
+  // A new session: the example's detection waits for the first screen (its corners are preset).
+  let shown = null;
+  const firstScreen = fresh ? new Promise((r) => { shown = r; }) : null;
+  await app.views.images.restore(fresh, { detectAfter: firstScreen });
   if (fresh) {
     app.views.results.setStatus('Fitting the example: every model × objective, the first one shown as soon as it is in…');
-    const r = await app.views.fit.runDefault({ onFirst: () => { performance.mark('tristim:first-screen'); document.body.dataset.firstScreen = 'true'; } });
+    const r = await app.views.fit.runDefault({ onFirst: () => { performance.mark('tristim:first-screen'); document.body.dataset.firstScreen = 'true'; shown(); } });
+    shown();
     if (!r) app.views.results.setStatus('No fitted model yet: the example could not be fitted (see steps 1–3).');
   } else app.views.results.refresh();
   performance.mark('tristim:ready');

@@ -3,9 +3,21 @@
 // wasm module aborted (out of memory, a trap); the worker is closing and must be replaced.
 // The page talks to the worker only through `call`, which returns a promise.
 
+// The wasm module is compiled once, in the page, and posted to every worker (the engine's and the
+// compare's): each worker instantiates it instead of fetching and compiling its own copy, and the
+// compiled code (with V8's tier-up and code cache) is shared. null when the page cannot compile it:
+// the worker then loads the module itself.
+let compiled = null;
+export const sharedModule = () => (compiled ??= WebAssembly.compileStreaming(fetch(new URL('./tristim.wasm', import.meta.url), { credentials: 'same-origin' }))
+  .catch((e) => { console.warn(`the page could not compile the engine (${e.message}); each worker loads its own`); return null; }));
+
 export class EngineClient {
   constructor(url = new URL('./worker.js', import.meta.url)) {
     this.worker = new Worker(url, { type: 'module' });
+    // The worker waits for this message before it creates the module (worker.js).
+    sharedModule().then((module) => {
+      try { this.worker.postMessage({ type: 'module', module }); } catch { this.worker.postMessage({ type: 'module', module: null }); }
+    });
     this.nextId = 1;
     this.pending = new Map();
     this.worker.onmessage = (ev) => this.onMessage(ev.data);

@@ -38,8 +38,19 @@ for (const f of FEATURES) {
   Object.assign(handlers, f.handlers);
 }
 
+// The page posts {type: 'module', module} first (protocol.js): a compiled WebAssembly.Module to
+// instantiate, or null (the worker then fetches and compiles the module itself).
+let receiveModule;
+const pageModule = new Promise((resolve) => { receiveModule = resolve; });
 let modulePromise = null;
-const engine = () => (modulePromise ??= createTristim());
+const engine = () => (modulePromise ??= pageModule.then((module) => (module ? new Promise((resolve, reject) => {
+  createTristim({
+    instantiateWasm(imports, done) {
+      WebAssembly.instantiate(module, imports).then((instance) => done(instance, module), reject);
+      return {};
+    },
+  }).then(resolve, reject);
+}) : createTristim())));
 const state = {};  // per-worker state shared by handlers (e.g. the decoded images)
 
 // Anything that escapes the request handlers is a bug: say so on the console (the browser tests
@@ -49,6 +60,7 @@ self.addEventListener('error', (e) => console.error(`worker: uncaught error: ${e
 
 self.onmessage = async (ev) => {
   const msg = ev.data;
+  if (msg.type === 'module') { receiveModule(msg.module); engine(); return; }
   const handler = handlers[msg.type];
   try {
     if (!handler) throw Object.assign(new Error(`unknown request '${msg.type}'`), { code: 'INVALID_ARGUMENT' });

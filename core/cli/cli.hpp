@@ -51,7 +51,7 @@ RawImage load_raw(const std::string& path);
 /// --chart, --rows, --columns, --margins l,t,r,b as chart layout options (cmd_raw.cpp).
 LayoutOptions layout_options(const Args& args);
 
-/// Comma-separated numbers of option --`option`; Error(InvalidArgument) naming it otherwise.
+/// Comma-separated finite numbers of option --`option`; Error(InvalidArgument) naming it otherwise.
 std::vector<double> numbers(const std::string& text, const std::string& option);
 
 }  // namespace tristim::cli

@@ -47,20 +47,6 @@ void write_text(const std::string& path, const std::string& text) {
   write_bytes(path, std::vector<std::uint8_t>(text.begin(), text.end()));
 }
 
-std::vector<double> number_list(const std::string& text, const std::string& option) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    const double d = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !std::isfinite(d))
-      throw Error(ErrorCode::InvalidArgument, "--" + option + " expects comma-separated numbers, got '" + text + "'");
-    v.push_back(d);
-  }
-  return v;
-}
-
 SpectralData illuminant_from(const std::string& value) {
   if (readable(value)) {
     SpectralData d = read_spectral_csv(read_file(value), value);
@@ -292,7 +278,7 @@ int run_apply(const Args& args, std::ostream& out) {
         throw Error(e.code(), std::string(e.what()) + " with --exposure t,N[,ISO]");
       }
     }
-    const auto v = number_list(given[i], "exposure");
+    const auto v = numbers(given[i], "exposure");
     if (v.size() < 2 || v.size() > 3) throw Error(ErrorCode::InvalidArgument, "--exposure is t,N or t,N,ISO");
     return ExposureSettings{v[0], v[1], v.size() == 3 ? v[2] : 0.0};
   };

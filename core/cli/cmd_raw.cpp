@@ -35,8 +35,8 @@ std::vector<double> numbers(const std::string& text, const std::string& option) 
   while (std::getline(ss, item, ',')) {
     char* end = nullptr;
     const double d = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0')
-      throw Error(ErrorCode::InvalidArgument, "--" + option + " expects comma-separated numbers, got '" + text + "'");
+    if (item.empty() || *end != '\0' || !std::isfinite(d))
+      throw Error(ErrorCode::InvalidArgument, "--" + option + " expects comma-separated finite numbers, got '" + text + "'");
     v.push_back(d);
   }
   return v;

@@ -38,8 +38,9 @@ export class WorkerPool {
     return c;
   }
 
-  /// Runs `task(client, job)` for every job, in the order given, one job per worker at a time;
-  /// `onDone(job, {result} | {error})` as each one ends. Resolves once every job has ended, or
+  /// Runs `task(client, job)` for every job, in the order given, two jobs per worker at a time (the
+  /// next one waits in the worker's queue, so the worker does not idle while the page is busy
+  /// drawing the previous answer); `onDone(job, {result} | {error})` as each one ends. Resolves once every job has ended, or
   /// with false as soon as stop() is called (later answers are dropped).
   async map(jobs, task, onDone) {
     this.warm();
@@ -54,7 +55,7 @@ export class WorkerPool {
         onDone(job, out);
       }
     };
-    await Promise.all(this.clients.map((_, slot) => lane(slot)));
+    await Promise.all(this.clients.flatMap((_, slot) => [lane(slot), lane(slot)]));
     return generation === this.generation;
   }
 

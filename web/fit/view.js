@@ -179,10 +179,15 @@ export function mount(section, app) {
       const task = (client, job) => {
         job.recipe = recipeFor(job.mId, job.obj, ref, data);
         job.t1 = performance.now();
+        job.client = client;
         return client.call('fit', { recipe: job.recipe, sample, reference, heldOut });
       };
       const onRow = (job, { result: fit, error }) => {
-        const { mId, obj, recipe, t1 } = job;
+        const { mId, obj, recipe, client } = job;
+        // A worker runs its queued rows one after the other: this row started when it was sent or
+        // when the worker's previous row ended, whichever is later.
+        const t1 = Math.max(job.t1, client.lastEnd ?? 0);
+        client.lastEnd = performance.now();
         done++;
         const m = models.find((x) => x.id === mId) ?? describe(mId);
         const label = `${m.label} · ${objectives.find((o) => o.id === obj)?.label ?? obj}`;

@@ -402,8 +402,10 @@ export function mount(section, app) {
     tableBox.replaceChildren(patchTable(s));
   }
 
-  /// Restores the session's files and corners (or the example on a first visit).
-  async function restore(fresh) {
+  /// Restores the session's files and corners (or the example on a first visit). The chart's own
+  /// detection (a proposal) starts once `detectAfter` settles (the page passes the first screen's
+  /// plots, so the detection does not compete with them), at once without it.
+  async function restore(fresh, { detectAfter = null } = {}) {
     const L = app.session.layout;
     if (L) {
       layoutSel.value = L.chart;
@@ -413,7 +415,7 @@ export function mount(section, app) {
       ['margin_left', 'margin_top', 'margin_right', 'margin_bottom'].forEach((k, i) => { if (L[k]) marginIns[i].value = L[k]; });
     }
     syncLayout();
-    if (fresh) await loadExample();
+    const saving = fresh ? await loadExample() : null;
     for (const slot of Object.keys(SLOTS)) {
       const f = app.session[`files.${slot}`];
       if (f && slot !== 'chart') names[slot].textContent = `${f.name}`;
@@ -421,11 +423,15 @@ export function mount(section, app) {
     if (app.session['files.chart']) {
       if (await ensureDecoded()) {
         await resample();
-        detect();   // a proposal (or the corners' own detection); runs in the worker's queue
+        // a proposal (or the corners' own detection); runs in the worker's queue
+        if (detectAfter) detectAfter.then(() => detect()); else detect();
       }
     }
+    await saving;
   }
 
+  /// Loads the example into the session; resolves once it is in the session, with a promise of it
+  /// being written to this browser's storage (the decode need not wait for that).
   async function loadExample() {
     try {
       const cfg = await (await fetch('examples/passport.json')).json();
@@ -436,12 +442,11 @@ export function mount(section, app) {
       layoutSel.value = layout.chart;
       if (cfg.area) areaIn.value = cfg.area;
       syncLayout();
-      await app.save('layout', layout);
-      await app.save('corners', cfg.corners);
-      await app.save('files.chart', { name: cfg.file, bytes });
-      await app.save('example', cfg.note ?? true);
+      return Promise.all([app.save('layout', layout), app.save('corners', cfg.corners),
+        app.save('files.chart', { name: cfg.file, bytes }), app.save('example', cfg.note ?? true)]);
     } catch (e) {
       showError(inputs.chart, e, 'Example chart');
+      return null;
     }
   }
 

@@ -1,4 +1,4 @@
-// TIFF in (libtiff, read from memory): the only file that includes tiffio.h.
+// TIFF in (libtiff, read from memory). TIFF out: profile/export_tiff.cpp.
 #include <tiffio.h>
 
 #include <algorithm>

@@ -340,13 +340,6 @@ std::string patch_csv(const std::vector<std::string>& ids, const PatchMatrix& rg
 }
 
 namespace {
-void put16(std::vector<uint8_t>& b, size_t at, uint16_t v) {
-  b[at] = static_cast<uint8_t>(v);
-  b[at + 1] = static_cast<uint8_t>(v >> 8);
-}
-void put32(std::vector<uint8_t>& b, size_t at, uint32_t v) {
-  for (int i = 0; i < 4; ++i) b[at + i] = static_cast<uint8_t>(v >> (8 * i));
-}
 void check_image(const float* pixels, int width, int height) {
   if (width <= 0 || height <= 0 || !pixels)
     throw Error(ErrorCode::InvalidArgument, "image writer: empty image");
@@ -370,110 +363,7 @@ void copy_floats_le(uint8_t* dst, const float* src, size_t n) {
 }
 }  // namespace
 
-std::vector<uint8_t> float_tiff(const float* pixels, int width, int height, const std::string& description) {
-  check_image(pixels, width, height);
-  const uint64_t data_bytes = static_cast<uint64_t>(width) * height * 12;
-  if (data_bytes > 0xF0000000ULL) throw Error(ErrorCode::ExportFailed, "TIFF: image larger than 4 GB");
-  const uint16_t n_tags = 12;
-  const size_t ifd_at = 8;
-  const size_t ifd_size = 2 + n_tags * 12 + 4;
-  const size_t bps_at = ifd_at + ifd_size;  // 3 SHORTs BitsPerSample
-  const size_t sf_at = bps_at + 6;          // 3 SHORTs SampleFormat
-  const size_t desc_at = sf_at + 6;
-  const std::string desc = description + std::string(1, '\0');
-  size_t data_at = desc_at + desc.size();
-  data_at = (data_at + 15) & ~size_t(15);
-  std::vector<uint8_t> b(data_at + data_bytes, 0);
-  b[0] = 'I';
-  b[1] = 'I';
-  put16(b, 2, 42);
-  put32(b, 4, static_cast<uint32_t>(ifd_at));
-  put16(b, ifd_at, n_tags);
-  size_t t = ifd_at + 2;
-  auto tag = [&](uint16_t id, uint16_t type, uint32_t count, uint32_t value) {
-    put16(b, t, id);
-    put16(b, t + 2, type);
-    put32(b, t + 4, count);
-    if (type == 3 && count == 1) put16(b, t + 8, static_cast<uint16_t>(value));
-    else put32(b, t + 8, value);
-    t += 12;
-  };
-  tag(256, 4, 1, static_cast<uint32_t>(width));             // ImageWidth
-  tag(257, 4, 1, static_cast<uint32_t>(height));            // ImageLength
-  tag(258, 3, 3, static_cast<uint32_t>(bps_at));            // BitsPerSample 32,32,32
-  tag(259, 3, 1, 1);                                        // Compression: none
-  tag(262, 3, 1, 2);                                        // Photometric: RGB (samples are X,Y,Z)
-  tag(270, 2, static_cast<uint32_t>(desc.size()), static_cast<uint32_t>(desc_at));  // ImageDescription
-  tag(273, 4, 1, static_cast<uint32_t>(data_at));           // StripOffsets
-  tag(277, 3, 1, 3);                                        // SamplesPerPixel
-  tag(278, 4, 1, static_cast<uint32_t>(height));            // RowsPerStrip
-  tag(279, 4, 1, static_cast<uint32_t>(data_bytes));        // StripByteCounts
-  tag(284, 3, 1, 1);                                        // PlanarConfiguration: chunky
-  tag(339, 3, 3, static_cast<uint32_t>(sf_at));             // SampleFormat: IEEE float
-  put32(b, t, 0);                                           // no next IFD
-  for (int i = 0; i < 3; ++i) {
-    put16(b, bps_at + 2 * i, 32);
-    put16(b, sf_at + 2 * i, 3);
-  }
-  std::memcpy(b.data() + desc_at, desc.data(), desc.size());
-  copy_floats_le(b.data() + data_at, pixels, static_cast<size_t>(width) * height * 3);
-  return b;
-}
-
-// Multi-band variant for spectral images (linearisation/spectral.hpp): `bands` samples per pixel,
-// Photometric MinIsBlack with bands − 1 ExtraSamples (unspecified), as multispectral TIFFs do.
-std::vector<uint8_t> float_tiff_bands(const float* pixels, int width, int height, int bands, const std::string& description) {
-  check_image(pixels, width, height);
-  if (bands < 1 || bands > 1000) throw Error(ErrorCode::InvalidArgument, "TIFF: 1..1000 bands");
-  const uint64_t data_bytes = static_cast<uint64_t>(width) * height * 4 * static_cast<uint64_t>(bands);
-  if (data_bytes > 0xF0000000ULL) throw Error(ErrorCode::ExportFailed, "TIFF: image larger than 4 GB");
-  const uint16_t n_tags = bands > 1 ? 13 : 12;
-  const size_t ifd_at = 8, ifd_size = 2 + n_tags * 12 + 4, nb = static_cast<size_t>(bands);
-  const size_t bps_at = ifd_at + ifd_size, sf_at = bps_at + 2 * nb, es_at = sf_at + 2 * nb, desc_at = es_at + 2 * nb;
-  const std::string desc = description + std::string(1, '\0');
-  const size_t data_at = (desc_at + desc.size() + 15) & ~size_t(15);
-  std::vector<uint8_t> b(data_at + data_bytes, 0);
-  b[0] = 'I';
-  b[1] = 'I';
-  put16(b, 2, 42);
-  put32(b, 4, static_cast<uint32_t>(ifd_at));
-  put16(b, ifd_at, n_tags);
-  size_t t = ifd_at + 2;
-  auto tag = [&](uint16_t id, uint16_t type, uint32_t count, uint32_t value) {
-    put16(b, t, id);
-    put16(b, t + 2, type);
-    put32(b, t + 4, count);
-    if (type == 3 && count == 1) put16(b, t + 8, static_cast<uint16_t>(value));
-    else if (type == 3 && count == 2) put32(b, t + 8, value);  // two SHORTs fit in the entry
-    else put32(b, t + 8, value);
-    t += 12;
-  };
-  // SHORT arrays of up to 2 values live inside the entry; longer ones at their offsets.
-  auto shorts = [&](size_t at, uint16_t v) -> uint32_t {
-    for (size_t i = 0; i < nb; ++i) put16(b, at + 2 * i, v);
-    return nb <= 2 ? static_cast<uint32_t>(v) | (nb == 2 ? static_cast<uint32_t>(v) << 16 : 0u) : static_cast<uint32_t>(at);
-  };
-  tag(256, 4, 1, static_cast<uint32_t>(width));                          // ImageWidth
-  tag(257, 4, 1, static_cast<uint32_t>(height));                         // ImageLength
-  tag(258, 3, static_cast<uint32_t>(nb), shorts(bps_at, 32));            // BitsPerSample
-  tag(259, 3, 1, 1);                                                     // Compression: none
-  tag(262, 3, 1, 1);                                                     // Photometric: MinIsBlack
-  tag(270, 2, static_cast<uint32_t>(desc.size()), static_cast<uint32_t>(desc_at));  // ImageDescription
-  tag(273, 4, 1, static_cast<uint32_t>(data_at));                        // StripOffsets
-  tag(277, 3, 1, static_cast<uint32_t>(nb));                             // SamplesPerPixel
-  tag(278, 4, 1, static_cast<uint32_t>(height));                         // RowsPerStrip
-  tag(279, 4, 1, static_cast<uint32_t>(data_bytes));                     // StripByteCounts
-  tag(284, 3, 1, 1);                                                     // PlanarConfiguration: chunky
-  if (bands > 1) {                                                       // ExtraSamples: unspecified
-    const uint32_t v = nb - 1 <= 2 ? 0u : static_cast<uint32_t>(es_at);
-    tag(338, 3, static_cast<uint32_t>(nb - 1), v);
-  }
-  tag(339, 3, static_cast<uint32_t>(nb), shorts(sf_at, 3));              // SampleFormat: IEEE float
-  put32(b, t, 0);                                                        // no next IFD
-  std::memcpy(b.data() + desc_at, desc.data(), desc.size());
-  copy_floats_le(b.data() + data_at, pixels, static_cast<size_t>(width) * height * nb);
-  return b;
-}
+// float_tiff and float_tiff_bands: export_tiff.cpp (libtiff).
 
 std::vector<uint8_t> float_pfm(const float* pixels, int width, int height) {
   check_image(pixels, width, height);

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "test_support.hpp"
+#include "tiff_reader.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/linearisation/spectral.hpp"
@@ -116,26 +117,13 @@ TEST_CASE("spectral: the multi-band float TIFF holds every band", "[linearisatio
   std::vector<float> px(static_cast<size_t>(w * h * bands));
   for (size_t i = 0; i < px.size(); ++i) px[i] = 0.01f * static_cast<float>(i);
   const std::vector<uint8_t> b = float_tiff_bands(px.data(), w, h, bands, "reflectance");
-  auto u16 = [&](size_t at) { return static_cast<uint32_t>(b[at] | b[at + 1] << 8); };
-  auto u32 = [&](size_t at) { return u16(at) | u16(at + 2) << 16; };
-  REQUIRE(b.size() > 8);
-  CHECK(b[0] == 'I');
-  CHECK(u16(2) == 42);
-  const size_t ifd = u32(4);
-  std::map<uint32_t, std::pair<uint32_t, uint32_t>> tags;  // id -> (count, value/offset)
-  for (uint32_t i = 0; i < u16(ifd); ++i) {
-    const size_t e = ifd + 2 + 12 * i;
-    tags[u16(e)] = {u32(e + 4), u16(e + 2) == 3 && u32(e + 4) == 1 ? u16(e + 8) : u32(e + 8)};
-  }
-  CHECK(tags[277].second == static_cast<uint32_t>(bands));  // SamplesPerPixel
-  CHECK(tags[262].second == 1);                             // MinIsBlack
-  CHECK(tags[338].first == static_cast<uint32_t>(bands - 1));  // ExtraSamples
-  CHECK(tags[258].first == static_cast<uint32_t>(bands));
-  CHECK(u16(tags[258].second) == 32);
-  CHECK(u16(tags[339].second + 2 * (bands - 1)) == 3);      // SampleFormat: float, every band
-  const size_t data = tags[273].second;
-  CHECK(tags[279].second == static_cast<uint32_t>(w * h * bands * 4));
-  float last;
-  std::memcpy(&last, b.data() + data + 4 * (px.size() - 1), 4);
-  CHECK(last == px.back());
+  auto tags = test::tiff_tags(b);
+  using V = std::vector<uint32_t>;
+  CHECK(tags[277].values == V{bands});                        // SamplesPerPixel
+  CHECK(tags[262].values == V{1});                            // MinIsBlack
+  CHECK(tags[338].values == V(bands - 1, 0));                 // ExtraSamples: unspecified
+  CHECK(tags[258].values == V(bands, 32));                    // BitsPerSample
+  CHECK(tags[339].values == V(bands, 3));                     // SampleFormat: float, every band
+  CHECK(tags[270].ascii == "reflectance");
+  CHECK(test::tiff_float_strip(b) == px);                     // every band of every pixel, verbatim
 }

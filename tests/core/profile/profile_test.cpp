@@ -7,6 +7,7 @@
 #include <random>
 
 #include "test_support.hpp"
+#include "tiff_reader.hpp"
 #include "tristim/error.hpp"
 #include "tristim/profile/export.hpp"
 #include "tristim/profile/profile.hpp"
@@ -209,20 +210,20 @@ TEST_CASE("float TIFF and PFM writers: headers, layout and values", "[profile][i
   const int w = 3, h = 2;
   std::vector<float> px(w * h * 3);
   for (size_t i = 0; i < px.size(); ++i) px[i] = 0.5f * static_cast<float>(i);
-  const auto tif = float_tiff(px.data(), w, h);
-  CHECK(tif[0] == 'I');
-  CHECK(tif[2] == 42);
-  // StripOffsets entry (tag 273) -> the pixel data, verbatim.
-  const uint16_t n = static_cast<uint16_t>(tif[8] | tif[9] << 8);
-  uint32_t data_at = 0;
-  for (int t = 0; t < n; ++t) {
-    const size_t e = 10 + 12 * t;
-    const uint16_t tag = static_cast<uint16_t>(tif[e] | tif[e + 1] << 8);
-    if (tag == 273) std::memcpy(&data_at, &tif[e + 8], 4);
-  }
-  REQUIRE(data_at > 0);
-  REQUIRE(tif.size() == data_at + px.size() * 4);
-  CHECK(std::memcmp(tif.data() + data_at, px.data(), px.size() * 4) == 0);
+  const auto tif = float_tiff(px.data(), w, h, "CIE XYZ (test)");
+  auto tags = test::tiff_tags(tif);
+  using V = std::vector<uint32_t>;
+  CHECK(tags[256].values == V{w});
+  CHECK(tags[257].values == V{h});
+  CHECK(tags[258].values == V{32, 32, 32});  // BitsPerSample
+  CHECK(tags[339].values == V{3, 3, 3});     // SampleFormat: IEEE float
+  CHECK(tags[262].values == V{2});           // Photometric: RGB (the samples are X, Y, Z)
+  CHECK(tags[277].values == V{3});
+  CHECK(tags[284].values == V{1});           // chunky
+  CHECK(tags[270].ascii == "CIE XYZ (test)");
+  CHECK(tags.count(338) == 0);               // no ExtraSamples
+  CHECK(test::tiff_float_strip(tif) == px);  // the pixels verbatim, in one strip
+  test::require_code([&] { float_tiff(px.data(), 0, h); }, ErrorCode::InvalidArgument);
   const auto pfm = float_pfm(px.data(), w, h);
   const std::string head = "PF\n3 2\n-1.0\n";
   CHECK(std::string(pfm.begin(), pfm.begin() + head.size()) == head);
