@@ -38,6 +38,16 @@ double Value::as_number(const std::string& what) const {
   if (type_ != Type::Number) throw wrong(what, "number", type_);
   return number_;
 }
+int Value::as_int(const std::string& what, int lo, int hi) const {
+  const double x = as_number(what);
+  if (!(x >= lo && x <= hi) || x != std::floor(x)) {
+    char got[32];
+    std::snprintf(got, sizeof got, "%.17g", x);
+    throw Error(ErrorCode::ProfileInvalid,
+                what + " must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " + got);
+  }
+  return static_cast<int>(x);
+}
 bool Value::as_bool(const std::string& what) const {
   if (type_ != Type::Bool) throw wrong(what, "boolean", type_);
   return bool_;
