@@ -232,17 +232,36 @@ struct Parser {
     --depth;
     return v;
   }
+  // RFC 8259 number: -? (0 | [1-9][0-9]*) (. [0-9]+)? ([eE] [+-]? [0-9]+)?, finite as a double
+  // (the page's JSON.parse refuses "07" and "1."; a value beyond double's range is refused here,
+  // not read as infinity).
   double number() {
     const size_t start = i;
+    auto digit = [&] { return i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])); };
+    auto digits = [&] {
+      if (!digit()) return false;
+      while (digit()) ++i;
+      return true;
+    };
     if (i < s.size() && s[i] == '-') ++i;
-    if (i >= s.size() || !std::isdigit(static_cast<unsigned char>(s[i]))) fail("invalid value");
-    while (i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || s[i] == '.' || s[i] == 'e' ||
-                            s[i] == 'E' || s[i] == '+' || s[i] == '-'))
+    if (!digit()) fail("invalid value");
+    if (s[i] == '0') ++i;
+    else digits();
+    bool ok = true;
+    if (i < s.size() && s[i] == '.') ok = (++i, digits());
+    if (ok && i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
       ++i;
+      if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+      ok = digits();
+    }
+    while (i < s.size() && (digit() || s[i] == '.' || s[i] == 'e' || s[i] == 'E' || s[i] == '+' || s[i] == '-')) {
+      ok = false;
+      ++i;
+    }
     const std::string t = s.substr(start, i - start);
-    char* end = nullptr;
-    const double d = std::strtod(t.c_str(), &end);
-    if (end != t.c_str() + t.size()) fail("invalid number '" + t + "'");
+    if (!ok) fail("invalid number '" + t + "'");
+    const double d = std::strtod(t.c_str(), nullptr);
+    if (!std::isfinite(d)) fail("number '" + t + "' is out of range");
     return d;
   }
   static void utf8(std::string& out, unsigned cp) {
