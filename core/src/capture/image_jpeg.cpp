@@ -29,8 +29,7 @@ struct JpegJob {
   bool too_many_scans = false;
   std::string fatal;
   bool created = false;           ///< jpeg_create_decompress done (jpeg_destroy_decompress due)
-  int corrupt_warnings = 0;
-  std::string first_warning;
+  std::string corrupt;             ///< the warning that stopped the decode (damaged data)
   ImageDecodeOptions options;
   RawImage image;
   std::vector<JSAMPLE> row;
@@ -51,17 +50,19 @@ void error_exit(j_common_ptr c) {
   std::longjmp(job->jump, 1);
 }
 
-/// Warnings (level -1) that mean the entropy-coded data is damaged: libjpeg carries on with
-/// grey blocks, we refuse the file. Others (an unknown JFIF revision, extraneous bytes between
-/// markers, a bad ICC marker) are harmless to the pixels and ignored.
+/// Warnings (level -1) that mean the entropy-coded data is damaged: libjpeg would carry on with
+/// grey blocks to the last row; we refuse the file, so decoding stops at the first one (a
+/// truncated 1 MP JPEG was decoded to its end only to be refused). Others (an unknown JFIF
+/// revision, extraneous bytes between markers, a bad ICC marker) are harmless to the pixels and
+/// ignored.
 void emit_message(j_common_ptr c, int level) {
   if (level >= 0) return;  // trace messages
   switch (c->err->msg_code) {
     case JWRN_ARITH_BAD_CODE: case JWRN_BOGUS_PROGRESSION: case JWRN_HIT_MARKER: case JWRN_HUFF_BAD_CODE:
     case JWRN_JPEG_EOF: case JWRN_MUST_RESYNC: case JWRN_NOT_SEQUENTIAL: case JWRN_TOO_MUCH_DATA: {
       JpegJob* job = job_of(c);
-      if (job->corrupt_warnings++ == 0) job->first_warning = message_of(c);
-      break;
+      job->corrupt = message_of(c);
+      std::longjmp(job->jump, 1);  // like error_exit: back to the protected_* call running now
     }
     default: break;
   }
@@ -77,7 +78,7 @@ void progress_monitor(j_common_ptr c) {
   }
 }
 
-// libjpeg's error path is a longjmp (error_exit, progress_monitor) to the setjmp of the
+// libjpeg's error path is a longjmp (error_exit, emit_message, progress_monitor) to the setjmp of the
 // protected_* function running at the time. Each holds one setjmp and libjpeg calls only, with
 // plain values in and out: no C++ object with a destructor and no call that can throw. A longjmp
 // then skips no destructor, and the function has no exception landing pad, which native wasm
@@ -123,7 +124,8 @@ bool protected_finish(JpegJob* job, j_decompress_ptr cinfo) {
   return true;
 }
 
-/// Decodes into job->image; false if libjpeg stopped (job->fatal_code / too_many_scans say why).
+/// Decodes into job->image; false if libjpeg stopped (job->corrupt / fatal_code / too_many_scans
+/// say why).
 /// Refusals of a format variant throw from this frame (no libjpeg frame in between).
 bool read(JpegJob* job, j_decompress_ptr cinfo, const std::uint8_t* data, std::size_t size) {
   int header = 0;
@@ -194,6 +196,7 @@ RawImage decode_jpeg(const std::uint8_t* data, std::size_t size, const ImageDeco
   job.err.output_message = output_message;
   JpegFree guard{&job, &cinfo};
   if (!read(&job, &cinfo, data, size)) {
+    if (!job.corrupt.empty()) throw Error(ErrorCode::ImageCorrupt, "the JPEG is truncated or corrupt: " + job.corrupt);
     if (job.too_many_scans)
       throw Error(ErrorCode::LimitExceeded,
                   "the JPEG has more than " + std::to_string(kMaxScans) + " progressive scans");
@@ -207,10 +210,6 @@ RawImage decode_jpeg(const std::uint8_t* data, std::size_t size, const ImageDeco
         throw Error(ErrorCode::ImageCorrupt, "the JPEG is truncated or corrupt: " + job.fatal);
     }
   }
-  if (job.corrupt_warnings > 0)
-    throw Error(ErrorCode::ImageCorrupt, "the JPEG is truncated or corrupt: " + job.first_warning + " (" +
-                                             std::to_string(job.corrupt_warnings) + " such problem" +
-                                             (job.corrupt_warnings > 1 ? "s)" : ")"));
   return std::move(job.image);
 }
 
