@@ -58,7 +58,9 @@ export function mount(section, app) {
       sceneBytes = { name: f.name, bytes: await fileBytes(f) };
       sceneGen = -1;
       const ok = await decodeScene();
-      if (ok) await app.save('files.scene', { name: sceneBytes.name, bytes: sceneBytes.bytes.buffer });
+      // Kept for a reload, but the apply does not wait for the write (an 8 MB write takes a few
+      // hundred ms); save() reports its own errors.
+      if (ok) app.save('files.scene', { name: sceneBytes.name, bytes: sceneBytes.bytes.buffer });
       return ok;
     })();
   });
