@@ -58,9 +58,11 @@ export function mount(section, app) {
       sceneBytes = { name: f.name, bytes: await fileBytes(f) };
       sceneGen = -1;
       const ok = await decodeScene();
-      // Kept for a reload, but the apply does not wait for the write (an 8 MB write takes a few
-      // hundred ms); save() reports its own errors.
-      if (ok) app.save('files.scene', { name: sceneBytes.name, bytes: sceneBytes.bytes.buffer });
+      // Kept for a reload, in a task of its own: the apply (queued in the microtasks that follow)
+      // does not wait for it (writing 8 MB to IndexedDB holds the page ~100 ms, then a few
+      // hundred ms more in the background); save() reports its own errors.
+      const kept = { name: sceneBytes.name, bytes: sceneBytes.bytes.buffer };
+      if (ok) setTimeout(() => app.save('files.scene', kept));
       return ok;
     })();
   });

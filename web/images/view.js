@@ -461,8 +461,11 @@ export function mount(section, app) {
       layoutSel.value = layout.chart;
       if (cfg.area) areaIn.value = cfg.area;
       syncLayout();
-      return Promise.all([app.save('layout', layout), app.save('corners', cfg.corners),
-        app.save('files.chart', { name: cfg.file, bytes }), app.save('example', cfg.note ?? true)]);
+      // The RAW is written to IndexedDB in a task of its own (it holds the page ~100 ms): the
+      // sampling, queued in the microtasks that follow, is sent first.
+      app.session['files.chart'] = { name: cfg.file, bytes };
+      const keepRaw = new Promise((r) => { setTimeout(r); }).then(() => app.save('files.chart', app.session['files.chart']));
+      return Promise.all([app.save('layout', layout), app.save('corners', cfg.corners), keepRaw, app.save('example', cfg.note ?? true)]);
     } catch (e) {
       showError(inputs.chart, e, 'Example chart');
       return null;
