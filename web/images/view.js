@@ -461,11 +461,13 @@ export function mount(section, app) {
       layoutSel.value = layout.chart;
       if (cfg.area) areaIn.value = cfg.area;
       syncLayout();
-      // The RAW is written to IndexedDB in a task of its own (it holds the page ~100 ms): the
-      // sampling, queued in the microtasks that follow, is sent first.
+      // The RAW is written to IndexedDB once the first screen is shown (restore's previewAfter),
+      // or in a task of its own: the write takes the page and the browser a few hundred ms of
+      // the cores the sampling and the first fit need. save() reports its own errors.
       app.session['files.chart'] = { name: cfg.file, bytes };
-      const keepRaw = new Promise((r) => { setTimeout(r); }).then(() => app.save('files.chart', app.session['files.chart']));
-      return Promise.all([app.save('layout', layout), app.save('corners', cfg.corners), keepRaw, app.save('example', cfg.note ?? true)]);
+      Promise.resolve(previewAfter ?? new Promise((r) => { setTimeout(r); }))
+        .then(() => { if (app.session['files.chart']?.bytes === bytes) app.save('files.chart', app.session['files.chart']); });
+      return Promise.all([app.save('layout', layout), app.save('corners', cfg.corners), app.save('example', cfg.note ?? true)]);
     } catch (e) {
       showError(inputs.chart, e, 'Example chart');
       return null;
