@@ -11,10 +11,12 @@ export async function fetchExample() {
 }
 
 /// Starts decoding the example's bytes (a copy is transferred; no preview: the images view asks
-/// for it after the sampling). decoding: the engine's reply, taken over by the images view.
+/// for it after the sampling). decoding: the engine's reply, taken over by the images view; t0:
+/// when it was sent (the view says how long the decode took).
 export function decodeExample(engine, example) {
+  const t0 = performance.now();
   const copy = new Uint8Array(example.bytes).slice().buffer;
   const decoding = engine.call('decode', { slot: 'chart', bytes: copy, previewSide: 0 }, { transfer: [copy] });
   decoding.catch(() => {});   // reported by the images view, which awaits it
-  return { ...example, decoding, generation: engine.generation };
+  return { ...example, decoding, t0, generation: engine.generation };
 }

@@ -209,8 +209,8 @@ export function mount(section, app) {
   let previewAfter = null;   // restore(): a new session's preview waits for the first screen
   async function decode(slot, file) {
     progress.start(`Decoding ${file.name}…`);
-    const t0 = performance.now();
     const started = slot === 'chart' && early?.bytes === file.bytes && early.generation === engine.generation ? early.decoding : null;
+    const t0 = started ? early.t0 : performance.now();
     if (slot === 'chart') early = null;
     try {
       let r;
@@ -455,8 +455,8 @@ export function mount(section, app) {
   /// being written to this browser's storage (the decode need not wait for that).
   async function loadExample(example) {
     try {
-      const { cfg, bytes, decoding, generation } = await (example ?? fetchExample());
-      if (decoding) early = { bytes, decoding, generation };
+      const { cfg, bytes, decoding, t0, generation } = await (example ?? fetchExample());
+      if (decoding) early = { bytes, decoding, t0, generation };
       const layout = cfg.layout ?? { chart: cfg.chart ?? 'passport' };
       layoutSel.value = layout.chart;
       if (cfg.area) areaIn.value = cfg.area;
