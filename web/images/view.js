@@ -451,8 +451,8 @@ export function mount(section, app) {
     await saving;
   }
 
-  /// Loads the example into the session; resolves once it is in the session, with a promise of it
-  /// being written to this browser's storage (the decode need not wait for that).
+  /// Loads the example into the session; resolves once it is in the session, with a promise of its
+  /// settings being written to this browser's storage (its RAW is written after the first screen).
   async function loadExample(example) {
     try {
       const { cfg, bytes, decoding, t0, generation } = await (example ?? fetchExample());
