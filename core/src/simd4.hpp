@@ -36,25 +36,16 @@ inline void load_rgb(const float* in, f4& R, f4& G, f4& B) {
   G = _mm_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 1, 2, 0));
   B = _mm_shuffle_ps(t0, c, _MM_SHUFFLE(3, 0, 3, 1));
 }
-/// Whether non-temporal stores exist (no read-for-ownership of an output larger than the caches).
-constexpr bool kHasStream = true;
-template <bool kStream>
-inline void put(float* out, f4 v) {
-  if (kStream) _mm_stream_ps(out, v);  // needs 16-byte alignment: see use_stream in the caller
-  else _mm_storeu_ps(out, v);
-}
-inline void stream_fence() { _mm_sfence(); }
 /// Planar X, Y, Z -> four interleaved pixels (12 floats).
-template <bool kStream = false>
 inline void store_xyz(float* out, f4 X, f4 Y, f4 Z) {
   const __m128 lo = _mm_unpacklo_ps(X, Y), hi = _mm_unpackhi_ps(X, Y);  // x0 y0 x1 y1 | x2 y2 x3 y3
   const __m128 a = _mm_shuffle_ps(Z, lo, _MM_SHUFFLE(2, 2, 0, 0));     // z0 z0 x1 x1
   const __m128 b = _mm_shuffle_ps(lo, Z, _MM_SHUFFLE(1, 1, 3, 3));     // y1 y1 z1 z1
   const __m128 c = _mm_shuffle_ps(Z, hi, _MM_SHUFFLE(2, 2, 2, 2));     // z2 z2 x3 x3
   const __m128 d = _mm_shuffle_ps(hi, Z, _MM_SHUFFLE(3, 3, 3, 3));     // y3 y3 z3 z3
-  put<kStream>(out, _mm_shuffle_ps(lo, a, _MM_SHUFFLE(2, 0, 1, 0)));
-  put<kStream>(out + 4, _mm_shuffle_ps(b, hi, _MM_SHUFFLE(1, 0, 2, 0)));
-  put<kStream>(out + 8, _mm_shuffle_ps(c, d, _MM_SHUFFLE(2, 0, 2, 0)));
+  _mm_storeu_ps(out, _mm_shuffle_ps(lo, a, _MM_SHUFFLE(2, 0, 1, 0)));
+  _mm_storeu_ps(out + 4, _mm_shuffle_ps(b, hi, _MM_SHUFFLE(1, 0, 2, 0)));
+  _mm_storeu_ps(out + 8, _mm_shuffle_ps(c, d, _MM_SHUFFLE(2, 0, 2, 0)));
 }
 #else  // wasm SIMD128
 using f4 = v128_t;
@@ -72,11 +63,6 @@ inline void load_rgb(const float* in, f4& R, f4& G, f4& B) {
   G = wasm_i32x4_shuffle(wasm_i32x4_shuffle(a, b, 1, 4, 7, 0), c, 0, 1, 2, 6);
   B = wasm_i32x4_shuffle(wasm_i32x4_shuffle(a, b, 2, 5, 0, 0), c, 0, 1, 4, 7);
 }
-constexpr bool kHasStream = false;
-template <bool kStream>
-inline void put(float* out, f4 v) { wasm_v128_store(out, v); }
-inline void stream_fence() {}
-template <bool kStream = false>
 inline void store_xyz(float* out, f4 X, f4 Y, f4 Z) {
   const v128_t xy01 = wasm_i32x4_shuffle(X, Y, 0, 4, 1, 5);  // x0 y0 x1 y1
   const v128_t yz12 = wasm_i32x4_shuffle(Y, Z, 1, 5, 2, 6);  // y1 z1 y2 z2

@@ -160,24 +160,10 @@ void png_append(png_structp png, png_bytep data, size_t n) {
 }
 void png_flush(png_structp) {}
 
-bool png_write_all(png_structp png, png_infop info, const TestImage& im, const PngWriteOptions& o,
-                   std::vector<std::uint8_t>* out, std::vector<std::vector<std::uint8_t>>* rows,
-                   std::vector<png_color>* palette) {
-  if (setjmp(png_jmpbuf(png))) return false;
-  png_set_write_fn(png, out, png_append, png_flush);
-  int colour = im.channels == 1 ? PNG_COLOR_TYPE_GRAY
-               : im.channels == 2 ? PNG_COLOR_TYPE_GRAY_ALPHA
-               : im.channels == 3 ? PNG_COLOR_TYPE_RGB
-                                  : PNG_COLOR_TYPE_RGB_ALPHA;
-  int depth = im.bits;
-  if (o.palette) colour = PNG_COLOR_TYPE_PALETTE;
-  if (o.grey_bits > 0) depth = o.grey_bits;
-  png_set_IHDR(png, info, im.width, im.height, depth, colour,
-               o.interlace ? PNG_INTERLACE_ADAM7 : PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
-  if (o.gamma > 0) png_set_gAMA(png, info, o.gamma);
-  if (o.srgb) png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
-  // Rows as the file stores them (16-bit big-endian; palette: index = position in `palette`).
+/// Rows as the file stores them (16-bit big-endian; palette: index = position in `palette`).
+std::vector<std::vector<std::uint8_t>> png_rows(const TestImage& im, const PngWriteOptions& o, int depth,
+                                                std::vector<png_color>* palette) {
+  std::vector<std::vector<std::uint8_t>> rows;
   const int per = o.palette ? 1 : im.channels;
   for (int y = 0; y < im.height; ++y) {
     std::vector<std::uint8_t> row((static_cast<std::size_t>(im.width) * per * depth + 7) / 8, 0);
@@ -206,26 +192,48 @@ bool png_write_all(png_structp png, png_infop info, const TestImage& im, const P
         }
       }
     }
-    rows->push_back(std::move(row));
+    rows.push_back(std::move(row));
   }
-  if (o.palette) png_set_PLTE(png, info, palette->data(), static_cast<int>(palette->size()));
+  return rows;
+}
+
+/// libpng calls only, under setjmp: no C++ object and no call that throws in this frame (native
+/// wasm exceptions refuse a function with both setjmp and landing pads; see core image_png.cpp).
+bool png_write_all(png_structp png, png_infop info, const TestImage& im, const PngWriteOptions& o, int colour,
+                   int depth, png_colorp palette, int n_palette, png_bytepp rows, std::vector<std::uint8_t>* out) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_set_write_fn(png, out, png_append, png_flush);
+  png_set_IHDR(png, info, im.width, im.height, depth, colour,
+               o.interlace ? PNG_INTERLACE_ADAM7 : PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  if (o.gamma > 0) png_set_gAMA(png, info, o.gamma);
+  if (o.srgb) png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+  if (o.palette) png_set_PLTE(png, info, palette, n_palette);
   png_write_info(png, info);
-  std::vector<png_bytep> ptrs;
-  for (auto& r : *rows) ptrs.push_back(r.data());
-  png_write_image(png, ptrs.data());
+  png_write_image(png, rows);
   png_write_end(png, nullptr);
   return true;
 }
 }  // namespace
 
 std::vector<std::uint8_t> write_png(const TestImage& im, const PngWriteOptions& o) {
-  std::vector<std::uint8_t> out;
-  std::vector<std::vector<std::uint8_t>> rows;
+  int colour = im.channels == 1 ? PNG_COLOR_TYPE_GRAY
+               : im.channels == 2 ? PNG_COLOR_TYPE_GRAY_ALPHA
+               : im.channels == 3 ? PNG_COLOR_TYPE_RGB
+                                  : PNG_COLOR_TYPE_RGB_ALPHA;
+  int depth = im.bits;
+  if (o.palette) colour = PNG_COLOR_TYPE_PALETTE;
+  if (o.grey_bits > 0) depth = o.grey_bits;
   std::vector<png_color> palette;
+  std::vector<std::vector<std::uint8_t>> rows = png_rows(im, o, depth, &palette);
+  std::vector<png_bytep> ptrs;
+  for (auto& r : rows) ptrs.push_back(r.data());
+  std::vector<std::uint8_t> out;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   need(png != nullptr, "png_create_write_struct");
   png_infop info = png_create_info_struct(png);
-  const bool ok = info && png_write_all(png, info, im, o, &out, &rows, &palette);
+  const bool ok = info && png_write_all(png, info, im, o, colour, depth, palette.data(),
+                                        static_cast<int>(palette.size()), ptrs.data(), &out);
   png_destroy_write_struct(&png, &info);
   need(ok, "libpng write");
   return out;
@@ -239,8 +247,10 @@ struct JpegWriteErr {
 };
 void jpeg_write_error(j_common_ptr c) { std::longjmp(reinterpret_cast<JpegWriteErr*>(c->err)->jump, 1); }
 
+/// libjpeg calls only, under setjmp: no C++ object and no call that throws in this frame (see
+/// png_write_all). `pixels`: the whole image, rows of width × channels samples.
 bool jpeg_write_all(jpeg_compress_struct* c, JpegWriteErr* err, const TestImage& im, const JpegWriteOptions& o,
-                    unsigned char** buf, unsigned long* len, std::vector<JSAMPLE>* row) {
+                    unsigned char** buf, unsigned long* len, JSAMPLE* pixels) {
   if (setjmp(err->jump)) return false;
   jpeg_create_compress(c);
   jpeg_mem_dest(c, buf, len);
@@ -261,11 +271,9 @@ bool jpeg_write_all(jpeg_compress_struct* c, JpegWriteErr* err, const TestImage&
   c->dct_method = JDCT_ISLOW;
   jpeg_start_compress(c, TRUE);
   if (!o.icc.empty()) jpeg_write_icc_profile(c, o.icc.data(), static_cast<unsigned>(o.icc.size()));
-  row->resize(static_cast<std::size_t>(im.width) * im.channels);
+  const std::size_t stride = static_cast<std::size_t>(im.width) * im.channels;
   while (c->next_scanline < c->image_height) {
-    for (std::size_t i = 0; i < row->size(); ++i)
-      (*row)[i] = static_cast<JSAMPLE>(im.samples[c->next_scanline * row->size() + i]);
-    JSAMPROW r[1] = {row->data()};
+    JSAMPROW r[1] = {pixels + c->next_scanline * stride};
     jpeg_write_scanlines(c, r, 1);
   }
   jpeg_finish_compress(c);
@@ -275,14 +283,15 @@ bool jpeg_write_all(jpeg_compress_struct* c, JpegWriteErr* err, const TestImage&
 
 std::vector<std::uint8_t> write_jpeg(const TestImage& im, const JpegWriteOptions& o) {
   need(im.bits == 8, "JPEG writer: 8-bit samples only");
+  std::vector<JSAMPLE> pixels(static_cast<std::size_t>(im.width) * im.height * im.channels);
+  for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<JSAMPLE>(im.samples[i]);
   jpeg_compress_struct c{};
   JpegWriteErr err{};
   c.err = jpeg_std_error(&err.pub);
   err.pub.error_exit = jpeg_write_error;
   unsigned char* buf = nullptr;
   unsigned long len = 0;
-  std::vector<JSAMPLE> row;
-  const bool ok = jpeg_write_all(&c, &err, im, o, &buf, &len, &row);
+  const bool ok = jpeg_write_all(&c, &err, im, o, &buf, &len, pixels.data());
   jpeg_destroy_compress(&c);
   std::vector<std::uint8_t> out;
   if (ok && buf) out.assign(buf, buf + len);

@@ -3,6 +3,7 @@
 
 #include "tristim/absolute/profile.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/limits.hpp"
 #include "tristim/version.hpp"
 
 namespace tristim {
@@ -183,8 +184,8 @@ AbsoluteProfile absolute_profile_from_json(const std::string& text) {
     const json::Value& cam = o.at("camera");
     p.make = cam.at("make").as_string("camera.make");
     p.model = cam.at("model").as_string("camera.model");
-    p.width = static_cast<int>(cam.at("width").as_number("camera.width"));
-    p.height = static_cast<int>(cam.at("height").as_number("camera.height"));
+    p.width = cam.at("width").as_int("camera.width", 0, limits::kMaxJsonInt);
+    p.height = cam.at("height").as_int("camera.height", 0, limits::kMaxJsonInt);
 
     const json::Value& no = o.at("normalisation");
     Normalisation& n = p.normalisation;
@@ -203,9 +204,9 @@ AbsoluteProfile absolute_profile_from_json(const std::string& text) {
       f.centre_x = fo.at("centre_x").as_number("falloff.centre_x");
       f.centre_y = fo.at("centre_y").as_number("falloff.centre_y");
       f.r_scale = fo.at("r_scale").as_number("falloff.r_scale");
-      f.width = static_cast<int>(fo.at("width").as_number("falloff.width"));
-      f.height = static_cast<int>(fo.at("height").as_number("falloff.height"));
-      f.bins = static_cast<int>(fo.at("bins").as_number("falloff.bins"));
+      f.width = fo.at("width").as_int("falloff.width", 0, limits::kMaxJsonInt);
+      f.height = fo.at("height").as_int("falloff.height", 0, limits::kMaxJsonInt);
+      f.bins = fo.at("bins").as_int("falloff.bins", 0, limits::kMaxJsonInt);
       f.rms_residual = fo.at("rms_residual").as_number("falloff.rms_residual");
       f.max_residual = fo.at("max_residual").as_number("falloff.max_residual");
       if (!(f.r_scale > 0)) throw Error(ErrorCode::ProfileInvalid, "falloff.r_scale must be positive");
@@ -232,7 +233,7 @@ AbsoluteProfile absolute_profile_from_json(const std::string& text) {
     if (const auto* fits = lin.find("fits"); fits && fits->is_array() && fits->size() == 3)
       for (int c = 0; c < 3; ++c) {
         const json::Value& f = fits->as_array()[c];
-        p.luminance.fits[c].samples = static_cast<int>(f.at("samples").as_number());
+        p.luminance.fits[c].samples = f.at("samples").as_int("linearisation.fits.samples", 0, limits::kMaxJsonInt);
         p.luminance.fits[c].rms_relative = f.at("rms_relative").as_number();
         p.luminance.fits[c].max_relative = f.at("max_relative").as_number();
         p.luminance.fits[c].r_squared = f.at("r_squared").as_number();
@@ -277,7 +278,7 @@ AbsoluteProfile absolute_profile_from_json(const std::string& text) {
         p.colour.coefficients(c, j) = r[j];
       }
     }
-    p.colour_stimuli = static_cast<int>(col.at("stimuli").as_number("colour.stimuli"));
+    p.colour_stimuli = col.at("stimuli").as_int("colour.stimuli", 0, limits::kMaxJsonInt);
     p.colour_status = status_named(col.at("status").as_string("colour.status"));
     p.colour_message = col.at("message").as_string("colour.message");
     p.colour_objective = col.at("objective_value").as_number("colour.objective_value");

@@ -250,36 +250,27 @@ RawImage apply_calibration(const RawImage& image, const FrameCalibration& calibr
   out.height = image.height;
   detail::copy_large(out.saturated, image.saturated);
   detail::reserve_large(out.rgb, image.rgb.size());
-  out.rgb.resize(image.rgb.size());
-  // Row by row, one pass per step over a row that stays in cache: the same float operations in
-  // the same order as FrameCalibration::calibrated (identical results), in loops that vectorise.
+  // Row by row into a row buffer that stays in L1/L2, appended to the output (no resize of the
+  // whole output first: its zero fill would be one more write pass, 72 MB at 24 MP). One fused
+  // pass reads the image, dark and gain rows together; a missing part is a neutral row (x - 0 and
+  // x · 1 are exact), so every element gets the same float operations in the same order as
+  // FrameCalibration::calibrated: ((v - dark) - flare) · gain · fall-off (identical results).
   const size_t w = static_cast<size_t>(image.width), n3 = 3 * w;
   const auto& dark = calibration.dark;
   const bool dark_per_pixel = dark && calibration.dark_mode == DarkMode::PerPixel;
-  std::vector<float> dark_row, flare_row, fall(w);
-  if (dark && !dark_per_pixel) {  // the per-channel means, repeated along a row
-    dark_row.resize(n3);
+  std::vector<float> dark_row(n3, 0.f), flare_row(n3, 0.f), ones(n3, 1.f), row(n3), fall(w);
+  if (dark && !dark_per_pixel)  // the per-channel means, repeated along a row
     for (size_t i = 0; i < n3; ++i) dark_row[i] = static_cast<float>(dark->mean[i % 3]);
-  }
-  if (calibration.flare) {
-    flare_row.resize(n3);
+  if (calibration.flare)
     for (size_t i = 0; i < n3; ++i) flare_row[i] = static_cast<float>((*calibration.flare)[i % 3]);
-  }
   const FalloffFit* falloff = calibration.falloff ? &*calibration.falloff : nullptr;
   for (size_t y = 0; y < static_cast<size_t>(image.height); ++y) {
-    const float* in = &image.rgb[y * n3];
-    float* o = &out.rgb[y * n3];
-    const float* sub = dark_per_pixel ? &dark->rgb[y * n3] : dark ? dark_row.data() : nullptr;
-    if (sub)
-      for (size_t i = 0; i < n3; ++i) o[i] = in[i] - sub[i];
-    else
-      std::copy(in, in + n3, o);
-    if (calibration.flare)
-      for (size_t i = 0; i < n3; ++i) o[i] -= flare_row[i];
-    if (calibration.flat) {
-      const float* g = &calibration.flat->gain[y * n3];
-      for (size_t i = 0; i < n3; ++i) o[i] *= g[i];
-    }
+    const float* __restrict in = &image.rgb[y * n3];
+    const float* __restrict sub = dark_per_pixel ? &dark->rgb[y * n3] : dark_row.data();
+    const float* __restrict fl = flare_row.data();
+    const float* __restrict g = calibration.flat ? &calibration.flat->gain[y * n3] : ones.data();
+    float* __restrict o = row.data();
+    for (size_t i = 0; i < n3; ++i) o[i] = ((in[i] - sub[i]) - fl[i]) * g[i];
     if (falloff) {
       // FalloffFit::factor at pixel centres (x + 0.5, y + 0.5), eq (7).
       const double dy = (static_cast<double>(y) + 0.5) - falloff->centre_y, dy2 = dy * dy;
@@ -293,6 +284,7 @@ RawImage apply_calibration(const RawImage& image, const FrameCalibration& calibr
       for (size_t x = 0; x < w; ++x)
         for (int c = 0; c < 3; ++c) o[3 * x + c] *= fall[x];
     }
+    out.rgb.insert(out.rgb.end(), o, o + n3);
   }
   return out;
 }

@@ -1,8 +1,8 @@
 // JPEG in (libjpeg-turbo, read from memory): the only file that includes jpeglib.h.
 //
 // libjpeg reports fatal errors through error_exit, which must not return: it longjmps to the
-// setjmp in run(). Every C++ object run() touches lives in the JpegJob behind a pointer set before
-// setjmp (see image_png.cpp for the same pattern).
+// setjmp in the protected_* function that made the call. Every C++ object lives in the JpegJob or
+// in read(), outside those functions (see image_png.cpp for the same pattern).
 #include <cstdio>  // jpeglib.h needs FILE and size_t first
 #include <cstdlib>
 #include <csetjmp>
@@ -77,9 +77,15 @@ void progress_monitor(j_common_ptr c) {
   }
 }
 
-/// Decodes into job->image; false if libjpeg stopped (job->fatal_code / too_many_scans say why).
-/// Refusals of a format variant throw from this frame (no libjpeg frame in between).
-bool run(JpegJob* job, j_decompress_ptr cinfo, const std::uint8_t* data, std::size_t size) {
+// libjpeg's error path is a longjmp (error_exit, progress_monitor) to the setjmp of the
+// protected_* function running at the time. Each holds one setjmp and libjpeg calls only, with
+// plain values in and out: no C++ object with a destructor and no call that can throw. A longjmp
+// then skips no destructor, and the function has no exception landing pad, which native wasm
+// exceptions require of a function that calls setjmp (LLVM 14 refuses the mix). The C++ work
+// (checks, Error, the image) runs between them, in read().
+
+bool protected_read_header(JpegJob* job, j_decompress_ptr cinfo, const std::uint8_t* data, std::size_t size,
+                           int* header) {
   if (setjmp(job->jump)) return false;
   jpeg_create_decompress(cinfo);  // may fail (out of memory): after setjmp
   job->created = true;
@@ -88,8 +94,41 @@ bool run(JpegJob* job, j_decompress_ptr cinfo, const std::uint8_t* data, std::si
   cinfo->mem->max_memory_to_use = 1L << 30;  // 1 GiB for libjpeg's own buffers, whatever the header says
   jpeg_mem_src(cinfo, data, static_cast<unsigned long>(size));
   jpeg_save_markers(cinfo, JPEG_APP0 + 2, 0xFFFF);  // ICC profile chunks, to report them
-  if (jpeg_read_header(cinfo, TRUE) != JPEG_HEADER_OK)
-    throw Error(ErrorCode::ImageCorrupt, "the JPEG holds tables but no image");
+  *header = jpeg_read_header(cinfo, TRUE);
+  return true;
+}
+
+bool protected_read_icc(JpegJob* job, j_decompress_ptr cinfo, JOCTET** icc, unsigned int* icc_len, bool* found) {
+  if (setjmp(job->jump)) return false;
+  *found = jpeg_read_icc_profile(cinfo, icc, icc_len) != 0;
+  return true;
+}
+
+bool protected_start(JpegJob* job, j_decompress_ptr cinfo) {
+  if (setjmp(job->jump)) return false;
+  jpeg_start_decompress(cinfo);  // a progressive JPEG is read whole here
+  return true;
+}
+
+bool protected_read_row(JpegJob* job, j_decompress_ptr cinfo, JSAMPROW row, JDIMENSION* got) {
+  if (setjmp(job->jump)) return false;
+  JSAMPROW rows[1] = {row};
+  *got = jpeg_read_scanlines(cinfo, rows, 1);
+  return true;
+}
+
+bool protected_finish(JpegJob* job, j_decompress_ptr cinfo) {
+  if (setjmp(job->jump)) return false;
+  jpeg_finish_decompress(cinfo);
+  return true;
+}
+
+/// Decodes into job->image; false if libjpeg stopped (job->fatal_code / too_many_scans say why).
+/// Refusals of a format variant throw from this frame (no libjpeg frame in between).
+bool read(JpegJob* job, j_decompress_ptr cinfo, const std::uint8_t* data, std::size_t size) {
+  int header = 0;
+  if (!protected_read_header(job, cinfo, data, size, &header)) return false;
+  if (header != JPEG_HEADER_OK) throw Error(ErrorCode::ImageCorrupt, "the JPEG holds tables but no image");
   int channels = 0;
   if (cinfo->num_components == 1) {
     channels = 1;
@@ -110,26 +149,28 @@ bool run(JpegJob* job, j_decompress_ptr cinfo, const std::uint8_t* data, std::si
   job->image = image_detail::new_image_header("jpeg", cinfo->image_width, cinfo->image_height, channels, 8, job->options);
   JOCTET* icc = nullptr;
   unsigned int icc_len = 0;
-  if (jpeg_read_icc_profile(cinfo, &icc, &icc_len)) {
-    image_detail::declare(job->image.meta, "ICC profile (" + std::to_string(icc_len) + " bytes)");
+  bool found_icc = false;
+  if (!protected_read_icc(job, cinfo, &icc, &icc_len, &found_icc)) return false;
+  if (found_icc) {
     std::free(icc);
+    image_detail::declare(job->image.meta, "ICC profile (" + std::to_string(icc_len) + " bytes)");
   }
   if (cinfo->saw_Adobe_marker && cinfo->jpeg_color_space == JCS_RGB) image_detail::declare(job->image.meta, "RGB (no YCbCr transform)");
   // The accurate integer IDCT and libjpeg's default (fancy) upsampling: bit-exact between
   // libjpeg-turbo's SIMD (native) and plain C (wasm) paths.
   cinfo->dct_method = JDCT_ISLOW;
   cinfo->do_fancy_upsampling = TRUE;
-  jpeg_start_decompress(cinfo);
+  if (!protected_start(job, cinfo)) return false;
   image_detail::allocate_pixels(job->image);
   job->row.resize(static_cast<std::size_t>(cinfo->output_width) * cinfo->output_components);
   while (cinfo->output_scanline < cinfo->output_height) {
-    JSAMPROW rows[1] = {job->row.data()};
     const JDIMENSION y = cinfo->output_scanline;
-    if (jpeg_read_scanlines(cinfo, rows, 1) != 1) break;
+    JDIMENSION got = 0;
+    if (!protected_read_row(job, cinfo, job->row.data(), &got)) return false;
+    if (got != 1) break;
     image_detail::store_row(job->image, static_cast<int>(y), job->row.data(), channels, 8);
   }
-  jpeg_finish_decompress(cinfo);
-  return true;
+  return protected_finish(job, cinfo);
 }
 
 struct JpegFree {
@@ -152,7 +193,7 @@ RawImage decode_jpeg(const std::uint8_t* data, std::size_t size, const ImageDeco
   job.err.emit_message = emit_message;
   job.err.output_message = output_message;
   JpegFree guard{&job, &cinfo};
-  if (!run(&job, &cinfo, data, size)) {
+  if (!read(&job, &cinfo, data, size)) {
     if (job.too_many_scans)
       throw Error(ErrorCode::LimitExceeded,
                   "the JPEG has more than " + std::to_string(kMaxScans) + " progressive scans");

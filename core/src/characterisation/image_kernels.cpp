@@ -1,8 +1,13 @@
 // Whole-image application of a model (apply_to_image): 4-lane kernels (SSE2 natively, SIMD128
-// in wasm; simd4.hpp) and an AVX2+FMA variant for the 3×3, affine and degree-2 root-polynomial
-// models, scalar loops with the same association for the tails, a generic double path for the rest.
-// Without FMA the kernels and the scalar loops give bit-identical results (native SSE2 and wasm
-// alike); the AVX2 path differs by FMA rounding (tests/core/characterisation/image_kernels_test).
+// in wasm; simd4.hpp) for the 3×3, affine and degree-2 root-polynomial models, and natively
+// AVX2+FMA and AVX-512 variants of the root-polynomial (chosen at run time; the same fused
+// multiply-adds lane by lane, so the two give identical floats), scalar loops with the same
+// association for the tails, a generic double path for the rest. Without FMA the kernels and the
+// scalar loops give bit-identical results (native SSE2 and wasm alike); the FMA paths differ by
+// FMA rounding (tests/core/characterisation/models_test.cpp).
+// Plain stores, not streaming ones: on the 2-core VM the project is measured on, 16-byte
+// non-temporal stores made the 24 MP apply slower (3×3 at 63 % of memcpy speed with them, 93 %
+// without; root-polynomial AVX2 47 % vs 65 %).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -44,8 +49,7 @@ void scalar_root2(const float* __restrict in, size_t n, float* __restrict out, c
 #ifdef TRISTIM_SIMD4
 // Fused 4-lane loops, 4 pixels per step straight from and to the interleaved buffers; return how
 // many pixels they handled (a multiple of 4); the caller finishes the tail.
-template <bool kStream>
-size_t simd_affine_t(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][4]) {
+size_t simd_affine(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][4]) {
   using namespace simd4;
   f4 k[3][4];
   for (int c = 0; c < 3; ++c)
@@ -56,14 +60,12 @@ size_t simd_affine_t(const float* __restrict in, size_t n, float* __restrict out
     load_rgb(in + 3 * i, R, G, B);
     f4 o[3];
     for (int c = 0; c < 3; ++c) o[c] = add(add(mul(k[c][0], R), mul(k[c][1], G)), add(mul(k[c][2], B), k[c][3]));
-    store_xyz<kStream>(out + 3 * i, o[0], o[1], o[2]);
+    store_xyz(out + 3 * i, o[0], o[1], o[2]);
   }
-  if (kStream) stream_fence();
   return m;
 }
 
-template <bool kStream>
-size_t simd_root2_t(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][6]) {
+size_t simd_root2(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][6]) {
   using namespace simd4;
   f4 k[3][6];
   for (int c = 0; c < 3; ++c)
@@ -77,9 +79,8 @@ size_t simd_root2_t(const float* __restrict in, size_t n, float* __restrict out,
     for (int c = 0; c < 3; ++c)
       o[c] = add(add(add(mul(k[c][0], R), mul(k[c][1], G)), add(mul(k[c][2], B), mul(k[c][3], P))),
                  add(mul(k[c][4], Q), mul(k[c][5], S)));
-    store_xyz<kStream>(out + 3 * i, o[0], o[1], o[2]);
+    store_xyz(out + 3 * i, o[0], o[1], o[2]);
   }
-  if (kStream) stream_fence();
   return m;
 }
 
@@ -94,8 +95,7 @@ __attribute__((target("avx2,fma"))) inline __m256 signed_sqrt8(__m256 p) {
 __attribute__((target("avx2,fma"))) inline __m256 join8(__m128 lo, __m128 hi) {
   return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
 }
-template <bool kStream>
-__attribute__((target("avx2,fma"))) size_t avx2_root2_t(const float* __restrict in, size_t n,
+__attribute__((target("avx2,fma"))) size_t avx2_root2(const float* __restrict in, size_t n,
                                                         float* __restrict out, const float (&a)[3][6]) {
   __m256 k[3][6];
   for (int c = 0; c < 3; ++c)
@@ -117,30 +117,85 @@ __attribute__((target("avx2,fma"))) size_t avx2_root2_t(const float* __restrict 
       v = _mm256_fmadd_ps(k[c][4], Q, v);
       o[c] = _mm256_fmadd_ps(k[c][5], S, v);
     }
-    simd4::store_xyz<kStream>(out + 3 * i, _mm256_castps256_ps128(o[0]), _mm256_castps256_ps128(o[1]),
-                              _mm256_castps256_ps128(o[2]));
-    simd4::store_xyz<kStream>(out + 3 * i + 12, _mm256_extractf128_ps(o[0], 1), _mm256_extractf128_ps(o[1], 1),
-                              _mm256_extractf128_ps(o[2], 1));
+    simd4::store_xyz(out + 3 * i, _mm256_castps256_ps128(o[0]), _mm256_castps256_ps128(o[1]),
+                     _mm256_castps256_ps128(o[2]));
+    simd4::store_xyz(out + 3 * i + 12, _mm256_extractf128_ps(o[0], 1), _mm256_extractf128_ps(o[1], 1),
+                     _mm256_extractf128_ps(o[2], 1));
   }
-  if (kStream) _mm_sfence();
   return m;
 }
-bool cpu_has_avx2_fma() {
-  static const bool yes = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  return yes;
+
+// AVX-512 variant: 16 pixels per step, the deinterleave and interleave as two two-source lane
+// permutes per vector (instead of the AVX2 path's 4-lane shuffles, inserts and extracts, which
+// bound its speed), the arithmetic the AVX2 path's lane for lane (identical floats).
+__attribute__((target("avx512f"))) inline __m512 signed_sqrt16(__m512 p) {
+  // (maskz with every lane set: the plain sqrt/andnot intrinsics trip GCC 12's -Wmaybe-uninitialized)
+  const __m512i sign = _mm512_set1_epi32(static_cast<int>(0x80000000u)), bits = _mm512_castps_si512(p);
+  const __m512i magnitude = _mm512_and_si512(bits, _mm512_set1_epi32(0x7fffffff));
+  const __m512 r = _mm512_maskz_sqrt_ps(static_cast<__mmask16>(0xffff), _mm512_castsi512_ps(magnitude));
+  return _mm512_castsi512_ps(_mm512_or_si512(_mm512_castps_si512(r), _mm512_and_si512(sign, bits)));
+}
+__attribute__((target("avx512f"))) size_t avx512_root2(const float* __restrict in, size_t n,
+                                                        float* __restrict out, const float (&a)[3][6]) {
+  __m512 k[3][6];
+  for (int c = 0; c < 3; ++c)
+    for (int j = 0; j < 6; ++j) k[c][j] = _mm512_set1_ps(a[c][j]);
+  // 16 pixels = 48 floats in three vectors u, v, w. Channel c of pixel l is element 3l + c: the
+  // first permute takes elements 0..31 from (u, v), the second the rest from w (its 16..31).
+  const __m512i r1 = _mm512_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 0, 0, 0, 0, 0);
+  const __m512i r2 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 20, 23, 26, 29);
+  const __m512i g1 = _mm512_setr_epi32(1, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31, 0, 0, 0, 0, 0);
+  const __m512i g2 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 18, 21, 24, 27, 30);
+  const __m512i b1 = _mm512_setr_epi32(2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 0, 0, 0, 0, 0, 0);
+  const __m512i b2 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 19, 22, 25, 28, 31);
+  // Output vector q holds elements 16q..16q+15: X and Y lanes from (X, Y), then Z lanes from Z.
+  const __m512i xy[3] = {_mm512_setr_epi32(0, 16, 0, 1, 17, 0, 2, 18, 0, 3, 19, 0, 4, 20, 0, 5),
+                         _mm512_setr_epi32(21, 0, 6, 22, 0, 7, 23, 0, 8, 24, 0, 9, 25, 0, 10, 26),
+                         _mm512_setr_epi32(0, 11, 27, 0, 12, 28, 0, 13, 29, 0, 14, 30, 0, 15, 31, 0)};
+  const __m512i z[3] = {_mm512_setr_epi32(0, 1, 16, 3, 4, 17, 6, 7, 18, 9, 10, 19, 12, 13, 20, 15),
+                        _mm512_setr_epi32(0, 21, 2, 3, 22, 5, 6, 23, 8, 9, 24, 11, 12, 25, 14, 15),
+                        _mm512_setr_epi32(26, 1, 2, 27, 4, 5, 28, 7, 8, 29, 10, 11, 30, 13, 14, 31)};
+  const size_t m = n & ~size_t(15);
+  for (size_t i = 0; i < m; i += 16) {
+    const float* p = in + 3 * i;
+    const __m512 u = _mm512_loadu_ps(p), v = _mm512_loadu_ps(p + 16), w = _mm512_loadu_ps(p + 32);
+    const __m512 R = _mm512_permutex2var_ps(_mm512_permutex2var_ps(u, r1, v), r2, w);
+    const __m512 G = _mm512_permutex2var_ps(_mm512_permutex2var_ps(u, g1, v), g2, w);
+    const __m512 B = _mm512_permutex2var_ps(_mm512_permutex2var_ps(u, b1, v), b2, w);
+    const __m512 P = signed_sqrt16(_mm512_mul_ps(R, G)), Q = signed_sqrt16(_mm512_mul_ps(R, B)),
+                 S = signed_sqrt16(_mm512_mul_ps(G, B));
+    __m512 o[3];
+    for (int c = 0; c < 3; ++c) {  // the AVX2 path's order
+      __m512 t = _mm512_mul_ps(k[c][0], R);
+      t = _mm512_fmadd_ps(k[c][1], G, t);
+      t = _mm512_fmadd_ps(k[c][2], B, t);
+      t = _mm512_fmadd_ps(k[c][3], P, t);
+      t = _mm512_fmadd_ps(k[c][4], Q, t);
+      o[c] = _mm512_fmadd_ps(k[c][5], S, t);
+    }
+    float* d = out + 3 * i;
+    for (int q = 0; q < 3; ++q)
+      _mm512_storeu_ps(d + 16 * q, _mm512_permutex2var_ps(_mm512_permutex2var_ps(o[0], xy[q], o[1]), z[q], o[2]));
+  }
+  return m;
+}
+
+// The widest kernels the CPU (and the limit set for tests and benchmarks) allows: 0 = 4-lane
+// SSE2, 1 = AVX2+FMA, 2 = AVX-512.
+int g_kernel_limit = 2;
+int cpu_kernel_level() {
+  static const int level = __builtin_cpu_supports("avx512f") ? 2
+                           : __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? 1
+                                                                                             : 0;
+  return std::min(level, g_kernel_limit);
 }
 #endif
-
-// Streaming stores for images larger than the caches (and a 16-byte aligned output).
-inline bool use_stream(const float* out, size_t n) {
-  return simd4::kHasStream && n >= (size_t(1) << 20) && reinterpret_cast<uintptr_t>(out) % 16 == 0;
-}
 #endif  // TRISTIM_SIMD4
 
 // The vector part of each model: how many leading pixels it wrote (0 without SIMD).
 size_t vector_affine(const float* in, size_t n, float* out, const float (&a)[3][4]) {
 #ifdef TRISTIM_SIMD4
-  return use_stream(out, n) ? simd_affine_t<true>(in, n, out, a) : simd_affine_t<false>(in, n, out, a);
+  return simd_affine(in, n, out, a);
 #else
   (void)in, (void)n, (void)out, (void)a;
   return 0;
@@ -148,16 +203,15 @@ size_t vector_affine(const float* in, size_t n, float* out, const float (&a)[3][
 }
 size_t vector_root2(const float* in, size_t n, float* out, const float (&a)[3][6]) {
 #ifdef TRISTIM_SIMD4
-  const bool stream = use_stream(out, n);
+  size_t done = 0;
 #ifdef TRISTIM_HAVE_AVX2_PATH
-  if (cpu_has_avx2_fma()) {
-    const size_t done = stream ? avx2_root2_t<true>(in, n, out, a) : avx2_root2_t<false>(in, n, out, a);
-    const size_t rest = stream ? simd_root2_t<true>(in + 3 * done, n - done, out + 3 * done, a)
-                               : simd_root2_t<false>(in + 3 * done, n - done, out + 3 * done, a);
-    return done + rest;
-  }
+  // Widest first; each narrower kernel takes the pixels left over (the pixels an AVX-512 step
+  // leaves go through the AVX2 path, exactly as when AVX2 does the whole image).
+  const int level = cpu_kernel_level();
+  if (level >= 2) done += avx512_root2(in, n, out, a);
+  if (level >= 1) done += avx2_root2(in + 3 * done, n - done, out + 3 * done, a);
 #endif
-  return stream ? simd_root2_t<true>(in, n, out, a) : simd_root2_t<false>(in, n, out, a);
+  return done + simd_root2(in + 3 * done, n - done, out + 3 * done, a);
 #else
   (void)in, (void)n, (void)out, (void)a;
   return 0;
@@ -165,6 +219,17 @@ size_t vector_root2(const float* in, size_t n, float* out, const float (&a)[3][6
 }
 
 }  // namespace
+
+int set_image_kernel_limit(int level) {
+#ifdef TRISTIM_HAVE_AVX2_PATH
+  const int previous = g_kernel_limit;
+  g_kernel_limit = std::max(0, std::min(2, level));
+  return previous;
+#else
+  (void)level;
+  return 0;
+#endif
+}
 
 void apply_to_image(const Model& model, const float* rgb, size_t n_pixels, float* xyz) {
   const ModelInfo& info = model_info(model.id);

@@ -38,6 +38,16 @@ double Value::as_number(const std::string& what) const {
   if (type_ != Type::Number) throw wrong(what, "number", type_);
   return number_;
 }
+int Value::as_int(const std::string& what, int lo, int hi) const {
+  const double x = as_number(what);
+  if (!(x >= lo && x <= hi) || x != std::floor(x)) {
+    char got[32];
+    std::snprintf(got, sizeof got, "%.17g", x);
+    throw Error(ErrorCode::ProfileInvalid,
+                what + " must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " + got);
+  }
+  return static_cast<int>(x);
+}
 bool Value::as_bool(const std::string& what) const {
   if (type_ != Type::Bool) throw wrong(what, "boolean", type_);
   return bool_;
@@ -222,17 +232,36 @@ struct Parser {
     --depth;
     return v;
   }
+  // RFC 8259 number: -? (0 | [1-9][0-9]*) (. [0-9]+)? ([eE] [+-]? [0-9]+)?, finite as a double
+  // (the page's JSON.parse refuses "07" and "1."; a value beyond double's range is refused here,
+  // not read as infinity).
   double number() {
     const size_t start = i;
+    auto digit = [&] { return i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])); };
+    auto digits = [&] {
+      if (!digit()) return false;
+      while (digit()) ++i;
+      return true;
+    };
     if (i < s.size() && s[i] == '-') ++i;
-    if (i >= s.size() || !std::isdigit(static_cast<unsigned char>(s[i]))) fail("invalid value");
-    while (i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || s[i] == '.' || s[i] == 'e' ||
-                            s[i] == 'E' || s[i] == '+' || s[i] == '-'))
+    if (!digit()) fail("invalid value");
+    if (s[i] == '0') ++i;
+    else digits();
+    bool ok = true;
+    if (i < s.size() && s[i] == '.') ok = (++i, digits());
+    if (ok && i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
       ++i;
+      if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+      ok = digits();
+    }
+    while (i < s.size() && (digit() || s[i] == '.' || s[i] == 'e' || s[i] == 'E' || s[i] == '+' || s[i] == '-')) {
+      ok = false;
+      ++i;
+    }
     const std::string t = s.substr(start, i - start);
-    char* end = nullptr;
-    const double d = std::strtod(t.c_str(), &end);
-    if (end != t.c_str() + t.size()) fail("invalid number '" + t + "'");
+    if (!ok) fail("invalid number '" + t + "'");
+    const double d = std::strtod(t.c_str(), nullptr);
+    if (!std::isfinite(d)) fail("number '" + t + "' is out of range");
     return d;
   }
   static void utf8(std::string& out, unsigned cp) {

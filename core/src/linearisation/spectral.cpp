@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "tristim/error.hpp"
+#include "tristim/io/limits.hpp"
 
 namespace tristim {
 
@@ -171,7 +172,7 @@ SpectralModel spectral_model_from_json(const json::Value& o) {
     }
   }
   const json::Value* q = o.find("training_patches");
-  if (q && q->is_number()) m.training_patches = static_cast<int>(q->as_number());
+  if (q && q->is_number()) m.training_patches = q->as_int("training_patches", 0, limits::kMaxJsonInt);
   return m;
 }
 

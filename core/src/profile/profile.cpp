@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "tristim/error.hpp"
+#include "tristim/io/limits.hpp"
 #include "tristim/version.hpp"
 
 namespace tristim {
@@ -261,7 +262,7 @@ Profile profile_from_json(const std::string& text) {
     if (const auto* v = wp->find("XYZ")) p.white_XYZ = read_vec3(*v, "white_preservation.XYZ");
   }
   const json::Value& tr = o.at("training");
-  p.training_patches = static_cast<int>(tr.at("patches").as_number("training.patches"));
+  p.training_patches = tr.at("patches").as_int("training.patches", 0, limits::kMaxJsonInt);
   p.training_digest = tr.at("digest").as_string("training.digest");
   if (const auto* v = tr.find("rgb_max")) p.rgb_max = v->as_number("training.rgb_max");
   if (!(p.rgb_max > 0)) throw Error(ErrorCode::ProfileInvalid, "training.rgb_max must be positive");
@@ -269,7 +270,7 @@ Profile profile_from_json(const std::string& text) {
     if (const auto* v = f->find("status")) p.status = status_from_name(v->as_string("fit.status"));
     if (const auto* v = f->find("message")) p.message = v->as_string("fit.message");
     if (const auto* v = f->find("condition_number"); v && v->is_number()) p.condition_number = v->as_number();
-    if (const auto* v = f->find("iterations"); v && v->is_number()) p.iterations = static_cast<int>(v->as_number());
+    if (const auto* v = f->find("iterations"); v && v->is_number()) p.iterations = v->as_int("fit.iterations", 0, limits::kMaxJsonInt);
     if (const auto* v = f->find("objective_value"); v && v->is_number()) p.objective_value = v->as_number();
   }
   if (const auto* m = o.find("metrics"); m && m->is_object()) p.metrics = *m;

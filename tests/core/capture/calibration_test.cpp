@@ -1,5 +1,7 @@
 // Frame calibration: dark averaging/subtraction, flat field (Abed 2013 App. C), fall-off (Guarnera eq 7).
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <random>
 
 #include "test_support.hpp"
@@ -161,6 +163,10 @@ TEST_CASE("apply_calibration equals FrameCalibration::calibrated pixel by pixel,
   for (auto& v : img.rgb) v = u(rng);
   for (auto& v : dark.rgb) v = d(rng);
   for (auto& v : flat.rgb) v = fl(rng);
+  // Values where an absent step done as "x - 0" or "x * 1" would show if it were not exact.
+  img.rgb[4] = -0.0f;
+  img.rgb[5] = 1e-40f;  // subnormal
+  img.rgb[3 * W + 7] = -3e-39f;
   const DarkFrame avg = average_dark_frames({&dark});
   const FlatField ff = make_flat_field(flat, &avg);
   FalloffFit fo;
@@ -187,7 +193,10 @@ TEST_CASE("apply_calibration equals FrameCalibration::calibrated pixel by pixel,
         cal.calibrated(img, x, y, ref);
         for (int c = 0; c < 3; ++c) {
           const float got = out.rgb[(size_t(y) * W + x) * 3 + c];
-          if (got != ref[c] && mismatches++ == 0)
+          std::uint32_t got_bits, ref_bits;  // bit for bit: -0 and +0 differ
+          std::memcpy(&got_bits, &got, 4);
+          std::memcpy(&ref_bits, &ref[c], 4);
+          if (got_bits != ref_bits && mismatches++ == 0)
             FAIL_CHECK("mask " << mask << " pixel (" << x << ", " << y << ") channel " << c << ": " << got
                                << " != " << ref[c] << " (tolerance 0)");
         }

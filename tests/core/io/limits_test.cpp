@@ -156,3 +156,34 @@ TEST_CASE("JSON type errors say 'an array', 'an object'", "[limits][json]") {
                ErrorCode::ProfileInvalid);
   CHECK_NOTHROW(json::reject_unknown(json::parse("{\"a\":1}"), {"a", "c"}, "profile", ErrorCode::ProfileInvalid));
 }
+
+TEST_CASE("JSON counts: as_int takes whole numbers in range and refuses the rest (fuzz_profile's 7e9 patches)", "[limits][json]") {
+  const json::Value v = json::parse(R"({"n": 24, "big": 7000000001, "neg": -1, "frac": 2.5, "s": "24"})");
+  CHECK(v.at("n").as_int("n", 0, 100) == 24);
+  for (const char* key : {"big", "neg", "frac", "s"})
+    require_code([&] { v.at(key).as_int(key, 0, limits::kMaxJsonInt); }, ErrorCode::ProfileInvalid);
+  try {
+    v.at("big").as_int("training.patches", 0, 100);
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()) == "training.patches must be a whole number from 0 to 100, got 7000000001");
+  }
+
+  // The profile the long fuzz run found has "patches": 07000000001 (tests/fuzz/corpus/profile/
+  // crash-6c3b46f4…; the parser now refuses the leading zero too): every count a profile stores is
+  // read through as_int.
+  std::string text = test::read_repo("tests/fuzz/corpus/profile/root2.json");
+  const std::string from = "\"patches\": 24";
+  REQUIRE(text.find(from) != std::string::npos);
+  CHECK(profile_from_json(text).training_patches == 24);
+  text.replace(text.find(from), from.size(), "\"patches\": 7000000001");
+  require_code([&] { profile_from_json(text); }, ErrorCode::ProfileInvalid);
+}
+
+TEST_CASE("JSON numbers follow RFC 8259 and stay finite, like the page's JSON.parse", "[limits][json]") {
+  for (const char* good : {"0", "-0", "24", "-1.5", "1e5", "1E+5", "2.5e-3", "0.000001", "1.7976931348623157e308"})
+    CHECK_NOTHROW(json::parse(good));
+  CHECK(json::parse("2.5e-3").as_number() == 2.5e-3);
+  for (const char* bad : {"07000000001", "01", "1.", ".5", "-", "1e", "1e+", "1.2.3", "1e5e5", "--1", "+1", "1e400", "-1e400"})
+    require_code([&] { json::parse(bad); }, ErrorCode::ParseError);
+}

@@ -221,4 +221,10 @@ Vec3 predict(const Model& model, const Vec3& camera_RGB);
 /// affine and degree-2 root-polynomial models have dedicated paths.
 void apply_to_image(const Model& model, const float* rgb, size_t n_pixels, float* xyz);
 
+/// Caps the x86 vector kernels apply_to_image may choose at run time, for tests and benchmarks
+/// that compare them: 0 = 4-lane SSE2 (the wasm SIMD128 kernels' arithmetic), 1 = AVX2+FMA,
+/// 2 = AVX-512 (the default: the widest the CPU has). Returns the previous cap; no effect
+/// (returns 0) where there are no such kernels (wasm, other CPUs).
+int set_image_kernel_limit(int level);
+
 }  // namespace tristim

@@ -45,6 +45,9 @@ class Value {
 
   // Accessors throw Error(ProfileInvalid) naming `what` when the type is wrong.
   double as_number(const std::string& what = "value") const;
+  /// A whole number in [lo, hi] (a double outside int's range cast to int is undefined
+  /// behaviour; fuzz_profile found "patches": 7e9); Error(ProfileInvalid) naming `what` otherwise.
+  int as_int(const std::string& what, int lo, int hi) const;
   bool as_bool(const std::string& what = "value") const;
   const std::string& as_string(const std::string& what = "value") const;
   const std::vector<Value>& as_array(const std::string& what = "value") const;

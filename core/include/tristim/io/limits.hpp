@@ -22,6 +22,7 @@ constexpr int kMaxJsonDepth = 64;                ///< nesting of arrays and obje
 constexpr std::size_t kMaxJsonArray = 100000;    ///< elements of one array or members of one object
 constexpr std::size_t kMaxJsonString = 1u << 20; ///< bytes of one string
 constexpr std::size_t kMaxJsonValues = 250000;   ///< values in one document
+constexpr int kMaxJsonInt = 1000000000;         ///< a count or size read from JSON (patches, width, iterations)
 
 // --- evaluation: leave-one-out of least squares is in closed form (any N); for the iterative
 // objectives (psm, de2000) it refits once per patch (N fits of N − 1 patches, work ~ N²), so above
