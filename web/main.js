@@ -3,12 +3,16 @@
 import { Engine } from './lib/engine.js';
 import { store } from './store.js';
 import { h } from './lib/ui.js';
+import { fetchExample, decodeExample } from './images/example.js';
 
 // The engine's worker (and the compile of the wasm module, protocol.js) starts before the views
 // and their plotting code are loaded: they load meanwhile.
 const engine = new Engine();
 // read while the engine starts (a fresh session loads the example)
 const storedSession = store.all().catch((e) => { console.warn(`session storage unavailable: ${e.message}`); return {}; });
+// A new session loads the example: fetched now, decoded once the engine has answered the catalog.
+const exampleBytes = storedSession.then((s) => (s.settings ? null : fetchExample()));
+exampleBytes.catch(() => {});   // reported by the images view (restore)
 
 // The features, in journey order: web/<feature>/view.js, each mounted into <section id="step-<feature>">.
 const STEPS = ['reference', 'surface', 'images', 'linearisation', 'fit', 'results', 'apply', 'export', 'absolute'];
@@ -86,6 +90,9 @@ async function start() {
   const saved = await storedSession;
   const fresh = !saved.settings;
   Object.assign(app.session, saved);
+  // The example decodes in the worker while the views mount (the images view takes it over).
+  const example = fresh ? exampleBytes.then((ex) => decodeExample(app.engine, ex)) : null;
+  example?.catch(() => {});
 
   const features = await FEATURES;
   // The plotting library (deferred scripts) has run once the document is parsed.
@@ -103,7 +110,7 @@ async function start() {
   // A new session: the example's detection waits for the first screen (its corners are preset).
   let shown = null;
   const firstScreen = fresh ? new Promise((r) => { shown = r; }) : null;
-  await app.views.images.restore(fresh, { detectAfter: firstScreen });
+  await app.views.images.restore(fresh, { detectAfter: firstScreen, example });
   if (fresh) {
     app.views.results.setStatus('Fitting the example: every model × objective, the first one shown as soon as it is in…');
     const r = await app.views.fit.runDefault({ onFirst: () => { performance.mark('tristim:first-screen'); document.body.dataset.firstScreen = 'true'; shown(); } });

@@ -49,6 +49,7 @@ export function mount(section, app) {
   let restoreApplied = !!app.session.applied;
   mapSel.addEventListener('change', () => { app.save('colourMap', mapSel.value); if (shown) run(); });
   let sceneLoading = null;   // reading + decoding a newly chosen scene file
+  let afterApply = null;     // called when the next apply has ended
   sceneInput.addEventListener('change', () => {
     const f = sceneInput.files[0];
     if (!f) return;
@@ -58,7 +59,11 @@ export function mount(section, app) {
       sceneBytes = { name: f.name, bytes: await fileBytes(f) };
       sceneGen = -1;
       const ok = await decodeScene();
-      if (ok) await app.save('files.scene', { name: sceneBytes.name, bytes: sceneBytes.bytes.buffer });
+      // Kept for a reload once the apply that follows has drawn (or after 2 s): writing 8 MB to
+      // IndexedDB takes the page and the browser a few hundred ms of the cores the apply needs.
+      // save() reports its own errors.
+      const kept = { name: sceneBytes.name, bytes: sceneBytes.bytes.buffer };
+      if (ok) Promise.race([new Promise((r) => { afterApply = r; }), new Promise((r) => { setTimeout(r, 2000); })]).then(() => app.save('files.scene', kept));
       return ok;
     })();
   });
@@ -143,7 +148,10 @@ export function mount(section, app) {
     } catch (e) {
       if (e.code !== 'CANCELLED') showError(applyBtn, e, 'Apply');
       return null;
-    } finally { progress.done(); applyBtn.disabled = false; }
+    } finally {
+      progress.done(); applyBtn.disabled = false;
+      setTimeout(() => { afterApply?.(); afterApply = null; });
+    }
   }
   applyBtn.addEventListener('click', run);
 

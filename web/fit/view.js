@@ -172,9 +172,16 @@ export function mount(section, app) {
     const { layout, homography, patches } = app.derived.sample;     // the engine's ChartSample
     const sample = { layout, homography, patches };
     const t0 = performance.now();
-    let done = 0, autoKey = null, frame = 0, shownFirst = null;
-    // The results step redraws at most once per frame while rows arrive.
-    const stream = () => { frame ||= requestAnimationFrame(() => { frame = 0; app.emit('results', results); }); };
+    let done = 0, autoKey = null, frame = 0, lastDraw = 0, shownFirst = null;
+    // The results step redraws at most every 250 ms (in an animation frame) while rows arrive: each
+    // redraw (table, layout, paint) takes the page ~50 ms of a core the workers need.
+    const stream = () => {
+      frame ||= setTimeout(() => requestAnimationFrame(() => {
+        if (!frame) return;
+        frame = 0; lastDraw = performance.now();
+        app.emit('results', results);
+      }), Math.max(0, lastDraw + 250 - performance.now()));
+    };
     try {
       const task = (client, job) => {
         job.recipe = recipeFor(job.mId, job.obj, ref, data);
@@ -222,7 +229,7 @@ export function mount(section, app) {
       log.append(h('li', {}, finished ? `${results.length} of ${total} fits in ${seconds} s.`
         : `Cancelled after ${done} of ${total} rows (${seconds} s); the ${results.length} fitted rows are kept.`));
       if (results.length) {
-        cancelAnimationFrame(frame);
+        clearTimeout(frame); frame = 0;
         await app.save('results', results);
         // The best by leave-one-out is shown, unless another row was picked while the rows arrived.
         const shown = app.session.selected === autoKey ? bestByLoo(results) : results.find((r) => r.key === app.session.selected) ?? bestByLoo(results);

@@ -19,13 +19,18 @@ function calibrate(state) {
 function calibrateQuietly(state) {
   try { return calibrate(state); } catch { state.raw?.chart?.clearDark(); state.raw?.chart?.clearFlat(); return null; }
 }
+const previewOf = (image, side) => {
+  const p = image.preview(side);
+  return { ...p, rgba: new Uint8ClampedArray(p.rgba.buffer) };
+};
 function freeRaw(raw) {
   if (raw) for (const r of [raw].flat()) r.delete();
 }
 
 export const handlers = {
   /// Decodes RAW bytes into state.raw[slot] ('chart', 'dark', 'flat', 'scene'); returns metadata,
-  /// the display preview (chart and scene) and, for dark/flat, the calibration it gave the chart.
+  /// the display preview (chart; previewSide 0: none, ask 'preview' later) and, for dark/flat,
+  /// the calibration it gave the chart.
   /// `bytesList` (dark frames): several files, decoded and averaged by the engine (setDark).
   decode: (T, { slot = 'chart', bytes, bytesList, flatMode, previewSide = 1200 }, { state, progress }) => {
     progress(NaN, 'decoding RAW');
@@ -46,10 +51,7 @@ export const handlers = {
     let result;
     try {
       result = { width: first.width(), height: first.height(), metadata: first.metadata() };
-      if (slot === 'chart') {
-        const p = first.preview(previewSide);
-        result.preview = { ...p, rgba: new Uint8ClampedArray(p.rgba.buffer) };
-      }
+      if (slot === 'chart' && previewSide > 0) result.preview = previewOf(first, previewSide);
     } catch (e) { freeRaw(raw); throw e; }
     // The new image replaces the slot's previous one only once it fits (calibrate below).
     const previous = { raw: state.raw[slot], flatMode: state.flatMode };
@@ -70,6 +72,12 @@ export const handlers = {
     }
     freeRaw(previous.raw);
     return reply(result);
+  },
+
+  /// The display preview of the image in a slot (its first frame), or null when there is none.
+  preview: (T, { slot = 'chart', previewSide = 1200 }, { state }) => {
+    const raw = state.raw?.[slot];
+    return reply(raw ? previewOf([raw].flat()[0], previewSide) : null);
   },
 
   /// Samples the chart. lightTrap: the four corners of an in-scene light trap (Abed 2013 App. C

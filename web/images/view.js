@@ -7,6 +7,7 @@
 import { h, field, select, showError, clearError, errorSlot, progressBar, fmt, fileBytes } from '../lib/ui.js';
 import { CornerEditor } from './corners.js';
 import { patchTable } from './patch_table.js';
+import { fetchExample } from './example.js';
 
 const SLOTS = {
   chart: { label: 'Chart image', hint: 'A photograph of the chart, evenly lit: camera RAW (DNG, CR2, NEF, ARW, …), or an 8/16-bit TIFF, 8/16-bit PNG or JPEG (read as stored: then choose a linearisation, step 2b)' },
@@ -201,15 +202,27 @@ export function mount(section, app) {
   }
 
   /// Decodes {name, bytes} into the worker's slot; shows progress and errors next to the input.
+  /// The chart's preview is asked for after the decode, once the requests that follow the decode
+  /// at once (the sampling) are queued: the table and the fit do not wait for the picture.
+  let early = null;   // the example's decode, started by main.js before this view was mounted
+  let previewSeq = 0;
+  let previewAfter = null;   // restore(): a new session's preview waits for the first screen
   async function decode(slot, file) {
     progress.start(`Decoding ${file.name}…`);
-    const t0 = performance.now();
+    const started = slot === 'chart' && early?.bytes === file.bytes && early.generation === engine.generation ? early.decoding : null;
+    const t0 = started ? early.t0 : performance.now();
+    if (slot === 'chart') early = null;
     try {
-      // The page keeps its own bytes: the worker gets copies (transferred).
-      const copies = (file.list ?? [file]).map((f) => new Uint8Array(f.bytes).slice().buffer);
-      const msg = file.list ? { slot, bytesList: copies } : { slot, bytes: copies[0] };
-      if (slot === 'flat') msg.flatMode = flatMode.value;
-      const r = await engine.call('decode', msg, { transfer: copies, onProgress: progress.update });
+      let r;
+      if (started) r = await started;
+      else {
+        // The page keeps its own bytes: the worker gets copies (transferred).
+        const copies = (file.list ?? [file]).map((f) => new Uint8Array(f.bytes).slice().buffer);
+        const msg = file.list ? { slot, bytesList: copies } : { slot, bytes: copies[0] };
+        if (slot === 'flat') msg.flatMode = flatMode.value;
+        if (slot === 'chart') msg.previewSide = 0;
+        r = await engine.call('decode', msg, { transfer: copies, onProgress: progress.update });
+      }
       decodedGen[slot] = engine.generation;
       names[slot].textContent = `${file.name} — ${r.width}×${r.height} (decoded in ${((performance.now() - t0) / 1000).toFixed(2)} s)`
         + calibrationText(slot, r.calibration);
@@ -235,6 +248,11 @@ export function mount(section, app) {
         editor.setImage(r);
         if (!app.session.corners) editor.reset();
         else if (!sameSize) editor.setCorners(app.session.corners);
+        const seq = ++previewSeq, gen = engine.generation;
+        const after = previewAfter ?? new Promise((r) => { setTimeout(r); });
+        after.then(() => engine.call('preview', { slot: 'chart' })).then((preview) => {
+          if (seq === previewSeq && gen === engine.generation && preview) editor.setImage({ ...r, preview });
+        }, () => { /* the worker was restarted: the next decode asks again */ });
       }
       return true;
     } catch (e) {
@@ -405,7 +423,8 @@ export function mount(section, app) {
   /// Restores the session's files and corners (or the example on a first visit). The chart's own
   /// detection (a proposal) starts once `detectAfter` settles (the page passes the first screen's
   /// plots, so the detection does not compete with them), at once without it.
-  async function restore(fresh, { detectAfter = null } = {}) {
+  /// example: main.js's early fetch and decode of the example (images/example.js), for a new session.
+  async function restore(fresh, { detectAfter = null, example = null } = {}) {
     const L = app.session.layout;
     if (L) {
       layoutSel.value = L.chart;
@@ -415,7 +434,8 @@ export function mount(section, app) {
       ['margin_left', 'margin_top', 'margin_right', 'margin_bottom'].forEach((k, i) => { if (L[k]) marginIns[i].value = L[k]; });
     }
     syncLayout();
-    const saving = fresh ? await loadExample() : null;
+    previewAfter = detectAfter;
+    const saving = fresh ? await loadExample(example) : null;
     for (const slot of Object.keys(SLOTS)) {
       const f = app.session[`files.${slot}`];
       if (f && slot !== 'chart') names[slot].textContent = `${f.name}`;
@@ -427,23 +447,27 @@ export function mount(section, app) {
         if (detectAfter) detectAfter.then(() => detect()); else detect();
       }
     }
+    previewAfter = null;
     await saving;
   }
 
-  /// Loads the example into the session; resolves once it is in the session, with a promise of it
-  /// being written to this browser's storage (the decode need not wait for that).
-  async function loadExample() {
+  /// Loads the example into the session; resolves once it is in the session, with a promise of its
+  /// settings being written to this browser's storage (its RAW is written after the first screen).
+  async function loadExample(example) {
     try {
-      const cfg = await (await fetch('examples/passport.json')).json();
-      const res = await fetch(`examples/${cfg.file}`);
-      if (!res.ok) throw Object.assign(new Error(`examples/${cfg.file}: HTTP ${res.status}`), { code: 'EXAMPLE_MISSING' });
-      const bytes = await res.arrayBuffer();
+      const { cfg, bytes, decoding, t0, generation } = await (example ?? fetchExample());
+      if (decoding) early = { bytes, decoding, t0, generation };
       const layout = cfg.layout ?? { chart: cfg.chart ?? 'passport' };
       layoutSel.value = layout.chart;
       if (cfg.area) areaIn.value = cfg.area;
       syncLayout();
-      return Promise.all([app.save('layout', layout), app.save('corners', cfg.corners),
-        app.save('files.chart', { name: cfg.file, bytes }), app.save('example', cfg.note ?? true)]);
+      // The RAW is written to IndexedDB once the first screen is shown (restore's previewAfter),
+      // or in a task of its own: the write takes the page and the browser a few hundred ms of
+      // the cores the sampling and the first fit need. save() reports its own errors.
+      app.session['files.chart'] = { name: cfg.file, bytes };
+      Promise.resolve(previewAfter ?? new Promise((r) => { setTimeout(r); }))
+        .then(() => { if (app.session['files.chart']?.bytes === bytes) app.save('files.chart', app.session['files.chart']); });
+      return Promise.all([app.save('layout', layout), app.save('corners', cfg.corners), app.save('example', cfg.note ?? true)]);
     } catch (e) {
       showError(inputs.chart, e, 'Example chart');
       return null;
