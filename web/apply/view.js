@@ -59,11 +59,13 @@ export function mount(section, app) {
       sceneBytes = { name: f.name, bytes: await fileBytes(f) };
       sceneGen = -1;
       const ok = await decodeScene();
-      // Kept for a reload once the apply that follows has drawn (or after 2 s): writing 8 MB to
-      // IndexedDB takes the page and the browser a few hundred ms of the cores the apply needs.
-      // save() reports its own errors.
+      // Kept for a reload once the apply that follows has drawn (or after 2 s, or at once when the
+      // page is being left): writing 8 MB to IndexedDB takes the page and the browser a few
+      // hundred ms of the cores the apply needs. save() reports its own errors.
       const kept = { name: sceneBytes.name, bytes: sceneBytes.bytes.buffer };
-      if (ok) Promise.race([new Promise((r) => { afterApply = r; }), new Promise((r) => { setTimeout(r, 2000); })]).then(() => app.save('files.scene', kept));
+      if (ok) Promise.race([new Promise((r) => { afterApply = r; }), new Promise((r) => { setTimeout(r, 2000); }),
+                            new Promise((r) => { addEventListener('pagehide', r, { once: true }); })])
+        .then(() => app.save('files.scene', kept));
       return ok;
     })();
   });
