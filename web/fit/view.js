@@ -226,8 +226,10 @@ export function mount(section, app) {
       app.emit('compare', { done, total, running });
       const seconds = ((performance.now() - t0) / 1000).toFixed(2);
       progress.update({ fraction: done / total, stage: finished ? 'done' : `cancelled after ${done} of ${total} rows` });
-      log.append(h('li', {}, finished ? `${results.length} of ${total} fits in ${seconds} s.`
-        : `Cancelled after ${done} of ${total} rows (${seconds} s); the ${results.length} fitted rows are kept.`));
+      // The summary line comes after the last redraw of the results (below): the table redraws at
+      // most every 250 ms while rows arrive, so at this point it may not show the last rows yet.
+      const summary = h('li', {}, finished ? `${results.length} of ${total} fits in ${seconds} s.`
+        : `Cancelled after ${done} of ${total} rows (${seconds} s); the ${results.length} fitted rows are kept.`);
       if (results.length) {
         clearTimeout(frame); frame = 0;
         await app.save('results', results);
@@ -240,6 +242,7 @@ export function mount(section, app) {
       } else if (finished) {
         showError(runBtn, Object.assign(new Error('no fit succeeded; see the list below'), { code: 'FIT_FAILED' }), 'Fit');
       }
+      log.append(summary);
       return results.length || finished ? results : null;
     } catch (e) {
       showError(runBtn, e, 'Fit');
