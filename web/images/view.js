@@ -172,8 +172,11 @@ export function mount(section, app) {
         await app.save('corners', undefined);
         editor.reset();
       }
-      if (slot === 'chart') await detect({ apply: fresh });
+      // Same size: the corners stay and the detection is only a proposal, so the table (and a fit
+      // started from it) does not wait for it; new corners wait for the detection's.
+      if (slot === 'chart' && fresh) await detect({ apply: true });
       await resample();
+      if (slot === 'chart' && !fresh) detect();
     }
   }
 
@@ -421,10 +424,11 @@ export function mount(section, app) {
   }
 
   /// Restores the session's files and corners (or the example on a first visit). The chart's own
-  /// detection (a proposal) starts once `detectAfter` settles (the page passes the first screen's
-  /// plots, so the detection does not compete with them), at once without it.
+  /// detection (a proposal) starts once `detectAfter` settles (the page passes the end of the first
+  /// screen's compare, so the detection does not compete with it), at once without it; the preview
+  /// (and the example's write to storage) once `previewAfter` settles (default: detectAfter).
   /// example: main.js's early fetch and decode of the example (images/example.js), for a new session.
-  async function restore(fresh, { detectAfter = null, example = null } = {}) {
+  async function restore(fresh, { detectAfter = null, previewAfter: previewWait = detectAfter, example = null } = {}) {
     const L = app.session.layout;
     if (L) {
       layoutSel.value = L.chart;
@@ -434,7 +438,7 @@ export function mount(section, app) {
       ['margin_left', 'margin_top', 'margin_right', 'margin_bottom'].forEach((k, i) => { if (L[k]) marginIns[i].value = L[k]; });
     }
     syncLayout();
-    previewAfter = detectAfter;
+    previewAfter = previewWait;
     const saving = fresh ? await loadExample(example) : null;
     for (const slot of Object.keys(SLOTS)) {
       const f = app.session[`files.${slot}`];
