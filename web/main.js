@@ -106,15 +106,18 @@ async function start() {
   const hash = location.hash.slice(1);
   app.goto(STEPS.includes(hash) ? hash : (app.session.step ?? (fresh ? 'results' : 'reference')));
 
-  // Restore (or, on a first visit, load the example), one step after the other.
-  await app.views.reference.ready;
+  // Restore (or, on a first visit, load the example): the chart's sampling does not wait for the
+  // reference's plots (both are needed before the fit).
   if (fresh) app.views.results.setStatus('Loading the example: a ColorChecker Passport photographed as DNG, decoding and sampling it in the worker…');
-  // A new session: the example's preview waits for the first screen, its detection (a proposal:
-  // its corners are preset) for the compare's end — on two cores it would slow the compare.
+  // A new session: the example's write to storage waits for the first screen; its preview and its
+  // detection (a proposal: its corners are preset) for the compare's end — on two cores they would
+  // slow the compare (the first screen shows the results step, not the picture).
   let shown = null, compared = null;
   const firstScreen = fresh ? new Promise((r) => { shown = r; }) : null;
   const compareDone = fresh ? new Promise((r) => { compared = r; }) : null;
-  await app.views.images.restore(fresh, { detectAfter: compareDone, previewAfter: firstScreen, example: fresh ? example : null });
+  const restored = app.views.images.restore(fresh, { detectAfter: compareDone, storeAfter: firstScreen, example: fresh ? example : null });
+  await app.views.reference.ready;
+  await restored;
   if (fresh) {
     app.views.results.setStatus('Fitting the example: every model × objective, the first one shown as soon as it is in…');
     const r = await app.views.fit.runDefault({ onFirst: () => { performance.mark('tristim:first-screen'); document.body.dataset.firstScreen = 'true'; shown(); } });
