@@ -111,15 +111,22 @@ struct LibRawDelete {
 using LibRawPtr = std::unique_ptr<LibRaw, LibRawDelete>;
 
 LibRawPtr make_libraw() {
+  LibRawPtr p;
   if (void* block = libraw_storage.acquire()) {
     try {
-      return LibRawPtr(new (block) LibRaw(LIBRAW_OPTIONS_NONE));
+      p = LibRawPtr(new (block) LibRaw(LIBRAW_OPTIONS_NONE));
     } catch (...) {
       libraw_storage.release();
       throw;
     }
+  } else {
+    p = LibRawPtr(new LibRaw(LIBRAW_OPTIONS_NONE));
   }
-  return LibRawPtr(new LibRaw(LIBRAW_OPTIONS_NONE));
+  // LibRaw's default handlers print data and memory errors to stderr (the console, in the page);
+  // its return codes and error_count() say the same, and become coded errors (open_and_unpack).
+  p->set_dataerror_handler([](void*, const char*, const int) {}, nullptr);
+  p->set_memerror_handler([](void*, const char*, const char*) {}, nullptr);
+  return p;
 }
 
 /// LibRaw's memory stream with gets() and scanf_one() that stay inside their buffers. LibRaw
@@ -238,9 +245,15 @@ LibRawPtr open_and_unpack(const std::uint8_t* data, std::size_t size,
                                              " but the file has " + std::to_string(size));
   if (unpack) {
     check_libraw(proc->unpack(), "unpack");
-    if (proc->error_count() > 0 &&
-        proc->get_internal_data_pointer()->internal_data.input->eof())
+    const int errors = proc->error_count();
+    if (errors > 0 && proc->get_internal_data_pointer()->internal_data.input->eof())
       throw Error(ErrorCode::RawTruncated, "the RAW image data ends before the image is complete");
+    // LibRaw counts undecodable data (an invalid compressed code, a bad block) and carries on
+    // with whatever values it got; measurements from such an image would be silently wrong.
+    if (errors > 0)
+      throw Error(ErrorCode::RawCorrupt, "the RAW image data is damaged: LibRaw's decoder met " +
+                                             std::to_string(errors) + " undecodable part" +
+                                             (errors == 1 ? "" : "s") + " (" + info.decoder_name + ")");
   }
   return proc;
 }
