@@ -10,6 +10,7 @@
 
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
+#include "tristim/io/number.hpp"
 
 namespace tristim {
 
@@ -144,7 +145,7 @@ double wavelength_from_name(const std::string& name) {
   if (s.size() > 2 && s.compare(s.size() - 2, 2, "nm") == 0) s = s.substr(0, s.size() - 2);
   if (s.empty()) return std::nan("");
   char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
+  const double v = tristim::parse_double(s.c_str(), &end);
   if (*end != '\0' || !std::isfinite(v) || v < 200 || v > 2000) return std::nan("");
   return v;
 }
@@ -371,13 +372,13 @@ double parse_cell(const std::string& cell, std::string_view source, int line, st
   auto at = [&] { return where(source, line) + ", column '" + std::string(column) + "'"; };
   if (s.empty()) throw Error(ErrorCode::NonNumeric, at() + ": empty cell where a number is needed");
   char* end = nullptr;
-  double v = std::strtod(s.c_str(), &end);
+  double v = tristim::parse_double(s.c_str(), &end);
   bool whole = end != s.c_str() && *end == '\0';  // the cell is one number
   if (!whole && std::count(s.begin(), s.end(), ',') == 1 && s.find('.') == std::string::npos) {
     std::string dot = s;  // decimal comma ("0,123": ';'-separated CSV or CGATS from a European locale)
     dot[dot.find(',')] = '.';
     char* dot_end = nullptr;  // points into `dot`: never used after this block (fuzz_patch_file found that)
-    const double d = std::strtod(dot.c_str(), &dot_end);
+    const double d = tristim::parse_double(dot.c_str(), &dot_end);
     if (dot_end != dot.c_str() && *dot_end == '\0') {
       v = d;
       whole = true;
@@ -504,7 +505,7 @@ PatchTable read_cgats(std::string_view text, std::string_view source) {
   if (t.has_spectra) {
     auto it = t.keywords.find("SPECTRAL_NORM");
     double norm = 0;
-    if (it != t.keywords.end()) norm = std::strtod(it->second.c_str(), nullptr);
+    if (it != t.keywords.end()) norm = tristim::parse_double(it->second.c_str(), nullptr);
     if (norm > 0 && norm != 1.0) {
       for (auto& col : t.spectra.values)
         for (auto& v : col) v /= norm;

@@ -14,13 +14,14 @@
 #include "rows.hpp"
 #include "tristim/data.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/number.hpp"
 #include "tristim/io/patch_files.hpp"
 
 namespace tristim {
 
 namespace {
 
-// The built-in table is trusted and large (1269 × 81 numbers): a plain strtod pass instead of
+// The built-in table is trusted and large (1269 × 81 numbers): a plain parse_double pass instead of
 // the checking reader (read_spectral_csv), which takes ~100× longer on it. A malformed built-in
 // file is a bug (Error Internal).
 SpectralData parse_builtin_spectral(std::string_view name) {
@@ -41,11 +42,11 @@ SpectralData parse_builtin_spectral(std::string_view name) {
   const char* const end = text.c_str() + text.size();
   while (p < end && *p != '\0') {
     char* next = nullptr;
-    s.wavelengths.push_back(std::strtod(p, &next));
+    s.wavelengths.push_back(tristim::parse_double(p, &next));
     p = next;
     for (auto& column : s.values) {
       if (*p != ',') throw Error(ErrorCode::Internal, "built-in " + std::string(name) + ": short row");
-      column.push_back(std::strtod(p + 1, &next));
+      column.push_back(tristim::parse_double(p + 1, &next));
       p = next;
     }
     while (p < end && (*p == '\r' || *p == '\n')) ++p;
