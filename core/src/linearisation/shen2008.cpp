@@ -38,6 +38,10 @@ SpectralData parse_builtin_spectral(std::string_view name) {
     }
   }
   s.values.resize(s.names.size());
+  // Room for every row up front: no reallocation (and in wasm no allocator calls) while parsing.
+  const size_t rows = static_cast<size_t>(std::count(text.begin() + static_cast<std::ptrdiff_t>(pos) + 1, text.end(), '\n')) + 1;
+  s.wavelengths.reserve(rows);
+  for (auto& column : s.values) column.reserve(rows);
   const char* p = text.c_str() + pos + 1;
   const char* const end = text.c_str() + text.size();
   while (p < end && *p != '\0') {
