@@ -7,7 +7,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   tristim::DecodeOptions options;
-  options.max_megapixels = 4;  // keep each run small: bigger claims must still be refused early
+  options.max_megapixels = 1;  // keep each run small (as fuzz_image): bigger claims must still be refused early
   // decode_raw only: inspect_raw is the same open_buffer without the unpack, and every LibRaw
   // object (several MB, fresh pages from ASan's allocator each time) is what bounds the speed.
   try {

@@ -38,6 +38,13 @@ export function mount(section, app) {
     app.mark('results', 'done');
   }
 
+  // The fit's status word, and its message (why a fit is flagged: ill-conditioned, no leave-one-out
+  // figure, …) in smaller type under it, wrapped within the column instead of widening the table.
+  function statusCell(fit) {
+    return h('td', { class: `status${fit.status === 'ok' ? '' : ' flagged'}` },
+      String(fit.status).replaceAll('_', ' '), fit.message ? h('small', {}, fit.message) : null);
+  }
+
   function comparisonTable(results, selected) {
     const col = COLUMNS.find((c) => c.key === sort.key);
     const val = (r) => (col ? metric(r, col.set, col.stat) : 0);
@@ -59,7 +66,7 @@ export function mount(section, app) {
       h('tbody', {}, rows.map((r) => h('tr', { class: [r === selected ? 'selected' : '', r === best && Number.isFinite(loo(r)) ? 'best' : ''].join(' ').trim(), dataset: { key: r.key } },
         h('th', { scope: 'row' }, r.label, r === best && Number.isFinite(loo(r)) ? h('small', { class: 'best-mark', title: 'the lowest leave-one-out mean CIEDE2000' }, ' best') : null),
         COLUMNS.map((c) => h('td', { dataset: { col: c.key } }, fmt(metric(r, c.set, c.stat)))),
-        h('td', {}, `${r.fit.evaluation.fit.status}${r.fit.evaluation.fit.message ? ': ' + r.fit.evaluation.fit.message : ''}`),
+        statusCell(r.fit.evaluation.fit),
         h('td', {}, h('button', { type: 'button', 'aria-pressed': String(r === selected), 'aria-label': `Show the plots of ${r.label}`, onclick: () => { app.save('selected', r.key); refresh(); } }, r === selected ? 'shown' : 'show'))))));
   }
 

@@ -122,6 +122,79 @@ LibRawPtr make_libraw() {
   return LibRawPtr(new LibRaw(LIBRAW_OPTIONS_NONE));
 }
 
+/// LibRaw's memory stream with gets() and scanf_one() that stay inside their buffers. LibRaw
+/// 0.20.2's LibRaw_buffer_datastream::gets copies up to `sz` bytes with no terminating zero when a
+/// line fills the buffer, and writes the zero one byte past it when the file ends `sz` − 1 bytes
+/// later; its scanf_one runs sscanf on the file bytes, which are not zero-terminated (a read past
+/// the end of the file's buffer). fuzz_raw found the first as a stack-buffer-overflow in
+/// parse_rollei's 128-byte line (tests/fuzz/corpus/raw/crash-f5c9985c…); LibRaw reads every text
+/// field (Make, Model, Software, Rollei/Leaf text headers) through these two. Here: fgets's
+/// contract (at most sz − 1 bytes, up to and including a newline, then a zero) and sscanf on a
+/// bounded, zero-terminated copy; everything else is LibRaw's own stream.
+class BoundedBufferStream final : public LibRaw_buffer_datastream {
+ public:
+  BoundedBufferStream(const std::uint8_t* data, std::size_t size)
+      : LibRaw_buffer_datastream(const_cast<std::uint8_t*>(data), size), data_(data), size_(size) {}
+
+  char* gets(char* s, int sz) override {
+    const INT64 at = tell();
+    if (sz < 1 || at < 0 || static_cast<std::size_t>(at) >= size_) return nullptr;
+    std::size_t p = static_cast<std::size_t>(at);
+    int k = 0;
+    while (p < size_ && k < sz - 1) {
+      const char c = static_cast<char>(data_[p++]);
+      s[k++] = c;
+      if (c == '\n') break;
+    }
+    s[k] = 0;
+    seek(static_cast<INT64>(p), SEEK_SET);
+    return s;
+  }
+
+  int scanf_one(const char* fmt, void* val) override {
+    const INT64 at = tell();
+    if (at < 0 || static_cast<std::size_t>(at) > size_) return 0;
+    const std::size_t pos = static_cast<std::size_t>(at);
+    // LibRaw asks for one number ("%d", "%f"): 63 bytes hold any white space before it that
+    // matters and the number itself (its own loop below skips at most 25 bytes).
+    char text[64];
+    const std::size_t n = std::min(sizeof text - 1, size_ - pos);
+    std::memcpy(text, data_ + pos, n);
+    text[n] = 0;
+    const int res = std::sscanf(text, fmt, val);
+    if (res > 0) {  // LibRaw's advance: to the next zero, blank, tab or newline, at most 25 bytes
+      std::size_t p = pos;
+      for (int count = 1; p < size_; ++count) {
+        ++p;
+        if (p >= size_) break;
+        const std::uint8_t c = data_[p];
+        if (c == 0 || c == ' ' || c == '\t' || c == '\n' || count > 24) break;
+      }
+      seek(static_cast<INT64>(p), SEEK_SET);
+    }
+    return res;
+  }
+
+ private:
+  const std::uint8_t* data_;
+  std::size_t size_;
+};
+
+/// LibRaw::open_buffer with the stream above; LibRaw owns (and deletes) the stream once the open
+/// succeeded, as open_buffer arranges for its own.
+int open_memory(LibRaw& proc, const std::uint8_t* data, std::size_t size) {
+  if (data == nullptr) return LIBRAW_IO_ERROR;
+  auto stream = std::make_unique<BoundedBufferStream>(data, size);
+  auto& internal = proc.get_internal_data_pointer()->internal_data;
+  internal.input_internal = 0;  // not deleted by LibRaw if the open fails
+  const int rc = proc.open_datastream(stream.get());
+  if (rc == LIBRAW_SUCCESS) {
+    stream.release();
+    internal.input_internal = 1;  // deleted by LibRaw's recycle()
+  }
+  return rc;
+}
+
 /// Opens the buffer (and unpacks when `unpack`), with our size limits. The buffer must outlive
 /// the returned processor until unpack is done.
 LibRawPtr open_and_unpack(const std::uint8_t* data, std::size_t size,
@@ -135,7 +208,7 @@ LibRawPtr open_and_unpack(const std::uint8_t* data, std::size_t size,
   // (8 bytes per pixel covers 4-channel linear DNGs; Bayer rasters need 2.)
   proc->imgdata.params.max_raw_memory_mb =
       static_cast<unsigned>(std::min(2048.0, std::max(64.0, options.max_megapixels * 8.0)));
-  check_libraw(proc->open_buffer(const_cast<std::uint8_t*>(data), size), "open_buffer");
+  check_libraw(open_memory(*proc, data, size), "open_buffer");
 
   const auto& S = proc->imgdata.sizes;
   const double mp = static_cast<double>(S.raw_width) * S.raw_height / 1e6;
@@ -482,7 +555,7 @@ RawImage decode_raw(const std::uint8_t* data, std::size_t size, const DecodeOpti
 bool libraw_identifies(const std::uint8_t* data, std::size_t size, int* raw_width, int* raw_height) {
   if (data == nullptr || size < 64) return false;
   LibRawPtr proc = make_libraw();  // large: not on the (wasm) stack
-  if (proc->open_buffer(const_cast<std::uint8_t*>(data), size) != LIBRAW_SUCCESS) return false;
+  if (open_memory(*proc, data, size) != LIBRAW_SUCCESS) return false;
   if (raw_width) *raw_width = proc->imgdata.sizes.raw_width;
   if (raw_height) *raw_height = proc->imgdata.sizes.raw_height;
   return true;
