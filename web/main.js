@@ -10,7 +10,7 @@ import { fetchExample, decodeExample } from './images/example.js';
 const engine = new Engine();
 // read while the engine starts (a fresh session loads the example)
 const storedSession = store.all().catch((e) => { console.warn(`session storage unavailable: ${e.message}`); return {}; });
-// A new session loads the example: fetched now, decoded once the engine has answered the catalog.
+// A new session loads the example: fetched now, its decode queued in the worker as soon as it is here.
 const exampleBytes = storedSession.then((s) => (s.settings ? null : fetchExample()));
 exampleBytes.catch(() => {});   // reported by the images view (restore)
 
@@ -77,9 +77,14 @@ document.getElementById('new-session').addEventListener('click', async () => {
 });
 
 async function start() {
+  // The worker answers in the order asked: hello, the catalog, then (a new session) the example's
+  // decode, posted as soon as its bytes are here — it runs while the views load and mount.
+  const hello = app.engine.call('hello'), catalog = app.engine.call('catalog');
+  const example = exampleBytes.then((ex) => ex && decodeExample(app.engine, ex));
+  for (const p of [hello, catalog, example]) p.catch(() => {});   // reported below / by the images view
   try {
-    const { version } = await app.engine.call('hello');
-    app.catalog = await app.engine.call('catalog');
+    const { version } = await hello;
+    app.catalog = await catalog;
     status.textContent = `Colour engine tristim ${version} ready (WebAssembly, in a worker).`;
     status.dataset.ready = 'true';
   } catch (e) {
@@ -90,9 +95,6 @@ async function start() {
   const saved = await storedSession;
   const fresh = !saved.settings;
   Object.assign(app.session, saved);
-  // The example decodes in the worker while the views mount (the images view takes it over).
-  const example = fresh ? exampleBytes.then((ex) => decodeExample(app.engine, ex)) : null;
-  example?.catch(() => {});
 
   const features = await FEATURES;
   // The plotting library (deferred scripts) has run once the document is parsed.
@@ -104,17 +106,23 @@ async function start() {
   const hash = location.hash.slice(1);
   app.goto(STEPS.includes(hash) ? hash : (app.session.step ?? (fresh ? 'results' : 'reference')));
 
-  // Restore (or, on a first visit, load the example), one step after the other.
-  await app.views.reference.ready;
+  // Restore (or, on a first visit, load the example): the chart's sampling does not wait for the
+  // reference's plots (both are needed before the fit).
   if (fresh) app.views.results.setStatus('Loading the example: a ColorChecker Passport photographed as DNG, decoding and sampling it in the worker…');
-  // A new session: the example's detection waits for the first screen (its corners are preset).
-  let shown = null;
+  // A new session: the example's write to storage waits for the first screen; its preview and its
+  // detection (a proposal: its corners are preset) for the compare's end — on two cores they would
+  // slow the compare (the first screen shows the results step, not the picture).
+  let shown = null, compared = null;
   const firstScreen = fresh ? new Promise((r) => { shown = r; }) : null;
-  await app.views.images.restore(fresh, { detectAfter: firstScreen, example });
+  const compareDone = fresh ? new Promise((r) => { compared = r; }) : null;
+  const restored = app.views.images.restore(fresh, { detectAfter: compareDone, storeAfter: firstScreen, example: fresh ? example : null });
+  await app.views.reference.ready;
+  await restored;
   if (fresh) {
     app.views.results.setStatus('Fitting the example: every model × objective, the first one shown as soon as it is in…');
     const r = await app.views.fit.runDefault({ onFirst: () => { performance.mark('tristim:first-screen'); document.body.dataset.firstScreen = 'true'; shown(); } });
     shown();
+    compared();
     if (!r) app.views.results.setStatus('No fitted model yet: the example could not be fitted (see steps 1–3).');
   } else app.views.results.refresh();
   performance.mark('tristim:ready');

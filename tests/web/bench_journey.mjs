@@ -48,9 +48,13 @@ try {
     // Time from the input's change event (the drop), measured in the page: the upload through
     // the test protocol is not part of what a user waits for.
     await armTimer('#step-images input[data-slot="chart"]');
+    // The fit starts on the new file's sample (the previous file's 24-row table is still shown
+    // while the new one decodes: starting then fitted the old sample, racing the decode).
+    await page.evaluate(() => { window.__oldSample = window.tristim.derived.sample; });
     await upload(page, '#step-images input[data-slot="chart"]', `passport-${k}.dng`, fileBuffer(DNG));
     await page.waitForFunction((n) => (document.querySelector('#step-images .file-state')?.textContent ?? '').includes(n), `passport-${k}.dng`, { timeout: 60000 });
-    await page.waitForFunction(() => window.tristim.derived.sample && document.querySelectorAll('#step-images .patch-table tbody tr').length === 24);
+    await page.waitForFunction(() => window.tristim.derived.sample && window.tristim.derived.sample !== window.__oldSample
+      && document.querySelectorAll('#step-images .patch-table tbody tr').length === 24, null, { timeout: 60000 });
     await page.evaluate(() => window.tristim.views.fit.run({ onFirst: () => { window.__first = performance.now(); window.tristim.goto('results'); } }));
     await page.waitForFunction(() => document.querySelectorAll('figure[data-plot="de2000-bars"] svg g[aria-label] rect').length > 0, null, { timeout: 120000 });
     chart.push(await elapsed());

@@ -59,6 +59,19 @@ export class WorkerPool {
     return generation === this.generation;
   }
 
+  /// Runs one job on another client (the page passes the engine's own worker, whose module is
+  /// instantiated and warm, for the first row of the first screen) under this pool's stop():
+  /// onDone as in map(). Resolves with false when stop() was called meanwhile (the answer is
+  /// dropped; that worker is not the pool's to terminate).
+  async one(client, job, task, onDone) {
+    const generation = this.generation;
+    let out;
+    try { out = { result: await task(client, job) }; } catch (error) { out = { error }; }
+    if (generation !== this.generation) return false;
+    onDone(job, out);
+    return true;
+  }
+
   /// Stops every worker now (the work really stops: the workers are terminated); their pending
   /// calls reject with CANCELLED. The next map() starts fresh workers.
   stop() {

@@ -142,9 +142,11 @@ export function mount(section, app) {
 
   /// Fits every selected model x objective (each row with leave-one-out), spread over the pool's
   /// workers; rows stream into the results as each one finishes. `onFirst()` runs once the first
-  /// row is in (the results step then shows it while the others run). Returns the results (also
-  /// kept in the session), the rows finished so far when cancelled, or null.
-  async function run({ onFirst } = {}) {
+  /// row is in (the results step then shows it while the others run). `firstOnEngine`: the first
+  /// row runs in the engine's own worker (warm, idle after the sampling) while the pool's workers
+  /// start. Returns the results (also kept in the session), the rows finished so far when
+  /// cancelled, or null.
+  async function run({ onFirst, firstOnEngine = false } = {}) {
     clearError(runBtn);
     const data = describeData();
     if (!data) { showError(runBtn, new Error('no paired data yet: set the reference and sample the chart first'), 'Fit'); return null; }
@@ -221,7 +223,8 @@ export function mount(section, app) {
         say(done);
       };
       // The first row alone, then the others: its plots are drawn before the long rows take the cores.
-      const finished = await pool.map(jobs.slice(0, 1), task, onRow) && await pool.map(jobs.slice(1), task, onRow);
+      const finished = await (firstOnEngine ? pool.one({ call: (...a) => engine.call(...a) }, jobs[0], task, onRow) : pool.map(jobs.slice(0, 1), task, onRow))
+        && await pool.map(jobs.slice(1), task, onRow);
       running = false;
       app.emit('compare', { done, total, running });
       const seconds = ((performance.now() - t0) / 1000).toFixed(2);
@@ -280,10 +283,11 @@ export function mount(section, app) {
     };
   }
 
-  /// First visit: compare everything; `onFirst` runs when the first row is shown.
+  /// First visit: compare everything; `onFirst` runs when the first row is shown. The engine's
+  /// worker has just sampled the example and is idle: it fits the first row.
   async function runDefault({ onFirst } = {}) {
     if (!app.derived.sample || !app.derived.reference) return null;
-    return run({ onFirst });
+    return run({ onFirst, firstOnEngine: true });
   }
   describeData();
   return { run, runDefault, cancel: () => cancelBtn.click(), runBtn, pool };

@@ -172,8 +172,11 @@ export function mount(section, app) {
         await app.save('corners', undefined);
         editor.reset();
       }
-      if (slot === 'chart') await detect({ apply: fresh });
+      // Same size: the corners stay and the detection is only a proposal, so the table (and a fit
+      // started from it) does not wait for it; new corners wait for the detection's.
+      if (slot === 'chart' && fresh) await detect({ apply: true });
       await resample();
+      if (slot === 'chart' && !fresh) detect();
     }
   }
 
@@ -206,7 +209,8 @@ export function mount(section, app) {
   /// at once (the sampling) are queued: the table and the fit do not wait for the picture.
   let early = null;   // the example's decode, started by main.js before this view was mounted
   let previewSeq = 0;
-  let previewAfter = null;   // restore(): a new session's preview waits for the first screen
+  let previewAfter = null;   // restore(): a new session's preview waits for the first screen's compare
+  let storeAfter = null;     // restore(): the example's RAW is written to storage after the first screen
   async function decode(slot, file) {
     progress.start(`Decoding ${file.name}…`);
     const started = slot === 'chart' && early?.bytes === file.bytes && early.generation === engine.generation ? early.decoding : null;
@@ -421,10 +425,12 @@ export function mount(section, app) {
   }
 
   /// Restores the session's files and corners (or the example on a first visit). The chart's own
-  /// detection (a proposal) starts once `detectAfter` settles (the page passes the first screen's
-  /// plots, so the detection does not compete with them), at once without it.
+  /// detection (a proposal) starts once `detectAfter` settles (the page passes the end of the first
+  /// screen's compare, so the detection does not compete with it), at once without it; the preview
+  /// once `previewAfter` settles (default: detectAfter), the example's write to storage once
+  /// `storeAfter` settles (default: previewAfter).
   /// example: main.js's early fetch and decode of the example (images/example.js), for a new session.
-  async function restore(fresh, { detectAfter = null, example = null } = {}) {
+  async function restore(fresh, { detectAfter = null, previewAfter: previewWait = detectAfter, storeAfter: storeWait = previewWait, example = null } = {}) {
     const L = app.session.layout;
     if (L) {
       layoutSel.value = L.chart;
@@ -434,7 +440,8 @@ export function mount(section, app) {
       ['margin_left', 'margin_top', 'margin_right', 'margin_bottom'].forEach((k, i) => { if (L[k]) marginIns[i].value = L[k]; });
     }
     syncLayout();
-    previewAfter = detectAfter;
+    previewAfter = previewWait;
+    storeAfter = storeWait;
     const saving = fresh ? await loadExample(example) : null;
     for (const slot of Object.keys(SLOTS)) {
       const f = app.session[`files.${slot}`];
@@ -447,7 +454,7 @@ export function mount(section, app) {
         if (detectAfter) detectAfter.then(() => detect()); else detect();
       }
     }
-    previewAfter = null;
+    previewAfter = storeAfter = null;
     await saving;
   }
 
@@ -461,11 +468,11 @@ export function mount(section, app) {
       layoutSel.value = layout.chart;
       if (cfg.area) areaIn.value = cfg.area;
       syncLayout();
-      // The RAW is written to IndexedDB once the first screen is shown (restore's previewAfter),
+      // The RAW is written to IndexedDB once the first screen is shown (restore's storeAfter),
       // or in a task of its own: the write takes the page and the browser a few hundred ms of
       // the cores the sampling and the first fit need. save() reports its own errors.
       app.session['files.chart'] = { name: cfg.file, bytes };
-      Promise.resolve(previewAfter ?? new Promise((r) => { setTimeout(r); }))
+      Promise.resolve(storeAfter ?? new Promise((r) => { setTimeout(r); }))
         .then(() => { if (app.session['files.chart']?.bytes === bytes) app.save('files.chart', app.session['files.chart']); });
       return Promise.all([app.save('layout', layout), app.save('corners', cfg.corners), app.save('example', cfg.note ?? true)]);
     } catch (e) {
