@@ -8,6 +8,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/number.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 #include "tristim/colorimetry/spectra.hpp"
@@ -117,7 +118,7 @@ void parse_oecf(const std::string& spec, SimulationOptions& o) {
     if (eq == std::string::npos) throw Error(ErrorCode::InvalidArgument, "--oecf expects gamma=G,scale=L[,max=M], got '" + spec + "'");
     const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
     char* e = nullptr;
-    const double v = std::strtod(value.c_str(), &e);
+    const double v = tristim::parse_double(value.c_str(), &e);
     if (value.empty() || *e != '\0' || !(v > 0))
       throw Error(ErrorCode::InvalidArgument, "--oecf: '" + key + "' needs a positive number, got '" + value + "'");
     if (key == "gamma") o.oecf_gamma = v;

@@ -13,6 +13,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/json.hpp"
+#include "tristim/io/number.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/linearisation/spectral.hpp"
 #include "tristim/profile/export.hpp"
@@ -75,7 +76,7 @@ Vec3 white_arg(const Args& args) {
   if (s == "D50" || s == "d50") return whites::D50();
   if (s == "D65" || s == "d65") return whites::D65();
   std::vector<double> v;
-  for (const auto& p : split_ids(s)) v.push_back(std::strtod(p.c_str(), nullptr));
+  for (const auto& p : split_ids(s)) v.push_back(tristim::parse_double(p.c_str(), nullptr));
   if (v.size() != 3 || !(v[0] > 0 && v[1] > 0 && v[2] > 0))
     throw Error(ErrorCode::InvalidArgument, "--ref-white expects D50, D65 or X,Y,Z");
   return Vec3(v[0], v[1], v[2]);

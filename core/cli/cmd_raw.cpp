@@ -16,6 +16,7 @@
 #include "tristim/error.hpp"
 #include "tristim/capture/image.hpp"
 #include "tristim/capture/raw.hpp"
+#include "tristim/io/number.hpp"
 
 namespace tristim::cli {
 
@@ -34,7 +35,7 @@ std::vector<double> numbers(const std::string& text, const std::string& option) 
   std::string item;
   while (std::getline(ss, item, ',')) {
     char* end = nullptr;
-    const double d = std::strtod(item.c_str(), &end);
+    const double d = tristim::parse_double(item.c_str(), &end);
     if (item.empty() || *end != '\0' || !std::isfinite(d))
       throw Error(ErrorCode::InvalidArgument, "--" + option + " expects comma-separated finite numbers, got '" + text + "'");
     v.push_back(d);

@@ -9,6 +9,7 @@
 #include "cli.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/json.hpp"
+#include "tristim/io/number.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/surface/fit.hpp"
 #include "tristim/surface/geometry_table.hpp"
@@ -50,8 +51,8 @@ void parse_range(const std::string& text, double& lo, double& hi) {
   char* end2 = nullptr;
   if (dash != std::string::npos) {
     const std::string a = text.substr(0, dash), b = text.substr(dash + 1);
-    lo = std::strtod(a.c_str(), &end1);
-    hi = std::strtod(b.c_str(), &end2);
+    lo = tristim::parse_double(a.c_str(), &end1);
+    hi = tristim::parse_double(b.c_str(), &end2);
     if (!a.empty() && !b.empty() && *end1 == '\0' && *end2 == '\0' && hi > lo && lo > 0) return;
   }
   throw Error(ErrorCode::InvalidArgument, "--range expects start-end in nm, e.g. 400-700, got '" + text + "'");
@@ -174,7 +175,7 @@ Vec3 parse_triplet(const std::string& key, const std::string& text) {
     const size_t end = c < 2 ? text.find(',', pos) : text.size();
     const std::string item = end == std::string::npos ? "" : text.substr(pos, end - pos);
     char* stop = nullptr;
-    v[c] = std::strtod(item.c_str(), &stop);
+    v[c] = tristim::parse_double(item.c_str(), &stop);
     if (item.empty() || *stop != '\0') throw Error(ErrorCode::InvalidArgument, "--" + key + " expects R,G,B, got '" + text + "'");
     pos = end + 1;
   }

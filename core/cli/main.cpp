@@ -6,6 +6,7 @@
 
 #include "cli.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/number.hpp"
 #include "tristim/memory.hpp"
 #include "tristim/version.hpp"
 
@@ -39,7 +40,7 @@ double Args::get_double(const std::string& key, double fallback) const {
   if (!has(key)) return fallback;
   const std::string s = get(key);
   char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
+  const double v = tristim::parse_double(s.c_str(), &end);
   if (s.empty() || *end != '\0')
     throw Error(ErrorCode::InvalidArgument, "--" + key + " expects a number, got '" + s + "'");
   return v;

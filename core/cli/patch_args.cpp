@@ -11,6 +11,7 @@
 
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/number.hpp"
 #include "tristim/io/patch_files.hpp"
 
 namespace tristim::cli {
@@ -34,7 +35,7 @@ Vec3 parse_white(const Args& args, const std::string& key, const Vec3& fallback)
   Vec3 w;
   for (int c = 0; c < 3; ++c) {
     char* end = nullptr;
-    w[c] = std::strtod(parts[c].c_str(), &end);
+    w[c] = tristim::parse_double(parts[c].c_str(), &end);
     if (parts[c].empty() || *end != '\0' || !(w[c] > 0))
       throw Error(ErrorCode::InvalidArgument, "--" + key + ": '" + parts[c] + "' is not a positive number");
   }

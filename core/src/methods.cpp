@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "tristim/error.hpp"
+#include "tristim/io/number.hpp"
 
 namespace tristim {
 
@@ -106,7 +107,7 @@ MethodChoice parse_choice(const std::string& text) {
       throw Error(ErrorCode::InvalidArgument, "'" + item + "' in '" + text + "' is not name=value");
     const std::string name = item.substr(0, eq), value = item.substr(eq + 1);
     char* stop = nullptr;
-    const double d = std::strtod(value.c_str(), &stop);
+    const double d = tristim::parse_double(value.c_str(), &stop);
     if (!value.empty() && stop && *stop == '\0') c.parameters[name] = d;
     else c.settings[name] = value;
     start = end + 1;

@@ -8,6 +8,7 @@
 
 #include "tristim/data.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/number.hpp"
 #include "tristim/io/patch_files.hpp"
 
 namespace tristim {
@@ -188,7 +189,7 @@ SpectralData illuminant_spd(std::string_view id_in) {
   if (id.size() >= 5 && id[0] == 'D') {
     char* end = nullptr;
     const std::string num = id.substr(1, id.size() - 1 - (id.back() == 'K' ? 1 : 0));
-    const double T = std::strtod(num.c_str(), &end);
+    const double T = tristim::parse_double(num.c_str(), &end);
     if (*end == '\0' && T >= 4000 && T <= 25000) {
       SpectralData d = daylight_spd(T);
       d.names = {id};

@@ -9,6 +9,7 @@
 
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
+#include "tristim/io/number.hpp"
 
 namespace tristim::json {
 
@@ -260,7 +261,7 @@ struct Parser {
     }
     const std::string t = s.substr(start, i - start);
     if (!ok) fail("invalid number '" + t + "'");
-    const double d = std::strtod(t.c_str(), nullptr);
+    const double d = tristim::parse_double(t.c_str(), nullptr);
     if (!std::isfinite(d)) fail("number '" + t + "' is out of range");
     return d;
   }

@@ -14,13 +14,14 @@
 #include "rows.hpp"
 #include "tristim/data.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/number.hpp"
 #include "tristim/io/patch_files.hpp"
 
 namespace tristim {
 
 namespace {
 
-// The built-in table is trusted and large (1269 × 81 numbers): a plain strtod pass instead of
+// The built-in table is trusted and large (1269 × 81 numbers): a plain parse_double pass instead of
 // the checking reader (read_spectral_csv), which takes ~100× longer on it. A malformed built-in
 // file is a bug (Error Internal).
 SpectralData parse_builtin_spectral(std::string_view name) {
@@ -37,15 +38,19 @@ SpectralData parse_builtin_spectral(std::string_view name) {
     }
   }
   s.values.resize(s.names.size());
+  // Room for every row up front: no reallocation (and in wasm no allocator calls) while parsing.
+  const size_t rows = static_cast<size_t>(std::count(text.begin() + static_cast<std::ptrdiff_t>(pos) + 1, text.end(), '\n')) + 1;
+  s.wavelengths.reserve(rows);
+  for (auto& column : s.values) column.reserve(rows);
   const char* p = text.c_str() + pos + 1;
   const char* const end = text.c_str() + text.size();
   while (p < end && *p != '\0') {
     char* next = nullptr;
-    s.wavelengths.push_back(std::strtod(p, &next));
+    s.wavelengths.push_back(tristim::parse_double(p, &next));
     p = next;
     for (auto& column : s.values) {
       if (*p != ',') throw Error(ErrorCode::Internal, "built-in " + std::string(name) + ": short row");
-      column.push_back(std::strtod(p + 1, &next));
+      column.push_back(tristim::parse_double(p + 1, &next));
       p = next;
     }
     while (p < end && (*p == '\r' || *p == '\n')) ++p;

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "tristim/error.hpp"
+#include "tristim/io/number.hpp"
 #include "tristim/version.hpp"
 
 namespace tristim {
@@ -390,7 +391,7 @@ Image3f read_pfm(const std::string& bytes) {
   char* end = nullptr;
   const long w = std::strtol(ws.c_str(), &end, 10);
   const long h = std::strtol(hs.c_str(), &end, 10);
-  const double scale = std::strtod(ss.c_str(), &end);
+  const double scale = tristim::parse_double(ss.c_str(), &end);
   if (w <= 0 || h <= 0 || w > 100000 || h > 100000 || scale == 0 || !std::isfinite(scale))
     throw Error(ErrorCode::ParseError, "PFM: bad header (width, height or scale)");
   ++i;  // the single whitespace after the scale

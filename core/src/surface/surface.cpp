@@ -8,6 +8,7 @@
 
 #include "correction.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/number.hpp"
 #include "tristim/surface/saunderson.hpp"
 
 namespace tristim {
@@ -183,7 +184,7 @@ const OptionSpec& option_of(const MethodInfo& info, const std::string& name) {
 
 double parse_number(const std::string& text, const std::string& context) {
   char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
+  const double v = tristim::parse_double(text.c_str(), &end);
   if (text.empty() || *end != '\0' || !std::isfinite(v))
     throw Error(ErrorCode::InvalidArgument, "spectral coefficients: '" + text + "' in '" + context + "' is not a number");
   return v;
@@ -194,7 +195,7 @@ std::string exact_text(double v) {
   char buf[40];
   for (int digits = 6; digits <= 17; ++digits) {
     std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    if (std::strtod(buf, nullptr) == v) break;
+    if (tristim::parse_double(buf, nullptr) == v) break;
   }
   return buf;
 }

@@ -58,6 +58,19 @@ TEST_CASE("per-patch CSV: XYZ, Lab, RGB columns, case-insensitive, index column"
   CHECK(q.ids[0] == "white, 9.5");
 }
 
+TEST_CASE("parse_delimited: cells, quotes, doubled quotes, white space and empty cells", "[io]") {
+  // The rules of split_delimited, cell by cell (it builds plain cells from views and quoted ones
+  // run by run; the expected cells here are what the rules say, written out by hand).
+  const TextTable t = parse_delimited(
+      "a,b,c,d,e\n"
+      "\"x, y\",plain, padded ,,\"\"\n"
+      "\"say \"\"hi\"\"\",ab\"cd\"ef, \" in \" ,\"a\"\"\",\"open, to the end\n",
+      "q.csv");
+  REQUIRE(t.rows.size() == 2);
+  CHECK(t.rows[0] == std::vector<std::string>{"x, y", "plain", "padded", "", ""});
+  CHECK(t.rows[1] == std::vector<std::string>{"say \"hi\"", "abcdef", "in", "a\"", "open, to the end"});
+}
+
 TEST_CASE("spectral CSV: first column wavelength, one column per patch", "[io]") {
   const PatchTable t = read_patch_file("wavelength_nm,A01,A02\n400,0.1,0.2\n410,0.15,0.25\n420,0.2,0.3\n", "s.csv");
   CHECK(t.format == "csv-spectral");
