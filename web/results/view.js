@@ -62,7 +62,7 @@ export function mount(section, app) {
     };
     return h('table', { class: 'compare' },
       h('caption', {}, 'CIEDE2000 errors of every fitted model (lower is better). Leave-one-out: each patch predicted by a fit made without it — the honest estimate for colours the model was not trained on. Held-out chart: a second chart the fit never saw (– when none was given). Click a heading to sort.'),
-      h('thead', {}, h('tr', {}, h('th', { scope: 'col' }, 'Model · objective'), COLUMNS.map(th), h('th', { scope: 'col' }, 'status'), h('th', { scope: 'col' }, 'show'))),
+      h('thead', {}, h('tr', {}, h('th', { scope: 'col' }, 'Model · objective'), COLUMNS.map(th), h('th', { scope: 'col', class: 'status' }, 'status'), h('th', { scope: 'col' }, 'show'))),
       h('tbody', {}, rows.map((r) => h('tr', { class: [r === selected ? 'selected' : '', r === best && Number.isFinite(loo(r)) ? 'best' : ''].join(' ').trim(), dataset: { key: r.key } },
         h('th', { scope: 'row' }, r.label, r === best && Number.isFinite(loo(r)) ? h('small', { class: 'best-mark', title: 'the lowest leave-one-out mean CIEDE2000' }, ' best') : null),
         COLUMNS.map((c) => h('td', { dataset: { col: c.key } }, fmt(metric(r, c.set, c.stat)))),
