@@ -619,6 +619,22 @@ std::string metadata_to_json(const RawMetadata& m) {
   return o.dump();
 }
 
+namespace {
+
+/// The image pixels behind preview pixel (i, j): a scale × scale block, cut at the image's edge.
+/// A side shorter than the scale (a 8076 × 11 strip previewed at 64 px: scale 127, one preview
+/// row) is one preview pixel over the whole side — the block used to run past the image's last
+/// row (fuzz_raw: heap-buffer-overflow, tests/fuzz/corpus/raw/crash-d474b658…).
+struct PreviewBlock {
+  int x0, x1, y0, y1;
+  int count() const { return (x1 - x0) * (y1 - y0); }
+};
+PreviewBlock preview_block(const RawImage& image, int scale, int i, int j) {
+  return {i * scale, std::min((i + 1) * scale, image.width), j * scale, std::min((j + 1) * scale, image.height)};
+}
+
+}  // namespace
+
 Preview render_preview(const RawImage& image, int max_side) {
   if (max_side < 1) throw Error(ErrorCode::InvalidArgument, "preview size must be at least 1 pixel");
   if (image.width < 1 || image.height < 1) throw Error(ErrorCode::InvalidArgument, "empty image");
@@ -632,13 +648,14 @@ Preview render_preview(const RawImage& image, int max_side) {
     // An image's stored values are already display-encoded: shown as they are (box mean / full
     // scale), no white balance, matrix, exposure or transfer curve.
     const double fs = m.white_level > 0 ? m.white_level : 255.0;
-    const double inv_n = 1.0 / (static_cast<double>(pv.scale) * pv.scale);
     pv.rgba.resize(static_cast<size_t>(pv.width) * pv.height * 4);
     for (int j = 0; j < pv.height; ++j)
       for (int i = 0; i < pv.width; ++i) {
+        const PreviewBlock b = preview_block(image, pv.scale, i, j);
+        const double inv_n = 1.0 / static_cast<double>(b.count());
         double acc[3] = {0, 0, 0};
-        for (int y = j * pv.scale; y < (j + 1) * pv.scale; ++y)
-          for (int x = i * pv.scale; x < (i + 1) * pv.scale; ++x)
+        for (int y = b.y0; y < b.y1; ++y)
+          for (int x = b.x0; x < b.x1; ++x)
             for (int c = 0; c < 3; ++c) acc[c] += image.at(x, y, c);
         std::uint8_t* px = &pv.rgba[(static_cast<size_t>(j) * pv.width + i) * 4];
         for (int c = 0; c < 3; ++c)
@@ -658,12 +675,13 @@ Preview render_preview(const RawImage& image, int max_side) {
   const size_t n = static_cast<size_t>(pv.width) * pv.height;
   std::vector<float> lin(n * 3);
   std::vector<float> lum(n);
-  const float inv = 1.0f / static_cast<float>(pv.scale * pv.scale);
   for (int j = 0; j < pv.height; ++j)
     for (int i = 0; i < pv.width; ++i) {
+      const PreviewBlock b = preview_block(image, pv.scale, i, j);
+      const float inv = 1.0f / static_cast<float>(b.count());
       double acc[3] = {0, 0, 0};
-      for (int y = j * pv.scale; y < (j + 1) * pv.scale; ++y)
-        for (int x = i * pv.scale; x < (i + 1) * pv.scale; ++x)
+      for (int y = b.y0; y < b.y1; ++y)
+        for (int x = b.x0; x < b.x1; ++x)
           for (int c = 0; c < 3; ++c) acc[c] += image.at(x, y, c);
       double cam[3];
       for (int c = 0; c < 3; ++c) cam[c] = std::max(0.0, acc[c] * inv * wb[c] / sat);

@@ -151,6 +151,35 @@ TEST_CASE("the preview is small, opaque and not the measurement data", "[raw]") 
   CHECK_THROWS_AS(render_preview(img, 0), Error);
 }
 
+TEST_CASE("a strip thinner than the preview's scale is previewed from its own rows", "[raw][bad]") {
+  // 1000 x 3 stored (display-encoded) values, 8-bit scale: the preview at 64 px has scale 16 and
+  // one row, which must average the strip's 3 rows only (it averaged 16, reading past the end of
+  // the image; fuzz_raw found it with an 8076 x 11 Rollei strip).
+  RawImage img;
+  img.width = 1000;
+  img.height = 3;
+  img.meta.encoding = "stored";
+  img.meta.white_level = 255;
+  img.rgb.assign(static_cast<size_t>(img.width) * img.height * 3, 0.f);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c) img.rgb[(static_cast<size_t>(y) * img.width + x) * 3 + c] = 51.f * (c + 1) + 10.f * y;
+  img.saturated.assign(static_cast<size_t>(img.width) * img.height, 0);
+  const Preview pv = render_preview(img, 64);
+  CHECK(pv.scale == 16);
+  CHECK(pv.width == 62);
+  REQUIRE(pv.height == 1);
+  for (int i = 0; i < pv.width; ++i)
+    for (int c = 0; c < 3; ++c) REQUIRE(int(pv.rgba[static_cast<size_t>(i) * 4 + c]) == 51 * (c + 1) + 10);
+  // The linear path takes the same blocks: a flat strip stays flat (no dark preview row).
+  img.meta.encoding = "linear";
+  img.meta.saturation = {255, 255, 255};
+  std::fill(img.rgb.begin(), img.rgb.end(), 100.f);
+  const Preview lin = render_preview(img, 64);
+  REQUIRE(lin.height == 1);
+  for (int i = 1; i < lin.width; ++i) REQUIRE(lin.rgba[static_cast<size_t>(i) * 4] == lin.rgba[0]);
+}
+
 TEST_CASE("bad RAW input gives a coded error, never a crash", "[raw][bad]") {
   SECTION("zero bytes") { CHECK(decode_code({}) == ErrorCode::EmptyFile); }
   SECTION("truncated DNG: the first 1 MB") {
