@@ -242,12 +242,17 @@ PatchMatrix predict(const Model& model, const PatchMatrix& camera_RGB) {
   const ModelInfo& info = model_info(model.id);
   check_coefficient_shape(model, info);
   PatchMatrix out(camera_RGB.rows(), 3);
+  // The coefficients in a plain array (the same sums in the same order as through the matrix).
+  const int n = info.n_terms;
+  double k[3][kMaxModelTerms];
+  for (int c = 0; c < 3; ++c)
+    for (int j = 0; j < n; ++j) k[c][j] = model.coefficients(c, j);
   double phi[kMaxModelTerms];
   for (Eigen::Index i = 0; i < camera_RGB.rows(); ++i) {
     expand(info, camera_RGB(i, 0), camera_RGB(i, 1), camera_RGB(i, 2), phi);
     for (int c = 0; c < 3; ++c) {
       double s = 0;
-      for (int j = 0; j < info.n_terms; ++j) s += model.coefficients(c, j) * phi[j];
+      for (int j = 0; j < n; ++j) s += k[c][j] * phi[j];
       out(i, c) = s;
     }
   }
