@@ -215,9 +215,21 @@ const ModelInfo& model_info(const std::string& id) {
 }
 
 void expand(const ModelInfo& info, double r, double g, double b, double* out) {
+  // Powers up to 4 (every model's highest) formed once per channel exactly as ipow forms them
+  // (x^0 = 1, x^e = x^(e-1)·x): each term is the same product of the same doubles as
+  // ipow(r)·ipow(g)·ipow(b), without a loop per term.
+  constexpr int kTable = 5;
+  double P[3][kTable];
+  const double x[3] = {r, g, b};
+  for (int c = 0; c < 3; ++c) {
+    P[c][0] = 1;
+    P[c][1] = x[c];
+    for (int e = 2; e < kTable; ++e) P[c][e] = P[c][e - 1] * x[c];
+  }
   for (int j = 0; j < info.n_terms; ++j) {
     const Monomial& m = info.terms[j];
-    const double p = ipow(r, m.r) * ipow(g, m.g) * ipow(b, m.b);
+    const double p = unsigned(m.r) < kTable && unsigned(m.g) < kTable && unsigned(m.b) < kTable ? P[0][m.r] * P[1][m.g] * P[2][m.b]
+                                                                                      : ipow(r, m.r) * ipow(g, m.g) * ipow(b, m.b);
     out[j] = info.root ? signed_root(p, m.r + m.g + m.b) : p;
   }
 }

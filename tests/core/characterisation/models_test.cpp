@@ -661,3 +661,37 @@ TEST_CASE("least squares gives the plain formulation's coefficients bit for bit 
   }
 }
 
+TEST_CASE("expand forms each term as the product r^a·g^b·b^c of repeated products, bit for bit", "[models][ls]") {
+  // expand() takes the powers from a table (session 12); the doubles must be those of the plain
+  // formula x^e = ((1·x)·x)…, then r^a·g^b·b^c left to right, then the root of degree a+b+c.
+  auto ipow = [](double x, int e) {
+    double y = 1;
+    for (int i = 0; i < e; ++i) y *= x;
+    return y;
+  };
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-3, 3);
+  std::vector<Vec3> rgbs = {{0, 0, 0}, {-0.0, 1, -1}, {1e-300, 1e300, 0.5}, {4000, 3000.5, 17}};
+  for (int i = 0; i < 200; ++i) rgbs.push_back(Vec3(std::pow(10.0, u(rng)), -std::pow(10.0, u(rng)), u(rng)));
+  int differ = 0;
+  for (const ModelInfo& m : model_table())
+    for (const Vec3& x : rgbs) {
+      double got[kMaxModelTerms];
+      expand(m, x[0], x[1], x[2], got);
+      for (int j = 0; j < m.n_terms; ++j) {
+        const Monomial& t = m.terms[j];
+        const double p = ipow(x[0], t.r) * ipow(x[1], t.g) * ipow(x[2], t.b);
+        const int k = t.r + t.g + t.b;
+        double want = p;
+        if (m.root && k == 2) want = p >= 0 ? std::sqrt(p) : -std::sqrt(-p);
+        if (m.root && k == 3) want = std::cbrt(p);
+        if (m.root && k > 3) want = p >= 0 ? std::pow(p, 1.0 / k) : -std::pow(-p, 1.0 / k);
+        if (std::memcmp(&got[j], &want, sizeof(double)) != 0 && !(std::isnan(got[j]) && std::isnan(want))) {
+          if (differ++ < 5) UNSCOPED_INFO(m.id << " term " << m.term_names[j] << " at (" << x[0] << ", " << x[1] << ", " << x[2]
+                                                << "): got " << got[j] << " want " << want);
+        }
+      }
+    }
+  CHECK(differ == 0);
+}
+
