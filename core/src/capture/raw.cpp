@@ -243,6 +243,16 @@ LibRawPtr open_and_unpack(const std::uint8_t* data, std::size_t size,
     throw Error(ErrorCode::RawTruncated, "the RAW image data needs bytes " + std::to_string(off) +
                                              ".." + std::to_string(off + U.data_size) +
                                              " but the file has " + std::to_string(size));
+  // Kodak RADC (DC40/DC50, always 768 x 512) decodes two columns per step from width / 2 down;
+  // a width that is not a multiple of 4 can step to column -1, and LibRaw's run-length branch
+  // then adds into index -1 of its row buffer (kodak_decoders.cpp:121, UBSan "index -1 out of
+  // bounds"; it stays inside the 3-D stack array, so no memory error, but the image is garbage).
+  // Found by fuzz_raw: tests/fuzz/corpus/raw/crash-012db9de…
+  if (info.decoder_name && std::strcmp(info.decoder_name, "kodak_radc_load_raw()") == 0 &&
+      S.width % 4 != 0)
+    throw Error(ErrorCode::RawCorrupt, "the Kodak RADC header gives an image width of " +
+                                           std::to_string(S.width) +
+                                           "; its decoder needs a multiple of 4 (768 in every camera that writes it)");
   if (unpack) {
     check_libraw(proc->unpack(), "unpack");
     const int errors = proc->error_count();
