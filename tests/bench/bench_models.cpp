@@ -99,8 +99,10 @@ int main() {
   // Each model is fitted for ~30 ms before the timed fits: a fit takes microseconds, and V8 runs a
   // wasm function in its baseline tier (Liftoff) until it is hot and its optimised code arrives
   // from a background compile, so 20 cold fits timed mostly the baseline tier (1.4–1.8× slower
-  // than the optimised code, session 12). The rows compare steady states; the first fit of the
-  // process is printed for a human.
+  // than the optimised code, session 12). The warm-up brings the rows closer to steady state but
+  // not reliably all the way (tier-up arrives from a background compile; in session 12 default node
+  // still read ~2× the figures of `node --no-liftoff`, which runs the optimised code alone). The
+  // first fit of the process is printed for a human.
   std::printf("\n== least-squares fit, 140 patches (best of 20 after ~30 ms of warm-up) ==\n");
   for (const ModelInfo& m : model_table()) {
     if (!m.duplicate_of.empty()) continue;
