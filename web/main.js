@@ -5,14 +5,14 @@ import { store } from './store.js';
 import { h } from './lib/ui.js';
 import { fetchExample, decodeExample } from './images/example.js';
 
-// The engine's worker (and the compile of the wasm module, protocol.js) starts before the views
-// and their plotting code are loaded: they load meanwhile.
-const engine = new Engine();
+// The engine's worker, the compile of the wasm module and (a new session) the example's fetch and
+// decode were started by boot.js before this module graph loaded; the Engine takes that worker
+// over. Without boot.js (it failed), they start here. The views and their plots load meanwhile.
+const boot = self.tristimBoot ?? null;
+delete self.tristimBoot;   // taken over once (a restarted engine starts a new worker)
+const engine = new Engine({ boot });
 // read while the engine starts (a fresh session loads the example)
 const storedSession = store.all().catch((e) => { console.warn(`session storage unavailable: ${e.message}`); return {}; });
-// A new session loads the example: fetched now, its decode queued in the worker as soon as it is here.
-const exampleBytes = storedSession.then((s) => (s.settings ? null : fetchExample()));
-exampleBytes.catch(() => {});   // reported by the images view (restore)
 
 // The features, in journey order: web/<feature>/view.js, each mounted into <section id="step-<feature>">.
 const STEPS = ['reference', 'surface', 'images', 'linearisation', 'fit', 'results', 'apply', 'export', 'absolute'];
@@ -78,9 +78,13 @@ document.getElementById('new-session').addEventListener('click', async () => {
 
 async function start() {
   // The worker answers in the order asked: hello, the catalog, then (a new session) the example's
-  // decode, posted as soon as its bytes are here — it runs while the views load and mount.
-  const hello = app.engine.call('hello'), catalog = app.engine.call('catalog');
-  const example = exampleBytes.then((ex) => ex && decodeExample(app.engine, ex));
+  // decode — all asked by boot.js before this module loaded; the decode runs while the views load
+  // and mount.
+  const hello = boot?.hello ?? app.engine.call('hello'), catalog = boot?.catalog ?? app.engine.call('catalog');
+  // A new session loads the example: boot.js's (its decode already queued), or fetched now and its
+  // decode queued as soon as it is here (boot.js missing, or its fetch failed).
+  const example = storedSession.then(async (s) => (s.settings ? null
+    : (await boot?.example.catch(() => null)) ?? decodeExample(app.engine, await fetchExample())));
   for (const p of [hello, catalog, example]) p.catch(() => {});   // reported below / by the images view
   try {
     const { version } = await hello;

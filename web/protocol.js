@@ -7,19 +7,29 @@
 // compare's): each worker instantiates it instead of fetching and compiling its own copy, and the
 // compiled code (with V8's tier-up and code cache) is shared. null when the page cannot compile it:
 // the worker then loads the module itself.
-let compiled = null;
+// boot.js (the page's first script) has usually started that compile already.
+let compiled = self.tristimBoot?.module ?? null;
 export const sharedModule = () => (compiled ??= WebAssembly.compileStreaming(fetch(new URL('./tristim.wasm', import.meta.url), { credentials: 'same-origin' }))
   .catch((e) => { console.warn(`the page could not compile the engine (${e.message}); each worker loads its own`); return null; }));
 
 export class EngineClient {
-  constructor(url = new URL('./worker.js', import.meta.url)) {
-    this.worker = new Worker(url, { type: 'module' });
-    // The worker waits for this message before it creates the module (worker.js).
-    sharedModule().then((module) => {
-      try { this.worker.postMessage({ type: 'module', module }); } catch { this.worker.postMessage({ type: 'module', module: null }); }
-    });
-    this.nextId = 1;
-    this.pending = new Map();
+  /// boot: boot.js's early worker (self.tristimBoot), taken over with its pending requests; the
+  /// module was already posted to it.
+  constructor(url = new URL('./worker.js', import.meta.url), { boot = null } = {}) {
+    if (boot) {
+      this.worker = boot.worker;
+      this.nextId = boot.nextId;
+      this.pending = boot.pending;
+      boot.client = this;   // boot.js's later requests (the example's decode) come here
+    } else {
+      this.worker = new Worker(url, { type: 'module' });
+      // The worker waits for this message before it creates the module (worker.js).
+      sharedModule().then((module) => {
+        try { this.worker.postMessage({ type: 'module', module }); } catch { this.worker.postMessage({ type: 'module', module: null }); }
+      });
+      this.nextId = 1;
+      this.pending = new Map();
+    }
     this.worker.onmessage = (ev) => this.onMessage(ev.data);
     this.onfatal = null;   // (reason) => …: the worker or its module died (Engine restarts it)
     this.worker.onerror = (ev) => {

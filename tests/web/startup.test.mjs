@@ -34,6 +34,9 @@ test('first screen: the example is sampled and fitted, engine in a worker, no co
     assert.deepEqual(engineCalls().filter((f) => typeof T[f] !== 'function'), []);
 
     await waitReady(page);
+    // The engine's worker is boot.js's, taken over by main.js (no second one), besides the pool's.
+    const poolSize = await page.evaluate(() => window.tristim.views.fit.pool.clients.length);
+    assert.equal(page.workers().length, 1 + poolSize, `workers: ${page.workers().map((w) => w.url())}`);
     // Nothing was stored before: this is the example, shown on the Results step.
     assert.equal(await page.evaluate(() => document.body.dataset.step), 'results');
     assert.equal(await page.isVisible('#step-results'), true);
@@ -87,6 +90,23 @@ test('first screen: the example is sampled and fitted, engine in a worker, no co
       while (!b.problems.some((p) => probe.test(p)) && Date.now() - t0 < 10000) await new Promise((r) => setTimeout(r, 50));
       assert.ok(b.problems.some((p) => probe.test(p)), `${probe} recorded: ${JSON.stringify(b.problems)}`);
     }
+  } finally {
+    await b.close();
+  }
+});
+
+test('without boot.js (it did not run) main.js starts the engine and the example itself', async () => {
+  const b = await openBrowser();
+  try {
+    const { page } = b;
+    await page.route('**/boot.js', (r) => r.fulfill({ status: 200, contentType: 'text/javascript', body: '' }));
+    await page.goto(b.origin + '/');
+    await waitReady(page);
+    assert.equal(await page.evaluate(() => window.tristim.derived.sample?.ids.length), 24);
+    assert.ok(await page.evaluate(() => window.tristim.session.results.length) > 10);
+    const poolSize = await page.evaluate(() => window.tristim.views.fit.pool.clients.length);
+    assert.equal(page.workers().length, 1 + poolSize);
+    assert.deepEqual(b.problems, []);
   } finally {
     await b.close();
   }

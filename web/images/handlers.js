@@ -32,7 +32,14 @@ export const handlers = {
   /// the display preview (chart; previewSide 0: none, ask 'preview' later) and, for dark/flat,
   /// the calibration it gave the chart.
   /// `bytesList` (dark frames): several files, decoded and averaged by the engine (setDark).
-  decode: (T, { slot = 'chart', bytes, bytesList, flatMode, previewSide = 1200 }, { state, progress }) => {
+  /// `url` instead of bytes: a file of the site fetched by the worker (the example, web/boot.js:
+  /// its decode does not wait for the page's main thread).
+  decode: async (T, { slot = 'chart', bytes, bytesList, url, flatMode, previewSide = 1200 }, { state, progress }) => {
+    if (url) {
+      const res = await fetch(url);
+      if (!res.ok) throw coded(`${url}: HTTP ${res.status}`, 'EXAMPLE_MISSING');
+      bytes = await res.arrayBuffer();
+    }
     progress(NaN, 'decoding RAW');
     state.raw ??= {};
     let raw;

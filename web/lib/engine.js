@@ -4,16 +4,20 @@
 import { EngineClient } from '../protocol.js';
 
 export class Engine extends EventTarget {
-  constructor() {
+  /// boot: boot.js's early worker (self.tristimBoot) to take over, or null (a new worker).
+  constructor({ boot = null } = {}) {
     super();
     this.generation = 0;
     this.crashes = 0;
-    this.client = this.connect();
+    this.client = this.connect(boot);
   }
 
-  connect() {
-    const client = new EngineClient();
+  connect(boot = null) {
+    const client = new EngineClient(undefined, { boot });
     client.onfatal = (reason) => { if (client === this.client) this.recover(reason); };
+    // boot.js's worker may have died before it was taken over
+    const died = boot && (boot.fatal ?? boot.failed);
+    if (died) queueMicrotask(() => client.onfatal(died));
     return client;
   }
 

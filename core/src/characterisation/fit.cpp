@@ -80,7 +80,9 @@ struct Problem {
   bool constrained = false;
 
   Eigen::MatrixXd coefficients(const Eigen::MatrixXd& z) const {  // 3 × P, absolute units
-    Eigen::MatrixXd Xs = Xp + Z * z;
+    // Unconstrained, Z = I: Z·z is z itself (every other product is a zero), so it is skipped;
+    // Xp + z still turns a −0 into +0 as the product did.
+    Eigen::MatrixXd Xs = constrained ? Eigen::MatrixXd(Xp + Z * z) : Eigen::MatrixXd(Xp + z);
     return (s.asDiagonal() * Xs).transpose();
   }
   Eigen::MatrixXd predictions(const Eigen::MatrixXd& z) const { return base + B * z; }
@@ -145,8 +147,16 @@ Problem make_problem(const ModelInfo& info, const PatchMatrix& rgb, const PatchM
     pr.Z = Eigen::MatrixXd::Identity(pr.p, pr.p);
     pr.Xp = Eigen::MatrixXd::Zero(pr.p, 3);
   }
-  pr.B = pr.As * pr.Z;
-  pr.base = pr.As * pr.Xp;
+  if (pr.constrained) {
+    pr.B = pr.As * pr.Z;
+    pr.base = pr.As * pr.Xp;
+  } else {
+    // Z = I, Xp = 0: the products are A_s and 0 exactly (each sum has one non-zero term), so skip
+    // them (in wasm Eigen's GEMM is scalar code; these two products were a fifth of a 3×3 fit).
+    // "+ 0.0" turns a −0 into +0 as the GEMM's zero-initialised accumulator did.
+    pr.B = pr.As.array() + 0.0;
+    pr.base = Eigen::MatrixXd::Zero(pr.n, 3);
+  }
   return pr;
 }
 

@@ -215,9 +215,21 @@ const ModelInfo& model_info(const std::string& id) {
 }
 
 void expand(const ModelInfo& info, double r, double g, double b, double* out) {
+  // Powers up to 4 (every model's highest) formed once per channel exactly as ipow forms them
+  // (x^0 = 1, x^e = x^(e-1)·x): each term is the same product of the same doubles as
+  // ipow(r)·ipow(g)·ipow(b), without a loop per term.
+  constexpr int kTable = 5;
+  double P[3][kTable];
+  const double x[3] = {r, g, b};
+  for (int c = 0; c < 3; ++c) {
+    P[c][0] = 1;
+    P[c][1] = x[c];
+    for (int e = 2; e < kTable; ++e) P[c][e] = P[c][e - 1] * x[c];
+  }
   for (int j = 0; j < info.n_terms; ++j) {
     const Monomial& m = info.terms[j];
-    const double p = ipow(r, m.r) * ipow(g, m.g) * ipow(b, m.b);
+    const double p = unsigned(m.r) < kTable && unsigned(m.g) < kTable && unsigned(m.b) < kTable ? P[0][m.r] * P[1][m.g] * P[2][m.b]
+                                                                                      : ipow(r, m.r) * ipow(g, m.g) * ipow(b, m.b);
     out[j] = info.root ? signed_root(p, m.r + m.g + m.b) : p;
   }
 }
@@ -242,12 +254,17 @@ PatchMatrix predict(const Model& model, const PatchMatrix& camera_RGB) {
   const ModelInfo& info = model_info(model.id);
   check_coefficient_shape(model, info);
   PatchMatrix out(camera_RGB.rows(), 3);
+  // The coefficients in a plain array (the same sums in the same order as through the matrix).
+  const int n = info.n_terms;
+  double k[3][kMaxModelTerms];
+  for (int c = 0; c < 3; ++c)
+    for (int j = 0; j < n; ++j) k[c][j] = model.coefficients(c, j);
   double phi[kMaxModelTerms];
   for (Eigen::Index i = 0; i < camera_RGB.rows(); ++i) {
     expand(info, camera_RGB(i, 0), camera_RGB(i, 1), camera_RGB(i, 2), phi);
     for (int c = 0; c < 3; ++c) {
       double s = 0;
-      for (int j = 0; j < info.n_terms; ++j) s += model.coefficients(c, j) * phi[j];
+      for (int j = 0; j < n; ++j) s += k[c][j] * phi[j];
       out(i, c) = s;
     }
   }

@@ -5,11 +5,16 @@
 #include <random>
 #include <sstream>
 
+#include <Eigen/QR>
+
 #include "test_support.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/json.hpp"
 #include "tristim/characterisation/models.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/colorimetry/spectra.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
 
 using tristim::test::require_code;
 
@@ -542,3 +547,151 @@ TEST_CASE("apply_to_image: the AVX-512 root-polynomial kernel equals the AVX2 on
   CHECK(first == 3 * n);  // tolerance 0
   if (!avx2) CHECK(std::memcmp(out[0].data(), out[1].data(), 3 * n * sizeof(float)) == 0);
 }
+
+namespace {
+
+// The Passport DNG's 24 patches (camera RGB derived by dcraw_emu) and X-Rite's after-Nov-2014
+// L*a*b* D50 reference as XYZ.
+void passport_patches(PatchMatrix& rgb, PatchMatrix& xyz) {
+  auto read = [](const std::string& path) {
+    std::istringstream in(test::read_shared(path));
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::vector<std::string>> rows;
+    while (std::getline(in, line)) {
+      std::istringstream ls(line);
+      std::string cell;
+      std::vector<std::string> cells;
+      while (std::getline(ls, cell, ',')) cells.push_back(cell);
+      if (!cells.empty()) rows.push_back(cells);
+    }
+    return rows;
+  };
+  const auto rgb_rows = read("raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv");
+  const auto lab_rows = read("colour-science/colorchecker24_xrite_after_nov2014_Lab_D50.csv");
+  REQUIRE(rgb_rows.size() == 24);
+  REQUIRE(lab_rows.size() == 24);
+  rgb.resize(24, 3);
+  xyz.resize(24, 3);
+  for (int i = 0; i < 24; ++i) {
+    for (int c = 0; c < 3; ++c) rgb(i, c) = std::stod(rgb_rows[i][2 + c]);
+    const Vec3 Lab(std::stod(lab_rows[i][2]), std::stod(lab_rows[i][3]), std::stod(lab_rows[i][4]));
+    xyz.row(i) = Lab_to_XYZ(Lab, whites::D50()).transpose();
+  }
+}
+
+// The ColorChecker SG's 140 patches seen by a simulated Canon 5D Mark II under D65 (noise 1 %),
+// reference XYZ under D65.
+void sg140_patches(PatchMatrix& rgb, PatchMatrix& xyz) {
+  SimulationOptions o;
+  o.noise_sigma = 0.01;
+  const std::vector<Vec3> cam = simulate_camera_RGB(camera_ssf("Canon_EOS_5D_Mark_II"), chart_reflectances("sg140"),
+                                                    illuminant_spd("D65"), o);
+  const ReferenceChart ref = reference_chart("sg140", "D65");
+  REQUIRE(cam.size() == 140);
+  rgb.resize(140, 3);
+  xyz.resize(140, 3);
+  for (int i = 0; i < 140; ++i) rgb.row(i) = cam[i].transpose(), xyz.row(i) = ref.XYZ[i].transpose();
+}
+
+// Least squares written out plainly, as fit() computed it up to session 11: A_s = A·diag(s) with
+// s_j = 1/||A_j||, B = A_s·Z, Householder QR of B, X = diag(s)·(Xp + Z·z), one Eigen expression
+// per step (Z = I and Xp = 0 without the white constraint).
+Eigen::MatrixXd plain_least_squares(const ModelInfo& info, const PatchMatrix& rgb, const PatchMatrix& xyz) {
+  Eigen::MatrixXd A(rgb.rows(), info.n_terms);
+  for (Eigen::Index i = 0; i < rgb.rows(); ++i) {
+    double phi[kMaxModelTerms];
+    expand(info, rgb(i, 0), rgb(i, 1), rgb(i, 2), phi);
+    for (int j = 0; j < info.n_terms; ++j) A(i, j) = phi[j];
+  }
+  Eigen::VectorXd s(info.n_terms);
+  for (int j = 0; j < info.n_terms; ++j) s[j] = 1.0 / A.col(j).norm();
+  const Eigen::MatrixXd As = A * s.asDiagonal();
+  const Eigen::MatrixXd Z = Eigen::MatrixXd::Identity(info.n_terms, info.n_terms);
+  const Eigen::MatrixXd Xp = Eigen::MatrixXd::Zero(info.n_terms, 3);
+  const Eigen::MatrixXd B = As * Z;
+  const Eigen::MatrixXd base = As * Xp;
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(B);
+  const Eigen::MatrixXd Y = xyz;  // dynamic columns, as fit() holds it (Eigen's code path depends on the type)
+  const Eigen::MatrixXd z = qr.solve(Y - base);
+  const Eigen::MatrixXd Xs = Xp + Z * z;
+  return (s.asDiagonal() * Xs).transpose();
+}
+
+}  // namespace
+
+TEST_CASE("least squares gives the plain formulation's coefficients bit for bit (Passport 24, SG 140)", "[models][ls]") {
+  // fit() skips the products with Z = I and Xp = 0 (session 12: they were Eigen's scalar GEMM in
+  // wasm); the numbers must not move, in either build. Exact equality, no tolerance.
+  for (const bool sg : {false, true}) {
+    PatchMatrix rgb, xyz;
+    if (sg)
+      sg140_patches(rgb, xyz);
+    else
+      passport_patches(rgb, xyz);
+    int compared = 0;
+    for (const ModelInfo& m : model_table()) {
+      if (!m.duplicate_of.empty() || m.n_terms > rgb.rows()) continue;
+      FitResult r;
+      try {
+        r = fit(m.id, rgb, xyz);
+      } catch (const Error&) {
+        continue;  // refused (ill-conditioned): nothing to compare
+      }
+      const Eigen::MatrixXd want = plain_least_squares(m, rgb, xyz);
+      REQUIRE(r.model.coefficients.rows() == 3);
+      REQUIRE(r.model.coefficients.cols() == want.cols());
+      double worst = 0;
+      Eigen::Index wi = 0;
+      int differ = 0;
+      for (Eigen::Index k = 0; k < want.size(); ++k) {
+        const double got = r.model.coefficients.data()[k], w = want.data()[k];
+        if (!(got == w)) ++differ;
+        if (std::fabs(got - w) >= worst) worst = std::fabs(got - w), wi = k;
+      }
+      INFO((sg ? "SG 140, " : "Passport 24, ") << m.id << ": " << differ << " coefficients differ; worst element " << wi
+                                                << " got " << r.model.coefficients.data()[wi] << " want " << want.data()[wi]
+                                                << " (tolerance: exact)");
+      CHECK(differ == 0);
+      // The fitted XYZ are Σ_j C(c, j)·φ_j in term order, as predict() sums them.
+      CHECK(r.fitted == predict(Model{m.id, want}, rgb));
+      ++compared;
+    }
+    CHECK(compared >= (sg ? 15 : 12));
+  }
+}
+
+TEST_CASE("expand forms each term as the product r^a·g^b·b^c of repeated products, bit for bit", "[models][ls]") {
+  // expand() takes the powers from a table (session 12); the doubles must be those of the plain
+  // formula x^e = ((1·x)·x)…, then r^a·g^b·b^c left to right, then the root of degree a+b+c.
+  auto ipow = [](double x, int e) {
+    double y = 1;
+    for (int i = 0; i < e; ++i) y *= x;
+    return y;
+  };
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-3, 3);
+  std::vector<Vec3> rgbs = {{0, 0, 0}, {-0.0, 1, -1}, {1e-300, 1e300, 0.5}, {4000, 3000.5, 17}};
+  for (int i = 0; i < 200; ++i) rgbs.push_back(Vec3(std::pow(10.0, u(rng)), -std::pow(10.0, u(rng)), u(rng)));
+  int differ = 0;
+  for (const ModelInfo& m : model_table())
+    for (const Vec3& x : rgbs) {
+      double got[kMaxModelTerms];
+      expand(m, x[0], x[1], x[2], got);
+      for (int j = 0; j < m.n_terms; ++j) {
+        const Monomial& t = m.terms[j];
+        const double p = ipow(x[0], t.r) * ipow(x[1], t.g) * ipow(x[2], t.b);
+        const int k = t.r + t.g + t.b;
+        double want = p;
+        if (m.root && k == 2) want = p >= 0 ? std::sqrt(p) : -std::sqrt(-p);
+        if (m.root && k == 3) want = std::cbrt(p);
+        if (m.root && k > 3) want = p >= 0 ? std::pow(p, 1.0 / k) : -std::pow(-p, 1.0 / k);
+        if (std::memcmp(&got[j], &want, sizeof(double)) != 0 && !(std::isnan(got[j]) && std::isnan(want))) {
+          if (differ++ < 5) UNSCOPED_INFO(m.id << " term " << m.term_names[j] << " at (" << x[0] << ", " << x[1] << ", " << x[2]
+                                                << "): got " << got[j] << " want " << want);
+        }
+      }
+    }
+  CHECK(differ == 0);
+}
+
