@@ -8,6 +8,7 @@
 
 namespace tristim {
 struct RawImage;
+struct SpectralData;
 struct LayoutOptions;
 }
 
@@ -44,6 +45,15 @@ struct CommandRegistration {
 
 /// Reads a whole file as bytes/text; Error(InvalidArgument) naming the path if unreadable.
 std::string read_file(const std::string& path);
+
+/// Whether `path` opens for reading.
+bool file_exists(const std::string& path);
+/// --illuminant's value: a readable spectral CSV file (read_illuminant_csv) or a built-in id
+/// (D65, A, D<CCT>, ...; illuminant_spd).
+SpectralData illuminant_arg(const std::string& value);
+/// --reflectances' value: a built-in chart id (chart_reflectances, names as normalised patch ids)
+/// or a readable patch file with spectra (read_reflectance_file); Error(UnknownId) otherwise.
+SpectralData reflectances_arg(const std::string& value);
 
 /// Decodes a RAW file (cmd_raw.cpp); errors name the path.
 RawImage load_raw(const std::string& path);

@@ -26,8 +26,6 @@
 namespace tristim::cli {
 namespace {
 
-bool readable(const std::string& path) { return static_cast<bool>(std::ifstream(path)); }
-
 RawImage load_raw_file(const std::string& path) {
   const std::string bytes = read_file(path);
   try {
@@ -47,15 +45,6 @@ void write_text(const std::string& path, const std::string& text) {
   write_bytes(path, std::vector<std::uint8_t>(text.begin(), text.end()));
 }
 
-SpectralData illuminant_from(const std::string& value) {
-  if (readable(value)) {
-    SpectralData d = read_spectral_csv(read_file(value), value);
-    d.values.resize(1);
-    d.names.resize(1);
-    return d;
-  }
-  return illuminant_spd(value);
-}
 
 std::string dirname_of(const std::string& path) {
   const auto slash = path.find_last_of('/');
@@ -72,23 +61,13 @@ int run_sensitivities(const Args& args, std::ostream& out) {
   const std::string rgb_path = args.get("rgb"), refl_arg = args.get("reflectances");
   const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
   if (!rgb.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": no R, G, B columns");
-  SpectralData refl;
-  bool chart = false;
-  for (const auto& c : list_charts()) chart = chart || c.id == refl_arg;
-  if (chart) {
-    refl = chart_reflectances(refl_arg);
-  } else {
-    const PatchTable t = read_patch_file(read_file(refl_arg), refl_arg);
-    if (!t.has_spectra) throw Error(ErrorCode::MissingColumn, refl_arg + ": no spectral columns");
-    refl = t.spectra;
-    reflectance_to_fraction(refl);
-  }
+  const SpectralData refl = reflectances_arg(refl_arg);
   SensitivityOptions o;
   o.components = static_cast<int>(args.get_double("components", o.components));
   o.smoothness = args.get_double("smoothness", o.smoothness);
   for (const auto& e : args.all("exclude")) o.exclude_cameras.push_back(e);
   // Paired by patch id: the reflectance columns in the order of the RGB rows.
-  const SensitivityEstimate e = estimate_sensitivities_by_id(rgb.ids, rgb.RGB, refl, illuminant_from(args.get("illuminant")), o);
+  const SensitivityEstimate e = estimate_sensitivities_by_id(rgb.ids, rgb.RGB, refl, illuminant_arg(args.get("illuminant")), o);
   json::Value s = json::Value::object();
   s.set("method", "Jiang2013");
   s.set("patches", e.patches);

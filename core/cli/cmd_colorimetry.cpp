@@ -33,27 +33,6 @@ std::string num(double v, int decimals = 6) {
   return s;
 }
 
-bool file_exists(const std::string& path) {
-  std::ifstream f(path);
-  return static_cast<bool>(f);
-}
-
-bool is_chart_id(const std::string& id) {
-  for (const auto& c : list_charts())
-    if (c.id == id) return true;
-  return false;
-}
-
-SpectralData illuminant_arg(const std::string& value) {
-  if (file_exists(value)) {
-    SpectralData d = read_spectral_csv(read_file(value), value);
-    d.values.resize(1);
-    d.names.resize(1);
-    return d;
-  }
-  return illuminant_spd(value);
-}
-
 void set_precision(const Args& args) {
   if (!args.has("precision")) return;
   const double p = args.get_double("precision", 0);
@@ -135,17 +114,7 @@ int run_simulate(const Args& args, std::ostream& out) {
   const std::string cam = args.get("camera");
   const SpectralData ssf = file_exists(cam) ? read_ssf_csv(read_file(cam), cam) : camera_ssf(cam);
   const std::string refl = args.get("reflectances");
-  SpectralData reflectances;
-  if (is_chart_id(refl)) {
-    reflectances = chart_reflectances(refl);
-  } else {
-    if (!file_exists(refl))
-      throw Error(ErrorCode::UnknownId, "--reflectances '" + refl + "' is neither a chart id nor a readable file");
-    const PatchTable t = read_patch_file(read_file(refl), refl);
-    if (!t.has_spectra) throw Error(ErrorCode::MissingColumn, refl + ": no spectral columns (first column wavelength, or 380,390,... columns)");
-    reflectances = t.spectra;
-    reflectance_to_fraction(reflectances);
-  }
+  const SpectralData reflectances = reflectances_arg(refl);
   const SpectralData ill = illuminant_arg(args.get("illuminant", "D65"));
   SimulationOptions o;
   o.white_level = args.get_double("white", 1.0);

@@ -22,7 +22,6 @@ namespace tristim::cli {
 
 namespace {
 
-bool file_exists(const std::string& path) { return std::ifstream(path).good(); }
 
 std::string fmt(double v) {
   char buf[32];
@@ -41,34 +40,7 @@ void warn(const std::string& command, const Linearisation& l) {
   if (!l.message.empty()) std::cerr << "tristim " << command << ": warning: " << l.message << "\n";
 }
 
-/// A chart id (its built-in reflectances) or a spectral file; names normalised, fractions.
-SpectralData load_reflectances(const std::string& value) {
-  for (const auto& c : list_charts())
-    if (c.id == value) {
-      SpectralData s = chart_reflectances(value);
-      for (auto& n : s.names) n = normalise_patch_id(n);
-      return s;
-    }
-  if (!file_exists(value))
-    throw Error(ErrorCode::UnknownId, "--reflectances '" + value + "' is neither a chart id nor a readable file");
-  const PatchTable t = read_patch_file(read_file(value), value);
-  if (!t.has_spectra)
-    throw Error(ErrorCode::MissingColumn, value + ": no spectral columns (first column wavelength, or 380,390,... columns)");
-  SpectralData s = t.spectra;
-  reflectance_to_fraction(s);
-  return s;
-}
-
-SpectralData illuminant_of(const Args& args) {
-  const std::string v = args.get("illuminant", "D65");
-  if (file_exists(v)) {
-    SpectralData d = read_spectral_csv(read_file(v), v);
-    d.values.resize(1);
-    d.names.resize(1);
-    return d;
-  }
-  return illuminant_spd(v);
-}
+SpectralData illuminant_of(const Args& args) { return illuminant_arg(args.get("illuminant", "D65")); }
 
 Vec3 white_arg(const Args& args) {
   if (!args.has("ref-white")) return whites::D50();
@@ -94,7 +66,7 @@ LinearisationData load_data(const Args& args) {
   if (args.has("xyz") && args.has("reflectances"))
     throw Error(ErrorCode::InvalidArgument, "give --reflectances or --xyz, not both");
   if (args.has("reflectances")) {
-    d.reflectances = load_reflectances(args.get("reflectances"));
+    d.reflectances = reflectances_arg(args.get("reflectances"));
     const SpectralData ill = illuminant_of(args);
     d.white = illuminant_white_XYZ(ill);
     d.reference_XYZ.resize(d.camera_RGB.rows(), 3);
@@ -137,7 +109,7 @@ MethodChoice choice_of(const Args& args, const std::string& key, LinearisationDa
     if (b == "munsell1269" || b == "patches") {
       c.settings["basis"] = b;
     } else {
-      d.basis_reflectances = load_reflectances(b);
+      d.basis_reflectances = reflectances_arg(b);
       c.settings["basis"] = "user";
     }
   }
@@ -268,7 +240,7 @@ Linearisation linearisation_option(const Args& args, const std::string& command,
   } else {
     d.reference_XYZ = reference_XYZ;
     d.white = white;
-    if (args.has("reflectances")) d.reflectances = load_reflectances(args.get("reflectances"));
+    if (args.has("reflectances")) d.reflectances = reflectances_arg(args.get("reflectances"));
     l = fit_linearisation(parse_choice(value), d);
   }
   warn(command, l);
@@ -395,7 +367,7 @@ int run_spectral(const Args& args, std::ostream& out) {
   const SpectralData est = estimate_reflectances(m, t.ids, rgb);
   if (args.has("json")) {
     if (!args.has("reflectances")) throw Error(ErrorCode::InvalidArgument, "spectral apply --json needs --reflectances");
-    const SpectralData measured = load_reflectances(args.get("reflectances"));
+    const SpectralData measured = reflectances_arg(args.get("reflectances"));
     out << evaluation_json(evaluate_spectral(m, t.ids, rgb, measured, illuminant_of(args), observer)).dump(2) << "\n";
     if (args.has("out")) write_text(args.get("out"), spectral_csv(est));
     return 0;

@@ -5,7 +5,10 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/colorimetry/spectra.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/patch_files.hpp"
 #include "tristim/io/number.hpp"
 #include "tristim/memory.hpp"
 #include "tristim/version.hpp"
@@ -59,6 +62,25 @@ std::string read_file(const std::string& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+bool file_exists(const std::string& path) { return static_cast<bool>(std::ifstream(path)); }
+
+SpectralData illuminant_arg(const std::string& value) {
+  if (file_exists(value)) return read_illuminant_csv(read_file(value), value);
+  return illuminant_spd(value);
+}
+
+SpectralData reflectances_arg(const std::string& value) {
+  for (const auto& c : list_charts())
+    if (c.id == value) {
+      SpectralData s = chart_reflectances(value);
+      for (auto& n : s.names) n = normalise_patch_id(n);
+      return s;
+    }
+  if (!file_exists(value))
+    throw Error(ErrorCode::UnknownId, "--reflectances '" + value + "' is neither a chart id nor a readable file");
+  return read_reflectance_file(read_file(value), value);
 }
 
 }  // namespace tristim::cli

@@ -3,7 +3,8 @@
 // curves written by the engine) is plotted against another built-in camera; the estimate from an
 // uploaded patch file (the virtual camera's ColorChecker under D65) reports its residual and
 // matches the camera it came from; the estimate from the chart step's samples (the page's example
-// Passport photo) runs too; the estimate then feeds the absolute fit of the example bracket (the
+// Passport photo) runs too; so does one from the user's own reflectance and illuminant files (a
+// two-column illuminant refused next to its input); the estimate then feeds the absolute fit of the example bracket (the
 // profile records it) and the maps carry the cells' labels.
 import test from 'node:test';
 import assert from 'node:assert/strict';
@@ -79,6 +80,31 @@ test('absolute sensitivities: upload (bad CSV coded), estimate from a patch file
     await page.waitForFunction((s) => document.querySelector(`${s} [data-role="abs-ssf-residual"]`)?.textContent.includes('the chart step'), S, { timeout: 60000 });
     const chartResidual = Number(await page.$eval(`${S} [data-role="abs-ssf-residual"]`, (e) => e.dataset.residual));
     assert.ok(Number.isFinite(chartResidual) && chartResidual > 0 && chartResidual < 0.5, `chart-step residual ${chartResidual}`);
+
+    // (c) the user's own chart spectra and light (the CLI's --reflectances / --illuminant files): the
+    // built-in ColorChecker and D65 written out as files give the built-in estimate's residual again
+    const refl = T.chartReflectances('cc24'), d65 = T.illuminantSpectrum('D65');
+    const reflCsv = ['wavelength_nm,' + refl.names.join(','), ...Array.from(refl.wavelengths, (w, i) => [w, ...refl.values.map((v) => v[i])].join(','))].join('\n');
+    const d65Csv = ['wavelength_nm,D65', ...Array.from(d65.wavelengths, (w, i) => `${w},${d65.values[0][i]}`)].join('\n');
+    await page.selectOption(`${S} [data-role="abs-ssf-source"]`, 'file');
+    await page.selectOption(`${S} [data-role="abs-ssf-chart"]`, 'file');
+    await page.selectOption(`${S} [data-role="abs-ssf-illuminant"]`, 'file');
+    await page.click(`${S} [data-role="abs-ssf-estimate"]`);
+    assert.equal((await errorNear(page, `${S} [data-role="abs-ssf-reflectance-file"]`)).code, 'NO_SPECTRA');
+    await upload(page, `${S} [data-role="abs-ssf-reflectance-file"]`, 'my-chart.csv', Buffer.from(reflCsv));
+    await page.waitForFunction((s) => /my-chart\.csv: 24 spectra/.test(document.querySelector(`${s} [data-role="abs-ssf-reflectance-info"]`)?.textContent), S);
+    await upload(page, `${S} [data-role="abs-ssf-illuminant-file"]`, 'two-lights.csv', Buffer.from('wavelength_nm,A,D65\n400,1,2\n410,1,2\n'));
+    const two = await errorNear(page, `${S} [data-role="abs-ssf-illuminant-file"]`);
+    assert.equal(two.code, 'INVALID_ARGUMENT');
+    assert.match(two.text, /one value column; this one has 2 \(A, D65\)/);
+    await upload(page, `${S} [data-role="abs-ssf-illuminant-file"]`, 'my-d65.csv', Buffer.from(d65Csv));
+    await page.waitForFunction((s) => /my-d65\.csv: \d+ wavelengths/.test(document.querySelector(`${s} [data-role="abs-ssf-illuminant-info"]`)?.textContent), S);
+    assert.ok(await noErrorNear(page, `${S} [data-role="abs-ssf-illuminant-file"]`));
+    await page.click(`${S} [data-role="abs-ssf-estimate"]`);
+    await page.waitForFunction((s) => /file:my-chart\.csv, file:my-d65\.csv/.test(document.querySelector(`${s} figure[data-plot="absolute-sensitivities"] figcaption`)?.textContent), S);
+    const ownResidual = Number(await page.$eval(`${S} [data-role="abs-ssf-residual"]`, (e) => e.dataset.residual));
+    assert.ok(Math.abs(ownResidual - residual) <= 1e-12 * residual, `own files ${ownResidual} vs built-in ${residual}`);
+    await page.selectOption(`${S} [data-role="abs-ssf-illuminant"]`, 'D65');
 
     // the estimate from the patch file again, then it feeds the fit of the example bracket
     await page.selectOption(`${S} [data-role="abs-ssf-source"]`, 'file');

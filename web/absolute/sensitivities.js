@@ -2,8 +2,9 @@
 // a camera's R, G, B sensitivities (Guarnera, Bianco & Schettini 2018, section 3.1). Besides the
 // 52 built-in cameras: (a) upload a CSV `wavelength_nm,R,G,B` (the engine's parser), or (b)
 // estimate them from one photo of a chart with known reflectances under a known illuminant
-// (Jiang, Liu, Gu & Süsstrunk 2013; the patch RGB of the chart step, or a patch file), with the
-// residual of the solve; (c) the upload or estimate plotted over a chosen built-in camera's
+// (Jiang, Liu, Gu & Süsstrunk 2013; the patch RGB of the chart step, or a patch file; a built-in
+// chart and illuminant, or the user's own reflectance and illuminant files as the CLI's
+// --reflectances / --illuminant take them), with the residual of the solve; (c) the upload or estimate plotted over a chosen built-in camera's
 // curves, with the RMS difference and the area ratios. The chosen set stays in the worker and
 // feeds the fit; the profile records it (areas_source).
 import { h, field, select, setOptions, showError, clearError, download, readText } from '../lib/ui.js';
@@ -27,10 +28,22 @@ export function mountSensitivities(app, { onChoice }) {
   const sourceSel = select([{ value: 'chart', label: 'the chart step\'s sampled patches (step 2)' }, { value: 'file', label: 'a patch file (id, R, G, B: linear, black-subtracted)' }], 'chart');
   sourceSel.dataset.role = 'abs-ssf-source';
   const patchInput = h('input', { type: 'file', accept: '.csv,.txt,.cgats,.ti3,text/csv', 'data-role': 'abs-ssf-patch-file' });
-  const chartSel = select(charts, charts.some((c) => c.value === 'cc24') ? 'cc24' : charts[0]?.value);
+  const chartSel = select([...charts, { value: 'file', label: 'a reflectance file (spectral CSV or CGATS)…' }], charts.some((c) => c.value === 'cc24') ? 'cc24' : charts[0]?.value);
   chartSel.dataset.role = 'abs-ssf-chart';
-  const illSel = select(illuminants, 'D65');
+  const illSel = select([...illuminants, { value: 'file', label: 'an illuminant file (wavelength_nm, value)…' }], 'D65');
   illSel.dataset.role = 'abs-ssf-illuminant';
+  // The user's own chart spectra / light, read by the engine when chosen (absSsfSpectra).
+  const spectraInputs = {
+    reflectances: h('input', { type: 'file', accept: '.csv,.txt,.cgats,.cie,.ti3,text/csv', 'data-role': 'abs-ssf-reflectance-file' }),
+    illuminant: h('input', { type: 'file', accept: '.csv,.txt,text/csv', 'data-role': 'abs-ssf-illuminant-file' }),
+  };
+  const spectraInfo = {
+    reflectances: h('span', { class: 'file-state', 'data-role': 'abs-ssf-reflectance-info' }),
+    illuminant: h('span', { class: 'file-state', 'data-role': 'abs-ssf-illuminant-info' }),
+  };
+  const loaded = { reflectances: null, illuminant: null };   // file names the worker holds
+  /// The chart or illuminant as named in file names and messages: its id, or the loaded file's name.
+  const named = (sel, kind) => (sel.value === 'file' ? (loaded[kind] ?? 'file').replace(/\.[^.]*$/, '') : sel.value);
   const kInput = h('input', { type: 'number', min: 1, max: 12, step: 1, value: 4, class: 'num', 'data-role': 'abs-ssf-components' });
   const blindBox = h('input', { type: 'checkbox', 'data-role': 'abs-ssf-blind' });
   const estimateBtn = h('button', { type: 'button', 'data-role': 'abs-ssf-estimate' }, 'Estimate the sensitivities (Jiang 2013)');
@@ -48,6 +61,8 @@ export function mountSensitivities(app, { onChoice }) {
     h('div', { class: 'controls' }, field('Show', showSel), field('Against the built-in camera', compareSel, 'Dashed: its measured curves')), compareInfo, plotBox);
 
   const filePatchField = field('Patch file', patchInput, 'Linear camera RGB per patch, paired with the chart\'s reflectances by patch id');
+  const reflField = h('div', {}, field('Reflectance file', spectraInputs.reflectances, 'One spectrum per patch, named by patch id (as the patches); percent or fractions'), spectraInfo.reflectances);
+  const illField = h('div', {}, field('Illuminant file', spectraInputs.illuminant, 'Relative power: wavelength_nm and one value column'), spectraInfo.illuminant);
   const el = h('details', { class: 'abs-ssf', 'data-role': 'abs-ssf' },
     h('summary', {}, 'Sensitivities from a CSV or estimated from one photo of a chart'),
     h('p', { class: 'hint' }, 'Eq (7) divides each channel by its area A_R, A_G, A_B: the sensitivities decide the ratios between the channels. ',
@@ -57,7 +72,7 @@ export function mountSensitivities(app, { onChoice }) {
       h('fieldset', {}, h('legend', {}, 'Upload'), field('Sensitivities (CSV: wavelength_nm, R, G, B)', fileInput, 'Relative values; one factor for all three channels (their ratios matter)'), fileInfo),
       h('fieldset', {}, h('legend', {}, 'Estimate from one chart photo'),
         field('Patches', sourceSel), filePatchField,
-        field('Chart (known reflectances)', chartSel), field('Illuminant of the photo', illSel),
+        field('Chart (known reflectances)', chartSel), reflField, field('Illuminant of the photo', illSel), illField,
         field('Principal components K', kInput, '1–12 per channel (the paper\'s space is low-dimensional; 4 by default)'),
         h('label', { class: 'check' }, blindBox, ' leave the compared built-in camera out of the basis (a blind test of the estimate)'),
         h('div', { class: 'buttons' }, estimateBtn, csvBtn), estimateBtn._errorSlot, estimateInfo)),
@@ -65,6 +80,29 @@ export function mountSensitivities(app, { onChoice }) {
   const syncSource = () => { filePatchField.hidden = sourceSel.value !== 'file'; };
   sourceSel.addEventListener('change', syncSource);
   syncSource();
+  const syncSpectra = () => { reflField.hidden = chartSel.value !== 'file'; illField.hidden = illSel.value !== 'file'; };
+  chartSel.addEventListener('change', syncSpectra);
+  illSel.addEventListener('change', syncSpectra);
+  syncSpectra();
+  for (const [kind, input] of Object.entries(spectraInputs)) {
+    input.addEventListener('change', async () => {
+      const f = input.files[0];
+      if (!f) return;
+      clearError(input);
+      const text = await readText(input, f);
+      if (text == null) return;
+      loaded[kind] = null;
+      spectraInfo[kind].textContent = '';
+      try {
+        const r = await engine.call('absSsfSpectra', { kind, text, name: f.name });
+        loaded[kind] = f.name;
+        const [lo, hi, n] = r.wavelengths;
+        spectraInfo[kind].textContent = kind === 'illuminant'
+          ? `${f.name}: ${n} wavelengths, ${lo}–${hi} nm.`
+          : `${f.name}: ${r.columns} spectra, ${n} wavelengths, ${lo}–${hi} nm.`;
+      } catch (e) { showError(input, e, f.name); }
+    });
+  }
 
   const sets = {};   // which -> {label, ssf, areas}
   let csv = null;
@@ -123,10 +161,16 @@ export function mountSensitivities(app, { onChoice }) {
   }
 
   async function estimate() {
-    for (const c of [estimateBtn, patchInput, sourceSel]) clearError(c);
+    for (const c of [estimateBtn, patchInput, sourceSel, ...Object.values(spectraInputs)]) clearError(c);
     estimateBtn.disabled = true;
     let target = estimateBtn;
     try {
+      for (const [kind, sel] of [['reflectances', chartSel], ['illuminant', illSel]]) {
+        if (sel.value === 'file' && !loaded[kind]) {
+          target = spectraInputs[kind];
+          throw Object.assign(new Error(`choose ${kind === 'illuminant' ? 'an illuminant' : 'a reflectance'} file`), { code: 'NO_SPECTRA' });
+        }
+      }
       const msg = { chart: chartSel.value, illuminant: illSel.value,
         options: { components: Number(kInput.value) || 4, exclude_cameras: blindBox.checked ? [compareSel.value] : [] } };
       let left = 0, from;
@@ -149,7 +193,7 @@ export function mountSensitivities(app, { onChoice }) {
       const res = e.residual.map((r, c) => `${'RGB'[c]} ${(100 * r).toFixed(2)} %`).join(', ');
       estimateInfo.replaceChildren(
         h('p', { 'data-role': 'abs-ssf-residual', dataset: { residual: e.residual_rms } },
-          `${e.patches} patches from ${from}${left ? ` (${left} saturated left out)` : ''}${e.unpaired ? `, ${e.unpaired} without a reflectance in ${chartSel.value}` : ''}; `,
+          `${e.patches} patches from ${from}${left ? ` (${left} saturated left out)` : ''}${e.unpaired ? `, ${e.unpaired} without a reflectance in ${named(chartSel, 'reflectances')}` : ''}; `,
           `K = ${e.components} components from ${e.basis_cameras} cameras${blindBox.checked ? ` (${compareSel.selectedOptions[0]?.textContent} left out)` : ''}. Residual (RMS of predicted − measured RGB over RMS measured): ${(100 * e.residual_rms).toFixed(2)} % (${res})`,
           e.clipped ? `; ${e.clipped} negative samples set to 0.` : '.'),
         e.residual_rms > 0.05 ? h('p', { class: 'unavailable' }, 'The residual is large: are the RGB values linear and black-subtracted, the chart and illuminant the ones photographed, and no patch clipped?') : '');
@@ -158,13 +202,14 @@ export function mountSensitivities(app, { onChoice }) {
       await got('estimate', { label: e.label, ssf: e.ssf, areas: e.areas });
       return e;
     } catch (e) {
-      const where = ['PATCH_MISMATCH', 'TOO_FEW_PATCHES', 'MISSING_COLUMN', 'NO_PATCHES'].includes(e.code) || target === patchInput ? target : estimateBtn;
+      const where = ['PATCH_MISMATCH', 'TOO_FEW_PATCHES', 'MISSING_COLUMN', 'NO_PATCHES'].includes(e.code) || target === patchInput
+        || Object.values(spectraInputs).includes(target) ? target : estimateBtn;
       showError(where, e, 'Estimate');
       return null;
     } finally { estimateBtn.disabled = false; }
   }
   estimateBtn.addEventListener('click', estimate);
-  csvBtn.addEventListener('click', () => { if (csv) download(`sensitivities-Jiang2013-${chartSel.value}-${illSel.value}.csv`, csv, 'text/csv'); });
+  csvBtn.addEventListener('click', () => { if (csv) download(`sensitivities-Jiang2013-${named(chartSel, 'reflectances')}-${named(illSel, 'illuminant')}.csv`, csv, 'text/csv'); });
 
   /// The built-in camera matching a series' make and model, for the comparison.
   function cameraHint(make, model) {
@@ -176,6 +221,7 @@ export function mountSensitivities(app, { onChoice }) {
   function forget() {
     for (const k of Object.keys(sets)) delete sets[k];
     csv = null; csvBtn.hidden = true; estimateInfo.replaceChildren(); fileInfo.textContent = ''; plotBox.replaceChildren();
+    for (const kind of Object.keys(loaded)) { loaded[kind] = null; spectraInfo[kind].textContent = ''; spectraInputs[kind].value = ''; }
     syncShow();
   }
   return { el, estimate, cameraHint, forget, sets };

@@ -33,9 +33,22 @@ export const handlers = {
     return reply({ ssf: spectral(ssf), areas, name });
   },
 
+  /// The estimate's own light or chart, as the CLI's --illuminant / --reflectances files:
+  /// kind 'illuminant' (wavelength and one value column, read_illuminant_csv) or 'reflectances'
+  /// (spectral CSV or CGATS with spectra, read_reflectance_file), kept here for absSsfEstimate.
+  absSsfSpectra: (T, { kind, text, name }, { state }) => {
+    const s = ssfState(state);
+    if (kind !== 'illuminant' && kind !== 'reflectances') throw coded(`unknown spectra kind '${kind}'`, 'INVALID_ARGUMENT');
+    s[kind] = null;
+    const data = kind === 'illuminant' ? T.readIlluminantCsv(text, name) : T.readReflectanceFile(text, name);
+    s[kind] = { data, name };
+    const wl = data.wavelengths;
+    return reply({ name, columns: data.names.length, wavelengths: [wl[0], wl[wl.length - 1], wl.length] });
+  },
+
   /// Jiang 2013 from per-patch linear camera RGB: {ids, rgb: Float64Array(3N)} or a patch file
   /// {patchFile: {text, name}} (R, G, B columns), paired by id with `chart`'s reflectances under
-  /// `illuminant` (a built-in id).
+  /// `illuminant` (built-in ids; 'file': the ones absSsfSpectra read).
   absSsfEstimate: (T, { ids, rgb, patchFile, chart, illuminant, options = {} }, { state }) => {
     const s = ssfState(state);
     if (patchFile) {
@@ -44,8 +57,14 @@ export const handlers = {
       ids = p.ids; rgb = p.RGB;
     }
     if (!ids?.length) throw coded('no patches: sample the chart in step 2 or load a patch file', 'NO_PATCHES');
-    const refl = T.chartReflectances(chart);
-    const e = T.estimateSensitivities(ids, rgb, refl, T.illuminantSpectrum(illuminant), options);
+    const fromFile = (kind, what) => {
+      if (!s[kind]) throw coded(`no ${what} file loaded`, 'NO_SPECTRA');
+      return s[kind];
+    };
+    let refl, spd;
+    if (chart === 'file') { const f = fromFile('reflectances', 'reflectance'); refl = f.data; chart = `file:${f.name}`; } else refl = T.chartReflectances(chart);
+    if (illuminant === 'file') { const f = fromFile('illuminant', 'illuminant'); spd = f.data; illuminant = `file:${f.name}`; } else spd = T.illuminantSpectrum(illuminant);
+    const e = T.estimateSensitivities(ids, rgb, refl, spd, options);
     const label = `Jiang 2013 estimate (${chart}, ${illuminant}, ${e.patches} patches)`;
     const left = options.exclude_cameras?.length ? ` basis without ${options.exclude_cameras.join(' ')}` : '';
     s.estimate = { ssf: e.ssf, source: `estimate:Jiang2013 ${chart} ${illuminant} ${e.patches} patches K ${e.components}${left} residual ${e.residual_rms.toPrecision(3)}` };

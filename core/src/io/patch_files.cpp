@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "tristim/colorimetry/spectra.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
 #include "tristim/io/number.hpp"
@@ -430,6 +431,40 @@ SpectralData read_spectral_csv(std::string_view text, std::string_view source) {
     for (size_t k = 1; k < t.header.size(); ++k) d.values[k - 1].push_back(parse_cell(t.rows[r][k], source, t.lines[r], t.header[k]));
   }
   return d;
+}
+
+SpectralData read_illuminant_csv(std::string_view text, std::string_view source) {
+  SpectralData d = read_spectral_csv(text, source);
+  const std::string name(source.empty() ? "input" : source);
+  if (d.values.size() != 1) {
+    std::string cols;
+    for (const auto& n : d.names) cols += (cols.empty() ? "" : ", ") + n;
+    throw Error(ErrorCode::InvalidArgument,
+                name + ": an illuminant file has the wavelength and one value column; this one has " +
+                    std::to_string(d.values.size()) + " (" + cols + ")");
+  }
+  double peak = 0;
+  for (size_t i = 0; i < d.values[0].size(); ++i) {
+    const double v = d.values[0][i];
+    if (v < 0) {
+      std::ostringstream ss;
+      ss << name << ": the illuminant's power at " << d.wavelengths[i] << " nm is negative (" << v << ")";
+      throw Error(ErrorCode::NegativeValue, ss.str());
+    }
+    peak = std::max(peak, v);
+  }
+  if (!(peak > 0)) throw Error(ErrorCode::NoUsableData, name + ": the illuminant's power is zero at every wavelength");
+  return d;
+}
+
+SpectralData read_reflectance_file(std::string_view text, std::string_view source) {
+  const PatchTable t = read_patch_file(text, source);
+  if (!t.has_spectra)
+    throw Error(ErrorCode::MissingColumn, std::string(source.empty() ? "input" : source) +
+                                              ": no spectral columns (first column wavelength, or 380,390,... columns)");
+  SpectralData s = t.spectra;
+  reflectance_to_fraction(s);
+  return s;
 }
 
 PatchTable read_patch_csv(std::string_view text, std::string_view source) {

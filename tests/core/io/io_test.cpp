@@ -85,6 +85,19 @@ TEST_CASE("spectral CSV: first column wavelength, one column per patch", "[io]")
   CHECK(real.ids.back() == "D6");
 }
 
+TEST_CASE("illuminant CSV: the wavelength and exactly one non-negative value column", "[io]") {
+  const SpectralData d = read_illuminant_csv("wavelength_nm,F2\n400,1.5\n410,0\n420,2.25\n", "f2.csv");
+  CHECK(d.names == std::vector<std::string>{"F2"});
+  CHECK(d.wavelengths == std::vector<double>{400, 410, 420});
+  CHECK(d.values[0] == std::vector<double>{1.5, 0, 2.25});
+  // A table of several illuminants is refused (the CLI used to take its first column silently).
+  expect_error([] { read_illuminant_csv("wavelength_nm,A,D65\n400,1,2\n410,1,2\n", "two.csv"); }, ErrorCode::InvalidArgument);
+  expect_error([] { read_illuminant_csv("wavelength_nm,A\n400,1\n410,-0.5\n", "neg.csv"); }, ErrorCode::NegativeValue);
+  expect_error([] { read_illuminant_csv("wavelength_nm,A\n400,0\n410,0\n", "zero.csv"); }, ErrorCode::NoUsableData);
+  expect_error([] { read_illuminant_csv("wavelength_nm,A\n400,1\n400,1\n", "dup.csv"); }, ErrorCode::NonMonotonic, 3);
+  expect_error([] { read_illuminant_csv("wavelength_nm\n400\n", "one.csv"); }, ErrorCode::MissingColumn, 1);
+}
+
 TEST_CASE("CGATS: Argyll .cie with spectra in percent, and a Lab reference", "[io]") {
   const PatchTable t = read_patch_file(test::read_shared("dcamprof/original/cc24_ref-new.cie"), "cc24_ref-new.cie");
   CHECK(t.format == "cgats");

@@ -45,6 +45,15 @@ double parse_cell(const std::string& cell, std::string_view source, int line, st
 
 /// Spectral CSV: first column wavelength (nm, strictly increasing), one column per sample.
 SpectralData read_spectral_csv(std::string_view text, std::string_view source);
+/// An illuminant's relative spectral power distribution from a spectral CSV: the wavelength column
+/// and exactly one value column (Error(InvalidArgument) naming the columns when there are more,
+/// rather than silently taking the first); values finite, none negative (NegativeValue), not all
+/// zero (NoUsableData).
+SpectralData read_illuminant_csv(std::string_view text, std::string_view source);
+/// Reflectances from any patch file with spectra (spectral CSV, CGATS/.cie with SPEC_ or nm
+/// columns; read_patch_file), one column per patch named by its id, as fractions (a table in
+/// percent is divided by 100, reflectance_to_fraction). Error(MissingColumn) without spectra.
+SpectralData read_reflectance_file(std::string_view text, std::string_view source);
 
 /// A file of per-patch measurements, any of the quantities present.
 struct PatchTable {
