@@ -7,7 +7,7 @@
 // --reflectances / --illuminant take them), with the residual of the solve; (c) the upload or estimate plotted over a chosen built-in camera's
 // curves, with the RMS difference and the area ratios. The chosen set stays in the worker and
 // feeds the fit; the profile records it (areas_source).
-import { h, field, select, setOptions, showError, clearError, download, readText } from '../lib/ui.js';
+import { h, field, select, setOptions, showError, clearError, download, readText, onFileText } from '../lib/ui.js';
 import { figure } from '../plots/common.js';
 import { sensitivitiesPlot } from '../plots/sensitivities.js';
 
@@ -85,12 +85,7 @@ export function mountSensitivities(app, { onChoice }) {
   illSel.addEventListener('change', syncSpectra);
   syncSpectra();
   for (const [kind, input] of Object.entries(spectraInputs)) {
-    input.addEventListener('change', async () => {
-      const f = input.files[0];
-      if (!f) return;
-      clearError(input);
-      const text = await readText(input, f);
-      if (text == null) return;
+    onFileText(input, async (text, f) => {
       loaded[kind] = null;
       spectraInfo[kind].textContent = '';
       try {
@@ -137,12 +132,7 @@ export function mountSensitivities(app, { onChoice }) {
     return plot();
   }
 
-  fileInput.addEventListener('change', async () => {
-    const f = fileInput.files[0];
-    if (!f) return;
-    clearError(fileInput);
-    const text = await readText(fileInput, f);
-    if (text == null) return;
+  onFileText(fileInput, async (text, f) => {
     try {
       const r = await engine.call('absSsfUpload', { text, name: f.name });
       fileInfo.textContent = `${f.name}: R, G, B at ${r.ssf.wavelengths.length} wavelengths, ${r.ssf.wavelengths[0]}–${r.ssf.wavelengths.at(-1)} nm; A_R/A_G ${(r.areas[0] / r.areas[1]).toFixed(4)}, A_B/A_G ${(r.areas[2] / r.areas[1]).toFixed(4)}.`;

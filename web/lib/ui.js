@@ -121,3 +121,15 @@ export const fileBytes = async (file) => new Uint8Array(await file.arrayBuffer()
 export async function readText(input, file) {
   try { return await file.text(); } catch (e) { showError(input, e, file.name); return null; }
 }
+
+/// On each file chosen in `input`: its error cleared, its text read (readText), then
+/// `use(text, file)`.
+export function onFileText(input, use) {
+  input.addEventListener('change', async () => {
+    const f = input.files[0];
+    if (!f) return;
+    clearError(input);
+    const text = await readText(input, f);
+    if (text != null) await use(text, f);
+  });
+}

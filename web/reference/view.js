@@ -1,6 +1,6 @@
 // Step 1: the reference — chart (built-in or uploaded CSV/CGATS), illuminant and observer; the
 // patches as swatches with XYZ and Lab, and the CIE xy diagram. Emits 'reference'.
-import { h, field, select, setOptions, showError, clearError, fmt, readText } from '../lib/ui.js';
+import { h, field, select, setOptions, showError, clearError, fmt, onFileText } from '../lib/ui.js';
 import { options, OBSERVERS } from '../lib/catalog.js';
 import { cssColours, xyFromXYZ, figure } from '../plots/common.js';
 import { xyPlot } from '../plots/xy.js';
@@ -115,12 +115,7 @@ export function mount(section, app) {
   chartSel.addEventListener('change', () => { settings.chart = chartSel.value; settings.referenceFile = null; syncFile(); persist(); update(); });
   illumSel.addEventListener('change', () => { settings.illuminant = illumSel.value; persist(); update(); });
   obsSel.addEventListener('change', () => { settings.observer = obsSel.value; persist(); update(); });
-  fileInput.addEventListener('change', async () => {
-    const f = fileInput.files[0];
-    if (!f) return;
-    clearError(fileInput);
-    const text = await readText(fileInput, f);
-    if (text == null) return;
+  onFileText(fileInput, async (text, f) => {
     const previous = settings.referenceFile;
     settings.referenceFile = { name: f.name, text };
     await update();

@@ -268,10 +268,11 @@ TEST_CASE("RMS CIEDE2000 objective: Levenberg-Marquardt reaches a stationary poi
   }
 }
 
-TEST_CASE("RMS CIEDE2000 3x3 on the Passport patches is at most OpenCV ccm's RMS", "[models][real]") {
-  // examples/compare/compare_passport.py: OpenCV's ccm (3x3, CIEDE2000 loss, identity
-  // linearisation) reaches RMS CIEDE2000 3.331 on these patches (X-Rite after-Nov-2014 reference,
-  // scored with tristim's CIEDE2000).
+namespace {
+
+// The Passport DNG's 24 patches (camera RGB derived by dcraw_emu) and X-Rite's after-Nov-2014
+// L*a*b* D50 reference as XYZ.
+void passport_patches(PatchMatrix& rgb, PatchMatrix& xyz) {
   auto read = [](const std::string& path) {
     std::istringstream in(test::read_shared(path));
     std::string line;
@@ -290,13 +291,24 @@ TEST_CASE("RMS CIEDE2000 3x3 on the Passport patches is at most OpenCV ccm's RMS
   const auto lab_rows = read("colour-science/colorchecker24_xrite_after_nov2014_Lab_D50.csv");
   REQUIRE(rgb_rows.size() == 24);
   REQUIRE(lab_rows.size() == 24);
-  PatchMatrix rgb(24, 3), xyz(24, 3);
+  rgb.resize(24, 3);
+  xyz.resize(24, 3);
   for (int i = 0; i < 24; ++i) {
     REQUIRE(rgb_rows[i][1] == lab_rows[i][1]);  // same patch name, same order
     for (int c = 0; c < 3; ++c) rgb(i, c) = std::stod(rgb_rows[i][2 + c]);
     const Vec3 Lab(std::stod(lab_rows[i][2]), std::stod(lab_rows[i][3]), std::stod(lab_rows[i][4]));
     xyz.row(i) = Lab_to_XYZ(Lab, whites::D50()).transpose();
   }
+}
+
+}  // namespace
+
+TEST_CASE("RMS CIEDE2000 3x3 on the Passport patches is at most OpenCV ccm's RMS", "[models][real]") {
+  // examples/compare/compare_passport.py: OpenCV's ccm (3x3, CIEDE2000 loss, identity
+  // linearisation) reaches RMS CIEDE2000 3.331 on these patches (X-Rite after-Nov-2014 reference,
+  // scored with tristim's CIEDE2000).
+  PatchMatrix rgb, xyz;
+  passport_patches(rgb, xyz);
   FitOptions o;
   o.objective = Objective::DeltaE2000;
   o.de2000.rms = true;
@@ -549,36 +561,6 @@ TEST_CASE("apply_to_image: the AVX-512 root-polynomial kernel equals the AVX2 on
 }
 
 namespace {
-
-// The Passport DNG's 24 patches (camera RGB derived by dcraw_emu) and X-Rite's after-Nov-2014
-// L*a*b* D50 reference as XYZ.
-void passport_patches(PatchMatrix& rgb, PatchMatrix& xyz) {
-  auto read = [](const std::string& path) {
-    std::istringstream in(test::read_shared(path));
-    std::string line;
-    std::getline(in, line);
-    std::vector<std::vector<std::string>> rows;
-    while (std::getline(in, line)) {
-      std::istringstream ls(line);
-      std::string cell;
-      std::vector<std::string> cells;
-      while (std::getline(ls, cell, ',')) cells.push_back(cell);
-      if (!cells.empty()) rows.push_back(cells);
-    }
-    return rows;
-  };
-  const auto rgb_rows = read("raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv");
-  const auto lab_rows = read("colour-science/colorchecker24_xrite_after_nov2014_Lab_D50.csv");
-  REQUIRE(rgb_rows.size() == 24);
-  REQUIRE(lab_rows.size() == 24);
-  rgb.resize(24, 3);
-  xyz.resize(24, 3);
-  for (int i = 0; i < 24; ++i) {
-    for (int c = 0; c < 3; ++c) rgb(i, c) = std::stod(rgb_rows[i][2 + c]);
-    const Vec3 Lab(std::stod(lab_rows[i][2]), std::stod(lab_rows[i][3]), std::stod(lab_rows[i][4]));
-    xyz.row(i) = Lab_to_XYZ(Lab, whites::D50()).transpose();
-  }
-}
 
 // The ColorChecker SG's 140 patches seen by a simulated Canon 5D Mark II under D65 (noise 1 %),
 // reference XYZ under D65.
