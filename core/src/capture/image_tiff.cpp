@@ -7,6 +7,7 @@
 #include <cstring>
 #include <ctime>
 #include <memory>
+#include <sstream>
 #include <vector>
 
 #include "image_common.hpp"
@@ -224,6 +225,15 @@ RawImage decode_tiff(const std::uint8_t* data, std::size_t size, const ImageDeco
   if (tiled) {
     if (TIFFGetField(t, TIFFTAG_TILEWIDTH, &cw) != 1 || TIFFGetField(t, TIFFTAG_TILELENGTH, &ch) != 1 || cw == 0 || ch == 0)
       corrupt(src, "no tile size");
+    // A header's tile size is not bounded by its image size, and one tile's buffer is allocated
+    // from it (fuzz_tiff: a 403-byte file asked for 3.5 GB): a tile may not exceed the image limit.
+    const double tile_mp = static_cast<double>(cw) * ch / 1e6;
+    if (tile_mp > options.max_megapixels) {
+      std::ostringstream ss;
+      ss << "the TIFF's tiles are " << cw << " x " << ch << " pixels (" << tile_mp << " MP), over the limit of "
+         << options.max_megapixels << " MP";
+      throw Error(ErrorCode::LimitExceeded, ss.str());
+    }
   } else {
     TIFFGetFieldDefaulted(t, TIFFTAG_ROWSPERSTRIP, &ch);
     ch = std::max<std::uint32_t>(1, std::min(ch, height));
