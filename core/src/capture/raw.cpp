@@ -182,9 +182,23 @@ class BoundedBufferStream final : public LibRaw_buffer_datastream {
     return res;
   }
 
+  // LibRaw's parsers loop on file-given sizes; its seek clamps at the end, so a loop that only
+  // checks the position against a claimed end never ends (parse_riff's "nctg" chunk: an 85-byte
+  // file hung tristim, fuzz_raw). While LibRaw identifies the file, reads that find no byte left
+  // are counted, and past a budget no real header needs the open fails as corrupt data.
+  int read(void* ptr, size_t sz, size_t nmemb) override {
+    const int got = LibRaw_buffer_datastream::read(ptr, sz, nmemb);
+    if (got == 0 && identifying_ && sz * nmemb > 0 && --eof_reads_left_ < 0) throw LIBRAW_EXCEPTION_IO_CORRUPT;
+    return got;
+  }
+  /// The open is done: decoders count damaged data themselves (error_count, RAW_TRUNCATED).
+  void identified() { identifying_ = false; }
+
  private:
   const std::uint8_t* data_;
   std::size_t size_;
+  bool identifying_ = true;
+  long eof_reads_left_ = 1L << 16;
 };
 
 /// LibRaw::open_buffer with the stream above; LibRaw owns (and deletes) the stream once the open
@@ -195,6 +209,7 @@ int open_memory(LibRaw& proc, const std::uint8_t* data, std::size_t size) {
   auto& internal = proc.get_internal_data_pointer()->internal_data;
   internal.input_internal = 0;  // not deleted by LibRaw if the open fails
   const int rc = proc.open_datastream(stream.get());
+  stream->identified();
   if (rc == LIBRAW_SUCCESS) {
     stream.release();
     internal.input_internal = 1;  // deleted by LibRaw's recycle()
