@@ -56,20 +56,26 @@ inline f4 signed_sqrt(f4 p) {
   const v128_t sign = wasm_f32x4_splat(-0.0f);
   return wasm_v128_or(wasm_f32x4_sqrt(wasm_v128_andnot(p, sign)), wasm_v128_and(p, sign));
 }
+// The same shuffles as the SSE2 path, each written as x86's shufps (lanes 0-1 from the first
+// operand, 2-3 from the second) or unpcklps/unpckhps: V8 emits those single instructions for them,
+// where an arbitrary two-operand shuffle costs two pshufb and a por.
 inline void load_rgb(const float* in, f4& R, f4& G, f4& B) {
-  // a = r0 g0 b0 r1, b = g1 b1 r2 g2, c = b2 r3 g3 b3 (lanes 0-3 of the first operand, 4-7 of the second)
   const v128_t a = wasm_v128_load(in), b = wasm_v128_load(in + 4), c = wasm_v128_load(in + 8);
-  R = wasm_i32x4_shuffle(wasm_i32x4_shuffle(a, b, 0, 3, 6, 0), c, 0, 1, 2, 5);
-  G = wasm_i32x4_shuffle(wasm_i32x4_shuffle(a, b, 1, 4, 7, 0), c, 0, 1, 2, 6);
-  B = wasm_i32x4_shuffle(wasm_i32x4_shuffle(a, b, 2, 5, 0, 0), c, 0, 1, 4, 7);
+  const v128_t t0 = wasm_i32x4_shuffle(a, b, 1, 2, 4, 5);  // g0 b0 g1 b1
+  const v128_t t1 = wasm_i32x4_shuffle(b, c, 2, 3, 5, 6);  // r2 g2 r3 g3
+  R = wasm_i32x4_shuffle(a, t1, 0, 3, 4, 6);
+  G = wasm_i32x4_shuffle(t0, t1, 0, 2, 5, 7);
+  B = wasm_i32x4_shuffle(t0, c, 1, 3, 4, 7);
 }
 inline void store_xyz(float* out, f4 X, f4 Y, f4 Z) {
-  const v128_t xy01 = wasm_i32x4_shuffle(X, Y, 0, 4, 1, 5);  // x0 y0 x1 y1
-  const v128_t yz12 = wasm_i32x4_shuffle(Y, Z, 1, 5, 2, 6);  // y1 z1 y2 z2
-  const v128_t xy33 = wasm_i32x4_shuffle(X, Y, 3, 7, 0, 0);  // x3 y3 . .
-  wasm_v128_store(out, wasm_i32x4_shuffle(xy01, Z, 0, 1, 4, 2));      // x0 y0 z0 x1
-  wasm_v128_store(out + 4, wasm_i32x4_shuffle(yz12, X, 0, 1, 6, 2));  // y1 z1 x2 y2
-  wasm_v128_store(out + 8, wasm_i32x4_shuffle(xy33, Z, 6, 0, 1, 7));  // z2 x3 y3 z3
+  const v128_t lo = wasm_i32x4_shuffle(X, Y, 0, 4, 1, 5), hi = wasm_i32x4_shuffle(X, Y, 2, 6, 3, 7);  // x0 y0 x1 y1 | x2 y2 x3 y3
+  const v128_t a = wasm_i32x4_shuffle(Z, lo, 0, 0, 6, 6);  // z0 z0 x1 x1
+  const v128_t b = wasm_i32x4_shuffle(lo, Z, 3, 3, 5, 5);  // y1 y1 z1 z1
+  const v128_t c = wasm_i32x4_shuffle(Z, hi, 2, 2, 6, 6);  // z2 z2 x3 x3
+  const v128_t d = wasm_i32x4_shuffle(hi, Z, 3, 3, 7, 7);  // y3 y3 z3 z3
+  wasm_v128_store(out, wasm_i32x4_shuffle(lo, a, 0, 1, 4, 6));      // x0 y0 z0 x1
+  wasm_v128_store(out + 4, wasm_i32x4_shuffle(b, hi, 0, 2, 4, 5));  // y1 z1 x2 y2
+  wasm_v128_store(out + 8, wasm_i32x4_shuffle(c, d, 0, 2, 4, 6));   // z2 x3 y3 z3
 }
 #endif
 
