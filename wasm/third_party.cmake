@@ -4,9 +4,9 @@
 
 include(${CMAKE_SOURCE_DIR}/cmake/source_packages.cmake)  # tristim_find_src, LibRaw's source list
 
-# --- LibRaw 0.20 (cmake/source_packages.cmake); -fexceptions: LibRaw reports errors by throwing.
+# --- LibRaw 0.20 (cmake/source_packages.cmake); exceptions on: LibRaw reports errors by throwing.
 tristim_add_libraw_from_source(libraw_wasm)
-target_compile_options(libraw_wasm PRIVATE -O3 -fexceptions)
+target_compile_options(libraw_wasm PRIVATE -O3 ${TRISTIM_WASM_EXCEPTIONS})
 add_library(tristim_libraw INTERFACE)
 target_link_libraries(tristim_libraw INTERFACE libraw_wasm)
 
