@@ -450,6 +450,7 @@ void damped_gauss_newton(Eigen::Map<Eigen::VectorXd>& xv, const Eigen::MatrixXd&
   const Eigen::Index nvar = xv.size();
   Eigen::VectorXd h(nvar), x_new(nvar);
   Eigen::MatrixXd Am(nvar, nvar);
+  Eigen::LLT<Eigen::MatrixXd> llt(nvar);
   double F = linearise();
   double mu = 1e-3 * A.diagonal().maxCoeff(), nu = 2.0;
   int k = 0;
@@ -458,7 +459,11 @@ void damped_gauss_newton(Eigen::Map<Eigen::VectorXd>& xv, const Eigen::MatrixXd&
     ++k;
     Am = A;
     Am.diagonal().array() += mu;
-    h = Am.ldlt().solve(-g);
+    // A + μI is positive definite (A is a sum of J_iᵀ·(positive semi-definite)·J_i, μ > 0): Cholesky,
+    // which needs no pivot search; LDLT only if rounding made it fail.
+    llt.compute(Am);
+    if (llt.info() == Eigen::Success) h = llt.solve(-g);
+    else h = Am.ldlt().solve(-g);
     if (!h.allFinite()) break;
     if (h.norm() <= xtol * (xv.norm() + xtol)) {
       converged = true;
