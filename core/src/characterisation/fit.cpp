@@ -356,14 +356,19 @@ double de2000_dL(double L1, double L2) {
 // else κ/116). The Jacobian rows of patch i follow from ∂XYZ_c/∂z(j,c) = B(i,j), since
 // XYZ_c = base(i,c) + B(i,:)·z(:,c): J(3i + m, c·Q + j) = G[i](m, c)·B(i, j) (normal_equations).
 // Non-finite values: residuals (1e6, 0, 0) as in de2000_cost, G[i] zero.
+// qs: the unweighted squares q_i at x; with qs_at_x they are read from it (an earlier call at the
+// same x wrote them: the trial point a linearisation follows), otherwise computed and written.
 void de2000_residuals(const Problem& pr, const De2000Data& d, const double* x, Eigen::VectorXd& r,
-                      std::vector<Mat3>* G) {
+                      std::vector<Mat3>* G, std::vector<Vec3>& qs, bool qs_at_x) {
   constexpr double h = 1e-6, eps = 216.0 / 24389.0, kappa = 24389.0 / 27.0;
+  qs.resize(static_cast<std::size_t>(pr.n));
   for (Eigen::Index i = 0; i < pr.n; ++i) {
     const Vec3 XYZ = predicted_XYZ(pr, x, i);
     const Vec3 Lab = XYZ_to_Lab(XYZ, d.white);
     const Vec3 ref = d.Lab_ref.row(i).transpose();
-    const Vec3 q = de2000_squares(ref, Lab);
+    Vec3& qi = qs[static_cast<std::size_t>(i)];
+    if (!qs_at_x) qi = de2000_squares(ref, Lab);
+    const Vec3 q = qi;
     const double sw = std::sqrt(d.w[i]);
     const bool finite = q.allFinite();
     r.segment<3>(3 * i) = finite ? Vec3(sw * q) : Vec3(sw * 1e6, 0, 0);
@@ -495,7 +500,8 @@ void damped_gauss_newton(Eigen::Map<Eigen::VectorXd>& xv, const Eigen::MatrixXd&
 // predicted decrease hᵀ(μh − g) = 2·(L(0) − L(h)), and a relative decrease of the RMS below
 // ftol_rel), started from least squares, unbounded (the box of the derivative-free path is only its
 // trust region). evaluations counts residual vectors (a linearisation counts 4: the residuals and
-// one difference per Lab axis).
+// one difference per Lab axis, as before the residuals at an accepted trial point were reused and
+// the L* difference made cheap, so the limit max_evaluations / 4 iterations keeps its meaning).
 void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOptions& options, std::vector<double>& x,
                          De2000Outcome& out) {
   const int nvar = static_cast<int>(x.size());
@@ -508,11 +514,14 @@ void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOption
   Eigen::Matrix<double, Eigen::Dynamic, 6> M(pr.n, 6);
   Eigen::Matrix<double, Eigen::Dynamic, 3> u(pr.n, 3);
   std::vector<double> acc;
+  std::vector<Vec3> qs;  // the squares at the last trial point, x_trial
+  Eigen::VectorXd x_trial;
+  bool trialled = false;
   Eigen::Map<Eigen::VectorXd> xv(x.data(), nvar);
   damped_gauss_newton(
       xv, A, g, max_iter, options.de2000.xtol_rel, out,
       [&] {
-        de2000_residuals(pr, d, x.data(), r, &G);
+        de2000_residuals(pr, d, x.data(), r, &G, qs, trialled && x_trial == xv);
         out.evaluations += 4;
         for (Eigen::Index i = 0; i < pr.n; ++i) {  // A = JᵀJ, g = Jᵀr
           const Mat3& Gi = G[static_cast<std::size_t>(i)];
@@ -524,7 +533,9 @@ void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOption
         return r.squaredNorm();
       },
       [&](const Eigen::VectorXd& x_new) {
-        de2000_residuals(pr, d, x_new.data(), r_new, nullptr);
+        de2000_residuals(pr, d, x_new.data(), r_new, nullptr, qs, false);
+        x_trial = x_new;
+        trialled = true;
         ++out.evaluations;
         return r_new.squaredNorm();
       },
@@ -562,6 +573,9 @@ void reweighted_lm(const Problem& pr, const De2000Data& d, const FitOptions& opt
   Eigen::Matrix<double, Eigen::Dynamic, 6> M(n, 6);
   Eigen::Matrix<double, Eigen::Dynamic, 3> u(n, 3);
   std::vector<double> acc;
+  std::vector<Vec3> qs;  // the squares at the last trial point, x_trial
+  Eigen::VectorXd x_trial;
+  bool trialled = false;
   Eigen::Map<Eigen::VectorXd> xv(x.data(), nvar);
   auto loss = [&](const Eigen::VectorXd& res) {  // Σ w_i ‖q_i‖ (not yet divided by Σ w)
     double s = 0;
@@ -569,7 +583,7 @@ void reweighted_lm(const Problem& pr, const De2000Data& d, const FitOptions& opt
     return s;
   };
   auto linearise = [&]() {
-    de2000_residuals(pr, du, x.data(), r, &G);
+    de2000_residuals(pr, du, x.data(), r, &G, qs, trialled && x_trial == xv);
     out.evaluations += 4;
     for (Eigen::Index i = 0; i < n; ++i) {  // A = Σ a_i J_iᵀ P_i J_i, g = Σ a_i J_iᵀ q_i
       const Vec3 q = r.segment<3>(3 * i);
@@ -588,7 +602,9 @@ void reweighted_lm(const Problem& pr, const De2000Data& d, const FitOptions& opt
   damped_gauss_newton(
       xv, A, g, max_iter, options.de2000.xtol_rel, out, linearise,
       [&](const Eigen::VectorXd& x_new) {
-        de2000_residuals(pr, du, x_new.data(), r_new, nullptr);
+        de2000_residuals(pr, du, x_new.data(), r_new, nullptr, qs, false);
+        x_trial = x_new;
+        trialled = true;
         ++out.evaluations;
         return loss(r_new);
       },
