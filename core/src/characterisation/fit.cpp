@@ -340,26 +340,44 @@ Vec3 de2000_squares(const Vec3& Lab_ref, const Vec3& Lab) {
   return Vec3(e.dL, e.dC + rho * e.dH, std::sqrt(std::max(0.0, 1.0 - rho * rho)) * e.dH);
 }
 
-// Residuals of patch i at x (channel-major z), weighted by sqrt(w_i): rows 3i..3i+2 of r. With J,
-// also their Jacobian rows: ∂/∂Lab by forward differences of de2000_squares (step 1e-6 in Lab
-// units, where ΔE ~ 1: truncation and rounding errors both ~1e-6 relative), chained through the
+// The first of de2000_squares, dL = ΔL'/S_L (Sharma et al. eqs (8), (12), (18)), as
+// delta_E_CIE2000_components computes it.
+double de2000_dL(double L1, double L2) {
+  const double Lbarp = 0.5 * (L1 + L2);
+  const double Lm50 = (Lbarp - 50.0) * (Lbarp - 50.0);
+  const double SL = 1.0 + 0.015 * Lm50 / std::sqrt(20.0 + Lm50);
+  return (L2 - L1) / (1.0 * SL);
+}
+
+// Residuals of patch i at x (channel-major z), weighted by sqrt(w_i): rows 3i..3i+2 of r. With G,
+// also G[i] = ∂r_i/∂XYZ_i (3 × 3): ∂/∂Lab by forward differences of de2000_squares (step 1e-6 in
+// Lab units, where ΔE ~ 1: truncation and rounding errors both ~1e-6 relative), chained through the
 // analytic ∂Lab/∂XYZ of CIE 15:2004 eqs (8.1)-(8.3) (f = t^(1/3), f' = f/(3t) above ε = (6/29)³,
-// else κ/116) and ∂XYZ_c/∂z(j,c) = B(i,j), since XYZ_c = base(i,c) + B(i,:)·z(:,c).
-// Non-finite values: residuals (1e6, 0, 0) as in de2000_cost, zero Jacobian rows.
+// else κ/116). The Jacobian rows of patch i follow from ∂XYZ_c/∂z(j,c) = B(i,j), since
+// XYZ_c = base(i,c) + B(i,:)·z(:,c): J(3i + m, c·Q + j) = G[i](m, c)·B(i, j) (normal_equations).
+// Non-finite values: residuals (1e6, 0, 0) as in de2000_cost, G[i] zero.
+// qs: the unweighted squares q_i at x; with qs_at_x they are read from it (an earlier call at the
+// same x wrote them: the trial point a linearisation follows), otherwise computed and written.
 void de2000_residuals(const Problem& pr, const De2000Data& d, const double* x, Eigen::VectorXd& r,
-                      Eigen::MatrixXd* J) {
+                      std::vector<Mat3>* G, std::vector<Vec3>& qs, bool qs_at_x) {
   constexpr double h = 1e-6, eps = 216.0 / 24389.0, kappa = 24389.0 / 27.0;
+  qs.resize(static_cast<std::size_t>(pr.n));
   for (Eigen::Index i = 0; i < pr.n; ++i) {
     const Vec3 XYZ = predicted_XYZ(pr, x, i);
     const Vec3 Lab = XYZ_to_Lab(XYZ, d.white);
     const Vec3 ref = d.Lab_ref.row(i).transpose();
-    const Vec3 q = de2000_squares(ref, Lab);
+    Vec3& qi = qs[static_cast<std::size_t>(i)];
+    if (!qs_at_x) qi = de2000_squares(ref, Lab);
+    const Vec3 q = qi;
     const double sw = std::sqrt(d.w[i]);
     const bool finite = q.allFinite();
     r.segment<3>(3 * i) = finite ? Vec3(sw * q) : Vec3(sw * 1e6, 0, 0);
-    if (!J) continue;
+    if (!G) continue;
     Mat3 dq_dLab;  // column k: ∂q/∂Lab_k
-    for (int k = 0; k < 3; ++k) {
+    // L* enters eqs (8), (12) and (18) only: moving it changes dL = ΔL'/S_L and leaves dC, dH and
+    // R_T as they were, so column 0 is the difference of dL alone (the other two are exactly 0).
+    dq_dLab.col(0) = Vec3((de2000_dL(ref[0], Lab[0] + h) - q[0]) / h, 0, 0);
+    for (int k = 1; k < 3; ++k) {
       Vec3 Lab_h = Lab;
       Lab_h[k] += h;
       dq_dLab.col(k) = (de2000_squares(ref, Lab_h) - q) / h;
@@ -371,12 +389,55 @@ void de2000_residuals(const Problem& pr, const De2000Data& d, const double* x, E
     }
     Mat3 dLab_dXYZ;  // L = 116 fy - 16, a = 500 (fx - fy), b = 200 (fy - fz)
     dLab_dXYZ << 0, 116.0 * fp[1], 0, 500.0 * fp[0], -500.0 * fp[1], 0, 0, 200.0 * fp[1], -200.0 * fp[2];
-    Mat3 G = sw * dq_dLab * dLab_dXYZ;  // G(m, c) = ∂r_m/∂XYZ_c
-    if (!finite || !G.allFinite()) G.setZero();
-    for (int m = 0; m < 3; ++m)
-      for (int c = 0; c < 3; ++c)
-        for (int j = 0; j < pr.q; ++j) (*J)(3 * i + m, c * pr.q + j) = G(m, c) * pr.B(i, j);
+    Mat3& Gi = (*G)[static_cast<std::size_t>(i)];
+    Gi = sw * dq_dLab * dLab_dXYZ;  // G(m, c) = ∂r_m/∂XYZ_c
+    if (!finite || !Gi.allFinite()) Gi.setZero();
   }
+}
+
+// The normal equations A = Σ_i J_iᵀ W_i J_i and g = Σ_i J_iᵀ v_i for Jacobian rows with the structure
+// of de2000_residuals, J_i(m, c·Q + j) = G_i(m, c)·B(i, j), from M_i = G_iᵀ W_i G_i (3 × 3, symmetric)
+// and u_i = G_iᵀ v_i (3): A(c·Q + j, c'·Q + j') = Σ_i M_i(c, c')·B(i, j)·B(i, j') and
+// g(c·Q + j) = Σ_i u_i(c)·B(i, j). The same sums as the dense products Jᵀ(WJ) and Jᵀv, in
+// 6·N·Q² multiply-adds instead of 2·3N·(3Q)² (natively, the dense J and its GEMM were 40 % of the
+// mean-ΔE00 fits' time; in wasm Eigen's GEMM is scalar code).
+// M: N × 6 (columns (0,0), (0,1), (0,2), (1,1), (1,2), (2,2)), u: N × 3. acc: scratch.
+void normal_equations(const Problem& pr, const Eigen::Matrix<double, Eigen::Dynamic, 6>& M,
+                      const Eigen::Matrix<double, Eigen::Dynamic, 3>& u, std::vector<double>& acc,
+                      Eigen::MatrixXd& A, Eigen::VectorXd& g) {
+  const int q = pr.q;
+  const std::size_t qq = static_cast<std::size_t>(q) * static_cast<std::size_t>(q);
+  acc.assign(6 * qq, 0.0);
+  for (Eigen::Index i = 0; i < pr.n; ++i) {
+    double m[6];
+    for (int p = 0; p < 6; ++p) m[p] = M(i, p);
+    for (int j = 0; j < q; ++j) {
+      const double bij = pr.B(i, j);
+      double* row = acc.data() + 6 * static_cast<std::size_t>(j) * static_cast<std::size_t>(q);
+      for (int k = 0; k <= j; ++k) {  // lower triangle of each block: B(i,j)·B(i,k) is symmetric in j, k
+        const double bb = bij * pr.B(i, k);
+        for (int p = 0; p < 6; ++p) row[6 * k + p] += m[p] * bb;
+      }
+    }
+  }
+  static const int pc[6] = {0, 0, 0, 1, 1, 2}, pd[6] = {0, 1, 2, 1, 2, 2};
+  for (int p = 0; p < 6; ++p) {
+    const int c = pc[p], e = pd[p];
+    for (int j = 0; j < q; ++j)
+      for (int k = 0; k <= j; ++k) {
+        const double v = acc[6 * (static_cast<std::size_t>(j) * static_cast<std::size_t>(q) + static_cast<std::size_t>(k)) + static_cast<std::size_t>(p)];
+        A(c * q + j, e * q + k) = v;
+        A(e * q + k, c * q + j) = v;
+        A(c * q + k, e * q + j) = v;
+        A(e * q + j, c * q + k) = v;
+      }
+  }
+  for (int c = 0; c < 3; ++c)
+    for (int j = 0; j < q; ++j) {
+      double s = 0;
+      for (Eigen::Index i = 0; i < pr.n; ++i) s += u(i, c) * pr.B(i, j);
+      g[c * q + j] = s;
+    }
 }
 
 // The damped Gauss–Newton iteration both CIEDE2000 paths share: steps (A + μI) h = −g from the
@@ -394,6 +455,7 @@ void damped_gauss_newton(Eigen::Map<Eigen::VectorXd>& xv, const Eigen::MatrixXd&
   const Eigen::Index nvar = xv.size();
   Eigen::VectorXd h(nvar), x_new(nvar);
   Eigen::MatrixXd Am(nvar, nvar);
+  Eigen::LLT<Eigen::MatrixXd> llt(nvar);
   double F = linearise();
   double mu = 1e-3 * A.diagonal().maxCoeff(), nu = 2.0;
   int k = 0;
@@ -402,7 +464,11 @@ void damped_gauss_newton(Eigen::Map<Eigen::VectorXd>& xv, const Eigen::MatrixXd&
     ++k;
     Am = A;
     Am.diagonal().array() += mu;
-    h = Am.ldlt().solve(-g);
+    // A + μI is positive definite (A is a sum of J_iᵀ·(positive semi-definite)·J_i, μ > 0): Cholesky,
+    // which needs no pivot search; LDLT only if rounding made it fail.
+    llt.compute(Am);
+    if (llt.info() == Eigen::Success) h = llt.solve(-g);
+    else h = Am.ldlt().solve(-g);
     if (!h.allFinite()) break;
     if (h.norm() <= xtol * (xv.norm() + xtol)) {
       converged = true;
@@ -434,7 +500,8 @@ void damped_gauss_newton(Eigen::Map<Eigen::VectorXd>& xv, const Eigen::MatrixXd&
 // predicted decrease hᵀ(μh − g) = 2·(L(0) − L(h)), and a relative decrease of the RMS below
 // ftol_rel), started from least squares, unbounded (the box of the derivative-free path is only its
 // trust region). evaluations counts residual vectors (a linearisation counts 4: the residuals and
-// one difference per Lab axis).
+// one difference per Lab axis, as before the residuals at an accepted trial point were reused and
+// the L* difference made cheap, so the limit max_evaluations / 4 iterations keeps its meaning).
 void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOptions& options, std::vector<double>& x,
                          De2000Outcome& out) {
   const int nvar = static_cast<int>(x.size());
@@ -442,19 +509,33 @@ void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOption
   const int max_iter = options.de2000.max_evaluations > 0 ? std::max(1, options.de2000.max_evaluations / 4) : 100;
   const double ftol = options.de2000.ftol_rel;
   Eigen::VectorXd r(m), r_new(m), g(nvar);
-  Eigen::MatrixXd J(m, nvar), A(nvar, nvar);
+  Eigen::MatrixXd A(nvar, nvar);
+  std::vector<Mat3> G(static_cast<std::size_t>(pr.n));
+  Eigen::Matrix<double, Eigen::Dynamic, 6> M(pr.n, 6);
+  Eigen::Matrix<double, Eigen::Dynamic, 3> u(pr.n, 3);
+  std::vector<double> acc;
+  std::vector<Vec3> qs;  // the squares at the last trial point, x_trial
+  Eigen::VectorXd x_trial;
+  bool trialled = false;
   Eigen::Map<Eigen::VectorXd> xv(x.data(), nvar);
   damped_gauss_newton(
       xv, A, g, max_iter, options.de2000.xtol_rel, out,
       [&] {
-        de2000_residuals(pr, d, x.data(), r, &J);
+        de2000_residuals(pr, d, x.data(), r, &G, qs, trialled && x_trial == xv);
         out.evaluations += 4;
-        A.noalias() = J.transpose() * J;
-        g.noalias() = J.transpose() * r;
+        for (Eigen::Index i = 0; i < pr.n; ++i) {  // A = JᵀJ, g = Jᵀr
+          const Mat3& Gi = G[static_cast<std::size_t>(i)];
+          const Mat3 Mi = Gi.transpose() * Gi;
+          M.row(i) << Mi(0, 0), Mi(0, 1), Mi(0, 2), Mi(1, 1), Mi(1, 2), Mi(2, 2);
+          u.row(i) = (Gi.transpose() * Vec3(r.segment<3>(3 * i))).transpose();
+        }
+        normal_equations(pr, M, u, acc, A, g);
         return r.squaredNorm();
       },
       [&](const Eigen::VectorXd& x_new) {
-        de2000_residuals(pr, d, x_new.data(), r_new, nullptr);
+        de2000_residuals(pr, d, x_new.data(), r_new, nullptr, qs, false);
+        x_trial = x_new;
+        trialled = true;
         ++out.evaluations;
         return r_new.squaredNorm();
       },
@@ -486,8 +567,15 @@ void reweighted_lm(const Problem& pr, const De2000Data& d, const FitOptions& opt
   constexpr double delta = 1e-9;
   De2000Data du = d;  // unweighted residuals: q_i itself
   du.w.assign(n, 1.0);
-  Eigen::VectorXd r(m), r_new(m), g(nvar), a(n);
-  Eigen::MatrixXd J(m, nvar), A(nvar, nvar), WJ(m, nvar), WG(m, nvar);
+  Eigen::VectorXd r(m), r_new(m), g(nvar);
+  Eigen::MatrixXd A(nvar, nvar);
+  std::vector<Mat3> G(static_cast<std::size_t>(n));
+  Eigen::Matrix<double, Eigen::Dynamic, 6> M(n, 6);
+  Eigen::Matrix<double, Eigen::Dynamic, 3> u(n, 3);
+  std::vector<double> acc;
+  std::vector<Vec3> qs;  // the squares at the last trial point, x_trial
+  Eigen::VectorXd x_trial;
+  bool trialled = false;
   Eigen::Map<Eigen::VectorXd> xv(x.data(), nvar);
   auto loss = [&](const Eigen::VectorXd& res) {  // Σ w_i ‖q_i‖ (not yet divided by Σ w)
     double s = 0;
@@ -495,25 +583,28 @@ void reweighted_lm(const Problem& pr, const De2000Data& d, const FitOptions& opt
     return s;
   };
   auto linearise = [&]() {
-    de2000_residuals(pr, du, x.data(), r, &J);
+    de2000_residuals(pr, du, x.data(), r, &G, qs, trialled && x_trial == xv);
     out.evaluations += 4;
-    for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index i = 0; i < n; ++i) {  // A = Σ a_i J_iᵀ P_i J_i, g = Σ a_i J_iᵀ q_i
       const Vec3 q = r.segment<3>(3 * i);
       const double e = std::max(q.norm(), delta);
-      a[i] = d.w[i] / e;
-      const Vec3 u = q / e;
-      const Mat3 P = Mat3::Identity() - 0.5 * u * u.transpose();
-      WJ.middleRows<3>(3 * i) = a[i] * P * J.middleRows<3>(3 * i);
-      WG.middleRows<3>(3 * i) = a[i] * J.middleRows<3>(3 * i);
+      const double a = d.w[i] / e;
+      const Vec3 ui = q / e;
+      const Mat3 P = Mat3::Identity() - 0.5 * ui * ui.transpose();
+      const Mat3& Gi = G[static_cast<std::size_t>(i)];
+      const Mat3 Mi = a * (Gi.transpose() * (P * Gi));
+      M.row(i) << Mi(0, 0), Mi(0, 1), Mi(0, 2), Mi(1, 1), Mi(1, 2), Mi(2, 2);
+      u.row(i) = (a * (Gi.transpose() * q)).transpose();
     }
-    A.noalias() = J.transpose() * WJ;
-    g.noalias() = WG.transpose() * r;
+    normal_equations(pr, M, u, acc, A, g);
     return loss(r);
   };
   damped_gauss_newton(
       xv, A, g, max_iter, options.de2000.xtol_rel, out, linearise,
       [&](const Eigen::VectorXd& x_new) {
-        de2000_residuals(pr, du, x_new.data(), r_new, nullptr);
+        de2000_residuals(pr, du, x_new.data(), r_new, nullptr, qs, false);
+        x_trial = x_new;
+        trialled = true;
         ++out.evaluations;
         return loss(r_new);
       },

@@ -109,8 +109,16 @@ DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double
     else if (h1p + h2p < 360.0) hbarp = 0.5 * (h1p + h2p + 360.0);
     else hbarp = 0.5 * (h1p + h2p - 360.0);
   }
-  const double T = 1.0 - 0.17 * std::cos(rad(hbarp - 30.0)) + 0.24 * std::cos(rad(2.0 * hbarp)) +
-                   0.32 * std::cos(rad(3.0 * hbarp + 6.0)) - 0.20 * std::cos(rad(4.0 * hbarp - 63.0));  // eq (15)
+  // eq (15), T = 1 − 0.17 cos(h̄' − 30°) + 0.24 cos(2h̄') + 0.32 cos(3h̄' + 6°) − 0.20 cos(4h̄' − 63°), its
+  // multiple angles from cos h̄' and sin h̄' (one cosine and one sine instead of four cosines).
+  const double ch = std::cos(rad(hbarp)), sh = std::sin(rad(hbarp));
+  const double c2 = 2.0 * ch * ch - 1.0, s2 = 2.0 * sh * ch;
+  const double c3 = ch * (4.0 * ch * ch - 3.0), s3 = sh * (3.0 - 4.0 * sh * sh);
+  const double c4 = 2.0 * c2 * c2 - 1.0, s4 = 2.0 * s2 * c2;
+  static const double cos30 = std::cos(rad(30.0)), sin30 = std::sin(rad(30.0)), cos6 = std::cos(rad(6.0)),
+                      sin6 = std::sin(rad(6.0)), cos63 = std::cos(rad(63.0)), sin63 = std::sin(rad(63.0));
+  const double T = 1.0 - 0.17 * (ch * cos30 + sh * sin30) + 0.24 * c2 + 0.32 * (c3 * cos6 - s3 * sin6) -
+                   0.20 * (c4 * cos63 + s4 * sin63);
   const double t = (hbarp - 275.0) / 25.0;
   const double dtheta = 30.0 * std::exp(-t * t);                           // eq (16)
   const double Cbarp7 = pow7(Cbarp);
