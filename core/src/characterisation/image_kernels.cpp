@@ -5,9 +5,10 @@
 // association for the tails, a generic double path for the rest. Without FMA the kernels and the
 // scalar loops give bit-identical results (native SSE2 and wasm alike); the FMA paths differ by
 // FMA rounding (tests/core/characterisation/models_test.cpp).
-// Plain stores, not streaming ones: on the 2-core VM the project is measured on, 16-byte
+// Plain stores, except the AVX-512 kernel's on large outputs: on session 10's AMD VM 16-byte
 // non-temporal stores made the 24 MP apply slower (3×3 at 63 % of memcpy speed with them, 93 %
-// without; root-polynomial AVX2 47 % vs 65 %).
+// without; root-polynomial AVX2 47 % vs 65 %); on session 13's Intel VM the AVX-512 kernel's
+// whole-line (64-byte, aligned) non-temporal stores are faster than its plain ones.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -135,8 +136,28 @@ __attribute__((target("avx512f"))) inline __m512 signed_sqrt16(__m512 p) {
   const __m512 r = _mm512_maskz_sqrt_ps(static_cast<__mmask16>(0xffff), _mm512_castsi512_ps(magnitude));
   return _mm512_castsi512_ps(_mm512_or_si512(_mm512_castps_si512(r), _mm512_and_si512(sign, bits)));
 }
-__attribute__((target("avx512f"))) size_t avx512_root2(const float* __restrict in, size_t n,
-                                                        float* __restrict out, const float (&a)[3][6]) {
+// Outputs at least this large are written with non-temporal stores by the AVX-512 kernel.
+constexpr size_t kStreamBytes = size_t(32) << 20;
+// The FMA kernels' formula for one pixel at a time (the same operations lane for lane).
+void scalar_root2_fma(const float* in, size_t n, float* out, const float (&a)[3][6]) {
+  for (size_t i = 0; i < n; ++i) {
+    const float R = in[3 * i], G = in[3 * i + 1], B = in[3 * i + 2];
+    const float P = signed_sqrt1(R * G), Q = signed_sqrt1(R * B), S = signed_sqrt1(G * B);
+    for (int c = 0; c < 3; ++c) {
+      float t = a[c][0] * R;
+      t = std::fma(a[c][1], G, t);
+      t = std::fma(a[c][2], B, t);
+      t = std::fma(a[c][3], P, t);
+      t = std::fma(a[c][4], Q, t);
+      out[3 * i + c] = std::fma(a[c][5], S, t);
+    }
+  }
+}
+// Pixels [i0, i1) of the 16-pixel loop (i1 - i0 a multiple of 16); with kStream, non-temporal
+// stores, which need out + 3 * i0 64-byte aligned (16 pixels = 192 bytes keep it so).
+template <bool kStream>
+__attribute__((target("avx512f"))) void avx512_root2_steps(const float* __restrict in, size_t i0, size_t i1,
+                                                           float* __restrict out, const float (&a)[3][6]) {
   __m512 k[3][6];
   for (int c = 0; c < 3; ++c)
     for (int j = 0; j < 6; ++j) k[c][j] = _mm512_set1_ps(a[c][j]);
@@ -155,8 +176,7 @@ __attribute__((target("avx512f"))) size_t avx512_root2(const float* __restrict i
   const __m512i z[3] = {_mm512_setr_epi32(0, 1, 16, 3, 4, 17, 6, 7, 18, 9, 10, 19, 12, 13, 20, 15),
                         _mm512_setr_epi32(0, 21, 2, 3, 22, 5, 6, 23, 8, 9, 24, 11, 12, 25, 14, 15),
                         _mm512_setr_epi32(26, 1, 2, 27, 4, 5, 28, 7, 8, 29, 10, 11, 30, 13, 14, 31)};
-  const size_t m = n & ~size_t(15);
-  for (size_t i = 0; i < m; i += 16) {
+  for (size_t i = i0; i < i1; i += 16) {
     const float* p = in + 3 * i;
     const __m512 u = _mm512_loadu_ps(p), v = _mm512_loadu_ps(p + 16), w = _mm512_loadu_ps(p + 32);
     const __m512 R = _mm512_permutex2var_ps(_mm512_permutex2var_ps(u, r1, v), r2, w);
@@ -174,9 +194,34 @@ __attribute__((target("avx512f"))) size_t avx512_root2(const float* __restrict i
       o[c] = _mm512_fmadd_ps(k[c][5], S, t);
     }
     float* d = out + 3 * i;
-    for (int q = 0; q < 3; ++q)
-      _mm512_storeu_ps(d + 16 * q, _mm512_permutex2var_ps(_mm512_permutex2var_ps(o[0], xy[q], o[1]), z[q], o[2]));
+    for (int q = 0; q < 3; ++q) {
+      const __m512 v3 = _mm512_permutex2var_ps(_mm512_permutex2var_ps(o[0], xy[q], o[1]), z[q], o[2]);
+      if constexpr (kStream) _mm512_stream_ps(d + 16 * q, v3);
+      else _mm512_storeu_ps(d + 16 * q, v3);
+    }
   }
+  if constexpr (kStream) _mm_sfence();  // the streamed lines are ordered before later stores
+}
+// Returns how many leading pixels it wrote: n rounded down to 16, or, for a large output, to 8
+// (where the AVX2 kernel alone would stop). A large output (≥ kStreamBytes, past any cache) goes
+// out with 64-byte non-temporal stores — whole cache lines written without being read first, as
+// glibc's memcpy writes at this size; the pixels before the first 64-byte aligned output and
+// after the last 16-pixel step take the same fused formula one at a time (identical floats).
+__attribute__((target("avx512f"))) size_t avx512_root2(const float* __restrict in, size_t n,
+                                                        float* __restrict out, const float (&a)[3][6]) {
+  if (n * 3 * sizeof(float) >= kStreamBytes) {
+    size_t start = 0;
+    while (start < 16 && (reinterpret_cast<std::uintptr_t>(out + 3 * start) & 63) != 0) ++start;
+    if (start < 16) {  // always, for float storage
+      const size_t n8 = n & ~size_t(7), end = start + ((n8 - start) & ~size_t(15));
+      scalar_root2_fma(in, start, out, a);
+      avx512_root2_steps<true>(in, start, end, out, a);
+      scalar_root2_fma(in + 3 * end, n8 - end, out + 3 * end, a);
+      return n8;
+    }
+  }
+  const size_t m = n & ~size_t(15);
+  avx512_root2_steps<false>(in, 0, m, out, a);
   return m;
 }
 
