@@ -21,7 +21,7 @@ namespace {
 struct TiffSource {
   const std::uint8_t* data = nullptr;
   std::uint64_t size = 0, pos = 0;
-  std::string error;
+  std::string error, last_error;  // libtiff's first message and its latest (on_error)
 };
 
 tmsize_t read_proc(thandle_t h, void* buf, tmsize_t n) {
@@ -51,12 +51,12 @@ int map_proc(thandle_t h, void** base, toff_t* size) {
 void unmap_proc(thandle_t, void*, toff_t) {}
 
 int on_error(TIFF*, void* user, const char* module, const char* fmt, va_list ap) {
+  // libtiff reports some problems and reads on (an unknown tag it cannot read), so the first
+  // message need not be why an operation failed: the first and the latest are kept.
   auto* s = static_cast<TiffSource*>(user);
-  if (s->error.empty()) {
-    char buf[512];
-    std::vsnprintf(buf, sizeof buf, fmt, ap);
-    s->error = std::string(module ? module : "libtiff") + ": " + buf;
-  }
+  char buf[512];
+  std::vsnprintf(buf, sizeof buf, fmt, ap);
+  (s->error.empty() ? s->error : s->last_error) = std::string(module ? module : "libtiff") + ": " + buf;
   return 1;  // handled: nothing reaches stderr
 }
 int on_warning(TIFF*, void*, const char*, const char*, va_list) { return 1; }  // silenced
@@ -70,7 +70,7 @@ struct OptionsFree {
 
 [[noreturn]] void corrupt(const TiffSource& src, const std::string& what) {
   throw Error(ErrorCode::ImageCorrupt,
-              "the TIFF is truncated or corrupt: " + what + (src.error.empty() ? "" : " (" + src.error + ")"));
+              "the TIFF is truncated or corrupt: " + what + (src.error.empty() ? "" : " (" + src.error + (src.last_error.empty() ? "" : "; then " + src.last_error) + ")"));
 }
 [[noreturn]] void unsupported(const std::string& what) {
   throw Error(ErrorCode::ImageUnsupported, "this TIFF variant is not read: " + what);
