@@ -29,11 +29,19 @@ PatchMatrix reference_XYZ_of(const LinearisationData& data, Vec3& white, const s
     throw Error(ErrorCode::MissingColumn, who + " needs the patches' reference XYZ or reflectances");
   const SpectralData d65 = illuminant_spd("D65");
   white = illuminant_white_XYZ(d65);
-  PatchMatrix xyz(data.camera_RGB.rows(), 3);
-  for (Eigen::Index i = 0; i < xyz.rows(); ++i) {
+  // The rows' spectra in row order, integrated with one set of weights (D65 on the CMF grid)
+  // instead of one per row (the same values: sd_to_XYZ is this for one spectrum).
+  SpectralData rows;
+  rows.wavelengths = data.reflectances.wavelengths;
+  rows.linear = data.reflectances.linear;
+  for (Eigen::Index i = 0; i < data.camera_RGB.rows(); ++i) {
     const std::string id = data.ids.empty() ? std::to_string(i + 1) : data.ids[i];
-    xyz.row(i) = sd_to_XYZ(data.reflectances.wavelengths, data.reflectances.column(id), d65).transpose();
+    rows.values.push_back(data.reflectances.column(id));
+    rows.names.push_back(id);
   }
+  const std::vector<Vec3> XYZ = reflectances_to_XYZ(rows, d65);
+  PatchMatrix xyz(data.camera_RGB.rows(), 3);
+  for (Eigen::Index i = 0; i < xyz.rows(); ++i) xyz.row(i) = XYZ[static_cast<size_t>(i)].transpose();
   return xyz;
 }
 
