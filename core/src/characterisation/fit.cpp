@@ -340,15 +340,6 @@ Vec3 de2000_squares(const Vec3& Lab_ref, const Vec3& Lab) {
   return Vec3(e.dL, e.dC + rho * e.dH, std::sqrt(std::max(0.0, 1.0 - rho * rho)) * e.dH);
 }
 
-// The first of de2000_squares, dL = ΔL'/S_L (Sharma et al. eqs (8), (12), (18)), as
-// delta_E_CIE2000_components computes it.
-double de2000_dL(double L1, double L2) {
-  const double Lbarp = 0.5 * (L1 + L2);
-  const double Lm50 = (Lbarp - 50.0) * (Lbarp - 50.0);
-  const double SL = 1.0 + 0.015 * Lm50 / std::sqrt(20.0 + Lm50);
-  return (L2 - L1) / (1.0 * SL);
-}
-
 // Residuals of patch i at x (channel-major z), weighted by sqrt(w_i): rows 3i..3i+2 of r. With G,
 // also G[i] = ∂r_i/∂XYZ_i (3 × 3): ∂/∂Lab by forward differences of de2000_squares (step 1e-6 in
 // Lab units, where ΔE ~ 1: truncation and rounding errors both ~1e-6 relative), chained through the
@@ -376,7 +367,7 @@ void de2000_residuals(const Problem& pr, const De2000Data& d, const double* x, E
     Mat3 dq_dLab;  // column k: ∂q/∂Lab_k
     // L* enters eqs (8), (12) and (18) only: moving it changes dL = ΔL'/S_L and leaves dC, dH and
     // R_T as they were, so column 0 is the difference of dL alone (the other two are exactly 0).
-    dq_dLab.col(0) = Vec3((de2000_dL(ref[0], Lab[0] + h) - q[0]) / h, 0, 0);
+    dq_dLab.col(0) = Vec3((delta_E_CIE2000_dL(ref[0], Lab[0] + h) - q[0]) / h, 0, 0);
     for (int k = 1; k < 3; ++k) {
       Vec3 Lab_h = Lab;
       Lab_h[k] += h;

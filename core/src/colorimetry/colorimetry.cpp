@@ -76,6 +76,14 @@ double delta_E_CIE1994(const Vec3& Lab1, const Vec3& Lab2, bool textiles) {
   return std::sqrt(tL * tL + tC * tC + dH2 / (SH * SH));
 }
 
+double delta_E_CIE2000_dL(double L1, double L2, double kL) {
+  const double dLp = L2 - L1;                                              // eq (8)
+  const double Lbarp = 0.5 * (L1 + L2);                                    // eq (12)
+  const double Lm50 = (Lbarp - 50.0) * (Lbarp - 50.0);
+  const double SL = 1.0 + 0.015 * Lm50 / std::sqrt(20.0 + Lm50);          // eq (18)
+  return dLp / (kL * SL);
+}
+
 DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double kL, double kC, double kH) {
   // Sharma, Wu & Dalal (2005), "The CIEDE2000 color-difference formula", eqs (1)-(22).
   const double L1 = Lab1[0], a1 = Lab1[1], b1 = Lab1[2];
@@ -92,7 +100,6 @@ DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double
     return h < 0 ? h + 360.0 : h;
   };
   const double h1p = hue(b1, a1p), h2p = hue(b2, a2p);
-  const double dLp = L2 - L1;                                              // eq (8)
   const double dCp = C2p - C1p;                                            // eq (9)
   double dhp = 0.0;                                                        // eq (10)
   if (C1p * C2p != 0.0) {
@@ -101,7 +108,6 @@ DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double
     else if (dhp < -180.0) dhp += 360.0;
   }
   const double dHp = 2.0 * std::sqrt(C1p * C2p) * std::sin(rad(dhp / 2.0));  // eq (11)
-  const double Lbarp = 0.5 * (L1 + L2);                                    // eq (12)
   const double Cbarp = 0.5 * (C1p + C2p);                                  // eq (13)
   double hbarp = h1p + h2p;                                                // eq (14)
   if (C1p * C2p != 0.0) {
@@ -123,13 +129,11 @@ DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double
   const double dtheta = 30.0 * std::exp(-t * t);                           // eq (16)
   const double Cbarp7 = pow7(Cbarp);
   const double RC = 2.0 * std::sqrt(Cbarp7 / (Cbarp7 + k25pow7));          // eq (17)
-  const double Lm50 = (Lbarp - 50.0) * (Lbarp - 50.0);
-  const double SL = 1.0 + 0.015 * Lm50 / std::sqrt(20.0 + Lm50);          // eq (18)
   const double SC = 1.0 + 0.045 * Cbarp;                                   // eq (19)
   const double SH = 1.0 + 0.015 * Cbarp * T;                               // eq (20)
   const double RT = -std::sin(rad(2.0 * dtheta)) * RC;                     // eq (21)
   DeltaE2000 r;
-  r.dL = dLp / (kL * SL);
+  r.dL = delta_E_CIE2000_dL(L1, L2, kL);
   r.dC = dCp / (kC * SC);
   r.dH = dHp / (kH * SH);
   r.RT = RT;

@@ -51,6 +51,8 @@ struct DeltaE2000 {
 DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double kL = 1, double kC = 1,
                                       double kH = 1);
 double delta_E_CIE2000(const Vec3& Lab1, const Vec3& Lab2, double kL = 1, double kC = 1, double kH = 1);
+/// The components' dL = ΔL'/(kL·SL) alone (eqs 8, 12, 18): it depends on L1 and L2 only.
+double delta_E_CIE2000_dL(double L1, double L2, double kL = 1);
 
 /// Chromatic adaptation transforms (von Kries-type, full adaptation).
 enum class ChromaticAdaptation { Bradford, CAT02, VonKries };
