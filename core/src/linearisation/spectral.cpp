@@ -77,14 +77,22 @@ SpectralEvaluation evaluate_spectral(const SpectralModel& model, const std::vect
   const Vec3 white = illuminant_white_XYZ(illuminant, observer);
   SpectralEvaluation e;
   e.ids = ids;
+  // Measured and estimated spectra on the model's grid, each set integrated with one set of
+  // weights (the same values as sd_to_XYZ per spectrum, which recomputed them every time).
+  SpectralData meas, estd;
+  meas.wavelengths = estd.wavelengths = model.wavelengths;
   for (size_t q = 0; q < ids.size(); ++q) {
-    const std::vector<double> r =
-        interpolate_spectrum(measured.wavelengths, measured.column(ids[q]), model.wavelengths, measured.linear);
-    e.rms.push_back(spectral_rms(r, est.values[q]));
-    const Vec3 a = sd_to_XYZ(model.wavelengths, r, illuminant, observer);
-    const Vec3 b = sd_to_XYZ(model.wavelengths, est.values[q], illuminant, observer);
-    e.dE00.push_back(delta_E_CIE2000(XYZ_to_Lab(a, white), XYZ_to_Lab(b, white)));
+    meas.values.push_back(
+        interpolate_spectrum(measured.wavelengths, measured.column(ids[q]), model.wavelengths, measured.linear));
+    estd.values.push_back(est.values[q]);
+    meas.names.push_back(ids[q]);
+    estd.names.push_back(ids[q]);
+    e.rms.push_back(spectral_rms(meas.values.back(), est.values[q]));
   }
+  const std::vector<Vec3> a = reflectances_to_XYZ(meas, illuminant, observer);
+  const std::vector<Vec3> b = reflectances_to_XYZ(estd, illuminant, observer);
+  for (size_t q = 0; q < ids.size(); ++q)
+    e.dE00.push_back(delta_E_CIE2000(XYZ_to_Lab(a[q], white), XYZ_to_Lab(b[q], white)));
   e.rms_summary = summarize(e.rms);
   e.dE00_summary = summarize(e.dE00);
   return e;
