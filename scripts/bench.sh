@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
 # Runs every benchmark (tests/bench/bench_*.cpp) natively and in wasm under node, in one run, and
 # prints both times side by side with their ratio and the peak memory (native RSS, wasm heap).
+# wasm runs twice: as node (and Chromium) run it, baseline code (Liftoff) first and optimised code
+# (TurboFan) once a function is hot ("wasm ms"), and with `node --no-liftoff`, optimised code only
+# ("opt ms": the code quality, i.e. the steady state of a page in use; its first-call rows leave
+# out the compile, which happens at instantiation).
 # Builds only the benchmark targets (assumes build/native and build/wasm were configured, e.g.
 # by scripts/build.sh). Figures are printed, never asserted. Optional: dcraw_emu (Debian package
 # libraw-bin) timings on the real RAW files, for scale.
@@ -31,26 +35,30 @@ for n in $names; do
   echo "=== $n ==="
   TRISTIM_SHARED_DATA="$shared" "$native" >"$tmp/native.txt" 2>&1 || echo "[bench] $n native exited $?"
   TRISTIM_SHARED_DATA="$shared" node "$wasm" >"$tmp/wasm.txt" 2>&1 || echo "[bench] $n wasm exited $?"
+  TRISTIM_SHARED_DATA="$shared" node --no-liftoff "$wasm" >"$tmp/opt.txt" 2>&1 || echo "[bench] $n wasm --no-liftoff exited $?"
   if grep -q '^BENCH ' "$tmp/native.txt"; then
     grep '^CASE ' "$tmp/native.txt" | sed 's/^CASE /  /'
     # Join "BENCH case step ms" lines of both runs; "PEAK case MiB" lines give memory.
     awk '
+      function ratio(a, b) { return (a > 0 && b != "") ? sprintf("%.2f", b / a) : "-" }
       FNR == 1 { file++ }
-      $1 == "BENCH" { key = $2 " " $3; if (file == 1) nat[key] = $4; else was[key] = $4; if (!(key in seen)) { seen[key] = 1; order[++k] = key } }
-      $1 == "PEAK" { if (file == 1) npk[$2] = $3; else wpk[$2] = $3 }
-      $1 == "ERROR" || $1 == "SKIP" { print "  " (file == 1 ? "native: " : "wasm: ") $0 }
+      $1 == "BENCH" { key = $2 " " $3; if (file == 1) nat[key] = $4; else if (file == 2) was[key] = $4; else opt[key] = $4
+                      if (!(key in seen)) { seen[key] = 1; order[++k] = key } }
+      $1 == "PEAK" { if (file == 1) npk[$2] = $3; else if (file == 2) wpk[$2] = $3 }
+      ($1 == "ERROR" || $1 == "SKIP") && file < 3 { print "  " (file == 1 ? "native: " : "wasm: ") $0 }
       END {
-        printf "  %-22s %-18s %11s %11s %7s\n", "case", "step", "native ms", "wasm ms", "ratio"
+        printf "  %-22s %-18s %11s %11s %7s %11s %7s\n", "case", "step", "native ms", "wasm ms", "ratio", "opt ms", "ratio"
         for (i = 1; i <= k; i++) {
           split(order[i], a, " ")
-          r = (nat[order[i]] > 0 && was[order[i]] != "") ? sprintf("%.2f", was[order[i]] / nat[order[i]]) : "-"
-          printf "  %-22s %-18s %11s %11s %7s\n", a[1], a[2], nat[order[i]], (was[order[i]] == "" ? "-" : was[order[i]]), r
+          n = nat[order[i]]; w = was[order[i]]; o = opt[order[i]]
+          printf "  %-22s %-18s %11s %11s %7s %11s %7s\n", a[1], a[2], n, (w == "" ? "-" : w), ratio(n, w), (o == "" ? "-" : o), ratio(n, o)
           if (a[2] == "total") printf "  %-22s %-18s %11s %11s\n", a[1], "peak MiB (RSS/heap)", npk[a[1]], (wpk[a[1]] == "" ? "-" : wpk[a[1]])
         }
-      }' "$tmp/native.txt" "$tmp/wasm.txt"
+      }' "$tmp/native.txt" "$tmp/wasm.txt" "$tmp/opt.txt"
   else
     echo "--- native"; cat "$tmp/native.txt"
     echo "--- wasm (node)"; cat "$tmp/wasm.txt"
+    echo "--- wasm (node --no-liftoff: optimised code only)"; cat "$tmp/opt.txt"
   fi
 done
 
