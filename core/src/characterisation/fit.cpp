@@ -486,6 +486,34 @@ void damped_gauss_newton(Eigen::Map<Eigen::VectorXd>& xv, const Eigen::MatrixXd&
   out.hit_limit = !converged && k >= max_iter;
 }
 
+// What both CIEDE2000 iterations below keep between steps: the residuals at x (r) and at the trial
+// point (r_new), the normal equations (A, g) and their per-patch blocks (G, M, u, acc), and the last
+// trial point, whose squares (qs) de2000_residuals reuses once the step to it is accepted.
+struct GaussNewtonScratch {
+  Eigen::VectorXd r, r_new, g;
+  Eigen::MatrixXd A;
+  std::vector<Mat3> G;
+  Eigen::Matrix<double, Eigen::Dynamic, 6> M;
+  Eigen::Matrix<double, Eigen::Dynamic, 3> u;
+  std::vector<double> acc;
+  std::vector<Vec3> qs;  // the squares at the last trial point, x_trial
+  Eigen::VectorXd x_trial;
+  bool trialled = false;
+
+  GaussNewtonScratch(Eigen::Index n, int nvar)
+      : r(3 * n), r_new(3 * n), g(nvar), A(nvar, nvar), G(static_cast<std::size_t>(n)), M(n, 6), u(n, 3) {}
+  /// r and the Jacobian blocks G at x.
+  void linearise_at(const Problem& pr, const De2000Data& d, const Eigen::Map<Eigen::VectorXd>& x) {
+    de2000_residuals(pr, d, x.data(), r, &G, qs, trialled && x_trial == x);
+  }
+  /// r_new at a trial point.
+  void trial_at(const Problem& pr, const De2000Data& d, const Eigen::VectorXd& x_new) {
+    de2000_residuals(pr, d, x_new.data(), r_new, nullptr, qs, false);
+    x_trial = x_new;
+    trialled = true;
+  }
+};
+
 // The RMS loss is a sum of squares, sqrt(Σ w_i ΔE_i² / Σ w_i): minimised by Levenberg–Marquardt on
 // the 3N residuals of de2000_residuals (damped_gauss_newton with A = JᵀJ, g = Jᵀr, F = ‖r‖², the
 // predicted decrease hᵀ(μh − g) = 2·(L(0) − L(h)), and a relative decrease of the RMS below
@@ -496,41 +524,30 @@ void damped_gauss_newton(Eigen::Map<Eigen::VectorXd>& xv, const Eigen::MatrixXd&
 void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOptions& options, std::vector<double>& x,
                          De2000Outcome& out) {
   const int nvar = static_cast<int>(x.size());
-  const Eigen::Index m = 3 * pr.n;
   const int max_iter = options.de2000.max_evaluations > 0 ? std::max(1, options.de2000.max_evaluations / 4) : 100;
   const double ftol = options.de2000.ftol_rel;
-  Eigen::VectorXd r(m), r_new(m), g(nvar);
-  Eigen::MatrixXd A(nvar, nvar);
-  std::vector<Mat3> G(static_cast<std::size_t>(pr.n));
-  Eigen::Matrix<double, Eigen::Dynamic, 6> M(pr.n, 6);
-  Eigen::Matrix<double, Eigen::Dynamic, 3> u(pr.n, 3);
-  std::vector<double> acc;
-  std::vector<Vec3> qs;  // the squares at the last trial point, x_trial
-  Eigen::VectorXd x_trial;
-  bool trialled = false;
+  GaussNewtonScratch gn(pr.n, nvar);
   Eigen::Map<Eigen::VectorXd> xv(x.data(), nvar);
   damped_gauss_newton(
-      xv, A, g, max_iter, options.de2000.xtol_rel, out,
+      xv, gn.A, gn.g, max_iter, options.de2000.xtol_rel, out,
       [&] {
-        de2000_residuals(pr, d, x.data(), r, &G, qs, trialled && x_trial == xv);
+        gn.linearise_at(pr, d, xv);
         out.evaluations += 4;
         for (Eigen::Index i = 0; i < pr.n; ++i) {  // A = JᵀJ, g = Jᵀr
-          const Mat3& Gi = G[static_cast<std::size_t>(i)];
+          const Mat3& Gi = gn.G[static_cast<std::size_t>(i)];
           const Mat3 Mi = Gi.transpose() * Gi;
-          M.row(i) << Mi(0, 0), Mi(0, 1), Mi(0, 2), Mi(1, 1), Mi(1, 2), Mi(2, 2);
-          u.row(i) = (Gi.transpose() * Vec3(r.segment<3>(3 * i))).transpose();
+          gn.M.row(i) << Mi(0, 0), Mi(0, 1), Mi(0, 2), Mi(1, 1), Mi(1, 2), Mi(2, 2);
+          gn.u.row(i) = (Gi.transpose() * Vec3(gn.r.segment<3>(3 * i))).transpose();
         }
-        normal_equations(pr, M, u, acc, A, g);
-        return r.squaredNorm();
+        normal_equations(pr, gn.M, gn.u, gn.acc, gn.A, gn.g);
+        return gn.r.squaredNorm();
       },
       [&](const Eigen::VectorXd& x_new) {
-        de2000_residuals(pr, d, x_new.data(), r_new, nullptr, qs, false);
-        x_trial = x_new;
-        trialled = true;
+        gn.trial_at(pr, d, x_new);
         ++out.evaluations;
-        return r_new.squaredNorm();
+        return gn.r_new.squaredNorm();
       },
-      [&](const Eigen::VectorXd& h, double mu) { return h.dot(mu * h - g); },
+      [&](const Eigen::VectorXd& h, double mu) { return h.dot(mu * h - gn.g); },
       [&](double F, double F_new) { return std::sqrt(F) - std::sqrt(F_new) <= ftol * std::sqrt(F); });
   out.f = de2000_cost(pr, d, x.data());  // the reported RMS, from delta_E_CIE2000 as every path
   ++out.evaluations;
@@ -552,21 +569,13 @@ void levenberg_marquardt(const Problem& pr, const De2000Data& d, const FitOption
 void reweighted_lm(const Problem& pr, const De2000Data& d, const FitOptions& options, std::vector<double>& x,
                    De2000Outcome& out) {
   const int nvar = static_cast<int>(x.size());
-  const Eigen::Index n = pr.n, m = 3 * n;
+  const Eigen::Index n = pr.n;
   const int max_iter = options.de2000.max_evaluations > 0 ? std::max(1, options.de2000.max_evaluations / 4) : 500;
   const double ftol = options.de2000.ftol_rel;
   constexpr double delta = 1e-9;
   De2000Data du = d;  // unweighted residuals: q_i itself
   du.w.assign(n, 1.0);
-  Eigen::VectorXd r(m), r_new(m), g(nvar);
-  Eigen::MatrixXd A(nvar, nvar);
-  std::vector<Mat3> G(static_cast<std::size_t>(n));
-  Eigen::Matrix<double, Eigen::Dynamic, 6> M(n, 6);
-  Eigen::Matrix<double, Eigen::Dynamic, 3> u(n, 3);
-  std::vector<double> acc;
-  std::vector<Vec3> qs;  // the squares at the last trial point, x_trial
-  Eigen::VectorXd x_trial;
-  bool trialled = false;
+  GaussNewtonScratch gn(n, nvar);
   Eigen::Map<Eigen::VectorXd> xv(x.data(), nvar);
   auto loss = [&](const Eigen::VectorXd& res) {  // Σ w_i ‖q_i‖ (not yet divided by Σ w)
     double s = 0;
@@ -574,32 +583,30 @@ void reweighted_lm(const Problem& pr, const De2000Data& d, const FitOptions& opt
     return s;
   };
   auto linearise = [&]() {
-    de2000_residuals(pr, du, x.data(), r, &G, qs, trialled && x_trial == xv);
+    gn.linearise_at(pr, du, xv);
     out.evaluations += 4;
     for (Eigen::Index i = 0; i < n; ++i) {  // A = Σ a_i J_iᵀ P_i J_i, g = Σ a_i J_iᵀ q_i
-      const Vec3 q = r.segment<3>(3 * i);
+      const Vec3 q = gn.r.segment<3>(3 * i);
       const double e = std::max(q.norm(), delta);
       const double a = d.w[i] / e;
       const Vec3 ui = q / e;
       const Mat3 P = Mat3::Identity() - 0.5 * ui * ui.transpose();
-      const Mat3& Gi = G[static_cast<std::size_t>(i)];
+      const Mat3& Gi = gn.G[static_cast<std::size_t>(i)];
       const Mat3 Mi = a * (Gi.transpose() * (P * Gi));
-      M.row(i) << Mi(0, 0), Mi(0, 1), Mi(0, 2), Mi(1, 1), Mi(1, 2), Mi(2, 2);
-      u.row(i) = (a * (Gi.transpose() * q)).transpose();
+      gn.M.row(i) << Mi(0, 0), Mi(0, 1), Mi(0, 2), Mi(1, 1), Mi(1, 2), Mi(2, 2);
+      gn.u.row(i) = (a * (Gi.transpose() * q)).transpose();
     }
-    normal_equations(pr, M, u, acc, A, g);
-    return loss(r);
+    normal_equations(pr, gn.M, gn.u, gn.acc, gn.A, gn.g);
+    return loss(gn.r);
   };
   damped_gauss_newton(
-      xv, A, g, max_iter, options.de2000.xtol_rel, out, linearise,
+      xv, gn.A, gn.g, max_iter, options.de2000.xtol_rel, out, linearise,
       [&](const Eigen::VectorXd& x_new) {
-        de2000_residuals(pr, du, x_new.data(), r_new, nullptr, qs, false);
-        x_trial = x_new;
-        trialled = true;
+        gn.trial_at(pr, du, x_new);
         ++out.evaluations;
-        return loss(r_new);
+        return loss(gn.r_new);
       },
-      [&](const Eigen::VectorXd& h, double) { return -(g.dot(h) + 0.5 * h.dot(A * h)); },  // decrease of the majoriser
+      [&](const Eigen::VectorXd& h, double) { return -(gn.g.dot(h) + 0.5 * h.dot(gn.A * h)); },  // decrease of the majoriser
       [&](double S, double S_new) { return S - S_new <= ftol * S; });
   out.f = de2000_cost(pr, d, x.data());  // the reported mean, from delta_E_CIE2000 as every path
   ++out.evaluations;
