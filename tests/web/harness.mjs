@@ -26,7 +26,9 @@ export async function openBrowser() {
     headless: true,
     viewport: { width: 1400, height: 1000 },
     args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync'],
+      '--disable-component-update', '--disable-sync',
+      // Extra flags for experiments, e.g. CHROMIUM_FLAGS='--js-flags=--no-liftoff' (optimised wasm only).
+      ...(process.env.CHROMIUM_FLAGS ? process.env.CHROMIUM_FLAGS.split(' ') : [])],
   });
   const problems = [];   // console errors, page errors, off-origin requests
   const watch = (page) => {
