@@ -2,9 +2,10 @@
 # Runs every benchmark (tests/bench/bench_*.cpp) natively and in wasm under node, in one run, and
 # prints both times side by side with their ratio and the peak memory (native RSS, wasm heap).
 # wasm runs twice: as node (and Chromium) run it, baseline code (Liftoff) first and optimised code
-# (TurboFan) once a function is hot ("wasm ms"), and with `node --no-liftoff`, optimised code only
+# (TurboFan) once a function is hot ("wasm ms"), and with `node --no-liftoff
+# --no-wasm-lazy-compilation`, optimised code only, every function compiled at instantiation
 # ("opt ms": the code quality, i.e. the steady state of a page in use; its first-call rows leave
-# out the compile, which happens at instantiation).
+# out the compile).
 # Builds only the benchmark targets (assumes build/native and build/wasm were configured, e.g.
 # by scripts/build.sh). Figures are printed, never asserted. Optional: dcraw_emu (Debian package
 # libraw-bin) timings on the real RAW files, for scale.
@@ -35,7 +36,7 @@ for n in $names; do
   echo "=== $n ==="
   TRISTIM_SHARED_DATA="$shared" "$native" >"$tmp/native.txt" 2>&1 || echo "[bench] $n native exited $?"
   TRISTIM_SHARED_DATA="$shared" node "$wasm" >"$tmp/wasm.txt" 2>&1 || echo "[bench] $n wasm exited $?"
-  TRISTIM_SHARED_DATA="$shared" node --no-liftoff "$wasm" >"$tmp/opt.txt" 2>&1 || echo "[bench] $n wasm --no-liftoff exited $?"
+  TRISTIM_SHARED_DATA="$shared" node --no-liftoff --no-wasm-lazy-compilation "$wasm" >"$tmp/opt.txt" 2>&1 || echo "[bench] $n wasm optimised-only exited $?"
   if grep -q '^BENCH ' "$tmp/native.txt"; then
     grep '^CASE ' "$tmp/native.txt" | sed 's/^CASE /  /'
     # Join "BENCH case step ms" lines of both runs; "PEAK case MiB" lines give memory.
@@ -58,7 +59,7 @@ for n in $names; do
   else
     echo "--- native"; cat "$tmp/native.txt"
     echo "--- wasm (node)"; cat "$tmp/wasm.txt"
-    echo "--- wasm (node --no-liftoff: optimised code only)"; cat "$tmp/opt.txt"
+    echo "--- wasm (node --no-liftoff --no-wasm-lazy-compilation: optimised code only)"; cat "$tmp/opt.txt"
   fi
 done
 
