@@ -93,9 +93,10 @@ ReferenceChart reference_from_spectra(const SpectralData& reflectances, const Sp
   r.ids = reflectances.names;
   r.white = illuminant_white_XYZ(illuminant, observer);
   r.XYZ = reflectances_to_XYZ(reflectances, illuminant, observer);
+  const Mat3 display = display_matrix(r.white);  // once, not per patch (display_sRGB, the same floats)
   for (const auto& xyz : r.XYZ) {
     r.Lab.push_back(XYZ_to_Lab(xyz, r.white));
-    r.sRGB.push_back(display_sRGB(xyz, r.white));
+    r.sRGB.push_back(sRGB_encode(display * xyz));
   }
   return r;
 }

@@ -125,12 +125,16 @@ std::vector<Vec3> simulate_camera_RGB(const SpectralData& ssf, const SpectralDat
   const double k = o.white_level / white_G;
   GaussianNoise noise(o.seed);
   std::vector<Vec3> out;
+  if (reflectances.values.empty()) return out;
+  // Σ_i w_c(λ_i) R(λ_i) over the SSF grid with R interpolated onto it (linear in the samples) is
+  // Σ_j (Aᵀ w_c)_j r_j over the reflectance grid: the weights pulled back once (pull_back_weights,
+  // as reflectances_to_XYZ does), one short dot product per reflectance and channel.
+  const PulledBackWeights p =
+      pull_back_weights(reflectances.wavelengths, reflectances.linear, grid, {w[0], w[1], w[2]});
   for (const auto& col : reflectances.values) {
-    const auto R = interpolate_spectrum(reflectances.wavelengths, col, grid, reflectances.linear);
     Vec3 rgb;
     for (int c = 0; c < 3; ++c) {
-      double u = 0;
-      for (size_t i = 0; i < grid.size(); ++i) u += w[c][i] * R[i];
+      double u = p.dot(static_cast<size_t>(c), col);
       u *= k;
       if (o.oecf) u = o.oecf_scale * std::pow(std::max(u, 0.0), 1.0 / o.oecf_gamma);  // eq (29)
       if (o.noise_sigma > 0) u += o.noise_sigma * noise.next();

@@ -149,3 +149,36 @@ TEST_CASE("cameras: 52 built in, names matched loosely, SSF CSV, errors", "[simu
     CHECK(e.code() == ErrorCode::MissingColumn);
   }
 }
+
+// simulate_camera_RGB pulls the SSF x illuminant weights back onto the reflectance grid
+// (pull_back_weights) instead of interpolating each reflectance onto the SSF grid: the same linear
+// map. Planted: the SG's 10 nm reflectances (Sprague onto 5 nm, held past 730 nm) under D50 and A,
+// against the per-column formula; only summation order differs: tolerance 1e-12 relative.
+TEST_CASE("simulate: pulled-back weights equal per-column interpolation (Sprague, 10 nm onto 5 nm)", "[simulate]") {
+  const SpectralData ssf = camera_ssf("Canon EOS 5D Mark II"), sg = chart_reflectances("sg140");
+  double worst = 0;
+  for (const char* id : {"D50", "A"}) {
+    const SpectralData ill = illuminant_spd(id);
+    const auto got = simulate_camera_RGB(ssf, sg, ill);
+    const auto S = interpolate_spectrum(ill.wavelengths, ill.values[0], ssf.wavelengths, ill.linear);
+    double white_G = 0;
+    for (size_t i = 0; i < S.size(); ++i) white_G += ssf.values[1][i] * S[i];
+    REQUIRE(got.size() == sg.size());
+    for (size_t p = 0; p < sg.size(); ++p) {
+      const auto R = interpolate_spectrum(sg.wavelengths, sg.values[p], ssf.wavelengths, sg.linear);
+      for (int c = 0; c < 3; ++c) {
+        double u = 0;
+        for (size_t i = 0; i < R.size(); ++i) u += ssf.values[static_cast<size_t>(c)][i] * S[i] * R[i];
+        u /= white_G;
+        const double rel = std::abs(got[p][c] - u) / std::abs(u);
+        if (rel > worst) {
+          worst = rel;
+          UNSCOPED_INFO("worst so far: " << id << " patch " << sg.names[p] << " channel " << c << ": " << got[p][c]
+                                         << " vs " << u);
+        }
+      }
+    }
+  }
+  INFO("worst relative |pulled back - per column| = " << worst << " (tolerance 1e-12)");
+  CHECK(worst < 1e-12);
+}

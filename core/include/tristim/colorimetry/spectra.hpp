@@ -49,6 +49,29 @@ std::vector<double> interpolate_spectrum(const std::vector<double>& wavelengths,
 /// Every column of `data` re-sampled on `new_wavelengths`.
 SpectralData align_spectra(const SpectralData& data, const std::vector<double>& new_wavelengths);
 
+/// Weights on `new_wavelengths` pulled back onto a distribution's own grid `wavelengths` (the
+/// ASTM E308 idea of weighting factors on the measurement interval). For every v on `wavelengths`,
+///   Σ_i weights[c][i] · interpolate_spectrum(wavelengths, v, new_wavelengths, linear)[i]
+///     = Σ_t pulled.weights[c][t] · v[pulled.nodes[t]]
+/// in exact arithmetic: the interpolation rule above (Sprague or linear, constant extrapolation)
+/// is linear in v, v ↦ A v, so wᵀ(A v) = (Aᵀ w)ᵀ v; Aᵀ w is built row by row of A, never A itself.
+/// In floating point the two differ by summation order only (a few ulps of Σ|w||v|).
+/// `nodes` lists the samples the interpolation reads, ascending; a sample it never reads (outside
+/// every Sprague window) is left out, so a NaN there is ignored as interpolate_spectrum ignores it.
+/// weights: one vector per channel, each new_wavelengths.size() long. Throws as interpolate_spectrum
+/// for `wavelengths` (empty, not strictly increasing), Error(InvalidArgument) for a weight vector
+/// of the wrong length.
+struct PulledBackWeights {
+  std::vector<size_t> nodes;                 // indices into wavelengths, ascending
+  std::vector<std::vector<double>> weights;  // one per channel, nodes.size() long
+  size_t samples = 0;                        // wavelengths.size()
+  /// Σ_t weights[c][t] · v[nodes[t]]; Error(InvalidArgument) unless v has `samples` values.
+  double dot(size_t c, const std::vector<double>& v) const;
+};
+PulledBackWeights pull_back_weights(const std::vector<double>& wavelengths, bool linear,
+                                    const std::vector<double>& new_wavelengths,
+                                    const std::vector<std::vector<double>>& weights);
+
 /// Sprague (1880) interpolation of uniformly spaced samples (exposed for tests): y at x, with
 /// x0 = first wavelength, step h. Needs >= 6 samples and x0 <= x <= x_last.
 double sprague_interpolate(const std::vector<double>& y, double x0, double h, double x);
