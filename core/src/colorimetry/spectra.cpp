@@ -35,26 +35,39 @@ std::vector<double> wavelength_grid(double start, double end, double step) {
   return out;
 }
 
+namespace {
+// Sprague's boundary: two extra points per end, each a combination of the 6 nearest samples
+// (CIE 167:2005 Table 4, colour's SPRAGUE_C_COEFFICIENTS), over 209. Row for index j = -2, -1, n, n+1.
+const double kSpragueBoundary[4][6] = {{884, -1960, 3033, -2648, 1080, -180},
+                                       {508, -540, 488, -367, 144, -24},
+                                       {-24, 144, -367, 488, -540, 508},
+                                       {-180, 1080, -2648, 3033, -1960, 884}};
+const double* sprague_boundary_row(long j, size_t n) {
+  return j == -2 ? kSpragueBoundary[0] : j == -1 ? kSpragueBoundary[1] : j == static_cast<long>(n) ? kSpragueBoundary[2] : kSpragueBoundary[3];
+}
+/// The interval Sprague's quintic is taken on for position t (in steps from the first sample) of
+/// n samples: left node i, and X = t − i in [0, 1].
+void sprague_interval(double t, size_t n, long& i, double& X) {
+  i = static_cast<long>(std::floor(t));
+  if (i >= static_cast<long>(n) - 1) i = static_cast<long>(n) - 2;
+  if (i < 0) i = 0;
+  X = t - static_cast<double>(i);
+}
+}  // namespace
+
 double sprague_interpolate(const std::vector<double>& y, double x0, double h, double x) {
   const size_t n = y.size();
-  // Boundary: two extra points per end (CIE 167:2005 Table 4, colour's SPRAGUE_C_COEFFICIENTS).
-  static const double C[4][6] = {{884, -1960, 3033, -2648, 1080, -180},
-                                 {508, -540, 488, -367, 144, -24},
-                                 {-24, 144, -367, 488, -540, 508},
-                                 {-180, 1080, -2648, 3033, -1960, 884}};
   auto r = [&](long j) -> double {  // j is an index into y, may be -2..n+1
     if (j >= 0 && j < static_cast<long>(n)) return y[static_cast<size_t>(j)];
-    const double* c = j == -2 ? C[0] : j == -1 ? C[1] : j == static_cast<long>(n) ? C[2] : C[3];
+    const double* c = sprague_boundary_row(j, n);
     const size_t base = j < 0 ? 0 : n - 6;
     double s = 0;
     for (int k = 0; k < 6; ++k) s += c[k] * y[base + k];
     return s / 209.0;
   };
-  const double t = (x - x0) / h;
-  long i = static_cast<long>(std::floor(t));
-  if (i >= static_cast<long>(n) - 1) i = static_cast<long>(n) - 2;
-  if (i < 0) i = 0;
-  const double X = t - static_cast<double>(i);
+  long i = 0;
+  double X = 0;
+  sprague_interval((x - x0) / h, n, i, X);
   if (X == 0.0) return y[static_cast<size_t>(i)];
   const double rm2 = r(i - 2), rm1 = r(i - 1), r0 = r(i), r1 = r(i + 1), r2 = r(i + 2), r3 = r(i + 3);
   // Sprague (1880) quintic through r0, r1 (CIE 167:2005 eq 6; colour's SpragueInterpolator).
@@ -131,10 +144,6 @@ PulledBackWeights pull_back_weights(const std::vector<double>& w, bool linear, c
                                  {-9, 39, -70, 66, -33, 7},
                                  {13, -64, 126, -124, 61, -12},
                                  {-5, 25, -50, 50, -25, 5}};
-  static const double C[4][6] = {{884, -1960, 3033, -2648, 1080, -180},  // CIE 167:2005 Table 4, as above
-                                 {508, -540, 488, -367, 144, -24},
-                                 {-24, 144, -367, 488, -540, 508},
-                                 {-180, 1080, -2648, 3033, -1960, 884}};
   for (size_t k = 0; k < nw.size(); ++k) {
     const double x = nw[k];
     if (x <= w.front()) {
@@ -142,11 +151,9 @@ PulledBackWeights pull_back_weights(const std::vector<double>& w, bool linear, c
     } else if (x >= w.back()) {
       add(n - 1, 1.0, k);
     } else if (sprague) {
-      const double t = (x - w.front()) / h;  // index choice as in sprague_interpolate
-      long i = static_cast<long>(std::floor(t));
-      if (i >= static_cast<long>(n) - 1) i = static_cast<long>(n) - 2;
-      if (i < 0) i = 0;
-      const double X = t - static_cast<double>(i);
+      long i = 0;
+      double X = 0;
+      sprague_interval((x - w.front()) / h, n, i, X);  // the interval sprague_interpolate takes
       if (X == 0.0) {
         add(static_cast<size_t>(i), 1.0, k);
         continue;
@@ -160,7 +167,7 @@ PulledBackWeights pull_back_weights(const std::vector<double>& w, bool linear, c
         if (j >= 0 && j < static_cast<long>(n)) {
           add(static_cast<size_t>(j), a, k);
         } else {  // a boundary point: a combination of the 6 nearest samples
-          const double* c = j == -2 ? C[0] : j == -1 ? C[1] : j == static_cast<long>(n) ? C[2] : C[3];
+          const double* c = sprague_boundary_row(j, n);
           const size_t base = j < 0 ? 0 : n - 6;
           for (int m = 0; m < 6; ++m) add(base + static_cast<size_t>(m), a * c[m] / 209.0, k);
         }
