@@ -91,6 +91,20 @@ test('absolute: example bracket fitted, OECF curves, luminance map, read-out aga
     await page.click(`${S} [data-role="abs-log"]`);
     await page.waitForFunction((s) => document.querySelector(`${s} [data-role="abs-colourbar"] .legend-box`)?.dataset.scale === 'linear', S);
 
+    // exposure times shown as the camera shows them; a typed fraction is read as one, and a typo is
+    // refused next to the series (it used to read as "from the metadata" without a word)
+    const tBoxes = await page.$$eval(`${S} input[aria-label^="exposure time of"]`, (e) => e.map((x) => x.value));
+    assert.deepEqual(tBoxes, Array.from(ex.labels, (l) => l.split(' ')[0]));
+    const tBox = `${S} input[aria-label^="exposure time of virtual-2"]`;
+    await page.fill(tBox, '1/12o');
+    await page.press(tBox, 'Tab');
+    const typo = await errorNear(page, `${S} [data-role="abs-series"]`);
+    assert.equal(typo.code, 'INVALID_ARGUMENT');
+    assert.match(typo.text, /virtual-2\.raw.*'1\/12o'/);
+    await page.fill(tBox, '1/125');
+    await page.press(tBox, 'Tab');
+    await page.waitForFunction((s) => { const el = document.querySelector(`${s} [data-role="abs-series"]`); return document.getElementById(el.getAttribute('aria-describedby'))?.hidden; }, S);
+
     // bad inputs, each next to its input: stimuli without X, Y, Z; non-monotonic stimuli; a series of two cameras
     await upload(page, `${S} [data-role="abs-stimuli"]`, 'no-xyz.csv', Buffer.from('id,exposure_s,f_number,R,G,B\n1,0.01,8,10,20,30\n'));
     assert.equal((await errorNear(page, `${S} [data-role="abs-stimuli"]`)).code, 'MISSING_COLUMN');

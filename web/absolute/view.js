@@ -22,6 +22,35 @@ const rgbOf = (css) => { const c = globalThis.d3.rgb(css); return [c.r, c.g, c.b
 const pct = (x, d = 2) => (Number.isFinite(x) ? `${(100 * x).toFixed(d)} %` : '–');
 const num = (x) => (Number.isFinite(x) ? (Math.abs(x) >= 100 ? x.toFixed(1) : Math.abs(x) >= 1 ? x.toFixed(2) : x.toPrecision(3)) : '–');
 
+// A shutter time as cameras show it: 1/250 below half a second when 1/t is (nearly) a whole
+// number, otherwise the number itself.
+function shutterText(t) {
+  const inv = 1 / t;
+  return t < 0.5 && Math.abs(inv - Math.round(inv)) <= 1e-3 * inv ? `1/${Math.round(inv)}` : String(t);
+}
+/// A text box for an exposure setting of one frame, showing `value` (from the file's metadata or
+/// typed before; empty when unknown). Its exact value is kept: text left as shown reads back as
+/// that value, not as the rounded text ("1/60" for 0.0166667 s).
+function settingInput(value, format, label) {
+  const shown = value > 0 ? format(value) : '';
+  const i = h('input', { type: 'text', inputmode: 'decimal', value: shown, 'aria-label': label, class: 'num', size: 8 });
+  i._exact = { text: shown, value: value > 0 ? value : 0 };
+  return i;
+}
+/// What a setting box holds: its kept value when left as shown, 0 when empty (then the file's
+/// metadata is used), else the typed number or fraction ("1/250", "0.004", "2.5"). Anything
+/// else throws INVALID_ARGUMENT (shown next to the series) instead of being dropped silently.
+function settingValue(input) {
+  const text = input.value.trim();
+  if (input._exact && text === input._exact.text) return input._exact.value;
+  if (text === '') return 0;
+  const frac = /^([0-9]*\.?[0-9]+)\s*\/\s*([0-9]*\.?[0-9]+)$/.exec(text);
+  const v = frac ? Number(frac[1]) / Number(frac[2]) : /^[0-9]*\.?[0-9]+(e[+-]?[0-9]+)?$/i.test(text) ? Number(text) : NaN;
+  if (!(v > 0) || !Number.isFinite(v))
+    throw Object.assign(new Error(`${input.getAttribute('aria-label')}: '${text}' is not a positive number (e.g. 0.004, 1/250, 8, 100)`), { code: 'INVALID_ARGUMENT', typed: true });
+  return v;
+}
+
 export function mount(section, app) {
   const { engine } = app;
   const intro = h('p', { class: 'summary' },
@@ -135,9 +164,9 @@ export function mount(section, app) {
     st.frames = frames;
     const inputs = frames.map((f) => {
       const e = f.exposure ?? { exposure_s: f.exposure_s, f_number: f.f_number, iso: f.iso };
-      const t = h('input', { type: 'number', step: 'any', min: 0, value: e.exposure_s > 0 ? e.exposure_s : '', 'aria-label': `exposure time of ${f.name} (s)`, class: 'num' });
-      const n = h('input', { type: 'number', step: 'any', min: 0, value: e.f_number > 0 ? e.f_number : '', 'aria-label': `f-number of ${f.name}`, class: 'num' });
-      const iso = h('input', { type: 'number', step: 'any', min: 0, value: e.iso > 0 ? e.iso : '', 'aria-label': `ISO of ${f.name}`, class: 'num' });
+      const t = settingInput(e.exposure_s, shutterText, `exposure time of ${f.name} (s)`);
+      const n = settingInput(e.f_number, String, `f-number of ${f.name}`);
+      const iso = settingInput(e.iso, String, `ISO of ${f.name}`);
       for (const i of [t, n, iso]) i.addEventListener('change', retypeExposures);
       return { t, n, iso, f };
     });
@@ -149,7 +178,7 @@ export function mount(section, app) {
         h('td', {}, `${f.width}×${f.height}`), h('td', {}, t), h('td', {}, n), h('td', {}, iso))))) : '');
   }
   function typedExposures() {
-    return (st.inputs ?? []).map(({ t, n, iso }) => ({ exposure_s: Number(t.value) || 0, f_number: Number(n.value) || 0, iso: Number(iso.value) || 0 }));
+    return (st.inputs ?? []).map(({ t, n, iso }) => ({ exposure_s: settingValue(t), f_number: settingValue(n), iso: settingValue(iso) }));
   }
   async function retypeExposures() {
     clearError(seriesInput);
@@ -208,7 +237,7 @@ export function mount(section, app) {
     if (['NON_MONOTONIC', 'TOO_FEW_PATCHES', 'NEGATIVE_VALUE', 'EMPTY_FILE', 'NO_STIMULI', 'MISSING_COLUMN'].includes(e.code)) return stimuliInput;
     if (/lens-cap/.test(m)) return capInput;
     if (/flat/.test(m)) return flatInput;
-    if (['FRAME_MISMATCH', 'MISSING_METADATA', 'NO_IMAGE', 'LIMIT_EXCEEDED'].includes(e.code)) return seriesInput;
+    if (['FRAME_MISMATCH', 'MISSING_METADATA', 'NO_IMAGE', 'LIMIT_EXCEEDED'].includes(e.code) || e.typed) return seriesInput;
     if (e.code === 'NO_USABLE_DATA') return stage === 'apply' ? seriesInput : stimuliInput;
     if (/stimulus/.test(m)) return stimuliInput;
     return fitBtn;
