@@ -42,11 +42,27 @@ struct JointProblem {
     if (anchored) M += (white_XYZ - M * w) * g.transpose() / s;  // the equality-constrained solution
     return M;
   }
+  // XYZ of the corrected reflectances, (p applied to Rm) · T. Written as column updates rather
+  // than through Eigen's product: X(i, j) is the sum over wavelengths in order, the same in both
+  // builds, and the innermost loop runs over patches (contiguous, independent), which the
+  // compilers vectorise (SSE2 natively, SIMD128 in wasm, where Eigen's product is scalar). Each
+  // corrected column is formed once, in a buffer, and never as an N × L matrix.
   Eigen::MatrixXd corrected_XYZ(PointCorrection::Kind kind, const std::vector<double>& c) const {
     const PointCorrection p = surface_detail::prepare_correction(kind, c);
-    Eigen::MatrixXd R = Rm;
-    for (Eigen::Index i = 0; i < R.size(); ++i) R.data()[i] = p.value(R.data()[i]);
-    return R * T;
+    const Eigen::Index n = Rm.rows();
+    Eigen::MatrixXd X = Eigen::MatrixXd::Zero(n, 3);
+    Eigen::VectorXd column(n);
+    for (Eigen::Index k = 0; k < Rm.cols(); ++k) {
+      const double* r = Rm.col(k).data();
+      double* q = column.data();
+      for (Eigen::Index i = 0; i < n; ++i) q[i] = p.value(r[i]);
+      for (int j = 0; j < 3; ++j) {
+        const double t = T(k, j);
+        double* x = X.col(j).data();
+        for (Eigen::Index i = 0; i < n; ++i) x[i] += q[i] * t;
+      }
+    }
+    return X;
   }
   double cost(const Eigen::MatrixXd& X) const {
     const Mat3 M = matrix_for(X);
