@@ -82,7 +82,11 @@ SpectralData on_grid(const SpectralData& d, const std::vector<size_t>& order, co
 
 // Sum of squared differences of the corrected `measured` columns vs `target` at wavelength
 // indices [w0, w1), for full row coefficients c (eq 4 / eq 5 per element); +inf where the
-// Saunderson coefficients are singular.
+// Saunderson coefficients are singular. The objective of every Phase I evaluation: four partial
+// sums (by position within each patch's block of four wavelengths) run side by side and are added
+// at the end, in this order in both builds, so neither waits on one chain of additions and both
+// compilers vectorise the corrections (the division of eq 4 included). The correction's kind is
+// chosen once, outside the loops.
 double sum_squares(PointCorrection::Kind kind, const std::vector<std::vector<double>>& measured,
                    const std::vector<std::vector<double>>& target, size_t w0, size_t w1, const std::vector<double>& c) {
   PointCorrection p;
@@ -91,13 +95,27 @@ double sum_squares(PointCorrection::Kind kind, const std::vector<std::vector<dou
   } catch (const Error&) {
     return HUGE_VAL;
   }
-  double s = 0;
-  for (size_t k = 0; k < measured.size(); ++k)
-    for (size_t w = w0; w < w1; ++w) {
-      const double d = p.value(measured[k][w]) - target[k][w];
-      s += d * d;
+  const size_t n = w1 - w0;
+  auto run = [&](auto value) {
+    double s[4] = {0, 0, 0, 0};
+    for (size_t k = 0; k < measured.size(); ++k) {
+      const double* m = measured[k].data() + w0;
+      const double* t = target[k].data() + w0;
+      size_t w = 0;
+      for (; w + 4 <= n; w += 4)
+        for (size_t j = 0; j < 4; ++j) {
+          const double d = value(m[w + j]) - t[w + j];
+          s[j] += d * d;
+        }
+      for (; w < n; ++w) {
+        const double d = value(m[w]) - t[w];
+        s[w & 3] += d * d;
+      }
     }
-  return s;
+    return (s[0] + s[1]) + (s[2] + s[3]);
+  };
+  if (p.kind == PointCorrection::Saunderson) return run([&](double R) { return p.t.apply(R); });
+  return run([&](double R) { return p.a * R + p.b; });
 }
 
 // Bounded least squares start for the linear rows (closed form, clamped into the bounds).

@@ -25,6 +25,20 @@ void check_rgb(const PatchMatrix& rgb, const std::string& what) {
         throw Error(ErrorCode::InvalidArgument, what + ": patch " + std::to_string(i + 1) + " is not finite");
 }
 
+// Σ term(i) for i < n as four partial sums (i mod 4) added at the end: one order of additions in
+// both builds (Eigen's reductions and products group them by the SIMD width, which differs
+// between SSE2 and wasm's scalar path, so the fit took other steps in the page than in the CLI),
+// and four independent chains the compilers can vectorise.
+template <class Term>
+double sum4(Eigen::Index n, Term term) {
+  double s[4] = {0, 0, 0, 0};
+  Eigen::Index i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (int j = 0; j < 4; ++j) s[j] += term(i + j);
+  for (; i < n; ++i) s[i & 3] += term(i);
+  return (s[0] + s[1]) + (s[2] + s[3]);
+}
+
 // The Figure 3 problem with the matrix solved in closed form for any reference XYZ.
 struct JointProblem {
   Eigen::MatrixXd rgb;         // N × 3
@@ -38,7 +52,11 @@ struct JointProblem {
 
   // Least-squares matrix for reference XYZ (N × 3), with M·w = white_XYZ when anchored.
   Mat3 matrix_for(const Eigen::MatrixXd& X) const {
-    Mat3 M = X.transpose() * rgb * G_inv;  // M_ls = Xᵀ·RGB·(RGBᵀRGB)⁻¹
+    Mat3 XtRGB;  // Xᵀ·RGB, each entry summed over the patches by sum4
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        XtRGB(a, b) = sum4(X.rows(), [&](Eigen::Index i) { return X(i, a) * rgb(i, b); });
+    Mat3 M = XtRGB * G_inv;  // M_ls = Xᵀ·RGB·(RGBᵀRGB)⁻¹
     if (anchored) M += (white_XYZ - M * w) * g.transpose() / s;  // the equality-constrained solution
     return M;
   }
@@ -64,9 +82,16 @@ struct JointProblem {
     }
     return X;
   }
+  // Σ over patches and X, Y, Z of (M·rgb − X)², by sum4 per column.
   double cost(const Eigen::MatrixXd& X) const {
     const Mat3 M = matrix_for(X);
-    return (rgb * M.transpose() - X).squaredNorm();
+    double total = 0;
+    for (int c = 0; c < 3; ++c)
+      total += sum4(X.rows(), [&](Eigen::Index i) {
+        const double e = rgb(i, 0) * M(c, 0) + rgb(i, 1) * M(c, 1) + rgb(i, 2) * M(c, 2) - X(i, c);
+        return e * e;
+      });
+    return total;
   }
 };
 
@@ -103,7 +128,9 @@ JointFitResult fit_surface_joint_Abed2013(const MethodChoice& start, const Patch
     for (size_t w = 0; w < L; ++w) pr.Rm(i, static_cast<Eigen::Index>(w)) = reflectances.values[static_cast<size_t>(i)][w];
   const SpectralData illuminant = options.illuminant.size() ? options.illuminant : illuminant_spd("D50");
   pr.T = surface_detail::integration_matrix(reflectances.wavelengths, reflectances.linear, illuminant, options.observer);
-  const Mat3 G = camera_RGB.transpose() * camera_RGB;
+  Mat3 G;  // RGBᵀRGB
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) G(a, b) = sum4(n, [&](Eigen::Index i) { return camera_RGB(i, a) * camera_RGB(i, b); });
   Eigen::JacobiSVD<Mat3> svd(G);
   const double cond = svd.singularValues()(0) / std::max(svd.singularValues()(2), 1e-300);
   if (!(cond < 1e14))
