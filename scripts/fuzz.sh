@@ -2,7 +2,10 @@
 # Builds the libFuzzer targets of tests/fuzz with Debian's clang (address + undefined sanitizers on
 # the whole core) into build/fuzz and runs each on its committed seed corpus.
 #   scripts/fuzz.sh            short run: FUZZ_SECONDS (default 60) per target (CI)
-#   scripts/fuzz.sh long       long run: FUZZ_RUNS (default 10000000) executions per target
+#   scripts/fuzz.sh long       long run: FUZZ_RUNS (default 10000000) executions per target, with
+#                              -timeout=1800; FUZZ_FORK=2 spreads one run over two processes
+#                              (libFuzzer's fork mode; the total is the last "#N:" line)
+# FUZZ_TARGETS="raw jpeg" runs only those targets; FUZZ_MAX_LEN (default 65536) caps input size.
 # New inputs found go to build/fuzz/corpus/<target> (not committed); crashes to build/fuzz/crashes.
 # Exit status 1 if any target crashed. LibRaw is compiled from its Debian source package with the
 # same sanitizers (fuzz_raw); lcms2, NLopt, libtiff, libpng, libjpeg and zlib are Debian's
@@ -37,12 +40,17 @@ for bin in "$out"/tests/fuzz/fuzz_*; do
   mkdir -p "$work"
   # The short run starts from a fixed seed (-seed=1), so that a CI run is repeatable as far as a
   # time limit allows.
-  if [ "$mode" = long ]; then limit="-runs=${FUZZ_RUNS:-10000000}"; else limit="-max_total_time=${FUZZ_SECONDS:-60} -seed=1"; fi
+  if [ -n "${FUZZ_TARGETS:-}" ] && [[ " $FUZZ_TARGETS " != *" ${name#fuzz_} "* ]]; then continue; fi
+  # A long run's -timeout is the wall clock of one input: a fuzzer starved by other work for longer
+  # than 10 s would report a false timeout.
+  if [ "$mode" = long ]; then limit="-runs=${FUZZ_RUNS:-10000000} -timeout=1800 ${FUZZ_FORK:+-fork=$FUZZ_FORK}"
+  else limit="-max_total_time=${FUZZ_SECONDS:-60} -seed=1 -timeout=10"; fi
   echo "[fuzz] $name ($mode)"
-  "$bin" "$work" "$seeds" $limit -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
+  "$bin" "$work" "$seeds" $limit -max_len="${FUZZ_MAX_LEN:-65536}" -rss_limit_mb=2048 \
     -artifact_prefix="$out/crashes/$name-" -print_final_stats=1 > "$out/$name.log" 2>&1
   rc=$?
   grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$out/$name.log" | sed "s/^/[fuzz] $name /"
+  grep -E "^#[0-9]+: cov" "$out/$name.log" | tail -1 | sed "s/^/[fuzz] $name fork mode, in all: /"
   if [ $rc -ne 0 ]; then status=1; echo "[fuzz] $name FAILED (exit $rc):"; grep -E "ERROR|SUMMARY|Test unit written" "$out/$name.log" | head -5; fi
 done
 if [ $status -eq 0 ]; then echo "[fuzz] no crashes"; else echo "[fuzz] crashes in $out/crashes"; fi
