@@ -7,7 +7,7 @@
 // --reflectances / --illuminant take them), with the residual of the solve; (c) the upload or estimate plotted over a chosen built-in camera's
 // curves, with the RMS difference and the area ratios. The chosen set stays in the worker and
 // feeds the fit; the profile records it (areas_source).
-import { h, field, select, setOptions, showError, clearError, download, readText, onFileText } from '../lib/ui.js';
+import { h, field, select, setOptions, showError, clearError, numberValue, download, readText, onFileText } from '../lib/ui.js';
 import { figure } from '../plots/common.js';
 import { sensitivitiesPlot } from '../plots/sensitivities.js';
 
@@ -151,7 +151,7 @@ export function mountSensitivities(app, { onChoice }) {
   }
 
   async function estimate() {
-    for (const c of [estimateBtn, patchInput, sourceSel, ...Object.values(spectraInputs)]) clearError(c);
+    for (const c of [estimateBtn, patchInput, sourceSel, kInput, ...Object.values(spectraInputs)]) clearError(c);
     estimateBtn.disabled = true;
     let target = estimateBtn;
     try {
@@ -161,8 +161,9 @@ export function mountSensitivities(app, { onChoice }) {
           throw Object.assign(new Error(`choose ${kind === 'illuminant' ? 'an illuminant' : 'a reflectance'} file`), { code: 'NO_SPECTRA' });
         }
       }
+      const components = numberValue(kInput, 4);
       const msg = { chart: chartSel.value, illuminant: illSel.value,
-        options: { components: Number(kInput.value) || 4, exclude_cameras: blindBox.checked ? [compareSel.value] : [] } };
+        options: { components, exclude_cameras: blindBox.checked ? [compareSel.value] : [] } };
       let left = 0, from;
       if (sourceSel.value === 'file') {
         target = patchInput;
@@ -192,8 +193,8 @@ export function mountSensitivities(app, { onChoice }) {
       await got('estimate', { label: e.label, ssf: e.ssf, areas: e.areas });
       return e;
     } catch (e) {
-      const where = ['PATCH_MISMATCH', 'TOO_FEW_PATCHES', 'MISSING_COLUMN', 'NO_PATCHES'].includes(e.code) || target === patchInput
-        || Object.values(spectraInputs).includes(target) ? target : estimateBtn;
+      const where = e.input ?? (['PATCH_MISMATCH', 'TOO_FEW_PATCHES', 'MISSING_COLUMN', 'NO_PATCHES'].includes(e.code) || target === patchInput
+        || Object.values(spectraInputs).includes(target) ? target : estimateBtn);
       showError(where, e, 'Estimate');
       return null;
     } finally { estimateBtn.disabled = false; }

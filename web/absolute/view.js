@@ -4,7 +4,7 @@
 // (fig 5), the luminance map with a cd/m² colour bar (linear or log), the map of the exposure
 // that served each pixel, a pointer read-out and the section 4.1 figures. "Example" makes the
 // whole input with the engine's virtual bracket camera.
-import { h, field, select, setOptions, showError, clearError, progressBar, fmt, fileBytes, download } from '../lib/ui.js';
+import { h, field, select, setOptions, showError, clearError, numberValue, progressBar, fmt, fileBytes, download } from '../lib/ui.js';
 import { figure } from '../plots/common.js';
 import { oecfPlot } from '../plots/oecf.js';
 import { NO_VALUE_RGB } from './render.js';
@@ -233,6 +233,7 @@ export function mount(section, app) {
 
   /// Where an error of the fit or the application belongs.
   function errorTarget(e, stage) {
+    if (e.input) return e.input;   // a number box that could not be read
     const m = e.message ?? '';
     if (['NON_MONOTONIC', 'TOO_FEW_PATCHES', 'NEGATIVE_VALUE', 'EMPTY_FILE', 'NO_STIMULI', 'MISSING_COLUMN'].includes(e.code)) return stimuliInput;
     if (/lens-cap/.test(m)) return capInput;
@@ -256,14 +257,14 @@ export function mount(section, app) {
 
   /// Fits the profile and applies it to the series. Returns {fit, apply} or null.
   async function run() {
-    for (const c of [fitBtn, seriesInput, stimuliInput, capInput, flatInput]) clearError(c);
+    for (const c of [fitBtn, seriesInput, stimuliInput, capInput, flatInput, noiseInput, satInput]) clearError(c);
     fitBtn.disabled = exampleBtn.disabled = true;
     let stage = 'fit';
     try {
       progress.start('Fitting the absolute profile…');
       const given = cameraSel.value.startsWith('@');
       const options = { camera: given ? '' : cameraSel.value, sensitivities: given ? cameraSel.value.slice(1) : '', transform: transformSel.value, fusion: fusionSel.value,
-        noise_floor: Number(noiseInput.value) || 0, saturation: Number(satInput.value) || 0 };
+        noise_floor: numberValue(noiseInput, 0), saturation: numberValue(satInput, 0) };
       const fit = await engine.call('absFit', { options }, { onProgress: progress.update });
       st.fit = fit;
       showFit(fit);

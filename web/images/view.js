@@ -4,7 +4,7 @@
 // re-sampled as the corners move; automatic chart detection (a new image takes the detected
 // corners; an image that already has corners gets the detected chart as a proposal to use or
 // ignore; "Detect again"). Emits 'sample'.
-import { h, field, select, showError, clearError, errorSlot, progressBar, fmt, fileBytes } from '../lib/ui.js';
+import { h, field, select, showError, clearError, errorSlot, numberValue, progressBar, fmt, fileBytes } from '../lib/ui.js';
 import { CornerEditor } from './corners.js';
 import { patchTable } from './patch_table.js';
 import { fetchExample } from './example.js';
@@ -43,14 +43,16 @@ export function mount(section, app) {
   // The layouts the engine has (chart_layout ids), named after the built-in charts.
   const chartName = (id) => app.catalog.charts.find((c) => c.id === id)?.name ?? (id === 'custom' ? 'Custom grid (rows × columns)' : id);
   const layoutSel = select(Object.keys(app.catalog.layouts).map((value) => ({ value, label: chartName(value) })), app.session.layout?.chart ?? 'passport');
-  const rowsIn = h('input', { type: 'number', min: 1, max: 30, value: app.session.layout?.rows ?? 4 });
-  const colsIn = h('input', { type: 'number', min: 1, max: 30, value: app.session.layout?.columns ?? 6 });
-  const areaIn = h('input', { type: 'number', min: 0.05, max: 1, step: 0.05, value: app.session.sampleOptions?.area ?? 0.5 });
-  const gapIn = h('input', { type: 'number', min: 0, max: 2, step: 0.01, value: 0 });
-  const marginIns = ['left', 'top', 'right', 'bottom'].map((side) => h('input', { type: 'number', min: 0, max: 0.45, step: 0.01, value: 0, 'aria-label': `Margin ${side}` }));
+  layoutSel.dataset.role = 'layout';
+  const rowsIn = h('input', { type: 'number', 'data-layout': 'rows', min: 1, max: 30, value: app.session.layout?.rows ?? 4 });
+  const colsIn = h('input', { type: 'number', 'data-layout': 'columns', min: 1, max: 30, value: app.session.layout?.columns ?? 6 });
+  const areaIn = h('input', { type: 'number', 'data-role': 'sample-area', min: 0.05, max: 1, step: 0.05, value: app.session.sampleOptions?.area ?? 0.5 });
+  const gapIn = h('input', { type: 'number', 'data-layout': 'gap', min: 0, max: 2, step: 0.01, value: 0 });
+  const marginIns = ['left', 'top', 'right', 'bottom'].map((side) => h('input', { type: 'number', 'data-layout': `margin_${side}`, min: 0, max: 0.45, step: 0.01, value: 0, 'aria-label': `Margin ${side}` }));
   const customBox = h('span', { class: 'custom-grid' }, field('Rows', rowsIn), field('Columns', colsIn),
     field('Gap (× patch size)', gapIn),
-    h('fieldset', { class: 'margins' }, h('legend', {}, 'Margins inside the corners (fraction of width / height: left, top, right, bottom)'), marginIns));
+    h('fieldset', { class: 'margins' }, h('legend', {}, 'Margins inside the corners (fraction of width / height: left, top, right, bottom)'), marginIns,
+      marginIns.map((i) => errorSlot(i))));
   const meta = h('p', { class: 'meta', 'aria-live': 'polite' });
   // A TIFF/PNG/JPEG: its non-linear encoding and what to do about it (the linearisation step).
   const encodingNote = h('p', { class: 'warning encoding-note', role: 'status', hidden: true });
@@ -106,7 +108,13 @@ export function mount(section, app) {
     if (!trapOn.checked) { clearError(trapOn); trapState.textContent = ''; }
     trapChanged();
   });
-  for (const i of trapIns) i.addEventListener('change', () => { showTrap(); trapChanged(); });
+  for (const i of trapIns) i.addEventListener('change', () => {
+    clearError(trapOn);
+    // A typo in a box (type=number then reads '') would move the trap to 0 without a word.
+    const bad = trapIns.find((b) => b.validity.badInput);
+    if (bad) { try { numberValue(bad); } catch (e) { showError(trapOn, e, 'Light trap'); } return; }
+    showTrap(); trapChanged();
+  });
   trapMark.addEventListener('click', () => {
     trapState.textContent = 'Drag a rectangle over the light trap on the image.';
     editor.markLightTrap((r) => { if (r.w >= 1 && r.h >= 1) { showTrap(r); trapChanged(); } else trapState.textContent = ''; });
@@ -134,24 +142,32 @@ export function mount(section, app) {
     if (f) setFile('chart', f);
   });
 
-  /// The engine's LayoutOptions for the chosen layout.
+  /// The engine's LayoutOptions for the chosen layout. A custom box that cannot be read (a typo;
+  /// rows or columns left empty) throws INVALID_ARGUMENT carrying the box; gap and margins empty: 0.
   function layoutOptions() {
     const chart = layoutSel.value;
     if (chart !== 'custom') return { chart };
-    const [margin_left, margin_top, margin_right, margin_bottom] = marginIns.map((i) => Number(i.value));
-    return { chart, rows: Number(rowsIn.value), columns: Number(colsIn.value), gap: Number(gapIn.value), margin_left, margin_top, margin_right, margin_bottom };
+    const [margin_left, margin_top, margin_right, margin_bottom] = marginIns.map((i) => numberValue(i, 0));
+    return { chart, rows: numberValue(rowsIn), columns: numberValue(colsIn), gap: numberValue(gapIn, 0), margin_left, margin_top, margin_right, margin_bottom };
   }
-  function syncLayout() {
+  const sampleOptions = () => ({ area: numberValue(areaIn) });
+  const layoutBoxes = [rowsIn, colsIn, areaIn, gapIn, ...marginIns];
+  function syncLayout(layout = layoutOptions()) {
     customBox.hidden = layoutSel.value !== 'custom';
-    editor.setLayout(layoutOptions());
+    editor.setLayout(layout);
   }
-  for (const el of [layoutSel, rowsIn, colsIn, areaIn, gapIn, ...marginIns]) {
+  // A box that cannot be read shows why next to it; the grid, the sampling and the session keep
+  // the last layout that could.
+  for (const el of [layoutSel, ...layoutBoxes]) {
     el.addEventListener('change', () => {
-      syncLayout();
+      for (const c of layoutBoxes) clearError(c);
+      let layout, sampling;
+      try { layout = layoutOptions(); sampling = sampleOptions(); } catch (e) { customBox.hidden = layoutSel.value !== 'custom'; showError(e.input, e, 'Layout'); return; }
+      syncLayout(layout);
       editor.setSample(null);
       if (detection) setDetection(null, 'idle', 'The layout changed: press “Detect again” to look for it.');
-      app.save('layout', layoutOptions());
-      app.save('sampleOptions', { area: Number(areaIn.value) });
+      app.save('layout', layout);
+      app.save('sampleOptions', sampling);
       resample();
     });
   }
@@ -339,6 +355,7 @@ export function mount(section, app) {
       return c;
     } catch (e) {
       if (seq !== detectSeq || e.code === 'CANCELLED') return null;
+      if (e.input) { setDetection(null, 'idle', 'A layout box could not be read: see the message next to it.'); showError(e.input, e, 'Layout'); return null; }
       setDetection(null, 'none', e.code === 'CHART_NOT_FOUND'
         ? `No ${chartName(layoutSel.value)} found in this image; the corners were left where they were: drag them onto the chart.`
         : 'Chart detection failed; the corners were left where they were.');
@@ -377,7 +394,7 @@ export function mount(section, app) {
     const corners = Array.from(editor.corners);   // a copy: handles move while the worker samples
     try {
       const lightTrap = trapCorners(trapRect());
-      const s = await engine.call('sample', { layout: layoutOptions(), corners: Array.from(corners), sampleOptions: { area: Number(areaIn.value) }, lightTrap });
+      const s = await engine.call('sample', { layout: layoutOptions(), corners: Array.from(corners), sampleOptions: sampleOptions(), lightTrap });
       if (seq !== sampleSeq) return null;
       clearError(editor.el);
       showTrapResult(s, lightTrap);
@@ -393,6 +410,7 @@ export function mount(section, app) {
       return s;
     } catch (e) {
       if (seq !== sampleSeq || e.code === 'CANCELLED') return null;
+      if (e.input) { showError(e.input, e, 'Layout'); return null; }   // a layout box: shown at its change
       showError(editor.el, e, 'Corners');
       editor.setSample(null, e.code);
       if (app.derived.sample) {

@@ -1,7 +1,7 @@
 // Options forms built from the engine's method tables: one control per OptionSpec row of a
 // MethodInfo (number / integer / boolean / choice / text), labelled, bounded and with the row's
 // default. A form edits a MethodChoice {method, parameters, settings} as the engine reads it.
-import { h, field, select } from './ui.js';
+import { h, field, select, numberValue, showError, clearError } from './ui.js';
 
 const NUMERIC = new Set(['number', 'integer', 'boolean']);
 
@@ -50,7 +50,18 @@ export function optionsForm(info, choice, onChange) {
     const bounded = o.max > o.min;
     const i = h('input', { type: 'number', value: choice.parameters[o.name], step: o.type === 'integer' ? 1 : 'any',
       min: bounded ? o.min : null, max: bounded ? o.max : null, dataset: { option: o.name } });
-    i.addEventListener('change', () => { choice.parameters[o.name] = Number(i.value); onChange(choice); });
+    // A typo or an empty box is shown next to the box; the fits keep the last number it held.
+    i.addEventListener('change', () => {
+      let v;
+      try { v = numberValue(i); } catch (e) {
+        e.message += ` (the fits keep ${choice.parameters[o.name]})`;
+        showError(i, e);
+        return;
+      }
+      clearError(i);
+      choice.parameters[o.name] = v;
+      onChange(choice);
+    });
     return field(o.label, i, hint);
   });
 }

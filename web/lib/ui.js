@@ -34,6 +34,25 @@ export function field(labelText, control, hint) {
     hint ? h('small', { class: 'hint' }, hint) : null, err);
 }
 
+/// The number in an <input type=number>, or `empty` when the box is empty (no `empty`: the box
+/// needs a value). When the browser could not read what was typed ('1e', '--', '2,5' where the
+/// decimal mark is a point: validity.badInput), type=number reports '' as its value — which
+/// `Number(x.value) || 0` read as "empty" without a word. That, and an empty box that needs a value,
+/// throw INVALID_ARGUMENT carrying the input, to be shown next to it.
+export function numberValue(input, empty) {
+  const name = input.getAttribute('aria-label') || input.labels?.[0]?.textContent?.trim() || 'this box';
+  const bad = (why) => Object.assign(new Error(`${name}: ${why}`), { code: 'INVALID_ARGUMENT', input });
+  if (input.validity?.badInput) throw bad('what was typed is not a number');
+  const text = String(input.value).trim();
+  if (text === '') {
+    if (empty === undefined) throw bad('needs a number');
+    return empty;
+  }
+  const v = Number(text);
+  if (!Number.isFinite(v)) throw bad(`'${text}' is not a number`);
+  return v;
+}
+
 /// An element where errors about `control` appear (aria-describedby links them).
 export function errorSlot(control) {
   const err = h('p', { class: 'field-error', role: 'alert', hidden: true });

@@ -4,7 +4,7 @@
 // geometry presets), sees the reflectances before and after and the ΔE00 the correction makes,
 // and — with a second measurement of the chart — the Phase I ranking of every correction. The
 // choice is the recipe's `surface` stage (app.session.surface), which the fit step applies.
-import { h, field, select, setOptions, showError, clearError, fmt, progressBar, readText } from '../lib/ui.js';
+import { h, field, select, setOptions, showError, clearError, numberValue, fmt, progressBar, readText } from '../lib/ui.js';
 import { options as asOptions } from '../lib/catalog.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
 import { figure } from '../plots/common.js';
@@ -47,8 +47,8 @@ export function mount(section, app) {
   // Second measurement (Phase I ranking)
   const fileInput = h('input', { type: 'file', accept: '.csv,.txt,.cgats,.it8' });
   const exampleBtn = h('button', { type: 'button' }, 'Use the example second measurement');
-  const rangeMin = h('input', { type: 'number', value: st.range[0], min: 300, max: 830, step: 10, size: 5 });
-  const rangeMax = h('input', { type: 'number', value: st.range[1], min: 300, max: 830, step: 10, size: 5 });
+  const rangeMin = h('input', { type: 'number', 'data-role': 'surface-range-min', value: st.range[0], min: 300, max: 830, step: 10, size: 5 });
+  const rangeMax = h('input', { type: 'number', 'data-role': 'surface-range-max', value: st.range[1], min: 300, max: 830, step: 10, size: 5 });
   const compareState = h('p', { class: 'file-state' });
   const progress = progressBar('Fitting surface corrections');
   const rankBox = h('div', { class: 'table-box' });
@@ -57,8 +57,8 @@ export function mount(section, app) {
 
   // Simulated Table IV
   const cameraSel = select(asOptions(app.catalog.cameras), 'Nikon_D850');
-  const noiseInput = h('input', { type: 'number', value: 0.001, min: 0, max: 0.05, step: 0.001, size: 6 });
-  const table4Btn = h('button', { type: 'button' }, 'Run the simulated Table IV');
+  const noiseInput = h('input', { type: 'number', 'data-role': 'surface-noise', value: 0.001, min: 0, max: 0.05, step: 0.001, size: 6 });
+  const table4Btn = h('button', { type: 'button', 'data-role': 'surface-table4' }, 'Run the simulated Table IV');
   const table4Box = h('div', { class: 'table-box' });
 
   section.append(
@@ -185,7 +185,8 @@ export function mount(section, app) {
     const ref = reference();
     const chart = file.chart ?? (builtIn() ? ref.settings.chart : null);
     if (!chart) { showError(fileInput, Object.assign(new Error('a second measurement is compared with a built-in chart\'s reflectances: choose one in step 1'), { code: 'NO_REFERENCE' }), file.name); return null; }
-    st.range = [Number(rangeMin.value), Number(rangeMax.value)];
+    for (const c of [rangeMin, rangeMax]) clearError(c);
+    try { st.range = [numberValue(rangeMin), numberValue(rangeMax)]; } catch (e) { showError(e.input, e, 'Phase I'); return null; }
     persist();
     const starts = rows.map((r) => {
       const start = completeChoice(r, r.id === choice.method ? choice : null);
@@ -287,10 +288,11 @@ export function mount(section, app) {
 
   // ---- Table IV ----
   async function runTable4() {
-    clearError(table4Btn);
+    for (const c of [table4Btn, noiseInput]) clearError(c);
     table4Btn.disabled = true;
     try {
-      const { methods, cells } = await engine.call('surfaceTable4', { camera: cameraSel.value, illuminant: reference()?.settings.illuminant ?? 'D50', noise: Number(noiseInput.value) });
+      const noise = numberValue(noiseInput, 0);
+      const { methods, cells } = await engine.call('surfaceTable4', { camera: cameraSel.value, illuminant: reference()?.settings.illuminant ?? 'D50', noise });
       const trainings = [...new Set(cells.map((c) => c.training))];
       const cell = (t, m) => cells.find((c) => c.training === t && c.method === m);
       table4Box.replaceChildren(h('table', { class: 'compare surface-table4' },
@@ -302,7 +304,7 @@ export function mount(section, app) {
           return h('td', { dataset: { method: m }, title: c.ok ? `${c.status}${c.correction.method !== 'none' ? ` · ${c.correction.method}` : ''}` : c.message },
             c.ok ? `${fmt(c.dE00.mean)} / ${fmt(c.dE00.max)} · ${fmt(c.dE_xyz.mean, 4)}` : c.error_code);
         }))))));
-    } catch (e) { showError(table4Btn, e, 'Table IV'); } finally { table4Btn.disabled = false; }
+    } catch (e) { showError(e.input ?? table4Btn, e, 'Table IV'); } finally { table4Btn.disabled = false; }
   }
   table4Btn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'table4-error' });
   table4Btn.setAttribute('aria-describedby', 'table4-error');
