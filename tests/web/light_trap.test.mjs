@@ -42,6 +42,9 @@ test('light trap: flare measured in the marked region is subtracted before sampl
     // 1. The trap over D6: the flare shown is the engine's, every patch drops by exactly it.
     await page.check(`${box} input[type=checkbox]`);
     await setTrap(page, TRAP);
+    // each box's change samples again: wait for the sampling of the last one (the full rectangle)
+    await page.waitForFunction((c) => JSON.stringify(window.tristim.derived.sample?.lightTrapCorners) === c,
+      JSON.stringify([603, 443, 643, 443, 643, 481, 603, 481]), { timeout: 30000 });
     await page.waitForFunction((s) => /Flare subtracted/.test(document.querySelector(s)?.textContent ?? ''), `${box} .light-trap-state`);
     await waitTrap(page, true);
     const trap = await page.evaluate(() => { const t = window.tristim.derived.sample.lightTrap; return { mean: Array.from(t.mean), n: t.n, corners: window.tristim.derived.sample.lightTrapCorners }; });
