@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 
+#include "../sum4.hpp"
 #include "correction.hpp"
 #include "minimise.hpp"
 #include "tristim/error.hpp"
@@ -84,7 +85,7 @@ SpectralData on_grid(const SpectralData& d, const std::vector<size_t>& order, co
 // indices [w0, w1), for full row coefficients c (eq 4 / eq 5 per element); +inf where the
 // Saunderson coefficients are singular. The objective of every Phase I evaluation: four partial
 // sums (by position within each patch's block of four wavelengths) run side by side and are added
-// at the end, in this order in both builds, so neither waits on one chain of additions and both
+// at the end (Sum4), in this order in both builds, so neither waits on one chain of additions and both
 // compilers vectorise the corrections (the division of eq 4 included). The correction's kind is
 // chosen once, outside the loops.
 double sum_squares(PointCorrection::Kind kind, const std::vector<std::vector<double>>& measured,
@@ -97,22 +98,16 @@ double sum_squares(PointCorrection::Kind kind, const std::vector<std::vector<dou
   }
   const size_t n = w1 - w0;
   auto run = [&](auto value) {
-    double s[4] = {0, 0, 0, 0};
+    Sum4 s;  // lanes run across wavelengths, carried over the patches
     for (size_t k = 0; k < measured.size(); ++k) {
       const double* m = measured[k].data() + w0;
       const double* t = target[k].data() + w0;
-      size_t w = 0;
-      for (; w + 4 <= n; w += 4)
-        for (size_t j = 0; j < 4; ++j) {
-          const double d = value(m[w + j]) - t[w + j];
-          s[j] += d * d;
-        }
-      for (; w < n; ++w) {
+      s.add(static_cast<std::ptrdiff_t>(n), [&](std::ptrdiff_t w) {
         const double d = value(m[w]) - t[w];
-        s[w & 3] += d * d;
-      }
+        return d * d;
+      });
     }
-    return (s[0] + s[1]) + (s[2] + s[3]);
+    return s.total();
   };
   if (p.kind == PointCorrection::Saunderson) return run([&](double R) { return p.t.apply(R); });
   return run([&](double R) { return p.a * R + p.b; });

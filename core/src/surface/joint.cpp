@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../sum4.hpp"
 #include "correction.hpp"
 #include "minimise.hpp"
 #include "tristim/error.hpp"
@@ -23,20 +24,6 @@ void check_rgb(const PatchMatrix& rgb, const std::string& what) {
     for (int c = 0; c < 3; ++c)
       if (!std::isfinite(rgb(i, c)))
         throw Error(ErrorCode::InvalidArgument, what + ": patch " + std::to_string(i + 1) + " is not finite");
-}
-
-// Σ term(i) for i < n as four partial sums (i mod 4) added at the end: one order of additions in
-// both builds (Eigen's reductions and products group them by the SIMD width, which differs
-// between SSE2 and wasm's scalar path, so the fit took other steps in the page than in the CLI),
-// and four independent chains the compilers can vectorise.
-template <class Term>
-double sum4(Eigen::Index n, Term term) {
-  double s[4] = {0, 0, 0, 0};
-  Eigen::Index i = 0;
-  for (; i + 4 <= n; i += 4)
-    for (int j = 0; j < 4; ++j) s[j] += term(i + j);
-  for (; i < n; ++i) s[i & 3] += term(i);
-  return (s[0] + s[1]) + (s[2] + s[3]);
 }
 
 // The Figure 3 problem with the matrix solved in closed form for any reference XYZ.
