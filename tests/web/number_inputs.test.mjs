@@ -2,9 +2,10 @@
 // reports '' as its value) used to be read as an empty box, i.e. as 0 or the default, without a
 // word. Now such a typo, and an empty box that needs a number, shows INVALID_ARGUMENT next to that
 // box, what the box controls keeps its last good value, and a good number afterwards clears the
-// message and is used. One box of each kind: a fit option, the custom chart grid, the sampled
-// area, Table IV's noise, the Phase I range, the absolute fit's noise floor and the number of
-// principal components of the sensitivity estimate.
+// message and is used; a typo typed into an empty box or a typo cleared (no change event: '' before
+// and after) is read when the box is left. One box of each kind: a fit option, the custom chart
+// grid, the sampled area, Table IV's noise, the Phase I range, the absolute fit's noise floor and
+// the number of principal components of the sensitivity estimate.
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { screenshot } from './harness.mjs';
@@ -36,6 +37,8 @@ test('number boxes: a typo or a needed empty box is INVALID_ARGUMENT next to the
     let e = await errorNear(page, EXP);
     assert.equal(e.code, 'INVALID_ARGUMENT');
     assert.match(e.text, /not a number.*keep 2/);
+    await typeInto(page, EXP, '');   // the typo cleared: no change event, the box is read on leaving it
+    await page.waitForFunction((sel) => /needs a number/.test(document.getElementById(document.querySelector(sel).getAttribute('aria-describedby')).textContent), EXP);
     await typeInto(page, EXP, '3');
     assert.ok(await noErrorNear(page, EXP));
     await typeInto(page, EXP, '');
@@ -58,6 +61,11 @@ test('number boxes: a typo or a needed empty box is INVALID_ARGUMENT next to the
     e = await errorNear(page, LEFT);
     assert.equal(e.code, 'INVALID_ARGUMENT');
     assert.match(e.text, /Margin left/);
+    await typeInto(page, LEFT, '');   // cleared: empty margins are 0, so the message goes (rows still empty)
+    await page.waitForFunction((sel) => document.querySelector(sel).getAttribute('aria-invalid') === null, LEFT);
+    assert.match((await errorNear(page, ROWS)).text, /Rows: needs a number/);
+    await typeInto(page, LEFT, '--');   // a typo into an empty box: no change event either
+    assert.equal((await errorNear(page, LEFT)).code, 'INVALID_ARGUMENT');
     await typeInto(page, ROWS, '2');   // rows good now, the margin still not
     assert.ok(await noErrorNear(page, ROWS));
     assert.equal((await errorNear(page, LEFT)).code, 'INVALID_ARGUMENT');

@@ -158,19 +158,21 @@ export function mount(section, app) {
   }
   // A box that cannot be read shows why next to it; the grid, the sampling and the session keep
   // the last layout that could.
-  for (const el of [layoutSel, ...layoutBoxes]) {
-    el.addEventListener('change', () => {
-      for (const c of layoutBoxes) clearError(c);
-      let layout, sampling;
-      try { layout = layoutOptions(); sampling = sampleOptions(); } catch (e) { customBox.hidden = layoutSel.value !== 'custom'; showError(e.input, e, 'Layout'); return; }
-      syncLayout(layout);
-      editor.setSample(null);
-      if (detection) setDetection(null, 'idle', 'The layout changed: press “Detect again” to look for it.');
-      app.save('layout', layout);
-      app.save('sampleOptions', sampling);
-      resample();
-    });
+  function layoutChanged() {
+    for (const c of layoutBoxes) clearError(c);
+    let layout, sampling;
+    try { layout = layoutOptions(); sampling = sampleOptions(); } catch (e) { customBox.hidden = layoutSel.value !== 'custom'; showError(e.input, e, 'Layout'); return; }
+    syncLayout(layout);
+    editor.setSample(null);
+    if (detection) setDetection(null, 'idle', 'The layout changed: press “Detect again” to look for it.');
+    app.save('layout', layout);
+    app.save('sampleOptions', sampling);
+    resample();
   }
+  for (const el of [layoutSel, ...layoutBoxes]) el.addEventListener('change', layoutChanged);
+  // A typo typed into an empty box, or cleared, gives no change event (its value is '' before and
+  // after): the boxes are read again on leaving it.
+  for (const el of layoutBoxes) el.addEventListener('blur', () => { if (el.hasAttribute('aria-invalid') || el.validity.badInput) layoutChanged(); });
 
   async function setFile(slot, file) {
     clearError(inputs[slot]);

@@ -51,7 +51,7 @@ export function optionsForm(info, choice, onChange) {
     const i = h('input', { type: 'number', value: choice.parameters[o.name], step: o.type === 'integer' ? 1 : 'any',
       min: bounded ? o.min : null, max: bounded ? o.max : null, dataset: { option: o.name } });
     // A typo or an empty box is shown next to the box; the fits keep the last number it held.
-    i.addEventListener('change', () => {
+    const read = () => {
       let v;
       try { v = numberValue(i); } catch (e) {
         e.message += ` (the fits keep ${choice.parameters[o.name]})`;
@@ -61,7 +61,11 @@ export function optionsForm(info, choice, onChange) {
       clearError(i);
       choice.parameters[o.name] = v;
       onChange(choice);
-    });
+    };
+    i.addEventListener('change', read);
+    // A typo typed into an empty box, or cleared, gives no change event (its value is '' before and
+    // after): the box is read again on leaving it.
+    i.addEventListener('blur', () => { if (i.hasAttribute('aria-invalid') || i.validity.badInput) read(); });
     return field(o.label, i, hint);
   });
 }
