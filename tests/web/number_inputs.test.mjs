@@ -4,8 +4,8 @@
 // box, what the box controls keeps its last good value, and a good number afterwards clears the
 // message and is used; a typo typed into an empty box or a typo cleared (no change event: '' before
 // and after) is read when the box is left. One box of each kind: a fit option, the custom chart
-// grid, the sampled area, Table IV's noise, the Phase I range, the absolute fit's noise floor and
-// the number of principal components of the sensitivity estimate.
+// grid, the sampled area, the light trap, Table IV's noise, the Phase I range, the absolute fit's
+// noise floor and the number of principal components of the sensitivity estimate.
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { screenshot } from './harness.mjs';
@@ -79,6 +79,17 @@ test('number boxes: a typo or a needed empty box is INVALID_ARGUMENT next to the
     assert.ok(await noErrorNear(page, AREA));
     await page.selectOption('#step-images select[data-role="layout"]', 'passport');
     await page.waitForFunction(() => document.querySelectorAll('#step-images .patch-table tbody tr').length === 24);
+    // the light trap's boxes: a typo is named next to the trap, which stays where it was
+    const TRAP = '#step-images fieldset.light-trap';
+    await page.check(`${TRAP} input[type=checkbox]`);
+    await page.waitForFunction(() => !!window.tristim.derived.sample?.lightTrapCorners);
+    const trapBefore = await page.evaluate(() => JSON.stringify(window.tristim.derived.sample.lightTrapCorners));
+    await typeInto(page, `${TRAP} input[data-trap="x"]`, '1e');
+    e = await errorNear(page, `${TRAP} input[type=checkbox]`);
+    assert.equal(e.code, 'INVALID_ARGUMENT');
+    assert.match(e.text, /Light trap x/);
+    assert.equal(await page.evaluate(() => JSON.stringify(window.tristim.derived.sample.lightTrapCorners)), trapBefore);
+    await page.uncheck(`${TRAP} input[type=checkbox]`);
 
     // Table IV's noise and the Phase I range (read when their buttons are pressed)
     await step(page, 'surface');

@@ -111,8 +111,7 @@ export function mount(section, app) {
   for (const i of trapIns) i.addEventListener('change', () => {
     clearError(trapOn);
     // A typo in a box (type=number then reads '') would move the trap to 0 without a word.
-    const bad = trapIns.find((b) => b.validity.badInput);
-    if (bad) { try { numberValue(bad); } catch (e) { showError(trapOn, e, 'Light trap'); } return; }
+    try { for (const b of trapIns) numberValue(b, 0); } catch (e) { showError(trapOn, e, 'Light trap'); return; }
     showTrap(); trapChanged();
   });
   trapMark.addEventListener('click', () => {

@@ -84,10 +84,10 @@ SpectralData on_grid(const SpectralData& d, const std::vector<size_t>& order, co
 // Sum of squared differences of the corrected `measured` columns vs `target` at wavelength
 // indices [w0, w1), for full row coefficients c (eq 4 / eq 5 per element); +inf where the
 // Saunderson coefficients are singular. The objective of every Phase I evaluation: four partial
-// sums (by position within each patch's block of four wavelengths) run side by side and are added
-// at the end (Sum4), in this order in both builds, so neither waits on one chain of additions and both
-// compilers vectorise the corrections (the division of eq 4 included). The correction's kind is
-// chosen once, outside the loops.
+// sums (Sum4: by position within each patch's block of four wavelengths) run side by side and are
+// added at the end, in this order in both builds, so neither waits on one chain of additions and
+// both compilers vectorise the corrections (the division of eq 4 included). The correction's kind
+// is chosen once, outside the loops.
 double sum_squares(PointCorrection::Kind kind, const std::vector<std::vector<double>>& measured,
                    const std::vector<std::vector<double>>& target, size_t w0, size_t w1, const std::vector<double>& c) {
   PointCorrection p;
