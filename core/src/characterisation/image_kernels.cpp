@@ -1,14 +1,18 @@
 // Whole-image application of a model (apply_to_image): 4-lane kernels (SSE2 natively, SIMD128
-// in wasm; simd4.hpp) for the 3×3, affine and degree-2 root-polynomial models, and natively
-// AVX2+FMA and AVX-512 variants of the root-polynomial (chosen at run time; the same fused
-// multiply-adds lane by lane, so the two give identical floats), scalar loops with the same
-// association for the tails, a generic double path for the rest. Without FMA the kernels and the
-// scalar loops give bit-identical results (native SSE2 and wasm alike); the FMA paths differ by
-// FMA rounding (tests/core/characterisation/models_test.cpp).
-// Plain stores, except the AVX-512 kernel's on large outputs: on session 10's AMD VM 16-byte
+// in wasm; simd4.hpp) for the 3×3, affine and degree-2 root-polynomial models; natively, chosen at
+// run time, AVX-512 variants of the affine and root-polynomial kernels and an AVX2+FMA variant of
+// the root-polynomial; scalar loops with the same association for the tails, a generic double
+// path for the rest. The affine kernels (all widths) and the 4-lane root-polynomial use only
+// IEEE add, mul and sqrt: bit-identical to the scalar loops, native and wasm alike (this file is
+// compiled with -ffp-contract=off so that stays true in the AVX-512 functions). The AVX2 and
+// AVX-512 root-polynomials fuse multiply-adds, the same lane for lane (identical floats to each
+// other), and differ from the scalar loop by FMA rounding (tests/core/characterisation/models_test.cpp).
+// Plain stores, except the AVX-512 kernels' on large outputs: on session 10's AMD VM 16-byte
 // non-temporal stores made the 24 MP apply slower (3×3 at 63 % of memcpy speed with them, 93 %
 // without; root-polynomial AVX2 47 % vs 65 %); on session 13's Intel VM the AVX-512 kernel's
-// whole-line (64-byte, aligned) non-temporal stores are faster than its plain ones.
+// whole-line (64-byte, aligned) non-temporal stores are faster than its plain ones. Natively every
+// kernel asks for its input 6 KB ahead (simd4::prefetch_ahead; session 17: the Intel VM's
+// hardware prefetcher alone left the 24 MP apply waiting on memory).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -57,6 +61,7 @@ size_t simd_affine(const float* __restrict in, size_t n, float* __restrict out, 
     for (int j = 0; j < 4; ++j) k[c][j] = splat(a[c][j]);
   const size_t m = n & ~size_t(3);
   for (size_t i = 0; i < m; i += 4) {
+    prefetch_ahead(in + 3 * i);  // one line per 48-byte step: every line at least once
     f4 R, G, B;
     load_rgb(in + 3 * i, R, G, B);
     f4 o[3];
@@ -73,6 +78,7 @@ size_t simd_root2(const float* __restrict in, size_t n, float* __restrict out, c
     for (int j = 0; j < 6; ++j) k[c][j] = splat(a[c][j]);
   const size_t m = n & ~size_t(3);
   for (size_t i = 0; i < m; i += 4) {
+    prefetch_ahead(in + 3 * i);
     f4 R, G, B;
     load_rgb(in + 3 * i, R, G, B);
     const f4 P = signed_sqrt(mul(R, G)), Q = signed_sqrt(mul(R, B)), S = signed_sqrt(mul(G, B));
@@ -103,6 +109,8 @@ __attribute__((target("avx2,fma"))) size_t avx2_root2(const float* __restrict in
     for (int j = 0; j < 6; ++j) k[c][j] = _mm256_set1_ps(a[c][j]);
   const size_t m = n & ~size_t(7);
   for (size_t i = 0; i < m; i += 8) {
+    simd4::prefetch_ahead(in + 3 * i);  // 96 bytes per step: two lines
+    simd4::prefetch_ahead(in + 3 * i + 16);
     __m128 R0, G0, B0, R1, G1, B1;
     simd4::load_rgb(in + 3 * i, R0, G0, B0);
     simd4::load_rgb(in + 3 * i + 12, R1, G1, B1);
@@ -126,9 +134,10 @@ __attribute__((target("avx2,fma"))) size_t avx2_root2(const float* __restrict in
   return m;
 }
 
-// AVX-512 variant: 16 pixels per step, the deinterleave and interleave as two two-source lane
+// AVX-512 variants: 16 pixels per step, the deinterleave and interleave as two two-source lane
 // permutes per vector (instead of the AVX2 path's 4-lane shuffles, inserts and extracts, which
-// bound its speed), the arithmetic the AVX2 path's lane for lane (identical floats).
+// bound its speed). The root-polynomial does the AVX2 path's arithmetic lane for lane, the affine
+// model the 4-lane kernel's adds and multiplies (identical floats in both cases).
 __attribute__((target("avx512f"))) inline __m512 signed_sqrt16(__m512 p) {
   // (maskz with every lane set: the plain sqrt/andnot intrinsics trip GCC 12's -Wmaybe-uninitialized)
   const __m512i sign = _mm512_set1_epi32(static_cast<int>(0x80000000u)), bits = _mm512_castps_si512(p);
@@ -136,7 +145,7 @@ __attribute__((target("avx512f"))) inline __m512 signed_sqrt16(__m512 p) {
   const __m512 r = _mm512_maskz_sqrt_ps(static_cast<__mmask16>(0xffff), _mm512_castsi512_ps(magnitude));
   return _mm512_castsi512_ps(_mm512_or_si512(_mm512_castps_si512(r), _mm512_and_si512(sign, bits)));
 }
-// Outputs at least this large are written with non-temporal stores by the AVX-512 kernel.
+// Outputs at least this large are written with non-temporal stores by the AVX-512 kernels.
 constexpr size_t kStreamBytes = size_t(32) << 20;
 // The FMA kernels' formula for one pixel at a time (the same operations lane for lane).
 void scalar_root2_fma(const float* in, size_t n, float* out, const float (&a)[3][6]) {
@@ -153,14 +162,43 @@ void scalar_root2_fma(const float* in, size_t n, float* out, const float (&a)[3]
     }
   }
 }
+// The pixel formulas of the AVX-512 loop: X, Y, Z of 16 pixels from their R, G, B.
+struct Root2x16 {
+  __m512 k[3][6];
+  __attribute__((target("avx512f"))) explicit Root2x16(const float (&a)[3][6]) {
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < 6; ++j) k[c][j] = _mm512_set1_ps(a[c][j]);
+  }
+  __attribute__((target("avx512f"))) void operator()(__m512 R, __m512 G, __m512 B, __m512 (&o)[3]) const {
+    const __m512 P = signed_sqrt16(_mm512_mul_ps(R, G)), Q = signed_sqrt16(_mm512_mul_ps(R, B)),
+                 S = signed_sqrt16(_mm512_mul_ps(G, B));
+    for (int c = 0; c < 3; ++c) {  // the AVX2 path's order
+      __m512 t = _mm512_mul_ps(k[c][0], R);
+      t = _mm512_fmadd_ps(k[c][1], G, t);
+      t = _mm512_fmadd_ps(k[c][2], B, t);
+      t = _mm512_fmadd_ps(k[c][3], P, t);
+      t = _mm512_fmadd_ps(k[c][4], Q, t);
+      o[c] = _mm512_fmadd_ps(k[c][5], S, t);
+    }
+  }
+};
+struct Affinex16 {
+  __m512 k[3][4];
+  __attribute__((target("avx512f"))) explicit Affinex16(const float (&a)[3][4]) {
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < 4; ++j) k[c][j] = _mm512_set1_ps(a[c][j]);
+  }
+  __attribute__((target("avx512f"))) void operator()(__m512 R, __m512 G, __m512 B, __m512 (&o)[3]) const {
+    for (int c = 0; c < 3; ++c)  // the 4-lane kernel's association, no fused multiply-add
+      o[c] = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(k[c][0], R), _mm512_mul_ps(k[c][1], G)),
+                           _mm512_add_ps(_mm512_mul_ps(k[c][2], B), k[c][3]));
+  }
+};
 // Pixels [i0, i1) of the 16-pixel loop (i1 - i0 a multiple of 16); with kStream, non-temporal
 // stores, which need out + 3 * i0 64-byte aligned (16 pixels = 192 bytes keep it so).
-template <bool kStream>
-__attribute__((target("avx512f"))) void avx512_root2_steps(const float* __restrict in, size_t i0, size_t i1,
-                                                           float* __restrict out, const float (&a)[3][6]) {
-  __m512 k[3][6];
-  for (int c = 0; c < 3; ++c)
-    for (int j = 0; j < 6; ++j) k[c][j] = _mm512_set1_ps(a[c][j]);
+template <bool kStream, class Formula>
+__attribute__((target("avx512f"))) void avx512_steps(const float* __restrict in, size_t i0, size_t i1,
+                                                     float* __restrict out, const Formula& formula) {
   // 16 pixels = 48 floats in three vectors u, v, w. Channel c of pixel l is element 3l + c: the
   // first permute takes elements 0..31 from (u, v), the second the rest from w (its 16..31).
   const __m512i r1 = _mm512_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 0, 0, 0, 0, 0);
@@ -178,21 +216,13 @@ __attribute__((target("avx512f"))) void avx512_root2_steps(const float* __restri
                         _mm512_setr_epi32(26, 1, 2, 27, 4, 5, 28, 7, 8, 29, 10, 11, 30, 13, 14, 31)};
   for (size_t i = i0; i < i1; i += 16) {
     const float* p = in + 3 * i;
+    for (int q = 0; q < 3; ++q) simd4::prefetch_ahead(p + 16 * q);  // the three lines 192 bytes take
     const __m512 u = _mm512_loadu_ps(p), v = _mm512_loadu_ps(p + 16), w = _mm512_loadu_ps(p + 32);
     const __m512 R = _mm512_permutex2var_ps(_mm512_permutex2var_ps(u, r1, v), r2, w);
     const __m512 G = _mm512_permutex2var_ps(_mm512_permutex2var_ps(u, g1, v), g2, w);
     const __m512 B = _mm512_permutex2var_ps(_mm512_permutex2var_ps(u, b1, v), b2, w);
-    const __m512 P = signed_sqrt16(_mm512_mul_ps(R, G)), Q = signed_sqrt16(_mm512_mul_ps(R, B)),
-                 S = signed_sqrt16(_mm512_mul_ps(G, B));
     __m512 o[3];
-    for (int c = 0; c < 3; ++c) {  // the AVX2 path's order
-      __m512 t = _mm512_mul_ps(k[c][0], R);
-      t = _mm512_fmadd_ps(k[c][1], G, t);
-      t = _mm512_fmadd_ps(k[c][2], B, t);
-      t = _mm512_fmadd_ps(k[c][3], P, t);
-      t = _mm512_fmadd_ps(k[c][4], Q, t);
-      o[c] = _mm512_fmadd_ps(k[c][5], S, t);
-    }
+    formula(R, G, B, o);
     float* d = out + 3 * i;
     for (int q = 0; q < 3; ++q) {
       const __m512 v3 = _mm512_permutex2var_ps(_mm512_permutex2var_ps(o[0], xy[q], o[1]), z[q], o[2]);
@@ -202,27 +232,42 @@ __attribute__((target("avx512f"))) void avx512_root2_steps(const float* __restri
   }
   if constexpr (kStream) _mm_sfence();  // the streamed lines are ordered before later stores
 }
-// Returns how many leading pixels it wrote: n rounded down to 16, or, for a large output, to 8
-// (where the AVX2 kernel alone would stop). A large output (≥ kStreamBytes, past any cache) goes
-// out with 64-byte non-temporal stores — whole cache lines written without being read first, as
-// glibc's memcpy writes at this size; the pixels before the first 64-byte aligned output and
-// after the last 16-pixel step take the same fused formula one at a time (identical floats).
-__attribute__((target("avx512f"))) size_t avx512_root2(const float* __restrict in, size_t n,
-                                                        float* __restrict out, const float (&a)[3][6]) {
+// Runs the 16-pixel loop over n pixels and returns how many leading pixels it wrote: n rounded
+// down to 16, or, for a large output (≥ kStreamBytes, past any cache), to `boundary` pixels
+// (where the next narrower kernel alone would stop). A large output goes out with 64-byte
+// non-temporal stores — whole cache lines written without being read first, as glibc's memcpy
+// writes at this size; the pixels before the first 64-byte aligned output and after the last
+// 16-pixel step up to the boundary go through `one_by_one` (the same formula: identical floats).
+template <class Formula, class Coefficients>
+__attribute__((target("avx512f"))) size_t avx512_apply(const float* __restrict in, size_t n, float* __restrict out,
+                                                        const Coefficients& a, size_t boundary,
+                                                        void (*one_by_one)(const float*, size_t, float*, const Coefficients&)) {
+  const Formula formula(a);
   if (n * 3 * sizeof(float) >= kStreamBytes) {
     // out + 3·start is 64-byte aligned for one start in 0..15 (12·start covers every multiple of 4
     // modulo 64, and a float* is 4-byte aligned).
     size_t start = 0;
     while ((reinterpret_cast<std::uintptr_t>(out + 3 * start) & 63) != 0) ++start;
-    const size_t n8 = n & ~size_t(7), end = start + ((n8 - start) & ~size_t(15));
-    scalar_root2_fma(in, start, out, a);
-    avx512_root2_steps<true>(in, start, end, out, a);
-    scalar_root2_fma(in + 3 * end, n8 - end, out + 3 * end, a);
-    return n8;
+    const size_t nb = n - n % boundary, end = start + ((nb - start) & ~size_t(15));
+    one_by_one(in, start, out, a);
+    avx512_steps<true>(in, start, end, out, formula);
+    one_by_one(in + 3 * end, nb - end, out + 3 * end, a);
+    return nb;
   }
   const size_t m = n & ~size_t(15);
-  avx512_root2_steps<false>(in, 0, m, out, a);
+  avx512_steps<false>(in, 0, m, out, formula);
   return m;
+}
+// The root-polynomial stops at the AVX2 kernel's 8-pixel boundary (its tail is the AVX2 path's,
+// exactly as when AVX2 does the whole image); the affine model needs none (every path gives the
+// scalar formula's floats), so its large outputs are done here to the last pixel.
+__attribute__((target("avx512f"))) size_t avx512_root2(const float* __restrict in, size_t n,
+                                                        float* __restrict out, const float (&a)[3][6]) {
+  return avx512_apply<Root2x16>(in, n, out, a, 8, scalar_root2_fma);
+}
+__attribute__((target("avx512f"))) size_t avx512_affine(const float* __restrict in, size_t n,
+                                                         float* __restrict out, const float (&a)[3][4]) {
+  return avx512_apply<Affinex16>(in, n, out, a, 1, scalar_affine);
 }
 
 // The widest kernels the CPU (and the limit set for tests and benchmarks) allows: 0 = 4-lane
@@ -240,7 +285,11 @@ int cpu_kernel_level() {
 // The vector part of each model: how many leading pixels it wrote (0 without SIMD).
 size_t vector_affine(const float* in, size_t n, float* out, const float (&a)[3][4]) {
 #ifdef TRISTIM_SIMD4
-  return simd_affine(in, n, out, a);
+  size_t done = 0;
+#ifdef TRISTIM_HAVE_AVX2_PATH
+  if (cpu_kernel_level() >= 2) done = avx512_affine(in, n, out, a);
+#endif
+  return done + simd_affine(in + 3 * done, n - done, out + 3 * done, a);
 #else
   (void)in, (void)n, (void)out, (void)a;
   return 0;
