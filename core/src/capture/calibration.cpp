@@ -71,11 +71,15 @@ DarkFrame average_dark_frames(const std::vector<const RawImage*>& frames) {
   const double npix = static_cast<double>(n / 3);
   for (int c = 0; c < 3; ++c) d.mean[c] = sum[c] / npix;
   // Noise floor: spread of one frame around the average (temporal + fixed-pattern residual).
+  // Pixel by pixel, the three channels' sums apart (the same additions in the same order as
+  // element by element with i % 3, without a division per element and a sum kept in memory).
   std::array<double, 3> ss{};
-  for (size_t i = 0; i < n; ++i) {
-    const double e = first.rgb[i] - (frames.size() > 1 ? d.rgb[i] : d.mean[i % 3]);
-    ss[i % 3] += e * e;
-  }
+  const bool several = frames.size() > 1;
+  for (size_t i = 0; i + 2 < n; i += 3)
+    for (int c = 0; c < 3; ++c) {
+      const double e = first.rgb[i + c] - (several ? d.rgb[i + c] : d.mean[c]);
+      ss[c] += e * e;
+    }
   const double dof = frames.size() > 1 ? npix * (1.0 - 1.0 / frames.size()) : npix - 1;
   for (int c = 0; c < 3; ++c) d.noise[c] = std::sqrt(ss[c] / std::max(1.0, dof));
   return d;
@@ -95,30 +99,36 @@ FlatField make_flat_field(const RawImage& flat, const DarkFrame* dark, DarkMode 
         throw Error(ErrorCode::InvalidArgument, "white reflectance must be in (0, 1.5], got " + std::to_string(r));
   const size_t n = flat.rgb.size();
   // Two passes over the flat (check + channel sums, then gains) instead of a second full-size buffer.
-  const auto signal = [&](size_t i) {
-    float d = 0;
-    if (dark) d = dark_mode == DarkMode::PerPixel ? dark->rgb[i] : static_cast<float>(dark->mean[i % 3]);
-    return flat.rgb[i] - d;
-  };
+  // Element i + c of pixel i / 3 (channel c): the flat minus the dark (per pixel, or its channel mean).
+  const bool per_pixel = dark && dark_mode == DarkMode::PerPixel;
+  const float dark_mean[3] = {dark ? static_cast<float>(dark->mean[0]) : 0.f, dark ? static_cast<float>(dark->mean[1]) : 0.f,
+                              dark ? static_cast<float>(dark->mean[2]) : 0.f};
+  const auto signal = [&](size_t i, int c) { return flat.rgb[i + c] - (per_pixel ? dark->rgb[i + c] : dark_mean[c]); };
   std::array<double, 3> sum{};
-  for (size_t i = 0; i < n; ++i) {
-    const float v = signal(i);
-    if (!(v > 0)) {
-      const size_t p = i / 3;
-      throw Error(ErrorCode::FlatFieldZero,
-                  "the flat field has a zero or negative value at pixel (" +
-                      std::to_string(p % flat.width) + ", " + std::to_string(p / flat.width) +
-                      ") channel " + "RGB"[i % 3] + ": expose the flat so every pixel has signal");
+  bool positive = true;
+  for (size_t i = 0; i + 2 < n; i += 3)
+    for (int c = 0; c < 3; ++c) {
+      const float v = signal(i, c);
+      positive &= v > 0;
+      sum[c] += v;
     }
-    sum[i % 3] += v;
-  }
+  if (!positive)  // the first element that is not, named
+    for (size_t i = 0; i + 2 < n; i += 3)
+      for (int c = 0; c < 3; ++c)
+        if (!(signal(i, c) > 0)) {
+          const size_t p = i / 3;
+          throw Error(ErrorCode::FlatFieldZero,
+                      "the flat field has a zero or negative value at pixel (" + std::to_string(p % flat.width) +
+                          ", " + std::to_string(p / flat.width) + ") channel " + "RGB"[c] +
+                          ": expose the flat so every pixel has signal");
+        }
   const double npix = static_cast<double>(n / 3);
   f.reflectance_units = white_reflectance.has_value();
   for (int c = 0; c < 3; ++c) f.target[c] = white_reflectance ? (*white_reflectance)[c] : sum[c] / npix;
   detail::reserve_large(f.gain, n);
   f.gain.resize(n);
   for (size_t i = 0; i + 2 < n; i += 3)
-    for (int c = 0; c < 3; ++c) f.gain[i + c] = static_cast<float>(f.target[c] / signal(i + c));  // App. C step 2
+    for (int c = 0; c < 3; ++c) f.gain[i + c] = static_cast<float>(f.target[c] / signal(i, c));  // App. C step 2
   return f;
 }
 

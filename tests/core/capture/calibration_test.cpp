@@ -105,6 +105,14 @@ TEST_CASE("flat field with zeros: FLAT_FIELD_ZERO; bad reflectance: INVALID_ARGU
   for (auto& v : flat.rgb) v = 1000.f;
   flat.rgb[3 * 55 + 1] = 0.f;
   CHECK(code_of([&] { make_flat_field(flat); }) == ErrorCode::FlatFieldZero);
+  flat.rgb[3 * 57 + 2] = std::nanf("");  // a later element too: the first one is named
+  try {
+    make_flat_field(flat);
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()).find("pixel (5, 5) channel G") != std::string::npos);
+  }
+  flat.rgb[3 * 57 + 2] = 1000.f;
   RawImage black = synthetic(10, 10);
   CHECK(code_of([&] { fit_falloff_Guarnera2018(black); }) == ErrorCode::FlatFieldZero);
   flat.rgb[3 * 55 + 1] = 1000.f;
