@@ -163,12 +163,17 @@ void scalar_root2_fma(const float* in, size_t n, float* out, const float (&a)[3]
   }
 }
 // The pixel formulas of the AVX-512 loop: X, Y, Z of 16 pixels from their R, G, B.
-struct Root2x16 {
-  __m512 k[3][6];
-  __attribute__((target("avx512f"))) explicit Root2x16(const float (&a)[3][6]) {
+// Each coefficient a[c][j] in all 16 lanes.
+template <int kTerms>
+struct Coefficients16 {
+  __m512 k[3][kTerms];
+  __attribute__((target("avx512f"))) explicit Coefficients16(const float (&a)[3][kTerms]) {
     for (int c = 0; c < 3; ++c)
-      for (int j = 0; j < 6; ++j) k[c][j] = _mm512_set1_ps(a[c][j]);
+      for (int j = 0; j < kTerms; ++j) k[c][j] = _mm512_set1_ps(a[c][j]);
   }
+};
+struct Root2x16 : Coefficients16<6> {
+  using Coefficients16::Coefficients16;
   __attribute__((target("avx512f"))) void operator()(__m512 R, __m512 G, __m512 B, __m512 (&o)[3]) const {
     const __m512 P = signed_sqrt16(_mm512_mul_ps(R, G)), Q = signed_sqrt16(_mm512_mul_ps(R, B)),
                  S = signed_sqrt16(_mm512_mul_ps(G, B));
@@ -182,12 +187,8 @@ struct Root2x16 {
     }
   }
 };
-struct Affinex16 {
-  __m512 k[3][4];
-  __attribute__((target("avx512f"))) explicit Affinex16(const float (&a)[3][4]) {
-    for (int c = 0; c < 3; ++c)
-      for (int j = 0; j < 4; ++j) k[c][j] = _mm512_set1_ps(a[c][j]);
-  }
+struct Affinex16 : Coefficients16<4> {
+  using Coefficients16::Coefficients16;
   __attribute__((target("avx512f"))) void operator()(__m512 R, __m512 G, __m512 B, __m512 (&o)[3]) const {
     for (int c = 0; c < 3; ++c)  // the 4-lane kernel's association, no fused multiply-add
       o[c] = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(k[c][0], R), _mm512_mul_ps(k[c][1], G)),
