@@ -126,7 +126,7 @@ int main() {
     std::printf("BENCH psm_140 %s %.3f\n", id, t);
   }
 
-  std::printf("\n== CIEDE2000 objective, mean loss (NLopt BOBYQA), best of 5 ==\n");
+  std::printf("\n== CIEDE2000 objective, mean loss (algorithm auto: iteratively reweighted LM), best of 5 ==\n");
   for (int n : {24, 140})
     for (const char* id : {"matrix-3x3", "matrix-3x4", "Finlayson2015-2"}) {
       FitOptions o;
