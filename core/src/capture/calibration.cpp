@@ -101,8 +101,9 @@ FlatField make_flat_field(const RawImage& flat, const DarkFrame* dark, DarkMode 
   // Two passes over the flat (check + channel sums, then gains) instead of a second full-size buffer.
   // Element i + c of pixel i / 3 (channel c): the flat minus the dark (per pixel, or its channel mean).
   const bool per_pixel = dark && dark_mode == DarkMode::PerPixel;
-  const float dark_mean[3] = {dark ? static_cast<float>(dark->mean[0]) : 0.f, dark ? static_cast<float>(dark->mean[1]) : 0.f,
-                              dark ? static_cast<float>(dark->mean[2]) : 0.f};
+  float dark_mean[3] = {0.f, 0.f, 0.f};
+  if (dark)
+    for (int c = 0; c < 3; ++c) dark_mean[c] = static_cast<float>(dark->mean[c]);
   const auto signal = [&](size_t i, int c) { return flat.rgb[i + c] - (per_pixel ? dark->rgb[i + c] : dark_mean[c]); };
   std::array<double, 3> sum{};
   bool positive = true;

@@ -162,7 +162,6 @@ void scalar_root2_fma(const float* in, size_t n, float* out, const float (&a)[3]
     }
   }
 }
-// The pixel formulas of the AVX-512 loop: X, Y, Z of 16 pixels from their R, G, B.
 // Each coefficient a[c][j] in all 16 lanes.
 template <int kTerms>
 struct Coefficients16 {
@@ -172,6 +171,7 @@ struct Coefficients16 {
       for (int j = 0; j < kTerms; ++j) k[c][j] = _mm512_set1_ps(a[c][j]);
   }
 };
+// The pixel formulas of the AVX-512 loop: X, Y, Z of 16 pixels from their R, G, B.
 struct Root2x16 : Coefficients16<6> {
   using Coefficients16::Coefficients16;
   __attribute__((target("avx512f"))) void operator()(__m512 R, __m512 G, __m512 B, __m512 (&o)[3]) const {
