@@ -450,7 +450,7 @@ RawImage build_image(LibRaw& p, const DecodeOptions& options) {
   if (img.width < 1 || img.height < 1)
     throw Error(ErrorCode::RawCorrupt, "the RAW image is smaller than one CFA block");
   const size_t npix = static_cast<size_t>(img.width) * img.height;
-  detail::assign_large(img.rgb, npix * 3, 0.0f);  // huge pages natively: first touch is the cost
+  detail::assign_large(img.rgb, npix * 3, 0.0f);  // pages mapped in one call natively (large_buffer.hpp)
   detail::assign_large(img.saturated, npix, std::uint8_t{0});
 
   // Black and saturation per channel, reported in metadata (means over the CFA repeat).

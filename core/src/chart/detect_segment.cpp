@@ -114,7 +114,7 @@ RawImage working_image(const RawImage& image, int working_side, int* factor_out)
   out.meta = image.meta;
   out.width = image.width / f;
   out.height = image.height / f;
-  // Fresh memory advised for huge pages (large_buffer.hpp): a 24 MP image's working copy is
+  // Pages mapped in one call natively (large_buffer.hpp): a 24 MP image's working copy is
   // ~20 MB, ~5000 page faults otherwise.
   detail::assign_large(out.rgb, size_t(out.width) * out.height * 3, 0.f);
   detail::assign_large(out.saturated, size_t(out.width) * out.height, std::uint8_t(0));
@@ -202,7 +202,7 @@ RegionLabels flat_regions(const RawImage& img, const FlatRegionOptions& options)
   RegionLabels out;
   out.width = w;
   out.height = h;
-  detail::assign_large(out.label, size_t(w) * h, -1);  // fresh memory advised for huge pages (large_buffer.hpp)
+  detail::assign_large(out.label, size_t(w) * h, -1);  // pages mapped in one call natively (large_buffer.hpp)
   if (w < 5 || h < 5) return out;
   const NoiseModel noise = estimate_noise(img);
   // The image is streamed row by row through rings of three rows (3×3 box mean, log, flat
