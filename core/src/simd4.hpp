@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -32,6 +33,27 @@ inline void prefetch_ahead(const float* p) {
 inline f4 splat(float v) { return _mm_set1_ps(v); }
 inline f4 add(f4 a, f4 b) { return _mm_add_ps(a, b); }
 inline f4 mul(f4 a, f4 b) { return _mm_mul_ps(a, b); }
+inline f4 sub(f4 a, f4 b) { return _mm_sub_ps(a, b); }
+/// Every lane holds the 32-bit pattern v (e.g. ~0u: a mask of all ones).
+inline f4 bits(std::uint32_t v) { return _mm_castsi128_ps(_mm_set1_epi32(static_cast<int>(v))); }
+inline f4 bit_and(f4 a, f4 b) { return _mm_and_ps(a, b); }
+inline f4 bit_or(f4 a, f4 b) { return _mm_or_ps(a, b); }
+/// All ones in the lanes where a >= b, zeros elsewhere.
+inline f4 ge(f4 a, f4 b) { return _mm_cmpge_ps(a, b); }
+/// Eight little-endian uint16 (16 bytes, any alignment) -> the four at even and the four at odd
+/// indices, as floats (exact).
+inline void load_u16_pairs(const std::uint16_t* p, f4& even, f4& odd) {
+  const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+  even = _mm_cvtepi32_ps(_mm_and_si128(x, _mm_set1_epi32(0xffff)));
+  odd = _mm_cvtepi32_ps(_mm_srli_epi32(x, 16));
+}
+/// Each lane's 32-bit integer (0..255) as one byte: out[0..3].
+inline void store_bytes(std::uint8_t* out, f4 v) {
+  const __m128i w = _mm_castps_si128(v);
+  const __m128i b = _mm_packus_epi16(_mm_packs_epi32(w, w), w);
+  const std::int32_t four = _mm_cvtsi128_si32(b);
+  std::memcpy(out, &four, 4);
+}
 /// sign(p)·sqrt(|p|), lane by lane (correctly rounded sqrt).
 inline f4 signed_sqrt(f4 p) {
   const __m128 sign = _mm_set1_ps(-0.0f);
@@ -64,6 +86,21 @@ inline void prefetch_ahead(const float*) {}
 inline f4 splat(float v) { return wasm_f32x4_splat(v); }
 inline f4 add(f4 a, f4 b) { return wasm_f32x4_add(a, b); }
 inline f4 mul(f4 a, f4 b) { return wasm_f32x4_mul(a, b); }
+inline f4 sub(f4 a, f4 b) { return wasm_f32x4_sub(a, b); }
+inline f4 bits(std::uint32_t v) { return wasm_i32x4_splat(static_cast<std::int32_t>(v)); }
+inline f4 bit_and(f4 a, f4 b) { return wasm_v128_and(a, b); }
+inline f4 bit_or(f4 a, f4 b) { return wasm_v128_or(a, b); }
+inline f4 ge(f4 a, f4 b) { return wasm_f32x4_ge(a, b); }
+inline void load_u16_pairs(const std::uint16_t* p, f4& even, f4& odd) {
+  const v128_t x = wasm_v128_load(p);
+  even = wasm_f32x4_convert_i32x4(wasm_v128_and(x, wasm_i32x4_splat(0xffff)));
+  odd = wasm_f32x4_convert_i32x4(wasm_u32x4_shr(x, 16));
+}
+inline void store_bytes(std::uint8_t* out, f4 v) {
+  const v128_t h = wasm_i16x8_narrow_i32x4(v, v);
+  const std::int32_t four = wasm_i32x4_extract_lane(wasm_u8x16_narrow_i16x8(h, h), 0);
+  std::memcpy(out, &four, 4);
+}
 inline f4 signed_sqrt(f4 p) {
   const v128_t sign = wasm_f32x4_splat(-0.0f);
   return wasm_v128_or(wasm_f32x4_sqrt(wasm_v128_andnot(p, sign)), wasm_v128_and(p, sign));

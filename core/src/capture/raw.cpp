@@ -16,6 +16,7 @@
 #include "tristim/error.hpp"
 #include "tristim/io/json.hpp"
 #include "../large_buffer.hpp"
+#include "../simd4.hpp"
 
 namespace tristim {
 
@@ -436,6 +437,45 @@ BlackModel black_model(LibRaw& p) {
   return b;
 }
 
+#ifdef TRISTIM_SIMD4
+/// The Bayer fast path of build_image, 4 output pixels per step (SSE2 natively, SIMD128 in wasm):
+/// the same floats as its scalar loop. Each 2×2 block's values minus their black are summed per
+/// channel in block order k = 0..3 (the values of other channels masked to +0, which leaves every
+/// sum as the scalar loop's) and scaled by 1/count; a channel's saturation bit is set when one of
+/// its values reaches its threshold. Returns the pixels done (a multiple of 4).
+int bayer_row_simd(const ushort* l0, const ushort* l1, int width, const int (&chan)[4], const float (&blk)[4],
+                   const float (&thr)[4], const std::array<float, 3>& ic, float* out, std::uint8_t* sat) {
+  using namespace simd4;
+  f4 b[4], t[4], bit[4], mask[3][4], scale[3];
+  for (int k = 0; k < 4; ++k) {
+    b[k] = splat(blk[k]);
+    t[k] = splat(thr[k]);
+    bit[k] = bits(1u << chan[k]);
+    for (int c = 0; c < 3; ++c) mask[c][k] = bits(chan[k] == c ? ~0u : 0u);
+  }
+  for (int c = 0; c < 3; ++c) scale[c] = splat(ic[c]);
+  const int n = width & ~3;
+  for (int x = 0; x < n; x += 4) {
+    f4 v[4];
+    load_u16_pairs(l0 + 2 * x, v[0], v[1]);
+    load_u16_pairs(l1 + 2 * x, v[2], v[3]);
+    f4 s = bits(0);
+    for (int k = 0; k < 4; ++k) {
+      v[k] = sub(v[k], b[k]);
+      s = bit_or(s, bit_and(ge(v[k], t[k]), bit[k]));
+    }
+    f4 o[3];
+    for (int c = 0; c < 3; ++c)
+      o[c] = mul(add(add(add(bit_and(v[0], mask[c][0]), bit_and(v[1], mask[c][1])), bit_and(v[2], mask[c][2])),
+                     bit_and(v[3], mask[c][3])),
+                 scale[c]);
+    store_xyz(out + 3 * x, o[0], o[1], o[2]);
+    store_bytes(sat + x, s);
+  }
+  return n;
+}
+#endif
+
 RawImage build_image(LibRaw& p, const DecodeOptions& options) {
   const LayoutInfo L = classify(p);
   RawImage img;
@@ -498,7 +538,12 @@ RawImage build_image(LibRaw& p, const DecodeOptions& options) {
         const ushort* l1 = l0 + pitch;
         float* out = &img.rgb[static_cast<size_t>(y) * img.width * 3];
         std::uint8_t* sat = &img.saturated[static_cast<size_t>(y) * img.width];
-        for (int x = 0; x < img.width; ++x) {
+#ifdef TRISTIM_SIMD4
+        const int done = bayer_row_simd(l0, l1, img.width, chan, blk, thr, ic, out, sat);
+#else
+        const int done = 0;
+#endif
+        for (int x = done; x < img.width; ++x) {
           const float v[4] = {l0[2 * x] - blk[0], l0[2 * x + 1] - blk[1], l1[2 * x] - blk[2],
                               l1[2 * x + 1] - blk[3]};
           float acc[3] = {0.f, 0.f, 0.f};
