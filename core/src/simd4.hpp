@@ -40,6 +40,25 @@ inline f4 bit_and(f4 a, f4 b) { return _mm_and_ps(a, b); }
 inline f4 bit_or(f4 a, f4 b) { return _mm_or_ps(a, b); }
 /// All ones in the lanes where a >= b, zeros elsewhere.
 inline f4 ge(f4 a, f4 b) { return _mm_cmpge_ps(a, b); }
+/// std::min(a, b) and std::max(a, b) lane by lane, NaN cases included ((b < a) ? b : a, (a < b) ? b : a).
+inline f4 min_std(f4 a, f4 b) { return _mm_min_ps(b, a); }
+inline f4 max_std(f4 a, f4 b) { return _mm_max_ps(b, a); }
+inline f4 le(f4 a, f4 b) { return _mm_cmple_ps(a, b); }
+inline f4 sqrt(f4 a) { return _mm_sqrt_ps(a); }
+/// x with the lanes of `mask` cleared; mask ? a : b.
+inline f4 and_not(f4 x, f4 mask) { return _mm_andnot_ps(mask, x); }
+inline f4 select(f4 mask, f4 a, f4 b) { return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b)); }
+inline f4 load(const float* p) { return _mm_loadu_ps(p); }
+inline void store(float* p, f4 v) { _mm_storeu_ps(p, v); }
+/// All ones in the lanes where the 32-bit integers are equal.
+inline f4 int_eq(f4 a, f4 b) { return _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(a), _mm_castps_si128(b))); }
+/// Four bytes p[0..3] as the 32-bit integers of the four lanes.
+inline f4 load_bytes(const std::uint8_t* p) {
+  std::int32_t four;
+  std::memcpy(&four, p, 4);
+  const __m128i z = _mm_setzero_si128();
+  return _mm_castsi128_ps(_mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(four), z), z));
+}
 /// Eight little-endian uint16 (16 bytes, any alignment) -> the four at even and the four at odd
 /// indices, as floats (exact).
 inline void load_u16_pairs(const std::uint16_t* p, f4& even, f4& odd) {
@@ -91,6 +110,20 @@ inline f4 bits(std::uint32_t v) { return wasm_i32x4_splat(static_cast<std::int32
 inline f4 bit_and(f4 a, f4 b) { return wasm_v128_and(a, b); }
 inline f4 bit_or(f4 a, f4 b) { return wasm_v128_or(a, b); }
 inline f4 ge(f4 a, f4 b) { return wasm_f32x4_ge(a, b); }
+inline f4 min_std(f4 a, f4 b) { return wasm_f32x4_pmin(a, b); }
+inline f4 max_std(f4 a, f4 b) { return wasm_f32x4_pmax(a, b); }
+inline f4 le(f4 a, f4 b) { return wasm_f32x4_le(a, b); }
+inline f4 sqrt(f4 a) { return wasm_f32x4_sqrt(a); }
+inline f4 and_not(f4 x, f4 mask) { return wasm_v128_andnot(x, mask); }
+inline f4 select(f4 mask, f4 a, f4 b) { return wasm_v128_bitselect(a, b, mask); }
+inline f4 load(const float* p) { return wasm_v128_load(p); }
+inline void store(float* p, f4 v) { wasm_v128_store(p, v); }
+inline f4 int_eq(f4 a, f4 b) { return wasm_i32x4_eq(a, b); }
+inline f4 load_bytes(const std::uint8_t* p) {
+  std::int32_t four;
+  std::memcpy(&four, p, 4);
+  return wasm_u32x4_extend_low_u16x8(wasm_u16x8_extend_low_u8x16(wasm_i32x4_make(four, 0, 0, 0)));
+}
 inline void load_u16_pairs(const std::uint16_t* p, f4& even, f4& odd) {
   const v128_t x = wasm_v128_load(p);
   even = wasm_f32x4_convert_i32x4(wasm_v128_and(x, wasm_i32x4_splat(0xffff)));
