@@ -9,7 +9,11 @@
 # Builds only the benchmark targets (assumes build/native and build/wasm were configured, e.g.
 # by scripts/build.sh). Figures are printed, never asserted. Optional: dcraw_emu (Debian package
 # libraw-bin) timings on the real RAW files, for scale.
-# usage: scripts/bench.sh [topic...]   e.g. `scripts/bench.sh detect` runs only bench_detect.
+# Each program runs BENCH_RUNS times (default 3) in each mode, the modes interleaved (native, wasm,
+# opt, native, …), and every row prints the median: a row is often a single first call (decode,
+# fresh memory), which one run's noise on a shared 2-core machine moves by 1.5×.
+# usage: scripts/bench.sh [topic...]   e.g. `scripts/bench.sh detect` runs only bench_detect;
+#        BENCH_RUNS=1 scripts/bench.sh   one run of each (quicker, noisier).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 export NODE_PATH=/usr/share/nodejs
@@ -20,6 +24,8 @@ if [ $# -gt 0 ]; then
   names=$(printf '%s\n' $names | grep -Fx "$wanted")
 fi
 [ -n "$names" ] || { echo "[bench] no tests/bench/bench_*.cpp"; exit 0; }
+runs=${BENCH_RUNS:-3}
+[[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "[bench] BENCH_RUNS must be a positive integer (got '$runs')"; exit 2; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
@@ -34,32 +40,48 @@ for n in $names; do
   wasm=build/wasm/tests/bench/$n.cjs
   echo
   echo "=== $n ==="
-  TRISTIM_SHARED_DATA="$shared" "$native" >"$tmp/native.txt" 2>&1 || echo "[bench] $n native exited $?"
-  TRISTIM_SHARED_DATA="$shared" node "$wasm" >"$tmp/wasm.txt" 2>&1 || echo "[bench] $n wasm exited $?"
-  TRISTIM_SHARED_DATA="$shared" node --no-liftoff --no-wasm-lazy-compilation "$wasm" >"$tmp/opt.txt" 2>&1 || echo "[bench] $n wasm optimised-only exited $?"
-  if grep -q '^BENCH ' "$tmp/native.txt"; then
-    grep '^CASE ' "$tmp/native.txt" | sed 's/^CASE /  /'
-    # Join "BENCH case step ms" lines of both runs; "PEAK case MiB" lines give memory.
-    awk '
+  for r in $(seq 1 "$runs"); do
+    TRISTIM_SHARED_DATA="$shared" "$native" >"$tmp/native.$r" 2>&1 || echo "[bench] $n native exited $?"
+    TRISTIM_SHARED_DATA="$shared" node "$wasm" >"$tmp/wasm.$r" 2>&1 || echo "[bench] $n wasm exited $?"
+    TRISTIM_SHARED_DATA="$shared" node --no-liftoff --no-wasm-lazy-compilation "$wasm" >"$tmp/opt.$r" 2>&1 || echo "[bench] $n wasm optimised-only exited $?"
+  done
+  files=()
+  for mode in native wasm opt; do for r in $(seq 1 "$runs"); do files+=("$tmp/$mode.$r"); done; done
+  if grep -q '^BENCH ' "$tmp/native.1"; then
+    grep '^CASE ' "$tmp/native.1" | sed 's/^CASE /  /'
+    echo "  (median of $runs runs per mode)"
+    # Join "BENCH case step ms" lines of the three modes (median over the runs of each); "PEAK case
+    # MiB" lines give memory.
+    awk -v runs="$runs" '
       function ratio(a, b) { return (a > 0 && b != "") ? sprintf("%.2f", b / a) : "-" }
-      FNR == 1 { file++ }
-      $1 == "BENCH" { key = $2 " " $3; if (file == 1) nat[key] = $4; else if (file == 2) was[key] = $4; else opt[key] = $4
+      function median(m, key,    c, i, j, v, t) {
+        c = cnt[m, key]
+        if (c == 0) return ""
+        for (i = 1; i <= c; i++) v[i] = val[m, key, i] + 0
+        for (i = 2; i <= c; i++) for (j = i; j > 1 && v[j - 1] > v[j]; j--) { t = v[j]; v[j] = v[j - 1]; v[j - 1] = t }
+        return c % 2 ? v[(c + 1) / 2] : (v[c / 2] + v[c / 2 + 1]) / 2
+      }
+      FNR == 1 { file++; mode = int((file - 1) / runs) + 1 }
+      $1 == "BENCH" { key = $2 " " $3; val[mode, key, ++cnt[mode, key]] = $4
                       if (!(key in seen)) { seen[key] = 1; order[++k] = key } }
-      $1 == "PEAK" { if (file == 1) npk[$2] = $3; else if (file == 2) wpk[$2] = $3 }
-      ($1 == "ERROR" || $1 == "SKIP") && file < 3 { print "  " (file == 1 ? "native: " : "wasm: ") $0 }
+      $1 == "PEAK" { key = "peak " $2; val[mode, key, ++cnt[mode, key]] = $3 }
+      ($1 == "ERROR" || $1 == "SKIP") && mode < 3 && (file - 1) % runs == 0 { print "  " (mode == 1 ? "native: " : "wasm: ") $0 }
       END {
         printf "  %-22s %-18s %11s %11s %7s %11s %7s\n", "case", "step", "native ms", "wasm ms", "ratio", "opt ms", "ratio"
         for (i = 1; i <= k; i++) {
           split(order[i], a, " ")
-          n = nat[order[i]]; w = was[order[i]]; o = opt[order[i]]
+          n = median(1, order[i]); w = median(2, order[i]); o = median(3, order[i])
           printf "  %-22s %-18s %11s %11s %7s %11s %7s\n", a[1], a[2], n, (w == "" ? "-" : w), ratio(n, w), (o == "" ? "-" : o), ratio(n, o)
-          if (a[2] == "total") printf "  %-22s %-18s %11s %11s\n", a[1], "peak MiB (RSS/heap)", npk[a[1]], (wpk[a[1]] == "" ? "-" : wpk[a[1]])
+          if (a[2] == "total") { np = median(1, "peak " a[1]); wp = median(2, "peak " a[1])
+            printf "  %-22s %-18s %11s %11s\n", a[1], "peak MiB (RSS/heap)", np, (wp == "" ? "-" : wp) }
         }
-      }' "$tmp/native.txt" "$tmp/wasm.txt" "$tmp/opt.txt"
+      }' "${files[@]}"
   else
-    echo "--- native"; cat "$tmp/native.txt"
-    echo "--- wasm (node)"; cat "$tmp/wasm.txt"
-    echo "--- wasm (node --no-liftoff --no-wasm-lazy-compilation: optimised code only)"; cat "$tmp/opt.txt"
+    for r in $(seq 1 "$runs"); do
+      echo "--- native (run $r)"; cat "$tmp/native.$r"
+      echo "--- wasm (node, run $r)"; cat "$tmp/wasm.$r"
+      echo "--- wasm (node --no-liftoff --no-wasm-lazy-compilation: optimised code only, run $r)"; cat "$tmp/opt.$r"
+    done
   fi
 done
 
