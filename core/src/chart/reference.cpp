@@ -91,8 +91,7 @@ ReferenceChart reference_from_spectra(const SpectralData& reflectances, const Sp
   r.illuminant_id = illuminant.names.empty() ? "" : illuminant.names[0];
   r.observer = observer;
   r.ids = reflectances.names;
-  r.white = illuminant_white_XYZ(illuminant, observer);
-  r.XYZ = reflectances_to_XYZ(reflectances, illuminant, observer);
+  r.XYZ = reflectances_to_XYZ(reflectances, illuminant, observer, &r.white);  // the white too (one weighting)
   const Mat3 display = display_matrix(r.white);  // once, not per patch (display_sRGB, the same floats)
   for (const auto& xyz : r.XYZ) {
     r.Lab.push_back(XYZ_to_Lab(xyz, r.white));

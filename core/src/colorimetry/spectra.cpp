@@ -118,24 +118,30 @@ std::vector<double> interpolate_spectrum(const std::vector<double>& w, const std
 }
 
 PulledBackWeights pull_back_weights(const std::vector<double>& w, bool linear, const std::vector<double>& nw,
-                                    const std::vector<std::vector<double>>& weights) {
+                                    const std::vector<double>& x, const std::vector<double>& y,
+                                    const std::vector<double>& z) {
   check_sizes(w, w.size());
   check_increasing(w);
-  for (const auto& c : weights)
-    if (c.size() != nw.size())
-      throw Error(ErrorCode::InvalidArgument, "weights with " + std::to_string(c.size()) + " values for " +
+  for (const auto* c : {&x, &y, &z})
+    if (c->size() != nw.size())
+      throw Error(ErrorCode::InvalidArgument, "weights with " + std::to_string(c->size()) + " values for " +
                                                   std::to_string(nw.size()) + " wavelengths");
   // Row k of the interpolation matrix A holds the coefficients interpolate_spectrum applies to v at
   // nw[k]; accumulate weights[c][k] · (row k) into Aᵀ weights. Same branches, same index choices,
   // and a sample counts as read exactly when interpolate_spectrum reads it.
-  const size_t n = w.size(), channels = weights.size();
+  const size_t n = w.size();
   const bool sprague = !linear && n >= 6 && is_uniform(w);
   const double h = n > 1 ? w[1] - w[0] : 1;
-  std::vector<std::vector<double>> full(channels, std::vector<double>(n, 0.0));
+  // The sums in one array, sample-major (full[3 j + c]), each accumulated in the order of row k.
+  std::vector<double> full(3 * n, 0.0);
   std::vector<char> read(n, 0);
+  const double *wx = x.data(), *wy = y.data(), *wz = z.data();
   auto add = [&](size_t j, double a, size_t k) {
     read[j] = 1;
-    for (size_t c = 0; c < channels; ++c) full[c][j] += a * weights[c][k];
+    double* f = &full[3 * j];
+    f[0] += a * wx[k];
+    f[1] += a * wy[k];
+    f[2] += a * wz[k];
   };
   // Sprague (1880) quintic of sprague_interpolate, eq 6 of CIE 167:2005, written per sample:
   // value = Σ_q r_q (δ_q0 + Σ_p P[p][q] X^p / 24), q = -2..3 around the interval's left node.
@@ -158,11 +164,16 @@ PulledBackWeights pull_back_weights(const std::vector<double>& w, bool linear, c
         add(static_cast<size_t>(i), 1.0, k);
         continue;
       }
+      // The six coefficients first (independent of each other), then their sums.
+      double coef[6];
       for (int q = 0; q < 6; ++q) {
         double a = P[4][q];
         for (int p = 3; p >= 0; --p) a = a * X + P[p][q];
-        a = a * X / 24;
-        if (q == 2) a += 1.0;  // a0 = r0
+        coef[q] = a * X / 24;
+      }
+      coef[2] += 1.0;  // a0 = r0
+      for (int q = 0; q < 6; ++q) {
+        const double a = coef[q];
         const long j = i + q - 2;
         if (j >= 0 && j < static_cast<long>(n)) {
           add(static_cast<size_t>(j), a, k);
@@ -185,23 +196,29 @@ PulledBackWeights pull_back_weights(const std::vector<double>& w, bool linear, c
   }
   PulledBackWeights out;
   out.samples = n;
-  out.weights.resize(channels);
+  out.nodes.reserve(n);
+  out.weights.reserve(3 * n);
   for (size_t j = 0; j < n; ++j) {
     if (!read[j]) continue;
     out.nodes.push_back(j);
-    for (size_t c = 0; c < channels; ++c) out.weights[c].push_back(full[c][j]);
+    out.weights.insert(out.weights.end(), &full[3 * j], &full[3 * j] + 3);
   }
   return out;
 }
 
-double PulledBackWeights::dot(size_t c, const std::vector<double>& v) const {
+Vec3 PulledBackWeights::dot(const std::vector<double>& v) const {
   if (v.size() != samples)
     throw Error(ErrorCode::InvalidArgument, "spectrum with " + std::to_string(samples) + " wavelengths and " +
                                                 std::to_string(v.size()) + " values");
-  const std::vector<double>& a = weights[c];
-  double s = 0;
-  for (size_t t = 0; t < nodes.size(); ++t) s += a[t] * v[nodes[t]];
-  return s;
+  double s0 = 0, s1 = 0, s2 = 0;
+  const double* a = weights.data();
+  for (size_t t = 0; t < nodes.size(); ++t, a += 3) {
+    const double r = v[nodes[t]];
+    s0 += a[0] * r;
+    s1 += a[1] * r;
+    s2 += a[2] * r;
+  }
+  return Vec3(s0, s1, s2);
 }
 
 SpectralData align_spectra(const SpectralData& d, const std::vector<double>& nw) {
@@ -376,8 +393,10 @@ Vec3 integrate(const Weights& w, const std::vector<double>& R) {
 }
 }  // namespace
 
-std::vector<Vec3> reflectances_to_XYZ(const SpectralData& reflectances, const SpectralData& illuminant, Observer observer) {
+std::vector<Vec3> reflectances_to_XYZ(const SpectralData& reflectances, const SpectralData& illuminant, Observer observer,
+                                      Vec3* white_XYZ) {
   const Weights w = weights(illuminant, observer);
+  if (white_XYZ) *white_XYZ = integrate(w, std::vector<double>(w.Sy.size(), 1.0));  // illuminant_white_XYZ
   std::vector<Vec3> out;
   if (reflectances.values.empty()) return out;
   // X = k Σ_i Sx̄_i (A r)_i over the CMF grid, A the interpolation onto it (linear in r), equals
@@ -386,10 +405,12 @@ std::vector<Vec3> reflectances_to_XYZ(const SpectralData& reflectances, const Sp
   // an interpolation to 471 wavelengths. Same values up to summation order.
   check_sizes(reflectances.wavelengths, reflectances.values[0].size());  // first column's errors first, as before
   const PulledBackWeights p =
-      pull_back_weights(reflectances.wavelengths, reflectances.linear, cmfs(observer).wavelengths, {w.Sx, w.Sy, w.Sz});
+      pull_back_weights(reflectances.wavelengths, reflectances.linear, cmfs(observer).wavelengths, w.Sx, w.Sy, w.Sz);
   out.reserve(reflectances.values.size());
-  for (const auto& col : reflectances.values)
-    out.push_back(Vec3(w.k * p.dot(0, col), w.k * p.dot(1, col), w.k * p.dot(2, col)));  // CIE 15:2004 eq 7.1
+  for (const auto& col : reflectances.values) {
+    const Vec3 s = p.dot(col);
+    out.push_back(Vec3(w.k * s[0], w.k * s[1], w.k * s[2]));  // CIE 15:2004 eq 7.1
+  }
   return out;
 }
 

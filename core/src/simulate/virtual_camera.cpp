@@ -130,11 +130,12 @@ std::vector<Vec3> simulate_camera_RGB(const SpectralData& ssf, const SpectralDat
   // Σ_j (Aᵀ w_c)_j r_j over the reflectance grid: the weights pulled back once (pull_back_weights,
   // as reflectances_to_XYZ does), one short dot product per reflectance and channel.
   const PulledBackWeights p =
-      pull_back_weights(reflectances.wavelengths, reflectances.linear, grid, {w[0], w[1], w[2]});
+      pull_back_weights(reflectances.wavelengths, reflectances.linear, grid, w[0], w[1], w[2]);
   for (const auto& col : reflectances.values) {
     Vec3 rgb;
+    const Vec3 sums = p.dot(col);
     for (int c = 0; c < 3; ++c) {
-      double u = p.dot(static_cast<size_t>(c), col);
+      double u = sums[c];
       u *= k;
       if (o.oecf) u = o.oecf_scale * std::pow(std::max(u, 0.0), 1.0 / o.oecf_gamma);  // eq (29)
       if (o.noise_sigma > 0) u += o.noise_sigma * noise.next();

@@ -58,19 +58,20 @@ SpectralData align_spectra(const SpectralData& data, const std::vector<double>& 
 /// In floating point the two differ by summation order only (a few ulps of Σ|w||v|).
 /// `nodes` lists the samples the interpolation reads, ascending; a sample it never reads (outside
 /// every Sprague window) is left out, so a NaN there is ignored as interpolate_spectrum ignores it.
-/// weights: one vector per channel, each new_wavelengths.size() long. Throws as interpolate_spectrum
-/// for `wavelengths` (empty, not strictly increasing), Error(InvalidArgument) for a weight vector
-/// of the wrong length.
+/// x, y, z: the three channels' weights, each new_wavelengths.size() long. Throws as
+/// interpolate_spectrum for `wavelengths` (empty, not strictly increasing), Error(InvalidArgument)
+/// for a weight vector of the wrong length.
 struct PulledBackWeights {
-  std::vector<size_t> nodes;                 // indices into wavelengths, ascending
-  std::vector<std::vector<double>> weights;  // one per channel, nodes.size() long
-  size_t samples = 0;                        // wavelengths.size()
-  /// Σ_t weights[c][t] · v[nodes[t]]; Error(InvalidArgument) unless v has `samples` values.
-  double dot(size_t c, const std::vector<double>& v) const;
+  std::vector<size_t> nodes;    // indices into wavelengths, ascending
+  std::vector<double> weights;  // node-major: weights[3 t + c] for node t, channel c
+  size_t samples = 0;           // wavelengths.size()
+  /// (Σ_t weights[3 t + c] · v[nodes[t]]) for c = 0, 1, 2, each summed over t in order;
+  /// Error(InvalidArgument) unless v has `samples` values.
+  Vec3 dot(const std::vector<double>& v) const;
 };
 PulledBackWeights pull_back_weights(const std::vector<double>& wavelengths, bool linear,
-                                    const std::vector<double>& new_wavelengths,
-                                    const std::vector<std::vector<double>>& weights);
+                                    const std::vector<double>& new_wavelengths, const std::vector<double>& x,
+                                    const std::vector<double>& y, const std::vector<double>& z);
 
 /// Sprague (1880) interpolation of uniformly spaced samples (exposed for tests): y at x, with
 /// x0 = first wavelength, step h. Needs >= 6 samples and x0 <= x <= x_last.
@@ -121,8 +122,10 @@ SpectralData daylight_spd(double cct);
 
 /// XYZ of each column of `reflectances` (fractions) under `illuminant` (first column used) for
 /// `observer`, by the integration rule at the top of this file; the perfect diffuser has Y = 100.
+/// With `white_XYZ`, also the illuminant's white (illuminant_white_XYZ's value; the illuminant is
+/// weighted once for both).
 std::vector<Vec3> reflectances_to_XYZ(const SpectralData& reflectances, const SpectralData& illuminant,
-                                      Observer observer = Observer::CIE1931_2);
+                                      Observer observer = Observer::CIE1931_2, Vec3* white_XYZ = nullptr);
 /// One reflectance.
 Vec3 sd_to_XYZ(const std::vector<double>& wavelengths, const std::vector<double>& reflectance,
                const SpectralData& illuminant, Observer observer = Observer::CIE1931_2);
