@@ -52,9 +52,40 @@ struct JointProblem {
   // builds, and the innermost loop runs over patches (contiguous, independent), which the
   // compilers vectorise (SSE2 natively, SIMD128 in wasm, where Eigen's product is scalar). Each
   // corrected column is formed once, in a buffer, and never as an N × L matrix.
+  //
+  // The affine corrections (scaler, offset, scaler-offset: R' = a R + b, eq 5) commute with the
+  // linear integration: (a Rm + b)·T = a (Rm·T) + b (1·T). Rm·T (`RT`, by the same column updates,
+  // also the report's uncorrected XYZ) and T's column sums (`Tsum`) are formed once, so such an
+  // evaluation costs N × 3 operations instead of N × L × 4; equal to the column updates below up
+  // to rounding.
+  Eigen::MatrixXd RT;
+  Eigen::Vector3d Tsum = Eigen::Vector3d::Zero();
+  void prepare_affine() {
+    const Eigen::Index n = Rm.rows();
+    RT = Eigen::MatrixXd::Zero(n, 3);
+    for (Eigen::Index k = 0; k < Rm.cols(); ++k) {
+      const double* r = Rm.col(k).data();
+      for (int j = 0; j < 3; ++j) {
+        const double t = T(k, j);
+        double* x = RT.col(j).data();
+        for (Eigen::Index i = 0; i < n; ++i) x[i] += r[i] * t;
+        Tsum[j] += t;
+      }
+    }
+  }
   Eigen::MatrixXd corrected_XYZ(PointCorrection::Kind kind, const std::vector<double>& c) const {
     const PointCorrection p = surface_detail::prepare_correction(kind, c);
     const Eigen::Index n = Rm.rows();
+    if (kind != PointCorrection::Saunderson && RT.rows() == n) {
+      Eigen::MatrixXd X(n, 3);
+      for (int j = 0; j < 3; ++j) {
+        const double* rt = RT.col(j).data();
+        const double bt = p.b * Tsum[j];
+        double* x = X.col(j).data();
+        for (Eigen::Index i = 0; i < n; ++i) x[i] = p.a * rt[i] + bt;
+      }
+      return X;
+    }
     Eigen::MatrixXd X = Eigen::MatrixXd::Zero(n, 3);
     Eigen::VectorXd column(n);
     for (Eigen::Index k = 0; k < Rm.cols(); ++k) {
@@ -133,6 +164,7 @@ JointFitResult fit_surface_joint_Abed2013(const MethodChoice& start, const Patch
   }
 
   const PointCorrection::Kind kind = surface_detail::correction_kind(row.info.id);
+  pr.prepare_affine();  // also the uncorrected XYZ of the report
   const std::vector<size_t> free = free_coefficients(row.info.id, options.free);
   std::vector<double> base(row.coefficients.size()), lb, ub;
   for (size_t j = 0; j < row.coefficients.size(); ++j) base[j] = choice_number(first, row.coefficients[j]);
@@ -179,7 +211,7 @@ JointFitResult fit_surface_joint_Abed2013(const MethodChoice& start, const Patch
   const Eigen::MatrixXd X = pr.corrected_XYZ(kind, c);
   r.matrix = pr.matrix_for(X);
   r.corrected_XYZ = X;
-  r.reference_XYZ = pr.Rm * pr.T;
+  r.reference_XYZ = pr.RT;  // Rm·T
   r.fitted_XYZ = camera_RGB * r.matrix.transpose();
   r.dE_xyz_rms = std::sqrt((r.fitted_XYZ - r.corrected_XYZ).rowwise().squaredNorm().mean());
   std::string at_bound;
