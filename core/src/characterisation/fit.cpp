@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "../detmath.hpp"
 #include "tristim/error.hpp"
 #include "tristim/characterisation/models.hpp"
 
@@ -376,7 +377,7 @@ void de2000_residuals(const Problem& pr, const De2000Data& d, const double* x, E
     double fp[3];  // d f(XYZ_c / white_c) / d XYZ_c
     for (int c = 0; c < 3; ++c) {
       const double t = XYZ[c] / d.white[c];
-      fp[c] = (t > eps ? std::cbrt(t) / (3.0 * t) : kappa / 116.0) / d.white[c];
+      fp[c] = (t > eps ? detmath::cbrt(t) / (3.0 * t) : kappa / 116.0) / d.white[c];
     }
     Mat3 dLab_dXYZ;  // L = 116 fy - 16, a = 500 (fx - fy), b = 200 (fy - fz)
     dLab_dXYZ << 0, 116.0 * fp[1], 0, 500.0 * fp[0], -500.0 * fp[1], 0, 0, 200.0 * fp[1], -200.0 * fp[2];
@@ -474,7 +475,8 @@ void damped_gauss_newton(Eigen::Map<Eigen::VectorXd>& xv, const Eigen::MatrixXd&
       xv = x_new;
       F = F_new;
       linearise();
-      mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
+      const double t = 2.0 * rho - 1.0;
+      mu *= std::max(1.0 / 3.0, 1.0 - t * t * t);
       nu = 2.0;
       converged = small || g.lpNorm<Eigen::Infinity>() <= 1e-12 * (1.0 + F);
     } else {

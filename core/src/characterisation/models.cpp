@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 
+#include "../detmath.hpp"
 #include "tristim/error.hpp"
 
 namespace tristim {
@@ -176,7 +177,8 @@ std::vector<ModelInfo> build_table() {
 inline double signed_root(double p, int k) {
   if (k == 1) return p;
   if (k == 2) return p >= 0 ? std::sqrt(p) : -std::sqrt(-p);
-  if (k == 3) return std::cbrt(p);
+  if (k == 3) return detmath::cbrt(p);  // the same bits in both builds (detmath.hpp)
+  if (k == 4) return p >= 0 ? std::sqrt(std::sqrt(p)) : -std::sqrt(std::sqrt(-p));
   return p >= 0 ? std::pow(p, 1.0 / k) : -std::pow(-p, 1.0 / k);
 }
 

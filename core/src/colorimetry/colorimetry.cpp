@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../detmath.hpp"
+
 namespace tristim {
 
 namespace {
@@ -12,7 +14,8 @@ constexpr double kEpsilon = 216.0 / 24389.0;  // (6/29)^3
 constexpr double kKappa = 24389.0 / 27.0;     // (29/3)^3
 double deg(double rad) { return rad * 180.0 / kPi; }
 double rad(double deg) { return deg * kPi / 180.0; }
-double f_Lab(double t) { return t > kEpsilon ? std::cbrt(t) : (kKappa * t + 16.0) / 116.0; }
+// Lab and CIEDE2000 use detmath's cbrt, atan2, sin, cos and exp: the same bits natively and in wasm.
+double f_Lab(double t) { return t > kEpsilon ? detmath::cbrt(t) : (kKappa * t + 16.0) / 116.0; }
 double pow7(double x) {
   const double x2 = x * x, x3 = x2 * x;
   return x3 * x3 * x;
@@ -54,20 +57,20 @@ Eigen::Vector2d XYZ_to_xy(const Vec3& XYZ) {
 }
 
 Vec3 Lab_to_LCh(const Vec3& Lab) {
-  double h = deg(std::atan2(Lab[2], Lab[1]));
+  double h = deg(detmath::atan2(Lab[2], Lab[1]));
   if (h < 0) h += 360.0;
-  return Vec3(Lab[0], std::hypot(Lab[1], Lab[2]), h);
+  return Vec3(Lab[0], norm2(Lab[1], Lab[2]), h);
 }
 
 Vec3 LCh_to_Lab(const Vec3& LCh) {
-  return Vec3(LCh[0], LCh[1] * std::cos(rad(LCh[2])), LCh[1] * std::sin(rad(LCh[2])));
+  return Vec3(LCh[0], LCh[1] * detmath::cos(rad(LCh[2])), LCh[1] * detmath::sin(rad(LCh[2])));
 }
 
 double delta_E_CIE1976(const Vec3& Lab1, const Vec3& Lab2) { return (Lab2 - Lab1).norm(); }
 
 double delta_E_CIE1994(const Vec3& Lab1, const Vec3& Lab2, bool textiles) {
   const double kL = textiles ? 2.0 : 1.0, K1 = textiles ? 0.048 : 0.045, K2 = textiles ? 0.014 : 0.015;
-  const double C1 = std::hypot(Lab1[1], Lab1[2]), C2 = std::hypot(Lab2[1], Lab2[2]);
+  const double C1 = norm2(Lab1[1], Lab1[2]), C2 = norm2(Lab2[1], Lab2[2]);
   const double dL = Lab1[0] - Lab2[0], dC = C1 - C2;
   const double da = Lab1[1] - Lab2[1], db = Lab1[2] - Lab2[2];
   const double dH2 = std::max(0.0, da * da + db * db - dC * dC);
@@ -96,7 +99,7 @@ DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double
   const double C1p = norm2(a1p, b1), C2p = norm2(a2p, b2);                 // eq (6)
   auto hue = [](double b, double ap) {                                     // eq (7)
     if (b == 0.0 && ap == 0.0) return 0.0;
-    double h = deg(std::atan2(b, ap));
+    double h = deg(detmath::atan2(b, ap));
     return h < 0 ? h + 360.0 : h;
   };
   const double h1p = hue(b1, a1p), h2p = hue(b2, a2p);
@@ -107,7 +110,7 @@ DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double
     if (dhp > 180.0) dhp -= 360.0;
     else if (dhp < -180.0) dhp += 360.0;
   }
-  const double dHp = 2.0 * std::sqrt(C1p * C2p) * std::sin(rad(dhp / 2.0));  // eq (11)
+  const double dHp = 2.0 * std::sqrt(C1p * C2p) * detmath::sin(rad(dhp / 2.0));  // eq (11)
   const double Cbarp = 0.5 * (C1p + C2p);                                  // eq (13)
   double hbarp = h1p + h2p;                                                // eq (14)
   if (C1p * C2p != 0.0) {
@@ -117,21 +120,21 @@ DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double
   }
   // eq (15), T = 1 − 0.17 cos(h̄' − 30°) + 0.24 cos(2h̄') + 0.32 cos(3h̄' + 6°) − 0.20 cos(4h̄' − 63°), its
   // multiple angles from cos h̄' and sin h̄' (one cosine and one sine instead of four cosines).
-  const double ch = std::cos(rad(hbarp)), sh = std::sin(rad(hbarp));
+  const double ch = detmath::cos(rad(hbarp)), sh = detmath::sin(rad(hbarp));
   const double c2 = 2.0 * ch * ch - 1.0, s2 = 2.0 * sh * ch;
   const double c3 = ch * (4.0 * ch * ch - 3.0), s3 = sh * (3.0 - 4.0 * sh * sh);
   const double c4 = 2.0 * c2 * c2 - 1.0, s4 = 2.0 * s2 * c2;
-  static const double cos30 = std::cos(rad(30.0)), sin30 = std::sin(rad(30.0)), cos6 = std::cos(rad(6.0)),
-                      sin6 = std::sin(rad(6.0)), cos63 = std::cos(rad(63.0)), sin63 = std::sin(rad(63.0));
+  static const double cos30 = detmath::cos(rad(30.0)), sin30 = detmath::sin(rad(30.0)), cos6 = detmath::cos(rad(6.0)),
+                      sin6 = detmath::sin(rad(6.0)), cos63 = detmath::cos(rad(63.0)), sin63 = detmath::sin(rad(63.0));
   const double T = 1.0 - 0.17 * (ch * cos30 + sh * sin30) + 0.24 * c2 + 0.32 * (c3 * cos6 - s3 * sin6) -
                    0.20 * (c4 * cos63 + s4 * sin63);
   const double t = (hbarp - 275.0) / 25.0;
-  const double dtheta = 30.0 * std::exp(-t * t);                           // eq (16)
+  const double dtheta = 30.0 * detmath::exp(-t * t);                           // eq (16)
   const double Cbarp7 = pow7(Cbarp);
   const double RC = 2.0 * std::sqrt(Cbarp7 / (Cbarp7 + k25pow7));          // eq (17)
   const double SC = 1.0 + 0.045 * Cbarp;                                   // eq (19)
   const double SH = 1.0 + 0.015 * Cbarp * T;                               // eq (20)
-  const double RT = -std::sin(rad(2.0 * dtheta)) * RC;                     // eq (21)
+  const double RT = -detmath::sin(rad(2.0 * dtheta)) * RC;                     // eq (21)
   DeltaE2000 r;
   r.dL = delta_E_CIE2000_dL(L1, L2, kL);
   r.dC = dCp / (kC * SC);

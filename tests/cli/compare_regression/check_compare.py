@@ -10,6 +10,16 @@ issue 13; mean-CIEDE2000 objective by NLopt BOBYQA), on
     sg140 --illuminant D50 --white 4000 --noise 5 --seed 140`, sg140_reference_XYZ_D50.csv =
     `tristim reference --chart sg140 --illuminant D50 --precision 17` (X, Y, Z columns).
 
+The ls and psm rows were re-recorded in session 19 (`--record`), when the fits became the same
+bits natively and in wasm (Eigen scalar in both builds, Lab and CIEDE2000 through
+core/src/detmath.hpp): the last bits moved, and three things amplify them -- the pattern search
+(Guarnera 2018 Algorithm 2) is a discrete search whose end point moves with its start's last bits
+(Passport: Shen2008 psm training mean 2.492225 -> 2.492077, Cheung2004-11 psm 2.497357 ->
+2.493967), and Finlayson2015-4 (ill-conditioned, leave-one-out mean 51 ΔE00 on the Passport)
+moved by up to 1e-4 relative on the Passport (plain and --white D1) and 2e-8 on the SG (its
+fourth roots are now sqrt(sqrt(p)) instead of pow(p, 0.25)); every other ls and psm row was
+within 1e-9 of the 8389a72 record. The de2000 rows keep the 8389a72 record (the rule below).
+
 Stated tolerance (exit status 1 otherwise):
   * every row: the same models, objectives, ok / refused and has-leave-one-out flags;
   * ls and psm rows (same algorithms as before): training and leave-one-out mean / max / p95
@@ -19,7 +29,8 @@ Stated tolerance (exit status 1 otherwise):
     most the recorded one + 0.001 ΔE00 (+ 0.01 for a fit flagged ill_conditioned, whose
     coefficients are poorly determined); the leave-one-out figures change with the optimum and
     are printed, not compared.
-Usage: check_compare.py --tristim PATH --shared DIR [--only passport|sg140]
+Usage: check_compare.py --tristim PATH --shared DIR [--only passport|sg140] [--record]
+  --record: rewrite the ls and psm rows of the expected files from this run (de2000 rows kept).
 """
 import argparse
 import csv
@@ -37,11 +48,34 @@ def expected(name):
         return {(r['model'], r['objective']): r for r in csv.DictReader(f)}
 
 
-def compare(tristim, rgb, xyz, extra, exp_name):
+def record(exp_name, rows):
+    path = os.path.join(HERE, exp_name)
+    with open(path, newline='') as f:
+        reader = csv.DictReader(f)
+        fields, old = reader.fieldnames, list(reader)
+    for e in old:
+        r = rows[(e['model'], e['objective'])]
+        if e['objective'] == 'de2000' or not r['ok']:
+            continue
+        e.update(train_mean=repr(r['train_dE00']['mean']), train_max=repr(r['train_dE00']['max']))
+        if r.get('has_loo'):
+            e.update(loo_mean=repr(r['loo_dE00']['mean']), loo_p95=repr(r['loo_dE00']['p95']),
+                     loo_max=repr(r['loo_dE00']['max']))
+    with open(path, 'w', newline='') as f:
+        w = csv.DictWriter(f, fieldnames=fields, lineterminator='\n')
+        w.writeheader()
+        w.writerows(old)
+    print(f'{exp_name}: ls and psm rows re-recorded')
+
+
+def compare(tristim, rgb, xyz, extra, exp_name, rerecord=False):
     exp = expected(exp_name)
     out = subprocess.run([tristim, 'compare', '--rgb', rgb, '--xyz', xyz, '--json'] + extra,
                          check=True, capture_output=True, text=True).stdout
     rows = {(r['model'], r['objective']): r for r in json.loads(out)['rows']}
+    if rerecord:
+        record(exp_name, rows)
+        exp = expected(exp_name)
     fails, loo_shift = [], []
     if set(rows) != set(exp):
         return [f'{exp_name}: rows differ: {sorted(set(rows) ^ set(exp))}']
@@ -80,6 +114,7 @@ def main():
     ap.add_argument('--tristim', required=True)
     ap.add_argument('--shared', required=True)
     ap.add_argument('--only', choices=['passport', 'sg140'])
+    ap.add_argument('--record', action='store_true')
     args = ap.parse_args()
     fails = []
     if args.only in (None, 'passport'):
@@ -96,11 +131,11 @@ def main():
             with open(ref_csv, 'w') as f:
                 f.write('id,L,a,b\n' + ''.join(f"{i},{lab[r['patch']]['L']},{lab[r['patch']]['a']},{lab[r['patch']]['b']}\n"
                                                for i, r in zip(ids, rgb)))
-            fails += compare(args.tristim, rgb_csv, ref_csv, [], 'expected_passport.csv')
-            fails += compare(args.tristim, rgb_csv, ref_csv, ['--white', 'D1'], 'expected_passport_white_D1.csv')
+            fails += compare(args.tristim, rgb_csv, ref_csv, [], 'expected_passport.csv', args.record)
+            fails += compare(args.tristim, rgb_csv, ref_csv, ['--white', 'D1'], 'expected_passport_white_D1.csv', args.record)
     if args.only in (None, 'sg140'):
         fails += compare(args.tristim, os.path.join(HERE, 'sg140_camera_rgb.csv'),
-                         os.path.join(HERE, 'sg140_reference_XYZ_D50.csv'), [], 'expected_sg140.csv')
+                         os.path.join(HERE, 'sg140_reference_XYZ_D50.csv'), [], 'expected_sg140.csv', args.record)
     for f in fails:
         print('FAIL', f)
     return 1 if fails else 0

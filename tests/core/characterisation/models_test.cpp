@@ -7,6 +7,7 @@
 
 #include <Eigen/QR>
 
+#include "detmath.hpp"
 #include "test_support.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
@@ -681,7 +682,8 @@ TEST_CASE("least squares gives the plain formulation's coefficients bit for bit 
 
 TEST_CASE("expand forms each term as the product r^a·g^b·b^c of repeated products, bit for bit", "[models][ls]") {
   // expand() takes the powers from a table (session 12); the doubles must be those of the plain
-  // formula x^e = ((1·x)·x)…, then r^a·g^b·b^c left to right, then the root of degree a+b+c.
+  // formula x^e = ((1·x)·x)…, then r^a·g^b·b^c left to right, then the root of degree a+b+c
+  // (cube roots by detmath.hpp, fourth roots as two square roots: the same bits in both builds).
   auto ipow = [](double x, int e) {
     double y = 1;
     for (int i = 0; i < e; ++i) y *= x;
@@ -702,8 +704,9 @@ TEST_CASE("expand forms each term as the product r^a·g^b·b^c of repeated produ
         const int k = t.r + t.g + t.b;
         double want = p;
         if (m.root && k == 2) want = p >= 0 ? std::sqrt(p) : -std::sqrt(-p);
-        if (m.root && k == 3) want = std::cbrt(p);
-        if (m.root && k > 3) want = p >= 0 ? std::pow(p, 1.0 / k) : -std::pow(-p, 1.0 / k);
+        if (m.root && k == 3) want = tristim::detmath::cbrt(p);  // the same bits in both builds
+        if (m.root && k == 4) want = p >= 0 ? std::sqrt(std::sqrt(p)) : -std::sqrt(std::sqrt(-p));
+        if (m.root && k > 4) want = p >= 0 ? std::pow(p, 1.0 / k) : -std::pow(-p, 1.0 / k);
         if (std::memcmp(&got[j], &want, sizeof(double)) != 0 && !(std::isnan(got[j]) && std::isnan(want))) {
           if (differ++ < 5) UNSCOPED_INFO(m.id << " term " << m.term_names[j] << " at (" << x[0] << ", " << x[1] << ", " << x[2]
                                                 << "): got " << got[j] << " want " << want);
@@ -713,3 +716,67 @@ TEST_CASE("expand forms each term as the product r^a·g^b·b^c of repeated produ
   CHECK(differ == 0);
 }
 
+
+TEST_CASE("fits give the same bits natively and in wasm (pinned hashes of the coefficients)", "[models][cross-build]") {
+  // Natively Eigen runs scalar (EIGEN_DONT_VECTORIZE, core/CMakeLists.txt) as it does in wasm,
+  // and Lab / CIEDE2000 use detmath.hpp's cbrt, atan2, sin, cos and exp instead of the C
+  // library's (glibc and musl round them differently), so every step of these fits is the same
+  // IEEE operation in both builds and so is the result: least squares, the pattern search, the
+  // CIEDE2000 fits (IRLS, Levenberg-Marquardt, and BOBYQA, whose path used to differ: 202 vs 281
+  // evaluations). The same hashes are expected in both builds; re-pin both after a change that
+  // moves a bit. 140 synthetic patches from mt19937's integers (the same in both builds).
+  std::mt19937 rng(140);
+  auto uniform = [&] { return (static_cast<double>(rng()) + 0.5) / 4294967296.0; };
+  Model truth{"Finlayson2015-2", Eigen::MatrixXd(3, 6)};
+  truth.coefficients << 0.010, 0.0075, 0.0037, 0.002, 0.0012, 0.001, 0.005, 0.0175, 0.002, 0.001, 0.002, 0.0012,
+      0.0005, 0.0025, 0.0225, 0.0005, 0.001, 0.002;
+  PatchMatrix rgb(140, 3);
+  for (int i = 0; i < 140; ++i)
+    for (int c = 0; c < 3; ++c) rgb(i, c) = (0.02 + 0.93 * uniform()) * 4000.0;
+  PatchMatrix xyz = predict(truth, rgb);
+  for (int i = 0; i < 140; ++i)
+    for (int c = 0; c < 3; ++c) {
+      double s = 0;
+      for (int k = 0; k < 12; ++k) s += uniform();
+      xyz(i, c) = std::max(0.0, xyz(i, c) * (1 + 0.005 * (s - 6.0)));
+    }
+  struct Case {
+    const char* model;
+    const char* objective;  // ls, psm, de2000 (mean, IRLS), rms (LM), bobyqa (RMS)
+    std::uint64_t hash;
+  };
+  const Case cases[] = {
+      {"matrix-3x3", "ls", 0x2a78e37a0ef2b2ceULL},
+      {"matrix-3x3", "psm", 0x17a7acf8ec77b227ULL},
+      {"matrix-3x3", "de2000", 0x280766afdfac45e8ULL},
+      {"matrix-3x3", "rms", 0x9e626d2f8c1605ffULL},
+      {"matrix-3x3", "bobyqa", 0x38eb84e0faffed88ULL},
+      {"matrix-3x4", "rms", 0x678695869a4bd69dULL},
+      {"matrix-3x4", "bobyqa", 0xcc407c2405511f5eULL},
+      {"Finlayson2015-2", "ls", 0x91877b97ac006901ULL},
+      {"Finlayson2015-2", "rms", 0xe77fe7ea7a006e51ULL},
+      {"Finlayson2015-3", "de2000", 0xdfddab7431ecd7f8ULL},
+      {"Cheung2004-20", "ls", 0x53a512e16cc8ac42ULL},
+      {"Cheung2004-20", "rms", 0x27ca425b99c5bc00ULL},
+  };
+  for (const Case& c : cases) {
+    FitOptions o;
+    const std::string obj = c.objective;
+    if (obj == "psm") o.objective = Objective::PatternSearch;
+    if (obj == "de2000" || obj == "rms" || obj == "bobyqa") o.objective = Objective::DeltaE2000;
+    if (obj == "rms" || obj == "bobyqa") o.de2000.rms = true;
+    if (obj == "bobyqa") o.de2000.algorithm = "bobyqa";
+    const FitResult r = fit(c.model, rgb, xyz, o);
+    std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the coefficients' bits
+    for (Eigen::Index i = 0; i < r.model.coefficients.size(); ++i) {
+      std::uint64_t b;
+      const double v = r.model.coefficients.data()[i];
+      std::memcpy(&b, &v, sizeof b);
+      h = (h ^ b) * 1099511628211ULL;
+    }
+    char text[24];
+    std::snprintf(text, sizeof text, "0x%016llxULL", static_cast<unsigned long long>(h));
+    INFO(c.model << " " << c.objective << ": " << r.evaluations << " evaluations, hash " << text);
+    CHECK(h == c.hash);
+  }
+}
