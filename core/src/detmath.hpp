@@ -3,7 +3,7 @@
 // Natively the C library's (glibc) and in wasm Emscripten's (musl) round these differently in the
 // last place for many arguments (cbrt: 48 % of 200,000 random arguments, session 19), so a fit
 // that evaluates Lab or CIEDE2000 took other steps in the page than on the command line. These
-// use only +, −, ×, ÷, sqrt and exact scaling (std::frexp / std::ldexp), which IEEE 754 defines to
+// use only +, −, ×, ÷, sqrt and exact scaling (powers of 2 built from their bits), which IEEE 754 defines to
 // the bit, in a fixed order; the core is built without FMA contraction of them (x86-64's baseline
 // has no FMA; wasm has none). Accuracy (tests/core/colorimetry/detmath_test.cpp): exp, sin, cos
 // and atan2 within 2 units in the last place of the C library's result on the tested ranges; cbrt
@@ -15,6 +15,8 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace tristim::detmath {
@@ -38,6 +40,14 @@ constexpr double kLn2Hi = 0x1.62e42ff000000p-1, kLn2Lo = -0x1.718432a1b0e26p-35,
 inline double round_int(double v) {
   constexpr double kShift = 0x1.8p52;
   return (v + kShift) - kShift;
+}
+
+// 2^k for −1022 ≤ k ≤ 1023, from its bits.
+inline double pow2(int k) {
+  const std::uint64_t bits = static_cast<std::uint64_t>(k + 1023) << 52;
+  double v;
+  std::memcpy(&v, &bits, sizeof v);
+  return v;
 }
 
 // Taylor polynomials on |r| ≤ π/4 (truncation below 1e-21 relative).
@@ -99,17 +109,28 @@ inline double atan01(double t) {
 inline double cbrt(double x) {
   if (x == 0.0 || !std::isfinite(x)) return x;
   const bool negative = x < 0;
-  int e = 0;
-  double m = std::frexp(std::fabs(x), &e);  // |x| = m · 2^e, m in [0.5, 1)
-  int r = e % 3;
-  if (r < 0) r += 3;
-  m = std::ldexp(m, r);  // m in [0.5, 4), e − r divisible by 3
-  e -= r;
-  // Start within 12 % (a quadratic through cbrt at 0.5, 2 and 4, roughly), then Newton: the
-  // relative error squares at every step, so five reach full precision from any m in [0.5, 4).
-  double y = 0.6 + (0.4 - 0.05 * m) * m;
-  for (int i = 0; i < 5; ++i) y -= (y * y * y - m) / (3.0 * y * y);
-  y = std::ldexp(y, e / 3);
+  double a = std::fabs(x), unscale = 1.0;
+  // Far from 1 (and for subnormals), scale by 2^∓300 first (exact), so no cube below overflows.
+  if (a > 0x1p900) {
+    a *= 0x1p-300;
+    unscale = 0x1p100;
+  } else if (a < 0x1p-900) {
+    a *= 0x1p300;
+    unscale = 0x1p-100;
+  }
+  // Start from the bits (the exponent divided by 3: within 4 %), two Halley steps (the error
+  // cubes: 6e-5, then ~1e-13) and a last Newton step, which rounds to within 1 unit.
+  std::uint64_t bits;
+  std::memcpy(&bits, &a, sizeof bits);
+  bits = bits / 3 + 0x2a9f789300000000ULL;  // ≈ (1023 − 1023/3 − 0.033) · 2^52 (Kahan)
+  double y;
+  std::memcpy(&y, &bits, sizeof y);
+  for (int i = 0; i < 2; ++i) {
+    const double y3 = y * y * y;
+    y *= (y3 + 2.0 * a) / (2.0 * y3 + a);  // the ratio (near 1) first: no underflow of y · (…)
+  }
+  y -= (y * y * y - a) / (3.0 * y * y);
+  y *= unscale;
   return negative ? -y : y;
 }
 
@@ -120,16 +141,17 @@ inline double exp(double x) {
   if (x < -745.1332191019412) return 0.0;
   const double fn = detail::round_int(x * detail::kInvLn2);
   const double r = (x - fn * detail::kLn2Hi) - fn * detail::kLn2Lo;  // |r| ≤ ln2 / 2 (+ rounding)
-  // Taylor to r^14 / 14! (truncation below 1e-19 relative), Horner from the top.
-  double p = 1.0 / 87178291200.0;
-  static constexpr double kInvFact[14] = {1.0 / 6227020800.0, 1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0,
-                                          1.0 / 362880.0,     1.0 / 40320.0,     1.0 / 5040.0,     1.0 / 720.0,
-                                          1.0 / 120.0,        1.0 / 24.0,        1.0 / 6.0,        0.5,
-                                          1.0,                1.0};
+  // Taylor to r^13 / 13! (truncation below 1e-17 relative), Horner from the top.
+  static constexpr double kInvFact[13] = {1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0, 1.0 / 362880.0,
+                                          1.0 / 40320.0,     1.0 / 5040.0,     1.0 / 720.0,     1.0 / 120.0,
+                                          1.0 / 24.0,        1.0 / 6.0,        0.5,             1.0,
+                                          1.0};
+  double p = 1.0 / 6227020800.0;
   for (double c : kInvFact) p = p * r + c;
-  // Scale in two steps so that 2^n itself never overflows or flushes (n from −1075 to 1024).
-  const int n = static_cast<int>(fn);
-  return std::ldexp(std::ldexp(p, n / 2), n - n / 2);
+  // × 2^n in two factors built from their bits (each a normal double for n from −1075 to 1024),
+  // so only the last product rounds (a subnormal result).
+  const int n = static_cast<int>(fn), h = n / 2;
+  return p * detail::pow2(h) * detail::pow2(n - h);
 }
 
 /// sin x (x in radians).

@@ -748,16 +748,16 @@ TEST_CASE("fits give the same bits natively and in wasm (pinned hashes of the co
   const Case cases[] = {
       {"matrix-3x3", "ls", 0x2a78e37a0ef2b2ceULL},
       {"matrix-3x3", "psm", 0x17a7acf8ec77b227ULL},
-      {"matrix-3x3", "de2000", 0x280766afdfac45e8ULL},
-      {"matrix-3x3", "rms", 0x9e626d2f8c1605ffULL},
-      {"matrix-3x3", "bobyqa", 0x38eb84e0faffed88ULL},
-      {"matrix-3x4", "rms", 0x678695869a4bd69dULL},
-      {"matrix-3x4", "bobyqa", 0xcc407c2405511f5eULL},
+      {"matrix-3x3", "de2000", 0xb720ca7b228fedb8ULL},
+      {"matrix-3x3", "rms", 0xa42c3dd555ed2bf0ULL},
+      {"matrix-3x3", "bobyqa", 0xbbac79d1887ada7eULL},
+      {"matrix-3x4", "rms", 0xce21a3706af65ab6ULL},
+      {"matrix-3x4", "bobyqa", 0xf26dd71ab9ead64bULL},
       {"Finlayson2015-2", "ls", 0x91877b97ac006901ULL},
-      {"Finlayson2015-2", "rms", 0xe77fe7ea7a006e51ULL},
-      {"Finlayson2015-3", "de2000", 0xdfddab7431ecd7f8ULL},
+      {"Finlayson2015-2", "rms", 0x9fb09b6f1ece6036ULL},
+      {"Finlayson2015-3", "de2000", 0x29a3d4f2fb035a77ULL},
       {"Cheung2004-20", "ls", 0x53a512e16cc8ac42ULL},
-      {"Cheung2004-20", "rms", 0x27ca425b99c5bc00ULL},
+      {"Cheung2004-20", "rms", 0x37b11f6a6746bd2bULL},
   };
   for (const Case& c : cases) {
     FitOptions o;
