@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -50,33 +51,30 @@ inline double pow2(int k) {
   return v;
 }
 
-// Taylor polynomials on |r| ≤ π/4 (truncation below 1e-21 relative).
+// Σ c[i] z^(N−1−i) by Horner from c[0] (the highest power) down.
+template <std::size_t N>
+inline double horner(double z, const double (&c)[N]) {
+  double p = c[0];
+  for (std::size_t i = 1; i < N; ++i) p = p * z + c[i];
+  return p;
+}
+
+// Taylor polynomials on |r| ≤ π/4 (truncation below 1e-21 relative), in z = r².
+// sin r = r + r z (−1/3! + z/5! − … − z^8/19!)
+constexpr double kSinCoef[9] = {-1.0 / 121645100408832000.0, 1.0 / 355687428096000.0, -1.0 / 1307674368000.0,
+                                1.0 / 6227020800.0,          -1.0 / 39916800.0,       1.0 / 362880.0,
+                                -1.0 / 5040.0,               1.0 / 120.0,             -1.0 / 6.0};
+// cos r = 1 − (z/2 − z² (1/4! − z/6! + … + z^8/20!))
+constexpr double kCosCoef[9] = {1.0 / 2432902008176640000.0, -1.0 / 6402373705728000.0, 1.0 / 20922789888000.0,
+                                -1.0 / 87178291200.0,        1.0 / 479001600.0,         -1.0 / 3628800.0,
+                                1.0 / 40320.0,               -1.0 / 720.0,              1.0 / 24.0};
 inline double sin_poly(double r) {
   const double z = r * r;
-  double p = -1.0 / 121645100408832000.0;  // −1/19!
-  p = p * z + 1.0 / 355687428096000.0;     // 1/17!
-  p = p * z - 1.0 / 1307674368000.0;       // −1/15!
-  p = p * z + 1.0 / 6227020800.0;          // 1/13!
-  p = p * z - 1.0 / 39916800.0;            // −1/11!
-  p = p * z + 1.0 / 362880.0;              // 1/9!
-  p = p * z - 1.0 / 5040.0;                // −1/7!
-  p = p * z + 1.0 / 120.0;                 // 1/5!
-  p = p * z - 1.0 / 6.0;                   // −1/3!
-  return r + r * z * p;
+  return r + r * z * horner(z, kSinCoef);
 }
 inline double cos_poly(double r) {
   const double z = r * r;
-  double p = 1.0 / 2432902008176640000.0;  // 1/20!
-  p = p * z - 1.0 / 6402373705728000.0;    // −1/18!
-  p = p * z + 1.0 / 20922789888000.0;      // 1/16!
-  p = p * z - 1.0 / 87178291200.0;         // −1/14!
-  p = p * z + 1.0 / 479001600.0;           // 1/12!
-  p = p * z - 1.0 / 3628800.0;             // −1/10!
-  p = p * z + 1.0 / 40320.0;               // 1/8!
-  p = p * z - 1.0 / 720.0;                 // −1/6!
-  p = p * z + 1.0 / 24.0;                  // 1/4!
-  const double hz = 0.5 * z;
-  return 1.0 - (hz - z * z * p);
+  return 1.0 - (0.5 * z - z * z * horner(z, kCosCoef));
 }
 // x = n·π/2 + r, |r| ≤ π/4 (a little more at rounding boundaries); false if |x| is too large.
 inline bool reduce_pio2(double x, double& r, long& n) {
@@ -98,9 +96,7 @@ inline double atan01(double t) {
   static constexpr double kCoef[15] = {-1.0 / 31, 1.0 / 29, -1.0 / 27, 1.0 / 25, -1.0 / 23, 1.0 / 21, -1.0 / 19, 1.0 / 17,
                                        -1.0 / 15, 1.0 / 13, -1.0 / 11, 1.0 / 9,  -1.0 / 7,  1.0 / 5,  -1.0 / 3};
   const double z = u * u;
-  double p = kCoef[0];
-  for (int k = 1; k < 15; ++k) p = p * z + kCoef[k];
-  const double a = u + u * z * p;
+  const double a = u + u * z * horner(z, kCoef);
   return base_hi + (a + base_lo);
 }
 }  // namespace detail
@@ -142,12 +138,11 @@ inline double exp(double x) {
   const double fn = detail::round_int(x * detail::kInvLn2);
   const double r = (x - fn * detail::kLn2Hi) - fn * detail::kLn2Lo;  // |r| ≤ ln2 / 2 (+ rounding)
   // Taylor to r^13 / 13! (truncation below 1e-17 relative), Horner from the top.
-  static constexpr double kInvFact[13] = {1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0, 1.0 / 362880.0,
-                                          1.0 / 40320.0,     1.0 / 5040.0,     1.0 / 720.0,     1.0 / 120.0,
-                                          1.0 / 24.0,        1.0 / 6.0,        0.5,             1.0,
-                                          1.0};
-  double p = 1.0 / 6227020800.0;
-  for (double c : kInvFact) p = p * r + c;
+  static constexpr double kInvFact[14] = {1.0 / 6227020800.0, 1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0,
+                                          1.0 / 362880.0,     1.0 / 40320.0,     1.0 / 5040.0,     1.0 / 720.0,
+                                          1.0 / 120.0,        1.0 / 24.0,        1.0 / 6.0,        0.5,
+                                          1.0,                1.0};
+  const double p = detail::horner(r, kInvFact);
   // × 2^n in two factors built from their bits (each a normal double for n from −1075 to 1024),
   // so only the last product rounds (a subnormal result).
   const int n = static_cast<int>(fn), h = n / 2;
