@@ -4,8 +4,9 @@
 // last place for many arguments (cbrt: 48 % of 200,000 random arguments, session 19), so a fit
 // that evaluates Lab or CIEDE2000 took other steps in the page than on the command line. These
 // use only +, −, ×, ÷, sqrt and exact scaling (powers of 2 built from their bits), which IEEE 754 defines to
-// the bit, in a fixed order; the core is built without FMA contraction of them (x86-64's baseline
-// has no FMA; wasm has none). Accuracy (tests/core/colorimetry/detmath_test.cpp): exp, sin, cos
+// the bit, in a fixed order. Nothing is fused into an FMA: x86-64's baseline target has no FMA
+// instruction and wasm has none (a build for an FMA target, e.g. -march=native, would fuse and
+// fail the pinned hashes in the tests). Accuracy (tests/core/colorimetry/detmath_test.cpp): exp, sin, cos
 // and atan2 within 2 units in the last place of the C library's result on the tested ranges; cbrt
 // within 1 unit of the correctly rounded root (x86-64's long double as the reference: 90 % exact
 // on 10^6 arguments, where glibc's cbrt is exact for 46 % and up to 3 units off). Not correctly

@@ -47,45 +47,12 @@ struct JointProblem {
     if (anchored) M += (white_XYZ - M * w) * g.transpose() / s;  // the equality-constrained solution
     return M;
   }
-  // XYZ of the corrected reflectances, (p applied to Rm) · T. Written as column updates rather
-  // than through Eigen's product: X(i, j) is the sum over wavelengths in order, the same in both
-  // builds, and the innermost loop runs over patches (contiguous, independent), which the
-  // compilers vectorise (SSE2 natively, SIMD128 in wasm, where Eigen's product is scalar). Each
-  // corrected column is formed once, in a buffer, and never as an N × L matrix.
-  //
-  // The affine corrections (scaler, offset, scaler-offset: R' = a R + b, eq 5) commute with the
-  // linear integration: (a Rm + b)·T = a (Rm·T) + b (1·T). Rm·T (`RT`, by the same column updates,
-  // also the report's uncorrected XYZ) and T's column sums (`Tsum`) are formed once, so such an
-  // evaluation costs N × 3 operations instead of N × L × 4; equal to the column updates below up
-  // to rounding.
-  Eigen::MatrixXd RT;
-  Eigen::Vector3d Tsum = Eigen::Vector3d::Zero();
-  void prepare_affine() {
+  // (p applied to Rm) · T, written as column updates rather than through Eigen's product: X(i, j)
+  // is the sum over wavelengths in order, the same in both builds, and the innermost loop runs
+  // over patches (contiguous, independent), which the compilers vectorise (SSE2 natively, SIMD128
+  // in wasm). Each corrected column is formed once, in a buffer, never as an N × L matrix.
+  Eigen::MatrixXd integrate(const PointCorrection& p) const {
     const Eigen::Index n = Rm.rows();
-    RT = Eigen::MatrixXd::Zero(n, 3);
-    for (Eigen::Index k = 0; k < Rm.cols(); ++k) {
-      const double* r = Rm.col(k).data();
-      for (int j = 0; j < 3; ++j) {
-        const double t = T(k, j);
-        double* x = RT.col(j).data();
-        for (Eigen::Index i = 0; i < n; ++i) x[i] += r[i] * t;
-        Tsum[j] += t;
-      }
-    }
-  }
-  Eigen::MatrixXd corrected_XYZ(PointCorrection::Kind kind, const std::vector<double>& c) const {
-    const PointCorrection p = surface_detail::prepare_correction(kind, c);
-    const Eigen::Index n = Rm.rows();
-    if (kind != PointCorrection::Saunderson && RT.rows() == n) {
-      Eigen::MatrixXd X(n, 3);
-      for (int j = 0; j < 3; ++j) {
-        const double* rt = RT.col(j).data();
-        const double bt = p.b * Tsum[j];
-        double* x = X.col(j).data();
-        for (Eigen::Index i = 0; i < n; ++i) x[i] = p.a * rt[i] + bt;
-      }
-      return X;
-    }
     Eigen::MatrixXd X = Eigen::MatrixXd::Zero(n, 3);
     Eigen::VectorXd column(n);
     for (Eigen::Index k = 0; k < Rm.cols(); ++k) {
@@ -97,6 +64,31 @@ struct JointProblem {
         double* x = X.col(j).data();
         for (Eigen::Index i = 0; i < n; ++i) x[i] += q[i] * t;
       }
+    }
+    return X;
+  }
+  // The affine corrections (none, scaler, offset, scaler-offset: R' = a R + b, eq 5) commute with
+  // the linear integration: (a Rm + b)·T = a (Rm·T) + b (1·T). prepare() forms Rm·T (`RT`, also
+  // the report's uncorrected XYZ) and T's column sums (`Tsum`) once, so such an evaluation costs
+  // N × 3 operations instead of N × L × 4 (equal to integrate() up to rounding).
+  Eigen::MatrixXd RT;
+  Eigen::Vector3d Tsum = Eigen::Vector3d::Zero();
+  void prepare() {
+    RT = integrate(PointCorrection{});  // identity: a = 1, b = 0
+    for (Eigen::Index k = 0; k < T.rows(); ++k)
+      for (int j = 0; j < 3; ++j) Tsum[j] += T(k, j);
+  }
+  // XYZ of the corrected reflectances (needs prepare() for the affine kinds).
+  Eigen::MatrixXd corrected_XYZ(PointCorrection::Kind kind, const std::vector<double>& c) const {
+    const PointCorrection p = surface_detail::prepare_correction(kind, c);
+    if (kind == PointCorrection::Saunderson) return integrate(p);
+    const Eigen::Index n = Rm.rows();
+    Eigen::MatrixXd X(n, 3);
+    for (int j = 0; j < 3; ++j) {
+      const double* rt = RT.col(j).data();
+      const double bt = p.b * Tsum[j];
+      double* x = X.col(j).data();
+      for (Eigen::Index i = 0; i < n; ++i) x[i] = p.a * rt[i] + bt;
     }
     return X;
   }
@@ -164,7 +156,7 @@ JointFitResult fit_surface_joint_Abed2013(const MethodChoice& start, const Patch
   }
 
   const PointCorrection::Kind kind = surface_detail::correction_kind(row.info.id);
-  pr.prepare_affine();  // also the uncorrected XYZ of the report
+  pr.prepare();  // Rm·T: the affine corrections' evaluations and the report's uncorrected XYZ
   const std::vector<size_t> free = free_coefficients(row.info.id, options.free);
   std::vector<double> base(row.coefficients.size()), lb, ub;
   for (size_t j = 0; j < row.coefficients.size(); ++j) base[j] = choice_number(first, row.coefficients[j]);
