@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bench_util.hpp"
+#include "simd4.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/characterisation/models.hpp"
@@ -243,6 +244,21 @@ int main() {
   std::printf("BENCH apply_24MP memcpy %.2f\n", t_copy);
   std::printf("BENCH apply_24MP root-poly-2 %.2f\n", t_apply);
   std::printf("BENCH apply_24MP matrix-3x3 %.2f\n", t_lin);
+#ifdef TRISTIM_SIMD4
+  // The floor of any kernel that writes with plain stores, as wasm must (it has no non-temporal
+  // store): the same bytes copied 16 bytes at a time, no arithmetic. Each output line is read
+  // before it is written (write-allocate), so this moves 1.5x memcpy's bytes in both builds. The
+  // + 0.0f keeps clang from turning the loop into memory.copy (V8 runs that as memmove).
+  const double t_floor = best_ms(5, [&] {
+    const float* src = in.data();
+    float* dst = out.data();
+    const simd4::f4 zero = simd4::splat(0.f);
+    for (size_t i = 0; i + 4 <= n * 3; i += 4) simd4::store(dst + i, simd4::add(simd4::load(src + i), zero));
+  });
+  std::printf("  plain-store copy  %8.2f ms  = %.0f %% of memcpy speed (the floor for plain stores)\n", t_floor,
+              100.0 * t_copy / t_floor);
+  std::printf("BENCH apply_24MP plain-store-copy %.2f\n", t_floor);
+#endif
 #if defined(__x86_64__) && !defined(__EMSCRIPTEN__)
   // The narrower native kernels on the same image (the default above is the widest the CPU has):
   // AVX2+FMA, and the 4-lane SSE2 kernel that does the wasm SIMD128 kernel's arithmetic.
