@@ -54,6 +54,11 @@ test('the fit step compares every model × objective by default, streaming rows 
     assert.ok(new Set(rows).size >= 3 && rows[0] < rows[rows.length - 1], `rows streamed into the table: ${rows}`);
     assert.equal(await page.evaluate(() => document.body.dataset.step), 'results', 'the button shows the results step');
     assert.ok(await noErrorNear(page, '#step-fit button.primary'));
+    // The log lists the rows as the models and objectives are listed on the step (model by model),
+    // not in the order they finished; the summary stays last.
+    const listed = await page.$$eval('#step-fit input[data-model]', (els) => els.map((e) => e.dataset.model));
+    const logged = await page.$$eval('#step-fit .fit-log li[data-model]', (els) => els.map((e) => `${e.dataset.model}|${e.dataset.objective}`));
+    assert.deepEqual(logged, listed.filter((id) => models.includes(id)).flatMap((id) => objectives.map((o) => `${id}|${o}`)));
     console.log(`compare in the page: ${line} (${await page.evaluate(() => window.tristim.views.fit.pool.size)} workers)`);
 
     // 3. The table's figures are the module's compareModels on the same patches.

@@ -157,7 +157,17 @@ export function mount(section, app) {
       showError(runBtn, Object.assign(new Error(`no sampled patch id (${some(s.ids)}) is in the reference (${some(r.ids)}): choose the chart layout or reference that belong together`), { code: 'PATCH_MISMATCH' }), 'Fit');
       return null;
     }
-    const jobs = rowOrder(choice.models, objectives.map((o) => o.id).filter((id) => choice.objectives.includes(id)), nTerms);
+    const objectiveIds = objectives.map((o) => o.id).filter((id) => choice.objectives.includes(id));
+    const jobs = rowOrder(choice.models, objectiveIds, nTerms);
+    // The rows run longest first (rowOrder), and finish in any order; the log lists them as the
+    // models and objectives are listed above (model by model), whatever order they finish in.
+    const listed = families.flatMap((fam) => models.filter((x) => x.family === fam).map((x) => x.id));
+    const readingOrder = new Map(listed.flatMap((m, i) => objectiveIds.map((o, k) => [`${m}|${o}`, i * objectiveIds.length + k])));
+    const logRow = (job, li) => {
+      const n = readingOrder.get(`${job.mId}|${job.obj}`) ?? Infinity;
+      Object.assign(li.dataset, { order: n, model: job.mId, objective: job.obj });
+      log.insertBefore(li, [...log.children].find((x) => Number(x.dataset.order) > n) ?? null);
+    };
     if (!jobs.length) { showError(runBtn, Object.assign(new Error('choose at least one model and one objective'), { code: 'NOTHING_SELECTED' }), 'Fit'); return null; }
     running = true; runBtn.disabled = true; cancelBtn.disabled = false;
     const total = jobs.length;
@@ -201,14 +211,14 @@ export function mount(section, app) {
         const m = models.find((x) => x.id === mId) ?? describe(mId);
         const label = `${m.label} · ${objectives.find((o) => o.id === obj)?.label ?? obj}`;
         if (error) {
-          log.append(h('li', { class: 'error', dataset: { code: error.code } }, `${label}: ${error.message} (${error.code})`));
+          logRow(job, h('li', { class: 'error', dataset: { code: error.code } }, `${label}: ${error.message} (${error.code})`));
         } else {
           results.push({ key: `${mId}|${obj}|${JSON.stringify(recipe.characterisation.objective)}`, modelId: mId, objective: obj, label,
             recipe: fit.recipe, white: fit.recipe.characterisation.lab_white, ids: fit.ids, rgb: fit.linear_RGB, xyz: fit.reference_XYZ,
             fit, heldOut: fit.held_out ?? null, referenceText: referenceText(ref), camera: cameraOf(app.derived.image?.metadata) });
           const { status, message } = fit.evaluation.fit;
           const joint = jointSurface(recipe.surface, ref.settings) ? `; surface fitted jointly (Phase II): ${choiceText(fit.surface)} (${fit.surface_status})` : '';
-          log.append(h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}${joint}`));
+          logRow(job, h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}${joint}`));
         }
         // The first job's row (the default model) replaces the previous results and is shown; rows
         // that end before it wait for it (or for its error), so the first plots are the default's.
