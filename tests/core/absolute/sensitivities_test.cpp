@@ -54,7 +54,7 @@ TEST_CASE("absolute: sensitivities estimated leave-one-camera-out over the 52 ca
   }
 }
 
-TEST_CASE("absolute: a camera in the basis is recovered almost exactly; CSV keeps channel ratios", "[absolute][sensitivities]") {
+TEST_CASE("absolute: a camera in the basis is recovered almost exactly — CSV keeps channel ratios", "[absolute][sensitivities]") {
   const SpectralData refl = chart_reflectances("cc24");
   const SpectralData d65 = illuminant_spd("D65");
   const SpectralData truth = camera_ssf("Nikon_D850");

@@ -100,7 +100,7 @@ TEST_CASE("flat field: planted vignetting is removed per pixel (Abed App. C step
   for (size_t i = 0; i < refl_img.rgb.size(); ++i) REQUIRE(refl_img.rgb[i] == Approx(0.9 * refl[i % 3]).epsilon(1e-5));
 }
 
-TEST_CASE("flat field with zeros: FLAT_FIELD_ZERO; bad reflectance: INVALID_ARGUMENT", "[calibration][bad]") {
+TEST_CASE("flat field with zeros: FLAT_FIELD_ZERO — bad reflectance: INVALID_ARGUMENT", "[calibration][bad]") {
   RawImage flat = synthetic(10, 10);
   for (auto& v : flat.rgb) v = 1000.f;
   flat.rgb[3 * 55 + 1] = 0.f;

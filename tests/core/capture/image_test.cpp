@@ -188,7 +188,7 @@ TEST_CASE("TIFF: JPEG-compressed (YCbCr) strips decode to RGB within quantisatio
   CHECK(worst <= 3);
 }
 
-TEST_CASE("PNG: 8 and 16-bit grey and RGB, interlaced or not, exactly; gAMA and sRGB reported only", "[image]") {
+TEST_CASE("PNG: 8 and 16-bit grey and RGB, interlaced or not, exactly — gAMA and sRGB reported only", "[image]") {
   for (int bits : {8, 16})
     for (int channels : {1, 3})
       for (bool interlace : {false, true}) {
@@ -207,7 +207,7 @@ TEST_CASE("PNG: 8 and 16-bit grey and RGB, interlaced or not, exactly; gAMA and 
       }
 }
 
-TEST_CASE("JPEG: 8-bit grey and RGB within the quantisation of quality 100 4:4:4; every coding", "[image]") {
+TEST_CASE("JPEG: 8-bit grey and RGB within the quantisation of quality 100 4:4:4 — every coding", "[image]") {
   // A smooth image: at quality 100 (all quantisers 1) the error is the DCT's and YCbCr's rounding
   // (measured: at most 2 levels grey, 4 RGB).
   for (int channels : {1, 3}) {

@@ -238,7 +238,7 @@ TEST_CASE("a large image with a large and a small chart: both are candidates", "
   CHECK(stages.back().second == 1.0);
 }
 
-TEST_CASE("without a hint the layout is recognised; a mirrored chart is refused", "[detect][bad]") {
+TEST_CASE("without a hint the layout is recognised — a mirrored chart is refused", "[detect][bad]") {
   const ChartScene sg = render_chart_scene(plain_spec("sg140", 33, 21));
   const auto found = detect_charts(sg.image);
   REQUIRE(!found.empty());

@@ -101,7 +101,7 @@ TEST_CASE("dE76, dE94 and dE2000 match colour-science's expected values (1e-7)",
   CHECK(delta_E_CIE2000(ref, Vec3(50.0, 8.32281957, -73.58297716), 2) == Approx(70.63213819).margin(1e-7));
 }
 
-TEST_CASE("Bradford D65 -> D50 matches Lindbloom's published matrix; CAT02 and von Kries differ from it", "[colorimetry]") {
+TEST_CASE("Bradford D65 -> D50 matches Lindbloom's published matrix — CAT02 and von Kries differ from it", "[colorimetry]") {
   // B. Lindbloom, "Chromatic Adaptation" (whites D65 = 0.95047, 1, 1.08883; D50 = 0.96422, 1, 0.82521).
   const Vec3 d65(0.95047, 1.0, 1.08883), d50(0.96422, 1.0, 0.82521);
   Mat3 bradford;

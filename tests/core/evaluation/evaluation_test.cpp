@@ -32,7 +32,7 @@ TEST_CASE("summaries: min, median, mean, p95, max, RMS, std", "[evaluation]") {
   CHECK(std::isnan(summarize({}).mean));
 }
 
-TEST_CASE("evaluate: identical data gives zero errors; NRMSE uses the reference range", "[evaluation]") {
+TEST_CASE("evaluate: identical data gives zero errors — NRMSE uses the reference range", "[evaluation]") {
   PatchMatrix ref = rgb_grid(10, 1) * 100.0;
   const Metrics z = evaluate(ref, ref);
   CHECK(z.dE00.max == 0);

@@ -281,7 +281,7 @@ TEST_CASE("readers: ICC LUT profiles in lcms2 (transicc), v4 and v2", "[readers]
   }
 }
 
-TEST_CASE("readers: ICC LUT profile v2 in ArgyllCMS (xicclu -ff -ia -pX; iccdump)", "[readers][icc]") {
+TEST_CASE("readers: ICC LUT profile v2 in ArgyllCMS (xicclu -ff -ia -pX — iccdump)", "[readers][icc]") {
   need_tool("xicclu", "argyll");
   const Passport& P = passport();
   const std::string icc = P.dir + "/lut_v2.icc";
