@@ -7,7 +7,8 @@
 // compiled with -ffp-contract=off so that stays true in the AVX-512 functions). The AVX2 and
 // AVX-512 root-polynomials fuse multiply-adds, the same lane for lane (identical floats to each
 // other), and differ from the scalar loop by FMA rounding (tests/core/characterisation/models_test.cpp).
-// Plain stores, except the AVX-512 kernels' on large outputs: on session 10's AMD VM 16-byte
+// In place (out == in) is allowed: every kernel reads a step's pixels before it writes them, so the
+// buffers are not declared __restrict. Plain stores, except the AVX-512 kernels' on large outputs: on session 10's AMD VM 16-byte
 // non-temporal stores made the 24 MP apply slower (3×3 at 63 % of memcpy speed with them, 93 %
 // without; root-polynomial AVX2 47 % vs 65 %); on session 13's Intel VM the AVX-512 kernel's
 // whole-line (64-byte, aligned) non-temporal stores are faster than its plain ones. Natively every
@@ -36,13 +37,13 @@ inline float signed_sqrt1(float p) {
 
 // Scalar loops, associated as the 4-lane kernels are (bit-identical to them): the tails of the
 // vector loops, and every pixel where there is no SIMD.
-void scalar_affine(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][4]) {
+void scalar_affine(const float* in, size_t n, float* out, const float (&a)[3][4]) {
   for (size_t i = 0; i < n; ++i) {
     const float R = in[3 * i], G = in[3 * i + 1], B = in[3 * i + 2];
     for (int c = 0; c < 3; ++c) out[3 * i + c] = (a[c][0] * R + a[c][1] * G) + (a[c][2] * B + a[c][3]);
   }
 }
-void scalar_root2(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][6]) {
+void scalar_root2(const float* in, size_t n, float* out, const float (&a)[3][6]) {
   for (size_t i = 0; i < n; ++i) {
     const float R = in[3 * i], G = in[3 * i + 1], B = in[3 * i + 2];
     const float P = signed_sqrt1(R * G), Q = signed_sqrt1(R * B), S = signed_sqrt1(G * B);
@@ -54,7 +55,7 @@ void scalar_root2(const float* __restrict in, size_t n, float* __restrict out, c
 #ifdef TRISTIM_SIMD4
 // Fused 4-lane loops, 4 pixels per step straight from and to the interleaved buffers; return how
 // many pixels they handled (a multiple of 4); the caller finishes the tail.
-size_t simd_affine(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][4]) {
+size_t simd_affine(const float* in, size_t n, float* out, const float (&a)[3][4]) {
   using namespace simd4;
   f4 k[3][4];
   for (int c = 0; c < 3; ++c)
@@ -71,7 +72,7 @@ size_t simd_affine(const float* __restrict in, size_t n, float* __restrict out, 
   return m;
 }
 
-size_t simd_root2(const float* __restrict in, size_t n, float* __restrict out, const float (&a)[3][6]) {
+size_t simd_root2(const float* in, size_t n, float* out, const float (&a)[3][6]) {
   using namespace simd4;
   f4 k[3][6];
   for (int c = 0; c < 3; ++c)
@@ -102,8 +103,8 @@ __attribute__((target("avx2,fma"))) inline __m256 signed_sqrt8(__m256 p) {
 __attribute__((target("avx2,fma"))) inline __m256 join8(__m128 lo, __m128 hi) {
   return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
 }
-__attribute__((target("avx2,fma"))) size_t avx2_root2(const float* __restrict in, size_t n,
-                                                        float* __restrict out, const float (&a)[3][6]) {
+__attribute__((target("avx2,fma"))) size_t avx2_root2(const float* in, size_t n,
+                                                        float* out, const float (&a)[3][6]) {
   __m256 k[3][6];
   for (int c = 0; c < 3; ++c)
     for (int j = 0; j < 6; ++j) k[c][j] = _mm256_set1_ps(a[c][j]);
@@ -198,8 +199,8 @@ struct Affinex16 : Coefficients16<4> {
 // Pixels [i0, i1) of the 16-pixel loop (i1 - i0 a multiple of 16); with kStream, non-temporal
 // stores, which need out + 3 * i0 64-byte aligned (16 pixels = 192 bytes keep it so).
 template <bool kStream, class Formula>
-__attribute__((target("avx512f"))) void avx512_steps(const float* __restrict in, size_t i0, size_t i1,
-                                                     float* __restrict out, const Formula& formula) {
+__attribute__((target("avx512f"))) void avx512_steps(const float* in, size_t i0, size_t i1,
+                                                     float* out, const Formula& formula) {
   // 16 pixels = 48 floats in three vectors u, v, w. Channel c of pixel l is element 3l + c: the
   // first permute takes elements 0..31 from (u, v), the second the rest from w (its 16..31).
   const __m512i r1 = _mm512_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 0, 0, 0, 0, 0);
@@ -240,7 +241,7 @@ __attribute__((target("avx512f"))) void avx512_steps(const float* __restrict in,
 // writes at this size; the pixels before the first 64-byte aligned output and after the last
 // 16-pixel step up to the boundary go through `one_by_one` (the same formula: identical floats).
 template <class Formula, class Coefficients>
-__attribute__((target("avx512f"))) size_t avx512_apply(const float* __restrict in, size_t n, float* __restrict out,
+__attribute__((target("avx512f"))) size_t avx512_apply(const float* in, size_t n, float* out,
                                                         const Coefficients& a, size_t boundary,
                                                         void (*one_by_one)(const float*, size_t, float*, const Coefficients&)) {
   const Formula formula(a);
@@ -262,12 +263,12 @@ __attribute__((target("avx512f"))) size_t avx512_apply(const float* __restrict i
 // The root-polynomial stops at the AVX2 kernel's 8-pixel boundary (its tail is the AVX2 path's,
 // exactly as when AVX2 does the whole image); the affine model needs none (every path gives the
 // scalar formula's floats), so its large outputs are done here to the last pixel.
-__attribute__((target("avx512f"))) size_t avx512_root2(const float* __restrict in, size_t n,
-                                                        float* __restrict out, const float (&a)[3][6]) {
+__attribute__((target("avx512f"))) size_t avx512_root2(const float* in, size_t n,
+                                                        float* out, const float (&a)[3][6]) {
   return avx512_apply<Root2x16>(in, n, out, a, 8, scalar_root2_fma);
 }
-__attribute__((target("avx512f"))) size_t avx512_affine(const float* __restrict in, size_t n,
-                                                         float* __restrict out, const float (&a)[3][4]) {
+__attribute__((target("avx512f"))) size_t avx512_affine(const float* in, size_t n,
+                                                         float* out, const float (&a)[3][4]) {
   return avx512_apply<Affinex16>(in, n, out, a, 1, scalar_affine);
 }
 
@@ -332,6 +333,10 @@ void apply_to_image(const Model& model, const float* rgb, size_t n_pixels, float
   if (n_pixels == 0) return;
   if (rgb == nullptr || xyz == nullptr)
     throw Error(ErrorCode::InvalidArgument, "apply_to_image: null image buffer");
+  const auto at = [](const float* p) { return reinterpret_cast<std::uintptr_t>(p); };
+  if (xyz != rgb && at(xyz) < at(rgb + 3 * n_pixels) && at(rgb) < at(xyz + 3 * n_pixels))
+    throw Error(ErrorCode::InvalidArgument, "apply_to_image: the output overlaps the input without being it "
+                                            "(give the same buffer to apply in place, or two separate ones)");
   const Eigen::MatrixXd& C = model.coefficients;
   float k[3][kMaxModelTerms];
   for (int c = 0; c < 3; ++c)

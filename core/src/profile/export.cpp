@@ -427,9 +427,7 @@ Image3f apply_profile(const Profile& profile, const float* rgb, int width, int h
   if (profile.has_linearisation) {  // stored values: the profile's linearisation stage first
     std::copy(rgb, rgb + n * 3, out.pixels.begin());
     linearise_image(profile.linearisation, out.pixels.data(), n);
-    std::vector<float> linear(std::move(out.pixels));
-    out.pixels.assign(n * 3, 0.f);
-    apply_to_image(profile.model, linear.data(), n, out.pixels.data());
+    apply_to_image(profile.model, out.pixels.data(), n, out.pixels.data());  // in place: no third image
     return out;
   }
   apply_to_image(profile.model, rgb, n, out.pixels.data());

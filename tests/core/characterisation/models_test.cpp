@@ -597,6 +597,44 @@ TEST_CASE("apply_to_image: the AVX-512 kernels' streaming path (large outputs) e
 }
 #endif
 
+TEST_CASE("apply_to_image in place gives the floats it writes to another buffer — other overlaps are refused", "[models]") {
+  // Every model on 4099 pixels (tails after every kernel's step), and the three models with their
+  // own kernels also on an output of 33 MiB (natively, the AVX-512 kernels' streaming stores).
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> u(-0.05f, 1.2f);
+  const auto check = [&](const ModelInfo& info, size_t n) {
+    std::vector<float> img(3 * n), out(3 * n);
+    for (float& v : img) v = u(rng);
+    Model m{info.id, Eigen::MatrixXd(3, info.n_terms)};
+    for (int c = 0; c < 3; ++c)
+      for (int j = 0; j < info.n_terms; ++j) m.coefficients(c, j) = 0.3 * (1 + c) - 0.17 * j + 0.01 * c * j;
+    apply_to_image(m, img.data(), n, out.data());
+    apply_to_image(m, img.data(), n, img.data());
+    size_t first = 3 * n;
+    for (size_t i = 0; i < 3 * n && first == 3 * n; ++i)
+      if (std::memcmp(&img[i], &out[i], sizeof(float)) != 0) first = i;
+    INFO(info.id << ", " << n << " pixels: first element that differs in place " << first);
+    CHECK(first == 3 * n);  // tolerance 0
+  };
+  for (const ModelInfo& info : model_table()) check(info, 4099);
+  for (const char* id : {"Finlayson2015-2", "matrix-3x3", "matrix-3x4"}) check(model_info(id), (size_t(33) << 20) / 12 + 13);
+
+  const Model m{"matrix-3x3", Eigen::MatrixXd::Identity(3, 3)};
+  std::vector<float> buf(3 * 101, 0.5f);
+  for (const size_t shift : {size_t(1), size_t(3), size_t(149)}) {
+    INFO("output " << shift << " floats past the input");
+    try {
+      apply_to_image(m, buf.data(), 50, buf.data() + shift);
+      FAIL("a partly overlapping output was accepted");
+    } catch (const Error& e) {
+      CHECK(e.code() == ErrorCode::InvalidArgument);
+      CHECK(std::string(e.what()).find("overlaps") != std::string::npos);
+    }
+  }
+  apply_to_image(m, buf.data(), 50, buf.data() + 150);  // adjacent, not overlapping: fine
+  CHECK(buf[150] == 0.5f);
+}
+
 namespace {
 
 // The ColorChecker SG's 140 patches seen by a simulated Canon 5D Mark II under D65 (noise 1 %),

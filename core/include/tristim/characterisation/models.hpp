@@ -217,8 +217,9 @@ PatchMatrix predict(const Model& model, const PatchMatrix& camera_RGB);
 Vec3 predict(const Model& model, const Vec3& camera_RGB);
 
 /// Applies a model to an interleaved linear float RGB image (n_pixels × 3) -> interleaved XYZ
-/// (n_pixels × 3, may not alias the input). Tight loops, no per-pixel allocation; the 3×3,
-/// affine and degree-2 root-polynomial models have dedicated paths.
+/// (n_pixels × 3). xyz may be rgb itself (in place: one image buffer instead of two, the same
+/// floats); any other overlap is Error(InvalidArgument). Tight loops, no per-pixel allocation;
+/// the 3×3, affine and degree-2 root-polynomial models have dedicated paths.
 void apply_to_image(const Model& model, const float* rgb, size_t n_pixels, float* xyz);
 
 /// Caps the x86 vector kernels apply_to_image may choose at run time, for tests and benchmarks
