@@ -7,8 +7,9 @@
 // compiled with -ffp-contract=off so that stays true in the AVX-512 functions). The AVX2 and
 // AVX-512 root-polynomials fuse multiply-adds, the same lane for lane (identical floats to each
 // other), and differ from the scalar loop by FMA rounding (tests/core/characterisation/models_test.cpp).
-// In place (out == in) is allowed: every kernel reads a step's pixels before it writes them, so the
-// buffers are not declared __restrict. Plain stores, except the AVX-512 kernels' on large outputs: on session 10's AMD VM 16-byte
+// In place (out == in) is allowed: every kernel reads a step's pixels before it writes them, so
+// the buffers are not declared __restrict.
+// Plain stores, except the AVX-512 kernels' on large outputs: on session 10's AMD VM 16-byte
 // non-temporal stores made the 24 MP apply slower (3×3 at 63 % of memcpy speed with them, 93 %
 // without; root-polynomial AVX2 47 % vs 65 %); on session 13's Intel VM the AVX-512 kernel's
 // whole-line (64-byte, aligned) non-temporal stores are faster than its plain ones. Natively every
