@@ -2,13 +2,14 @@
 # Installs everything tristim needs on a fresh Debian 12 machine (run as root).
 # Idempotent: a second run only checks. Source packages (LibRaw, lcms2, NLopt, zlib, libpng,
 # libjpeg-turbo, libtiff) are fetched from Debian's archive into third_party/ (git-ignored) for
-# the WebAssembly build, and LibRaw's for every build (see CMakeLists.txt: Debian's libraw.so
-# crashes on a fuzzed DNG); none of their source is committed.
+# the WebAssembly build, and LibRaw's and NLopt's for every build (CMakeLists.txt: Debian's
+# libraw.so crashes on a fuzzed DNG; cmake/nlopt.cmake: the same optimiser steps natively and in
+# wasm); none of their source is committed.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 
 PKGS="build-essential cmake pkg-config dpkg-dev libeigen3-dev catch2 emscripten
-chromium liblcms2-dev liblcms2-utils libnlopt-dev libnlopt-cxx-dev argyll python3-opencv
+chromium liblcms2-dev liblcms2-utils argyll python3-opencv
 python3-numpy ca-certificates opencolorio-tools parallel libtiff-dev libpng-dev libjpeg-dev zlib1g-dev
 clang"  # clang + libFuzzer for scripts/fuzz.sh (also pulled in by emscripten)
 

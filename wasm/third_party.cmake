@@ -19,21 +19,8 @@ target_compile_options(lcms2_wasm PRIVATE -w -O3)
 add_library(tristim_lcms2 INTERFACE)
 target_link_libraries(tristim_lcms2 INTERFACE lcms2_wasm)
 
-# --- NLopt: its own CMake build, static, C API only, no bindings or tests.
-tristim_find_src(NLOPT_DIR "nlopt-2*" "NLopt")
-set(BUILD_SHARED_LIBS OFF CACHE BOOL "" FORCE)
-foreach(opt NLOPT_CXX NLOPT_FORTRAN NLOPT_PYTHON NLOPT_OCTAVE NLOPT_MATLAB NLOPT_GUILE NLOPT_SWIG NLOPT_TESTS)
-  set(${opt} OFF CACHE BOOL "" FORCE)
-endforeach()
-set(WITH_THREADLOCAL OFF CACHE BOOL "" FORCE)
-add_subdirectory(${NLOPT_DIR} ${CMAKE_BINARY_DIR}/nlopt EXCLUDE_FROM_ALL)
-target_compile_options(nlopt PRIVATE -w)
-# BOBYQA's subroutines kept as functions (see the top-level CMakeLists.txt: V8 runs the one merged
-# function ~2.6x slower than the same code natively, the separate functions ~1.3x).
-set_source_files_properties(${NLOPT_DIR}/src/algs/bobyqa/bobyqa.c TARGET_DIRECTORY nlopt
-                            PROPERTIES COMPILE_OPTIONS -fno-inline)
-add_library(tristim_nlopt INTERFACE)
-target_link_libraries(tristim_nlopt INTERFACE nlopt)
+# --- NLopt: cmake/nlopt.cmake, as natively (the same steps in both builds).
+include(${CMAKE_SOURCE_DIR}/cmake/nlopt.cmake)
 
 # ---------------------------------------------------------------------------------------------
 # Images in (core/src/capture/image_*.cpp): zlib, libpng, libjpeg-turbo and libtiff, each from its
