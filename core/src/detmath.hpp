@@ -1,4 +1,4 @@
-// Elementary functions that give the same bits in every build: cbrt, exp, sin, cos, atan2.
+// Elementary functions that give the same bits in every build: cbrt, exp, log, pow, sin, cos, atan2.
 //
 // Natively the C library's (glibc) and in wasm Emscripten's (musl) round these differently in the
 // last place for many arguments (cbrt: 48 % of 200,000 random arguments, session 19), so a fit
@@ -6,8 +6,9 @@
 // use only +, −, ×, ÷, sqrt and exact scaling (powers of 2 built from their bits), which IEEE 754 defines to
 // the bit, in a fixed order. Nothing is fused into an FMA: x86-64's baseline target has no FMA
 // instruction and wasm has none (a build for an FMA target, e.g. -march=native, would fuse and
-// fail the pinned hashes in the tests). Accuracy (tests/core/colorimetry/detmath_test.cpp): exp, sin, cos
-// and atan2 within 2 units in the last place of the C library's result on the tested ranges; cbrt
+// fail the pinned hashes in the tests). Accuracy (tests/core/colorimetry/detmath_test.cpp): exp, sin, cos,
+// atan2 and pow within 2 units in the last place of the C library's result on the tested ranges, log
+// within 1 (it is computed in double-double and rounded once); cbrt
 // within 1 unit of the correctly rounded root (x86-64's long double as the reference: 90 % exact
 // on 10^6 arguments, where glibc's cbrt is exact for 46 % and up to 3 units off). Not correctly
 // rounded.
@@ -60,6 +61,30 @@ inline double horner(double z, const double (&c)[N]) {
   return p;
 }
 
+// Error-free transformations (IEEE round-to-nearest, no FMA): s + e = a + b exactly.
+inline void fast_two_sum(double a, double b, double& s, double& e) {  // needs |a| ≥ |b| (or a = 0)
+  s = a + b;
+  e = b - (s - a);
+}
+inline void two_sum(double a, double b, double& s, double& e) {
+  s = a + b;
+  const double bb = s - a;
+  e = (a - (s - bb)) + (b - bb);
+}
+// p + e = a · b exactly (Dekker, with Veltkamp's split into 26 + 27 bits; |a|, |b| < 2^995).
+inline void split(double a, double& hi, double& lo) {
+  const double c = 134217729.0 * a;  // 2^27 + 1
+  hi = c - (c - a);
+  lo = a - hi;
+}
+inline void two_prod(double a, double b, double& p, double& e) {
+  p = a * b;
+  double ah, al, bh, bl;
+  split(a, ah, al);
+  split(b, bh, bl);
+  e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+}
+
 // Taylor polynomials on |r| ≤ π/4 (truncation below 1e-21 relative), in z = r².
 // sin r = r + r z (−1/3! + z/5! − … − z^8/19!)
 constexpr double kSinCoef[9] = {-1.0 / 121645100408832000.0, 1.0 / 355687428096000.0, -1.0 / 1307674368000.0,
@@ -100,6 +125,62 @@ inline double atan01(double t) {
   const double a = u + u * z * horner(z, kCoef);
   return base_hi + (a + base_lo);
 }
+// ln x as hi + lo (|lo| ≤ ulp(hi)/2; about 2^-60 relative) for finite x > 0.
+// x = 2^k·m with √½ ≤ m < √2; f = m − 1 (exact); ln m = 2 atanh s, s = f / (2 + f), |s| ≤ 0.1716:
+// 2s in double-double plus 2s³(1/3 + s²/5 + … + s^20/23) (truncation below 5e-16 of that term,
+// which is at most 1 % of the sum); k·ln 2 with ln 2 in two parts.
+inline void log_dd(double x, double& hi, double& lo) {
+  int k = 0;
+  if (x < 0x1p-1022) {  // subnormal: scale into the normal range (exact)
+    x *= 0x1p54;
+    k = -54;
+  }
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  k += static_cast<int>((bits >> 52) & 0x7ff) - 1023;
+  bits = (bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL;
+  double m;
+  std::memcpy(&m, &bits, sizeof m);  // [1, 2)
+  if (m > 0x1.6a09e667f3bcdp+0) {    // √2
+    m *= 0.5;
+    ++k;
+  }
+  const double f = m - 1.0;
+  double t_hi, t_lo;  // 2 + f
+  fast_two_sum(2.0, f, t_hi, t_lo);
+  const double inv = 1.0 / t_hi;  // one division: s_lo makes up for the rounding of s_hi
+  const double s_hi = f * inv;
+  double p, pe;
+  two_prod(s_hi, t_hi, p, pe);
+  const double s_lo = (((f - p) - pe) - s_hi * t_lo) * inv;  // f/(t_hi + t_lo) − s_hi
+  static constexpr double kOdd[11] = {1.0 / 23, 1.0 / 21, 1.0 / 19, 1.0 / 17, 1.0 / 15, 1.0 / 13,
+                                      1.0 / 11, 1.0 / 9,  1.0 / 7,  1.0 / 5,  1.0 / 3};
+  const double z = s_hi * s_hi;
+  const double tail = 2.0 * s_hi * z * horner(z, kOdd);
+  // s_lo's share of the tail, 2s²·s_lo to first order (without it: 2^-58 relative).
+  double lm_hi, lm_lo;  // ln m
+  fast_two_sum(2.0 * s_hi, (2.0 * s_lo + 2.0 * z * s_lo) + tail, lm_hi, lm_lo);
+  const double fk = k;
+  double h, e;
+  two_sum(fk * kLn2Hi, lm_hi, h, e);  // k·ln2_hi is exact (32-bit ln2_hi, |k| < 1100)
+  fast_two_sum(h, e + (lm_lo + fk * kLn2Lo), hi, lo);
+}
+
+// e^(x + lo) for |lo| ≤ ulp(x): x reduced by n·ln 2, lo added to the reduced argument.
+inline double exp_reduced(double x, double lo) {
+  const double fn = round_int(x * kInvLn2);
+  const double r = ((x - fn * kLn2Hi) - fn * kLn2Lo) + lo;  // |r| ≤ ln2 / 2 (+ rounding)
+  // Taylor to r^13 / 13! (truncation below 1e-17 relative), Horner from the top.
+  static constexpr double kInvFact[14] = {1.0 / 6227020800.0, 1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0,
+                                          1.0 / 362880.0,     1.0 / 40320.0,     1.0 / 5040.0,     1.0 / 720.0,
+                                          1.0 / 120.0,        1.0 / 24.0,        1.0 / 6.0,        0.5,
+                                          1.0,                1.0};
+  const double p = horner(r, kInvFact);
+  // × 2^n in two factors built from their bits (each a normal double for n from −1075 to 1024),
+  // so only the last product rounds (a subnormal result).
+  const int n = static_cast<int>(fn), h = n / 2;
+  return p * pow2(h) * pow2(n - h);
+}
 }  // namespace detail
 
 /// Cube root, the sign kept; ±0, ±∞ and NaN returned as given.
@@ -136,18 +217,54 @@ inline double exp(double x) {
   if (std::isnan(x)) return x;
   if (x > 709.782712893384) return std::numeric_limits<double>::infinity();
   if (x < -745.1332191019412) return 0.0;
-  const double fn = detail::round_int(x * detail::kInvLn2);
-  const double r = (x - fn * detail::kLn2Hi) - fn * detail::kLn2Lo;  // |r| ≤ ln2 / 2 (+ rounding)
-  // Taylor to r^13 / 13! (truncation below 1e-17 relative), Horner from the top.
-  static constexpr double kInvFact[14] = {1.0 / 6227020800.0, 1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0,
-                                          1.0 / 362880.0,     1.0 / 40320.0,     1.0 / 5040.0,     1.0 / 720.0,
-                                          1.0 / 120.0,        1.0 / 24.0,        1.0 / 6.0,        0.5,
-                                          1.0,                1.0};
-  const double p = detail::horner(r, kInvFact);
-  // × 2^n in two factors built from their bits (each a normal double for n from −1075 to 1024),
-  // so only the last product rounds (a subnormal result).
-  const int n = static_cast<int>(fn), h = n / 2;
-  return p * detail::pow2(h) * detail::pow2(n - h);
+  return detail::exp_reduced(x, 0.0);
+}
+
+/// Natural logarithm; C's conventions: ln 0 = −∞, ln x < 0 = NaN, ln ∞ = ∞.
+inline double log(double x) {
+  if (std::isnan(x) || x < 0) return std::numeric_limits<double>::quiet_NaN();
+  if (x == 0.0) return -std::numeric_limits<double>::infinity();
+  if (std::isinf(x)) return x;
+  double hi, lo;
+  detail::log_dd(x, hi, lo);
+  return hi;
+}
+
+/// x^y, with C's conventions for zeros, infinities, NaN and negative x (an integer y keeps the
+/// sign of an odd power, any other y gives NaN). e^(y·ln x) with ln x and the product in
+/// double-double, so the result is as accurate as exp's (the error of a plain exp(y·log x) grows
+/// with |y·ln x|).
+inline double pow(double x, double y) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  if (y == 0.0 || x == 1.0) return 1.0;
+  if (std::isnan(x) || std::isnan(y)) return x + y;
+  const bool y_int = std::floor(y) == y;
+  const bool y_odd = y_int && std::fabs(y) < 0x1p53 && std::fmod(y, 2.0) != 0.0;
+  if (std::isinf(y)) {
+    const double ax = std::fabs(x);
+    if (ax == 1.0) return 1.0;
+    return (ax < 1.0) == (y > 0) ? 0.0 : inf;
+  }
+  if (x == 0.0 || std::isinf(x)) {
+    const bool big = std::isinf(x) ? y > 0 : y < 0;  // ∞ or 0 as the magnitude
+    const double r = big ? inf : 0.0;
+    return (y_odd && std::signbit(x)) ? -r : r;
+  }
+  double sign = 1.0;
+  if (x < 0) {
+    if (!y_int) return std::numeric_limits<double>::quiet_NaN();
+    if (y_odd) sign = -1.0;
+    x = -x;
+    if (x == 1.0) return sign;
+  }
+  if (std::fabs(y) > 0x1p900) return sign * ((x < 1.0) == (y > 0) ? 0.0 : inf);  // |y·ln x| > 2^846
+  double lh, ll, ph, pe, zh, zl;
+  detail::log_dd(x, lh, ll);
+  detail::two_prod(y, lh, ph, pe);
+  detail::fast_two_sum(ph, pe + y * ll, zh, zl);
+  if (zh > 709.782712893384) return sign * inf;
+  if (zh < -745.1332191019412) return sign * 0.0;
+  return sign * detail::exp_reduced(zh, zl);
 }
 
 /// sin x (x in radians).

@@ -179,7 +179,7 @@ inline double signed_root(double p, int k) {
   if (k == 2) return p >= 0 ? std::sqrt(p) : -std::sqrt(-p);
   if (k == 3) return detmath::cbrt(p);  // the same bits in both builds (detmath.hpp)
   if (k == 4) return p >= 0 ? std::sqrt(std::sqrt(p)) : -std::sqrt(std::sqrt(-p));
-  return p >= 0 ? std::pow(p, 1.0 / k) : -std::pow(-p, 1.0 / k);
+  return p >= 0 ? detmath::pow(p, 1.0 / k) : -detmath::pow(-p, 1.0 / k);
 }
 
 inline double ipow(double x, int e) {

@@ -178,7 +178,7 @@ Mat3 sRGB_to_XYZ_matrix() {
 
 double sRGB_encode(double linear) {
   const double c = std::clamp(linear, 0.0, 1.0);
-  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  return c <= 0.0031308 ? 12.92 * c : 1.055 * detmath::pow(c, 1.0 / 2.4) - 0.055;
 }
 
 Vec3 sRGB_encode(const Vec3& linear_RGB) {

@@ -8,6 +8,7 @@
 
 #include "rows.hpp"
 #include "tristim/error.hpp"
+#include "../detmath.hpp"
 
 namespace tristim {
 
@@ -51,7 +52,7 @@ std::vector<double> polyfit(const std::vector<double>& x, const std::vector<doub
   for (int k = 0; k <= degree; ++k) {
     double binom = 1;  // C(k, j)
     for (int j = 0; j <= k; ++j) {
-      c[j] += a[k] * binom * std::pow(-mid, k - j) / std::pow(s, k);
+      c[j] += a[k] * binom * detmath::pow(-mid, k - j) / detmath::pow(s, k);
       binom = binom * (k - j) / (j + 1);
     }
   }
@@ -88,7 +89,7 @@ double squared_correlation(const std::vector<double>& a, const std::vector<doubl
 
 double sRGB_decode(double v) {
   const double a = std::fabs(v);
-  const double l = a <= 0.04045 ? a / 12.92 : std::pow((a + 0.055) / 1.055, 2.4);
+  const double l = a <= 0.04045 ? a / 12.92 : detmath::pow((a + 0.055) / 1.055, 2.4);
   return v < 0 ? -l : l;
 }
 
@@ -186,7 +187,7 @@ double apply_polynomial(const Linearisation& l, int c, double value) {
 
 double apply_log_polynomial(const Linearisation& l, int c, double value) {
   const double x = value / l.full_scale;
-  return x > 0 ? std::exp(polyval(l.coefficients[c], std::log(x))) : 0.0;
+  return x > 0 ? detmath::exp(polyval(l.coefficients[c], detmath::log(x))) : 0.0;
 }
 
 namespace {
@@ -277,11 +278,11 @@ Linearisation fit_gamma(const LinearisationData& data, const MethodChoice& choic
 // OpenCV ccm's gammaCorrection: sign(x)·|x|^γ.
 double apply_gamma(const Linearisation& l, int c, double value) {
   const double x = value / l.full_scale, g = l.coefficients[c].at(0);
-  return x < 0 ? -std::pow(-x, g) : std::pow(x, g);
+  return x < 0 ? -detmath::pow(-x, g) : detmath::pow(x, g);
 }
 double inverse_gamma(const Linearisation& l, int c, double y) {
   const double g = l.coefficients[c].at(0);
-  return (y < 0 ? -std::pow(-y, 1 / g) : std::pow(y, 1 / g)) * l.full_scale;
+  return (y < 0 ? -detmath::pow(-y, 1 / g) : detmath::pow(y, 1 / g)) * l.full_scale;
 }
 
 double apply_sRGB(const Linearisation& l, int, double value) { return sRGB_decode(value / l.full_scale); }

@@ -8,12 +8,15 @@
 #include <cmath>
 
 #include "tristim/error.hpp"
+#include "../detmath.hpp"
 
 namespace tristim {
 
 namespace {
 
-double signed_pow(double x, double p) { return x < 0 ? -std::pow(-x, p) : std::pow(x, p); }
+// detmath's pow, exp and log (detmath.hpp): the same bits natively and in wasm, so the OECF fit
+// (BOBYQA over these) takes the same steps in the page as on the command line.
+double signed_pow(double x, double p) { return x < 0 ? -detmath::pow(-x, p) : detmath::pow(x, p); }
 
 struct Problem {
   const std::vector<OecfSample>* samples;
@@ -27,7 +30,7 @@ InverseOecf curve_of(const Problem& p, const double* x) {
   InverseOecf c;
   int i = 0;
   c.k1 = p.fit_k1 ? x[i++] * p.h_max : 0.0;
-  c.k2 = std::exp(x[i++]);
+  c.k2 = detmath::exp(x[i++]);
   c.k3 = x[i];
   return c;
 }
@@ -120,7 +123,7 @@ OecfFit fit_inverse_oecf_Guarnera2018(const std::vector<OecfSample>& samples, co
       ub.push_back(1);
       step.push_back(0.01);
     }
-    x.push_back(std::log(best.k2));
+    x.push_back(detmath::log(best.k2));
     lb.push_back(x.back() - 8);
     ub.push_back(x.back() + 8);
     step.push_back(0.05);

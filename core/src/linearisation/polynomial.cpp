@@ -13,6 +13,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
+#include "../detmath.hpp"
 
 namespace tristim {
 
@@ -149,8 +150,8 @@ Linearisation fit_polynomial_row(const LinearisationData& data, const MethodChoi
       const double xv = data.camera_RGB(r, c) / l.full_scale, yv = t(r, c);
       if (log && !(xv > 0 && yv > 0)) continue;  // OpenCV's LogPolyfit mask
       used[c].push_back(r);
-      x.push_back(log ? std::log(xv) : xv);
-      y.push_back(log ? std::log(yv) : yv);
+      x.push_back(log ? detmath::log(xv) : xv);
+      y.push_back(log ? detmath::log(yv) : yv);
     }
     const std::string where = choice.method + ", channel " + kChannel[c] + ": " + std::to_string(x.size()) +
                               (grey ? " usable grey patches" : " usable patches");
@@ -162,9 +163,9 @@ Linearisation fit_polynomial_row(const LinearisationData& data, const MethodChoi
     }
     std::vector<double> yl, fl;
     for (size_t i = 0; i < x.size(); ++i) {
-      yl.push_back(log ? std::exp(y[i]) : y[i]);
+      yl.push_back(log ? detmath::exp(y[i]) : y[i]);
       const double f = polyval(l.coefficients[c], x[i]);
-      fl.push_back(log ? std::exp(f) : f);
+      fl.push_back(log ? detmath::exp(f) : f);
     }
     l.r_squared[c] = coefficient_of_determination(yl, fl);
     if (static_cast<int>(x.size()) == K + 1)

@@ -18,6 +18,7 @@
 #include "tristim/error.hpp"
 #include "tristim/io/number.hpp"
 #include "tristim/version.hpp"
+#include "../detmath.hpp"
 
 namespace tristim {
 
@@ -96,7 +97,7 @@ int clut_sampler(const cmsUInt16Number In[], cmsUInt16Number Out[], void* cargo)
   Vec3 rgb;
   for (int k = 0; k < 3; ++k) {
     const double u = In[k] / 65535.0;                       // grid coordinate after the A curve
-    rgb[k] = std::pow(u, c->gamma) * c->rgb_scale;          // back to camera RGB
+    rgb[k] = detmath::pow(u, c->gamma) * c->rgb_scale;          // back to camera RGB
   }
   const Vec3 xyz = c->pcs.cat * (profile_XYZ(*c->profile, rgb) * c->pcs.inv_white_Y);
   for (int k = 0; k < 3; ++k) {
@@ -288,13 +289,13 @@ std::string export_cube(const Profile& p, int size, double rgb_scale) {
   out += "LUT_1D_SIZE " + std::to_string(n1) + "\nLUT_1D_INPUT_RANGE 0 1\n";
   out += "LUT_3D_SIZE " + std::to_string(size) + "\nLUT_3D_INPUT_RANGE 0 1\n";
   for (int i = 0; i < n1; ++i) {
-    const double u = std::pow(static_cast<double>(i) / (n1 - 1), 1.0 / gamma);
+    const double u = detmath::pow(static_cast<double>(i) / (n1 - 1), 1.0 / gamma);
     std::snprintf(buf, sizeof buf, "%.7g %.7g %.7g\n", u, u, u);
     out += buf;
   }
   const double inv = 1.0 / p.white[1];
   std::vector<double> d(static_cast<size_t>(size));
-  for (int i = 0; i < size; ++i) d[i] = std::pow(static_cast<double>(i) / (size - 1), gamma) * scale;
+  for (int i = 0; i < size; ++i) d[i] = detmath::pow(static_cast<double>(i) / (size - 1), gamma) * scale;
   for (int b = 0; b < size; ++b)
     for (int g = 0; g < size; ++g)
       for (int r = 0; r < size; ++r) {

@@ -1,4 +1,4 @@
-// core/src/detmath.hpp: cbrt, exp, sin, cos and atan2 that give the same bits natively and in
+// core/src/detmath.hpp: cbrt, exp, log, pow, sin, cos and atan2 that give the same bits natively and in
 // wasm. Accuracy against the C library (glibc natively, musl in wasm), the C conventions at zeros,
 // infinities and NaN, and one pinned hash of many results, which both builds must reproduce.
 #include <catch2/catch.hpp>
@@ -77,7 +77,34 @@ TEST_CASE("detmath: within 2 units in the last place of the C library", "[colori
     worst = std::max(worst, ulps(dm::atan2(y, x), std::atan2(y, x)));
   }
   CHECK(worst <= 2);
+  // log and pow, for the linearisations (power laws, log-polynomials, Guarnera's OECF): log over
+  // the whole range and near 1 (where ln x is small and the reduction matters most), pow over the
+  // camera-value range with exponents of gamma curves and beyond, and large |y·ln x|.
+  CHECK(worst_ulps([](double x) { return dm::log(x); }, [](double x) { return std::log(x); }, 200000, -307, 307, true) <= 1);
+  CHECK(worst_ulps([](double x) { return dm::log(x); }, [](double x) { return std::log(x); }, 200000, 0.5, 2.0) <= 1);
+  CHECK(worst_ulps([](double x) { return dm::log(x); }, [](double x) { return std::log(x); }, 2000, -323, -308, true) <= 1);
+  {
+    Draw p;
+    std::int64_t worst_pow = 0, worst_big = 0, worst_gamma = 0;
+    for (int i = 0; i < 200000; ++i) {
+      const double x = std::pow(10.0, p.in(-6, 3)), y = p.in(-5, 5);
+      worst_pow = std::max(worst_pow, ulps(dm::pow(x, y), std::pow(x, y)));
+      const double x2 = p.in(0.5, 2.0), y2 = p.in(-140, 140);  // y·ln x up to ±100
+      worst_big = std::max(worst_big, ulps(dm::pow(x2, y2), std::pow(x2, y2)));
+      for (double g : {2.4, 1.0 / 2.4, 2.2, 1.0 / 2.2, 0.45})
+        worst_gamma = std::max(worst_gamma, ulps(dm::pow(x * 1e-3, g), std::pow(x * 1e-3, g)));
+    }
+    CHECK(worst_pow <= 2);
+    CHECK(worst_big <= 2);
+    CHECK(worst_gamma <= 2);
+  }
   // Exact points.
+  CHECK(dm::log(1.0) == 0.0);
+  CHECK(dm::log(2.0) == std::log(2.0));
+  CHECK(dm::pow(2.0, 10.0) == 1024.0);
+  CHECK(dm::pow(9.0, 0.5) == 3.0);
+  CHECK(dm::pow(-2.0, 3.0) == -8.0);
+  CHECK(dm::pow(0.5, -3.0) == 8.0);
   CHECK(dm::cbrt(27.0) == 3.0);
   CHECK(dm::cbrt(-0.125) == -0.5);
   CHECK(dm::cbrt(1e-300) == Approx(1e-100).epsilon(1e-15));
@@ -103,6 +130,22 @@ TEST_CASE("detmath: C's conventions at zeros, infinities and NaN", "[colorimetry
   CHECK(std::isnan(dm::cos(-inf)));
   CHECK(std::isnan(dm::sin(nan)));
   CHECK(std::signbit(dm::sin(-0.0)));
+  CHECK(dm::log(0.0) == -inf);
+  CHECK(dm::log(-0.0) == -inf);
+  CHECK(std::isnan(dm::log(-1.0)));
+  CHECK(dm::log(inf) == inf);
+  CHECK(std::isnan(dm::log(nan)));
+  for (double y : {0.0, -0.0, 1.0, -1.0, 2.0, -2.0, 0.5, -0.5, 3.0, -3.0, 1e300, -1e300, inf, -inf, nan})
+    for (double x : {0.0, -0.0, 1.0, -1.0, 0.5, -0.5, 2.0, -2.0, 5e-324, inf, -inf, nan}) {
+      const double ours = dm::pow(x, y), libm = std::pow(x, y);
+      INFO("dm::pow(" << x << ", " << y << ") = " << ours << ", C library " << libm);
+      if (std::isnan(libm)) {
+        CHECK(std::isnan(ours));
+      } else {
+        CHECK(ulps(ours, libm) <= 2);
+        CHECK(std::signbit(ours) == std::signbit(libm));
+      }
+    }
   for (double y : {0.0, -0.0, 1.0, -1.0, inf, -inf, nan})
     for (double x : {0.0, -0.0, 1.0, -1.0, inf, -inf, nan}) {
       const double ours = dm::atan2(y, x), libm = std::atan2(y, x);
@@ -135,4 +178,15 @@ TEST_CASE("detmath: the same bits in every build (a pinned hash of 100,000 resul
     mix(dm::atan2(a, d.in(-10, 10)));
   }
   CHECK(h == 0x6ef1a704ce2f7863ULL);
+  // log and pow (session 21), a hash of their own: the one above stays as it was.
+  h = 1469598103934665603ULL;
+  for (int i = 0; i < 20000; ++i) {
+    const double mantissa = d.in(0.5, 1.0);  // one draw per statement: the same order in both builds
+    const int exponent = static_cast<int>(d.in(-60, 60));
+    const double x = std::ldexp(mantissa, exponent), y = d.in(-8, 8);
+    mix(dm::log(x));
+    mix(dm::pow(x, y));
+    mix(dm::pow(d.in(0, 1), 1.0 / 2.4));
+  }
+  CHECK(h == 0x070bb164dcd5766eULL);
 }
