@@ -80,8 +80,9 @@ int main() {
   std::printf("BENCH spectral_24MP reconstruct %.2f\n", t_spec);
 
   // A fixed curve applied to a whole 24 MP image (linearise_image, as `tristim apply` runs a
-  // profile with a gamma or sRGB stage): 72 M calls of detmath's pow (the same bits natively and
-  // in wasm), next to the same loop with the C library's pow.
+  // profile with a gamma or sRGB stage): samples with fractions (as a RAW decode gives) are 72 M
+  // calls of detmath's pow (the same bits natively and in wasm), next to the same loop with the C
+  // library's pow.
   std::printf("\n== linearise a 24 MP image (one call per sample) ==\n");
   LinearisationData none;
   none.camera_RGB = PatchMatrix::Constant(1, 3, 100);
@@ -95,6 +96,20 @@ int main() {
     });
     std::printf("  %-6s %8.1f ms\n", id, t);
     std::printf("BENCH linearise_24MP %s %.1f\n", id, t);
+  }
+  // The same curves on a 16-bit image (whole numbers 0..65535, as from a 16-bit TIFF or PNG): a
+  // table per channel, filled on first use (linearise_image).
+  std::vector<float> img16(rgb.size());
+  for (size_t i = 0; i < img16.size(); ++i) img16[i] = static_cast<float>(i * 7919 % 65536);
+  none.full_scale = 65535;
+  for (const char* id : {"gamma", "sRGB"}) {
+    const Linearisation fixed = fit_linearisation(MethodChoice{id, {}, {}}, none);
+    const double t = best_ms(1, [&] {
+      std::copy(img16.begin(), img16.end(), img.begin());
+      linearise_image(fixed, img.data(), n);
+    });
+    std::printf("  %-6s 16-bit %8.1f ms\n", id, t);
+    std::printf("BENCH linearise_24MP %s-16bit %.1f\n", id, t);
   }
   const double t_libm = best_ms(1, [&] {
     for (size_t i = 0; i < rgb.size(); ++i) img[i] = static_cast<float>(std::pow(rgb[i] / 255.0, 2.2));

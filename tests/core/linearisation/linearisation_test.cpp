@@ -286,3 +286,31 @@ TEST_CASE("linearisations give the same bits natively and in wasm (pinned hashes
   INFO("Guarnera2018 eq (8): " << f.evaluations << " evaluations, hash " << text);
   CHECK(h == 0xec9aa6137d64837cULL);
 }
+
+TEST_CASE("linearise_image: whole-number samples from a table — the same floats as a call per sample", "[linearisation]") {
+  // linearise_image keeps a per-channel table for samples that are whole numbers 0..65535 (8- and
+  // 16-bit images); every other sample (fractions, negatives, −0, beyond 65535, NaN) is computed.
+  std::vector<float> img;
+  for (int v = 0; v < 300; ++v) img.push_back(static_cast<float>(v));  // 8-bit values, some repeated below
+  for (float v : {0.5f, 254.75f, -3.0f, -0.0f, 65535.0f, 65536.0f, 70000.5f, 1e9f, 12.0f, 12.0f, 299.0f})
+    img.push_back(v);
+  while (img.size() % 3) img.push_back(7.0f);
+  LinearisationData none;
+  none.camera_RGB = PatchMatrix::Constant(1, 3, 100);
+  none.full_scale = 255;
+  for (const char* id : {"gamma", "sRGB"}) {
+    Linearisation l = fit_linearisation(parse_choice(id), none);
+    if (std::string(id) == "gamma") l.coefficients = {std::vector<double>{2.2}, {1.8}, {2.4}};  // one table per channel
+    const LinearisationMethod& m = linearisation_method(id);
+    std::vector<float> out = img;
+    linearise_image(l, out.data(), out.size() / 3);
+    for (size_t i = 0; i < img.size(); ++i) {
+      const float want = static_cast<float>(m.apply(l, static_cast<int>(i % 3), img[i]));
+      INFO(id << ": sample " << i << " = " << img[i] << " -> " << out[i] << ", per sample " << want);
+      std::uint32_t a, b;
+      std::memcpy(&a, &out[i], 4);
+      std::memcpy(&b, &want, 4);
+      CHECK(a == b);
+    }
+  }
+}
