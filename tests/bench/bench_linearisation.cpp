@@ -83,34 +83,29 @@ int main() {
   // profile with a gamma or sRGB stage): samples with fractions (as a RAW decode gives) are 72 M
   // calls of detmath's pow (the same bits natively and in wasm), next to the same loop with the C
   // library's pow.
-  std::printf("\n== linearise a 24 MP image (one call per sample) ==\n");
-  LinearisationData none;
-  none.camera_RGB = PatchMatrix::Constant(1, 3, 100);
-  none.full_scale = 255;
+  std::printf("\n== linearise a 24 MP image ==\n");
   std::vector<float> img(rgb.size());
-  for (const char* id : {"gamma", "sRGB"}) {
-    const Linearisation fixed = fit_linearisation(MethodChoice{id, {}, {}}, none);
-    const double t = best_ms(1, [&] {
-      std::copy(rgb.begin(), rgb.end(), img.begin());
-      linearise_image(fixed, img.data(), n);
-    });
-    std::printf("  %-6s %8.1f ms\n", id, t);
-    std::printf("BENCH linearise_24MP %s %.1f\n", id, t);
-  }
+  // One row per curve on `source` (stored values of the given full scale); `suffix` names the image.
+  const auto curve_rows = [&](const std::vector<float>& source, double full_scale, const char* suffix) {
+    LinearisationData none;
+    none.camera_RGB = PatchMatrix::Constant(1, 3, 100);
+    none.full_scale = full_scale;
+    for (const char* id : {"gamma", "sRGB"}) {
+      const Linearisation fixed = fit_linearisation(MethodChoice{id, {}, {}}, none);
+      const double t = best_ms(1, [&] {
+        std::copy(source.begin(), source.end(), img.begin());
+        linearise_image(fixed, img.data(), n);
+      });
+      std::printf("  %-6s%-7s %8.1f ms\n", id, suffix, t);
+      std::printf("BENCH linearise_24MP %s%s %.1f\n", id, suffix, t);
+    }
+  };
+  curve_rows(rgb, 255, "");
   // The same curves on a 16-bit image (whole numbers 0..65535, as from a 16-bit TIFF or PNG): a
   // table per channel, filled on first use (linearise_image).
   std::vector<float> img16(rgb.size());
   for (size_t i = 0; i < img16.size(); ++i) img16[i] = static_cast<float>(i * 7919 % 65536);
-  none.full_scale = 65535;
-  for (const char* id : {"gamma", "sRGB"}) {
-    const Linearisation fixed = fit_linearisation(MethodChoice{id, {}, {}}, none);
-    const double t = best_ms(1, [&] {
-      std::copy(img16.begin(), img16.end(), img.begin());
-      linearise_image(fixed, img.data(), n);
-    });
-    std::printf("  %-6s 16-bit %8.1f ms\n", id, t);
-    std::printf("BENCH linearise_24MP %s-16bit %.1f\n", id, t);
-  }
+  curve_rows(img16, 65535, "-16bit");
   const double t_libm = best_ms(1, [&] {
     for (size_t i = 0; i < rgb.size(); ++i) img[i] = static_cast<float>(std::pow(rgb[i] / 255.0, 2.2));
   });
