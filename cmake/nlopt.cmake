@@ -4,8 +4,9 @@
 #
 # Natively and in wasm the same code must take the same steps, so that a fit in the page gives the
 # numbers of the command line to the bit (tests/core/characterisation/models_test.cpp, "NLopt's
-# other optimisers …", pins them in both builds). Debian's libnlopt.so did not (session 20): its code is the same but it calls
-# the C library, which differs between glibc (native) and musl (Emscripten):
+# other optimisers …", pins them in both builds). Debian's libnlopt.so did not (session 20): its
+# code is the same but it calls the C library, which differs between glibc (native) and musl
+# (Emscripten):
 #  - SBPLX sorts its subspaces with nlopt_qsort_r, which is glibc's qsort_r natively (a merge sort)
 #    and NLopt's own quicksort in wasm: ties came out in another order (3x3, 24 patches: 1800
 #    evaluations natively, 1195 in wasm). HAVE_QSORT_R is set false, so both use NLopt's own sort.
