@@ -162,7 +162,7 @@ inline void log_dd(double x, double& hi, double& lo) {
   fast_two_sum(2.0 * s_hi, (2.0 * s_lo + 2.0 * z * s_lo) + tail, lm_hi, lm_lo);
   const double fk = k;
   double h, e;
-  two_sum(fk * kLn2Hi, lm_hi, h, e);  // k·ln2_hi is exact (32-bit ln2_hi, |k| < 1100)
+  two_sum(fk * kLn2Hi, lm_hi, h, e);  // k·ln2_hi is exact (|k| < 1100, see kLn2Hi)
   fast_two_sum(h, e + (lm_lo + fk * kLn2Lo), hi, lo);
 }
 

@@ -2,7 +2,10 @@
 #pragma once
 #include <catch2/catch.hpp>
 
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <fstream>
 #include <sstream>
@@ -57,5 +60,22 @@ inline ErrorCode code_of(const std::function<void()>& f) {
 inline void require_code(const std::function<void()>& f, ErrorCode code) {
   CHECK(std::string(error_code_name(code_of(f))) == error_code_name(code));
 }
+
+/// FNV-1a 64 over the bits of doubles, one 64-bit word at a time: the pinned hashes of the
+/// cross-build tests (the same in every build exactly when the values are).
+struct BitHash {
+  std::uint64_t value = 1469598103934665603ULL;
+  void add(double v) {
+    std::uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    value = (value ^ b) * 1099511628211ULL;
+  }
+  /// As it is written in the tests: "0x…ULL".
+  std::string text() const {
+    char buf[24];
+    std::snprintf(buf, sizeof buf, "0x%016llxULL", static_cast<unsigned long long>(value));
+    return buf;
+  }
+};
 
 }  // namespace tristim::test

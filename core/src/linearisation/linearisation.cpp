@@ -81,7 +81,7 @@ void linearise_image(const Linearisation& fitted, float* rgb, size_t n_pixels) {
       for (size_t i = 0; i < n_pixels; ++i) {
         float& v = rgb[3 * i + c];
         const float x = v;
-        if (x >= 0.0f && x <= 65535.0f && !std::signbit(x) && x == static_cast<float>(static_cast<int>(x))) {
+        if (!std::signbit(x) && x <= 65535.0f && x == static_cast<float>(static_cast<int>(x))) {  // not −0, NaN
           const int k = static_cast<int>(x);
           if (!filled[k]) {
             table[k] = static_cast<float>(m.apply(fitted, c, x));

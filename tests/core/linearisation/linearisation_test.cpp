@@ -240,12 +240,6 @@ TEST_CASE("linearisations give the same bits natively and in wasm (pinned hashes
     for (int c = 0; c < 3; ++c) d.camera_RGB(i, c) = 255 * std::sqrt(ref.XYZ[i][c] / ref.white[c] * 0.9) * ripple();
   for (Eigen::Index i = 0; i < 24; ++i)  // the power from std::pow would differ: through detmath
     for (int c = 0; c < 3; ++c) d.camera_RGB(i, c) = 255 * tristim::detmath::pow(d.camera_RGB(i, c) / 255, 2 * gamma[c]);
-  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over result bits
-  auto mix = [&](double v) {
-    std::uint64_t b;
-    std::memcpy(&b, &v, sizeof b);
-    h = (h ^ b) * 1099511628211ULL;
-  };
   struct Case {
     const char* choice;
     std::uint64_t hash;
@@ -260,18 +254,16 @@ TEST_CASE("linearisations give the same bits natively and in wasm (pinned hashes
     MethodChoice choice = parse_choice(c.choice);
     if (std::string(c.choice).rfind("grey", 0) == 0) choice.settings["grey"] = "D1;D2;D3;D4;D5;D6";
     const Linearisation l = fit_linearisation(choice, d);
-    h = 1469598103934665603ULL;
+    test::BitHash h;
     for (const auto& k : l.coefficients)
-      for (double v : k) mix(v);
+      for (double v : k) h.add(v);
     const PatchMatrix lin = linearise(l, d.camera_RGB), back = delinearise(l, lin);
     for (Eigen::Index i = 0; i < lin.size(); ++i) {
-      mix(lin.data()[i]);
-      mix(back.data()[i]);
+      h.add(lin.data()[i]);
+      h.add(back.data()[i]);
     }
-    char text[24];
-    std::snprintf(text, sizeof text, "0x%016llxULL", static_cast<unsigned long long>(h));
-    INFO(c.choice << ": hash " << text);
-    CHECK(h == c.hash);
+    INFO(c.choice << ": hash " << h.text());
+    CHECK(h.value == c.hash);
   }
   // Guarnera's eq (8) by BOBYQA over detmath's pow (the luminance chain's linearisation).
   const InverseOecf truth{0.002, 3.7, 1.06};
@@ -279,12 +271,10 @@ TEST_CASE("linearisations give the same bits natively and in wasm (pinned hashes
   for (double eps : {0.5, 1.0, 2.0, 4.0})
     for (double Y = 5; Y <= 200; Y += 15) s.push_back({truth.forward(Y * eps) * ripple(), eps, Y});
   const OecfFit f = fit_inverse_oecf_Guarnera2018(s);
-  h = 1469598103934665603ULL;
-  for (double v : {f.curve.k1, f.curve.k2, f.curve.k3, f.rms_relative}) mix(v);
-  char text[24];
-  std::snprintf(text, sizeof text, "0x%016llxULL", static_cast<unsigned long long>(h));
-  INFO("Guarnera2018 eq (8): " << f.evaluations << " evaluations, hash " << text);
-  CHECK(h == 0xec9aa6137d64837cULL);
+  test::BitHash h;
+  for (double v : {f.curve.k1, f.curve.k2, f.curve.k3, f.rms_relative}) h.add(v);
+  INFO("Guarnera2018 eq (8): " << f.evaluations << " evaluations, hash " << h.text());
+  CHECK(h.value == 0xec9aa6137d64837cULL);
 }
 
 TEST_CASE("linearise_image: whole-number samples from a table — the same floats as a call per sample", "[linearisation]") {
