@@ -58,7 +58,8 @@ test('wasm finds the same corners as the native CLI (when build/native exists)',
   withRaw(T, PASSPORT, (raw) => {
     const w = T.detectCharts(raw, { charts: ['passport'] })[0];
     const k = n.reduce((best, v, i) => (Math.abs(v - w.corners[i]) > Math.abs(n[best] - w.corners[best]) ? i : best), 0);
-    assert.ok(Math.abs(n[k] - w.corners[k]) < 0.01, `worst coordinate ${k}: native ${n[k]} wasm ${w.corners[k]} (tolerance 0.01 px)`);
+    // The CLI prints 3 decimals; the bits themselves are pinned in both builds by detect_test.cpp.
+    assert.ok(Math.abs(n[k] - w.corners[k]) <= 0.0005 + 1e-9, `worst coordinate ${k}: native ${n[k]} wasm ${w.corners[k]} (the CLI's rounding, 0.0005 px)`);
     assert.equal(w.orientation, native.candidates[0].orientation);
     assert.ok(Math.abs(w.confidence - native.candidates[0].confidence) < 1e-3, `confidence native ${native.candidates[0].confidence} wasm ${w.confidence}`);
   });

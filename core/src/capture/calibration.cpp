@@ -146,7 +146,7 @@ FalloffFit fit_falloff_Guarnera2018(const RawImage& flat, const DarkFrame* dark)
   fit.height = flat.height;
   fit.centre_x = flat.width / 2.0;
   fit.centre_y = flat.height / 2.0;
-  fit.r_scale = std::hypot(fit.centre_x, fit.centre_y);
+  fit.r_scale = std::sqrt(fit.centre_x * fit.centre_x + fit.centre_y * fit.centre_y);  // not hypot: the same bits in every build
   const size_t npix = static_cast<size_t>(flat.width) * flat.height;
   // Per-channel means (for normalising the channels to a common scale).
   std::array<double, 3> mean{};

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "../detmath.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 
@@ -237,7 +238,7 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
         std::fprintf(stderr, "CANDIDATE %s residual %.4f score %.4f alternative %.4f runner-up %.4f/%.4f supported %.2f conf %.3f\n",
                      t.id.c_str(), c.residual, final_score, alternative_score, runner_up, chosen->residual, c.supported, c.confidence);
       const double dx = corners[2] - corners[0], dy = corners[3] - corners[1];
-      c.angle = std::fmod(std::atan2(dy, dx) * 180 / kPi + 360.0, 360.0);
+      c.angle = std::fmod(detmath::atan2(dy, dx) * 180 / kPi + 360.0, 360.0);
       c.orientation = static_cast<int>(std::lround(c.angle / 90.0)) % 4 * 90;
       if (!have || c.confidence > best.confidence) {
         best = c;

@@ -91,7 +91,7 @@ std::vector<GridGroup> group_grids(const std::vector<PatchQuad>& quads, int min_
   // Neighbour lists: centres within 2.8 patch sizes, areas within a factor 2.2 (sweep over x).
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return quads[a].centre.x() < quads[b].centre.x(); });
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return quads[a].centre.x() < quads[b].centre.x(); });
   std::vector<double> reach(n);
   double max_reach = 0;
   for (int i = 0; i < n; ++i) {

@@ -6,6 +6,7 @@
 #include <map>
 #include <numeric>
 
+#include "../detmath.hpp"
 #include "tristim/chart/detect.hpp"
 #include "tristim/error.hpp"
 
@@ -14,6 +15,8 @@ namespace tristim {
 using Point = Eigen::Vector2d;
 
 namespace {
+
+constexpr double kLn2 = 0x1.62e42fefa39efp-1;  // ln 2 rounded to double
 
 // Weighted least squares M (3×3) with camera ≈ M · reference, weights per pair.
 // The sums of w·ref·refᵀ and w·ref·rgbᵀ are kept in scalars: each term is (w·ref_i)·x_j, added in
@@ -107,7 +110,7 @@ std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const 
       const double u = positions[k].x() - 0.5, v = positions[k].y() - 0.5;
       const double phi[6] = {1, u, v, u * u, v * v, u * v};
       for (int j = 0; j < terms; ++j) A(static_cast<Eigen::Index>(k), j) = phi[j];
-      b(static_cast<Eigen::Index>(k)) = std::log(rho);
+      b(static_cast<Eigen::Index>(k)) = detmath::log(rho);
     }
     const Eigen::VectorXd beta = A.colPivHouseholderQr().solve(b);
     for (size_t k = 0; k < n; ++k) {
@@ -115,7 +118,7 @@ std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const 
       const double phi[6] = {0, u, v, u * u, v * v, u * v};  // the constant stays in M
       double l = 0;
       for (int j = 1; j < terms; ++j) l += beta(j) * phi[j];
-      light[k] = std::exp(std::min(std::log(2.0), std::max(-std::log(2.0), l)));
+      light[k] = detmath::exp(std::min(kLn2, std::max(-kLn2, l)));
     }
   }
   return e;

@@ -158,7 +158,7 @@ std::vector<EdgeObs> measure_edges(const RawImage& img, const GridModel& m, doub
         if (S < 0.75) continue;
         // K measurements along the central 60 % of the side, each averaging a segment of it
         // (samples ~1 px apart) long enough for the edge to stand 4 σ out of the noise.
-        const double needed = std::pow(4 * noise / d.norm(), 2);
+        const double needed = (4 * noise / d.norm()) * (4 * noise / d.norm());
         const int K = std::max(1, std::min({6, static_cast<int>(side_px / 10), static_cast<int>(0.6 * side_px / std::max(needed, 5.0))}));
         const double L = 0.3 * side_px / K;
         const int msamples = std::max(2, std::min(24, static_cast<int>(2 * L)));

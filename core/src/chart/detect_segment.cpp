@@ -6,6 +6,7 @@
 
 #include "tristim/chart/detect.hpp"
 #include "tristim/error.hpp"
+#include "../detmath.hpp"
 #include "../large_buffer.hpp"
 
 namespace tristim {
@@ -164,7 +165,7 @@ NoiseModel estimate_noise(const RawImage& img) {
     }
     // 24 bins of equal count in order of level: the median level and the MAD-based variance of each.
     constexpr int kBins = 24;
-    quantile_split(sd, 0, sd.size(), 0, kBins, kBins, [](const auto& a, const auto& b) { return a.first < b.first; });
+    quantile_split(sd, 0, sd.size(), 0, kBins, kBins, [](const auto& a, const auto& b) { return a < b; });
     Eigen::MatrixXd A(kBins, 2);
     Eigen::VectorXd b(kBins), wt(kBins);
     for (int k = 0; k < kBins; ++k) {
@@ -262,7 +263,7 @@ RegionLabels flat_regions(const RawImage& img, const FlatRegionOptions& options)
       for (size_t i = 0; i < rw; ++i) M[i] = std::max(0.f, (a[i] + b[i]) / n);
     }
     for (size_t i = 0; i < rw; ++i) L[i] = M[i] + eps_row[i];
-    for (size_t i = 0; i < rw; ++i) L[i] = std::log(L[i]);
+    for (size_t i = 0; i < rw; ++i) L[i] = detmath::log_float(L[i]);  // the same bits in every build
   };
   // Noise of half a central difference of log(3×3 mean) at value i of row y:
   // σ(I)/3 · √2 / 2 / (I + eps).
@@ -404,7 +405,7 @@ std::vector<PatchQuad> patch_quads(const RawImage& img, const RegionLabels& regi
       const double psi = step * (kPi / 2) / 30;
       std::array<Point, 4> q;
       for (int d = 0; d < 4; ++d) {
-        const Point dir(std::cos(psi + d * kPi / 2), std::sin(psi + d * kPi / 2));
+        const Point dir(detmath::cos(psi + d * kPi / 2), detmath::sin(psi + d * kPi / 2));
         double m = -1e300;
         for (const Point& p : hull)
           if (p.dot(dir) > m) {
@@ -425,7 +426,7 @@ std::vector<PatchQuad> patch_quads(const RawImage& img, const RegionLabels& regi
       const Point a = quad[(i + 3) % 4] - quad[i], b = quad[(i + 1) % 4] - quad[i];
       const double la = a.norm(), lb = b.norm();
       if (la < 1 || lb < 1 || la > 4 * lb || lb > 4 * la) ok = false;
-      else if (std::abs(a.dot(b) / (la * lb)) > std::cos(35 * kPi / 180)) ok = false;
+      else if (std::abs(a.dot(b) / (la * lb)) > detmath::cos(35 * kPi / 180)) ok = false;
     }
     if (!ok) continue;
     PatchQuad pq;

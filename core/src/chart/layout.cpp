@@ -92,7 +92,10 @@ std::array<double, 9> homography_unit_square(const std::array<double, 8>& corner
     cy += corners[2 * i + 1] / 4;
   }
   double md = 0;
-  for (int i = 0; i < 4; ++i) md += std::hypot(corners[2 * i] - cx, corners[2 * i + 1] - cy) / 4;
+  for (int i = 0; i < 4; ++i) {
+    const double dx = corners[2 * i] - cx, dy = corners[2 * i + 1] - cy;
+    md += std::sqrt(dx * dx + dy * dy) / 4;
+  }
   const double s = md > 0 ? std::sqrt(2.0) / md : 1.0;
   Eigen::Matrix<double, 8, 9> A = Eigen::Matrix<double, 8, 9>::Zero();
   for (int i = 0; i < 4; ++i) {
