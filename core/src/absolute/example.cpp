@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../detmath.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -84,7 +85,7 @@ AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
   }
   ex.white_id = cc.names[white];
   for (int k = 0; k < 12; ++k) {
-    const double Y = 0.3 * std::pow(10.0, 4.0 * k / 11.0);
+    const double Y = 0.3 * detmath::pow(10.0, 4.0 * k / 11.0);
     char name[32];
     std::snprintf(name, sizeof name, "E%.3g", Y);
     add_column(scene.stimuli, E, 0, name);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../detmath.hpp"
 #include "tristim/error.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
@@ -89,7 +90,7 @@ SpectralData projector_primaries() {
   auto band = [&](double lo, double hi) {
     std::vector<double> v(g.size());
     for (size_t i = 0; i < g.size(); ++i)
-      v[i] = 1.0 / (1.0 + std::exp(-(g[i] - lo) / 8.0)) / (1.0 + std::exp((g[i] - hi) / 8.0));
+      v[i] = 1.0 / (1.0 + detmath::exp(-(g[i] - lo) / 8.0)) / (1.0 + detmath::exp((g[i] - hi) / 8.0));
     return v;
   };
   d.names = {"R", "G", "B"};
@@ -164,18 +165,18 @@ void simulate_blocks(const VirtualSensor& s, const VirtualScene& scene, const Ex
     throw Error(ErrorCode::InvalidArgument, "virtual camera: saturation must exceed the noise floor");
   const auto resp = responses(s, scene);
   constexpr double t_ref = 1.0 / 60;
-  const double eps = t_ref * std::pow(e.exposure_s / t_ref, s.reciprocity_exponent) / (e.f_number * e.f_number) *
+  const double eps = t_ref * detmath::pow(e.exposure_s / t_ref, s.reciprocity_exponent) / (e.f_number * e.f_number) *
                      (e.iso > 0 ? e.iso / 100.0 : 1.0);
   const double range = s.saturation - s.noise_floor;
   const double electrons = s.electrons_per_dn * range;  // at u = 1
   GaussianNoise noise(seed);
-  const double cx = scene.width / 2.0, cy = scene.height / 2.0, r_scale = std::hypot(cx, cy);
+  const double cx = scene.width / 2.0, cy = scene.height / 2.0, r_scale = std::sqrt(cx * cx + cy * cy);
   auto sensor_value = [&](int c, double u) {
     if (electrons > 0) {
       const double el = u * electrons;
       u = (el + std::sqrt(std::max(el, 0.0)) * noise.next()) / electrons;  // shot noise
     }
-    const double v = u < 0 ? -std::pow(-u, s.oecf_exponent[c]) : std::pow(u, s.oecf_exponent[c]);  // OECF
+    const double v = u < 0 ? -detmath::pow(-u, s.oecf_exponent[c]) : detmath::pow(u, s.oecf_exponent[c]);  // OECF
     double dn = s.noise_floor + range * v + s.read_noise * noise.next();
     dn = std::min(dn, s.saturation);
     return s.quantise ? std::round(dn) : dn;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "../detmath.hpp"
 #include "tristim/data.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
@@ -98,11 +99,11 @@ double GaussianNoise::next() {
   // Uniforms in (0, 1] from the top 53 bits; Box-Muller (basic form).
   const double u1 = (static_cast<double>(engine_() >> 11) + 1.0) * (1.0 / 9007199254740992.0);
   const double u2 = static_cast<double>(engine_() >> 11) * (1.0 / 9007199254740992.0);
-  const double r = std::sqrt(-2.0 * std::log(u1));
+  const double r = std::sqrt(-2.0 * detmath::log(u1));  // detmath: the same noise in every build
   const double t = 6.283185307179586 * u2;
-  spare_ = r * std::sin(t);
+  spare_ = r * detmath::sin(t);
   has_spare_ = true;
-  return r * std::cos(t);
+  return r * detmath::cos(t);
 }
 
 std::vector<Vec3> simulate_camera_RGB(const SpectralData& ssf, const SpectralData& reflectances,
@@ -137,7 +138,7 @@ std::vector<Vec3> simulate_camera_RGB(const SpectralData& ssf, const SpectralDat
     for (int c = 0; c < 3; ++c) {
       double u = sums[c];
       u *= k;
-      if (o.oecf) u = o.oecf_scale * std::pow(std::max(u, 0.0), 1.0 / o.oecf_gamma);  // eq (29)
+      if (o.oecf) u = o.oecf_scale * detmath::pow(std::max(u, 0.0), 1.0 / o.oecf_gamma);  // eq (29)
       if (o.noise_sigma > 0) u += o.noise_sigma * noise.next();
       if (o.clip_max > 0) u = std::min(std::max(u, 0.0), o.clip_max);
       if (o.quantise) u = std::round(u);
