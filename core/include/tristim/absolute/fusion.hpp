@@ -25,6 +25,7 @@
 // exposure with h > 0 in some channel (for Algorithm 1, the ones used in any channel).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,10 @@
 #include "tristim/capture/raw.hpp"
 
 namespace tristim {
+
+namespace detail {
+struct FusionTables;  // fusion.cpp: the eq (8) root tables, shared by every frame of a bracket
+}
 
 enum class FusionMode { Weighted, Recursive };
 const char* fusion_mode_id(FusionMode mode);   ///< "weighted" | "recursive"
@@ -75,6 +80,7 @@ class ExposureFusion {
   const LuminanceFit& fit_;
   FusedLuminance out_;
   std::vector<float> sum_wL_, sum_w_, best_;
+  std::shared_ptr<const detail::FusionTables> tables_;  // built with the first frame
 };
 
 /// Algorithm 1 on frames held in memory (same checks as ExposureFusion::add). `guess`: index of
