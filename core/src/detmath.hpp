@@ -126,16 +126,8 @@ inline double atan01(double t) {
   const double a = u + u * z * horner(z, kCoef);
   return base_hi + (a + base_lo);
 }
-// ln x as hi + lo (|lo| ≤ ulp(hi)/2; about 2^-60 relative) for finite x > 0.
-// x = 2^k·m with √½ ≤ m < √2; f = m − 1 (exact); ln m = 2 atanh s, s = f / (2 + f), |s| ≤ 0.1716:
-// 2s in double-double plus 2s³(1/3 + s²/5 + … + s^20/23) (truncation below 5e-16 of that term,
-// which is at most 1 % of the sum); k·ln 2 with ln 2 in two parts.
-inline void log_dd(double x, double& hi, double& lo) {
-  int k = 0;
-  if (x < 0x1p-1022) {  // subnormal: scale into the normal range (exact)
-    x *= 0x1p54;
-    k = -54;
-  }
+// x = 2^k·m with √½ ≤ m < √2 (exact) for a normal x > 0: returns m, adds k to `k`.
+inline double log_reduce(double x, int& k) {
   std::uint64_t bits;
   std::memcpy(&bits, &x, sizeof bits);
   k += static_cast<int>((bits >> 52) & 0x7ff) - 1023;
@@ -146,6 +138,19 @@ inline void log_dd(double x, double& hi, double& lo) {
     m *= 0.5;
     ++k;
   }
+  return m;
+}
+// ln x as hi + lo (|lo| ≤ ulp(hi)/2; about 2^-60 relative) for finite x > 0.
+// x = 2^k·m with √½ ≤ m < √2; f = m − 1 (exact); ln m = 2 atanh s, s = f / (2 + f), |s| ≤ 0.1716:
+// 2s in double-double plus 2s³(1/3 + s²/5 + … + s^20/23) (truncation below 5e-16 of that term,
+// which is at most 1 % of the sum); k·ln 2 with ln 2 in two parts.
+inline void log_dd(double x, double& hi, double& lo) {
+  int k = 0;
+  if (x < 0x1p-1022) {  // subnormal: scale into the normal range (exact)
+    x *= 0x1p54;
+    k = -54;
+  }
+  const double m = log_reduce(x, k);
   const double f = m - 1.0;
   double t_hi, t_lo;  // 2 + f
   fast_two_sum(2.0, f, t_hi, t_lo);
@@ -238,17 +243,8 @@ inline double log(double x) {
 inline float log_float(float xf) {
   if (!(xf > 0.0f)) return xf == 0.0f ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::quiet_NaN();
   if (xf > std::numeric_limits<float>::max()) return xf;  // +∞
-  const double x = xf;  // every float, subnormals included, is a normal double
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  int k = static_cast<int>((bits >> 52) & 0x7ff) - 1023;
-  bits = (bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL;
-  double m;
-  std::memcpy(&m, &bits, sizeof m);  // [1, 2)
-  if (m > 0x1.6a09e667f3bcdp+0) {    // √2
-    m *= 0.5;
-    ++k;
-  }
+  int k = 0;
+  const double m = detail::log_reduce(xf, k);  // every float, subnormals included, is a normal double
   const double f = m - 1.0, s = f / (2.0 + f), z = s * s;
   static constexpr double kOdd[5] = {1.0 / 11, 1.0 / 9, 1.0 / 7, 1.0 / 5, 1.0 / 3};
   const double ln_m = 2.0 * s + 2.0 * s * z * detail::horner(z, kOdd);
