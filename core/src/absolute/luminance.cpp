@@ -109,7 +109,9 @@ LuminanceFit fit_luminance_Guarnera2018(const std::vector<TrainingStimulus>& sti
     if (it == groups.end()) groups.push_back({s});
     else it->push_back(s);
   }
-  std::sort(groups.begin(), groups.end(), [&](auto& a, auto& b) {
+  // Stable: two settings of equal ε (1/60 s f/8, 1/15 s f/16) stay in the order given, whichever
+  // C++ library sorts them (libstdc++ natively, libc++ in wasm) — the first failing check is named.
+  std::stable_sort(groups.begin(), groups.end(), [&](auto& a, auto& b) {
     return a[0]->exposure.factor(fit.iso_reference) < b[0]->exposure.factor(fit.iso_reference);
   });
   for (const auto& g : groups) check_monotonic(g, n, o.monotonic_tolerance);
