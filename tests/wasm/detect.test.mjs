@@ -65,6 +65,29 @@ test('wasm finds the same corners as the native CLI (when build/native exists)',
   });
 });
 
+test('the CLI samples a detected chart as the page does: detect, then sample at those corners', { skip: !fs.existsSync(nativeCli) && 'no native build' }, async () => {
+  // `tristim sample` without --corners detects the chart itself; the page detects in the module and
+  // samples at the corners found. Since session 22 detection gives the same bits in both builds, so
+  // the patch means agree to the CSV's printed digits (not only within the corners' tolerance).
+  const T = await loadTristim();
+  const csv = execFileSync(nativeCli, ['sample', path.join(sharedData, PASSPORT), '--chart', 'passport'], { stdio: ['ignore', 'pipe', 'ignore'] })
+    .toString().trim().split('\n');
+  withRaw(T, PASSPORT, (raw) => {
+    const found = T.detectCharts(raw, { charts: ['passport'] })[0];
+    const s = T.sampleChart(raw, { chart: 'passport' }, found.corners);
+    assert.equal(csv.length - 1, s.ids.length);
+    csv.slice(1).forEach((line, i) => {
+      const cells = line.split(',');
+      assert.equal(cells[0], s.ids[i]);
+      for (let c = 0; c < 3; c++) {
+        const a = Number(cells[1 + c]), b = s.RGB[3 * i + c];
+        assert.ok(Math.abs(a - b) <= 1e-6 * Math.abs(b), `${s.ids[i]} channel ${c}: CLI ${a} vs module ${b}`);
+      }
+      assert.equal(Number(cells[7]), s.n[i], `${s.ids[i]}: pixels averaged`);
+    });
+  });
+});
+
 test('without options a Passport is reported as cc24 (same grid and colours)', async () => {
   const T = await loadTristim();
   withRaw(T, PASSPORT, (raw) => assert.equal(T.detectCharts(raw)[0].chart, 'cc24'));
