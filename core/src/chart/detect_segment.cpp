@@ -164,6 +164,8 @@ NoiseModel estimate_noise(const RawImage& img) {
       }
     }
     // 24 bins of equal count in order of level: the median level and the MAD-based variance of each.
+    // The (level, deviation) pairs are compared whole: pairs of equal level (whole DN are common)
+    // fall into the same bins with libstdc++'s nth_element and libc++'s (native and wasm).
     constexpr int kBins = 24;
     quantile_split(sd, 0, sd.size(), 0, kBins, kBins, [](const auto& a, const auto& b) { return a < b; });
     Eigen::MatrixXd A(kBins, 2);
