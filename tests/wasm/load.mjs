@@ -34,3 +34,21 @@ export function throwsCode(assert, fn, code) {
     return true;
   });
 }
+
+/// Asserts that `tristim sample`'s CSV (8 significant digits) holds the module's sampleChart result
+/// `s`: the header, each row's patch id, R, G, B within 1e-6 relative, pixels averaged and flags.
+export function assertSampleCsv(assert, csvText, s) {
+  const csv = csvText.trim().split('\n');
+  assert.equal(csv[0], 'patch,R,G,B,R_std,G_std,B_std,n,flags');
+  assert.equal(csv.length - 1, s.ids.length);
+  csv.slice(1).forEach((line, i) => {
+    const cells = line.split(',');
+    assert.equal(cells[0], s.ids[i]);
+    for (let c = 0; c < 3; c++) {
+      const a = Number(cells[1 + c]), b = s.RGB[3 * i + c];
+      assert.ok(Math.abs(a - b) <= 1e-6 * Math.abs(b), `${s.ids[i]} channel ${c}: CLI ${a} vs module ${b}`);
+    }
+    assert.equal(Number(cells[7]), s.n[i], `${s.ids[i]}: pixels averaged`);
+    assert.equal(cells[8], s.flags[i].join(';'));
+  });
+}

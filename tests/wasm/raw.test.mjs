@@ -5,7 +5,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { loadTristim, readShared, throwsCode, repoRoot } from './load.mjs';
+import { loadTristim, readShared, throwsCode, repoRoot, assertSampleCsv } from './load.mjs';
 
 const PASSPORT = 'raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng';
 const CR2 = 'raw-images/debian-rawtran-doc/IMG_5952_canon_eos_30d.CR2';
@@ -98,18 +98,8 @@ test('sampleChart on the example Passport: 24 patches with ids A1..D6 and typed 
     // D1 (white) is the brightest neutral; 3-argument form works too.
     if (fs.existsSync(nativeCli)) {  // the native CLI samples the same numbers (CSV: 8 significant digits)
       const csv = execFileSync(nativeCli, ['sample', path.join(process.env.TRISTIM_SHARED_DATA || path.resolve(repoRoot, '../shared/data'), PASSPORT),
-        '--chart', 'passport', '--corners', passportJson.corners.join(',')]).toString().trim().split('\n');
-      assert.equal(csv[0], 'patch,R,G,B,R_std,G_std,B_std,n,flags');
-      csv.slice(1).forEach((line, i) => {
-        const cells = line.split(',');
-        assert.equal(cells[0], s.ids[i]);
-        for (let c = 0; c < 3; c++) {
-          const a = Number(cells[1 + c]), b = s.RGB[3 * i + c];
-          assert.ok(Math.abs(a - b) <= 1e-6 * Math.abs(b), `${s.ids[i]} channel ${c}: native ${a} vs wasm ${b}`);
-        }
-        assert.equal(Number(cells[7]), s.n[i]);
-        assert.equal(cells[8], s.flags[i].join(';'));
-      });
+        '--chart', 'passport', '--corners', passportJson.corners.join(',')]).toString();
+      assertSampleCsv(assert, csv, s);
     }
     const s3 = T.sampleChart(raw, { chart: 'passport' }, passportJson.corners);
     assert.deepEqual(Array.from(s3.RGB), Array.from(s.RGB));
