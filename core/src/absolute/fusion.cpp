@@ -38,7 +38,7 @@ namespace {
 // x^p on [0, x_max] by linear interpolation in a table of 65536 segments (relative error below
 // 1e-5 for x > 1e-3·x_max with p near 1); the power itself outside. Signed: (−x)^p = −x^p.
 // detmath's pow, not the C library's: the same table and values natively and in wasm (its ~50 ns
-// a call is ~3 ms a table, three tables a frame).
+// a call is ~3 ms a table; FusionTables builds three per bracket).
 class PowerTable {
  public:
   PowerTable() = default;
