@@ -23,6 +23,8 @@
 #include <cstring>
 #include <limits>
 
+#include "simd4.hpp"
+
 namespace tristim::detmath {
 
 namespace detail {
@@ -126,6 +128,9 @@ inline double atan01(double t) {
   const double a = u + u * z * horner(z, kCoef);
   return base_hi + (a + base_lo);
 }
+constexpr double kSqrt2 = 0x1.6a09e667f3bcdp+0, kLn2 = 0x1.62e42fefa39efp-1;
+// log_float's series 2s(1 + s²/3 + … + s^10/11), highest power first.
+constexpr double kLogFloatOdd[5] = {1.0 / 11, 1.0 / 9, 1.0 / 7, 1.0 / 5, 1.0 / 3};
 // x = 2^k·m with √½ ≤ m < √2 (exact) for a normal x > 0: returns m, adds k to `k`.
 inline double log_reduce(double x, int& k) {
   std::uint64_t bits;
@@ -134,7 +139,7 @@ inline double log_reduce(double x, int& k) {
   bits = (bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL;
   double m;
   std::memcpy(&m, &bits, sizeof m);  // [1, 2)
-  if (m > 0x1.6a09e667f3bcdp+0) {    // √2
+  if (m > kSqrt2) {
     m *= 0.5;
     ++k;
   }
@@ -246,9 +251,48 @@ inline float log_float(float xf) {
   int k = 0;
   const double m = detail::log_reduce(xf, k);  // every float, subnormals included, is a normal double
   const double f = m - 1.0, s = f / (2.0 + f), z = s * s;
-  static constexpr double kOdd[5] = {1.0 / 11, 1.0 / 9, 1.0 / 7, 1.0 / 5, 1.0 / 3};
-  const double ln_m = 2.0 * s + 2.0 * s * z * detail::horner(z, kOdd);
-  return static_cast<float>(k * 0x1.62e42fefa39efp-1 + ln_m);
+  const double ln_m = 2.0 * s + 2.0 * s * z * detail::horner(z, detail::kLogFloatOdd);
+  return static_cast<float>(k * detail::kLn2 + ln_m);
+}
+
+/// log_float of n values (out may be in): the same bits as log_float value by value. Four at a
+/// time in two-lane doubles (SSE2 natively, SIMD128 in wasm) where all four are positive finite
+/// floats, log_float's operations in its order (IEEE-exact, nothing fused); log_float elsewhere.
+/// About 3× faster than log_float one by one (the chart detection's log image).
+inline void log_float_n(const float* in, float* out, std::size_t n) {
+  std::size_t i = 0;
+#ifdef TRISTIM_SIMD4
+  using namespace simd4;
+  const d2 one = splat2(1.0), two = splat2(2.0), half = splat2(0.5), sqrt2 = splat2(detail::kSqrt2);
+  const d2 ln2 = splat2(detail::kLn2);
+  const d2 magic = bits2(0x4330000000000000ULL), magic_bias = splat2(0x1p52 + 1023.0);  // 2^52 + e − (2^52 + 1023)
+  const d2 mantissa = bits2(0x000fffffffffffffULL), exponent_0 = bits2(0x3ff0000000000000ULL);
+  d2 c[5];
+  for (int j = 0; j < 5; ++j) c[j] = splat2(detail::kLogFloatOdd[j]);
+  auto log2lanes = [&](d2 x) {  // x: positive finite floats as doubles (normal doubles)
+    d2 k = sub2(bit_or2(shr64<52>(x), magic), magic_bias);  // the exponent, as log_reduce's k
+    d2 m = bit_or2(bit_and2(x, mantissa), exponent_0);      // [1, 2)
+    const d2 big = gt2(m, sqrt2);
+    m = select2(big, mul2(m, half), m);
+    k = add2(k, bit_and2(big, one));
+    const d2 f = sub2(m, one), s = div2(f, add2(two, f)), z = mul2(s, s);
+    d2 p = c[0];
+    for (int j = 1; j < 5; ++j) p = add2(mul2(p, z), c[j]);
+    const d2 s2 = mul2(two, s);
+    return add2(mul2(k, ln2), add2(s2, mul2(mul2(s2, z), p)));
+  };
+  for (; i + 4 <= n; i += 4) {
+    const f4 x = load(in + i);
+    if (!all_positive_finite(x)) {
+      for (int j = 0; j < 4; ++j) out[i + j] = log_float(in[i + j]);
+      continue;
+    }
+    d2 lo, hi;
+    widen(x, lo, hi);
+    store(out + i, narrow(log2lanes(lo), log2lanes(hi)));
+  }
+#endif
+  for (; i < n; ++i) out[i] = log_float(in[i]);
 }
 
 /// x^y, with C's conventions for zeros, infinities, NaN and negative x (an integer y keeps the

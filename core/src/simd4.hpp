@@ -98,6 +98,37 @@ inline void store_xyz(float* out, f4 X, f4 Y, f4 Z) {
   _mm_storeu_ps(out + 4, _mm_shuffle_ps(b, hi, _MM_SHUFFLE(1, 0, 2, 0)));
   _mm_storeu_ps(out + 8, _mm_shuffle_ps(c, d, _MM_SHUFFLE(2, 0, 2, 0)));
 }
+
+/// Two-lane doubles (SSE2 / SIMD128 f64x2), for kernels that work in double on float data.
+using d2 = __m128d;
+inline d2 splat2(double v) { return _mm_set1_pd(v); }
+inline d2 add2(d2 a, d2 b) { return _mm_add_pd(a, b); }
+inline d2 sub2(d2 a, d2 b) { return _mm_sub_pd(a, b); }
+inline d2 mul2(d2 a, d2 b) { return _mm_mul_pd(a, b); }
+inline d2 div2(d2 a, d2 b) { return _mm_div_pd(a, b); }
+/// All ones in the lanes where a > b.
+inline d2 gt2(d2 a, d2 b) { return _mm_cmpgt_pd(a, b); }
+inline d2 bit_and2(d2 a, d2 b) { return _mm_and_pd(a, b); }
+inline d2 bit_or2(d2 a, d2 b) { return _mm_or_pd(a, b); }
+/// Every lane holds the 64-bit pattern v.
+inline d2 bits2(std::uint64_t v) { return _mm_castsi128_pd(_mm_set1_epi64x(static_cast<long long>(v))); }
+/// The 64-bit lanes shifted right by n bits (zeros in).
+template <int n>
+inline d2 shr64(d2 a) { return _mm_castsi128_pd(_mm_srli_epi64(_mm_castpd_si128(a), n)); }
+/// mask ? a : b, lane by lane.
+inline d2 select2(d2 mask, d2 a, d2 b) { return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b)); }
+/// True when every lane is a positive finite float (not ±0, negative, ∞ or NaN).
+inline bool all_positive_finite(f4 x) {
+  const f4 ok = _mm_and_ps(_mm_cmpgt_ps(x, _mm_setzero_ps()), _mm_cmple_ps(x, _mm_set1_ps(3.40282347e+38f)));
+  return _mm_movemask_ps(ok) == 0xf;
+}
+/// Floats 0-1 and 2-3 as doubles (exact).
+inline void widen(f4 x, d2& lo, d2& hi) {
+  lo = _mm_cvtps_pd(x);
+  hi = _mm_cvtps_pd(_mm_movehl_ps(x, x));
+}
+/// Each double rounded to float (to nearest), lanes lo0 lo1 hi0 hi1.
+inline f4 narrow(d2 lo, d2 hi) { return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi)); }
 #else  // wasm SIMD128
 using f4 = v128_t;
 /// wasm has no prefetch instruction (a plain load of data ahead waits for it: no help natively).
@@ -158,6 +189,31 @@ inline void store_xyz(float* out, f4 X, f4 Y, f4 Z) {
   wasm_v128_store(out, wasm_i32x4_shuffle(lo, a, 0, 1, 4, 6));      // x0 y0 z0 x1
   wasm_v128_store(out + 4, wasm_i32x4_shuffle(b, hi, 0, 2, 4, 5));  // y1 z1 x2 y2
   wasm_v128_store(out + 8, wasm_i32x4_shuffle(c, d, 0, 2, 4, 6));   // z2 x3 y3 z3
+}
+
+using d2 = v128_t;
+inline d2 splat2(double v) { return wasm_f64x2_splat(v); }
+inline d2 add2(d2 a, d2 b) { return wasm_f64x2_add(a, b); }
+inline d2 sub2(d2 a, d2 b) { return wasm_f64x2_sub(a, b); }
+inline d2 mul2(d2 a, d2 b) { return wasm_f64x2_mul(a, b); }
+inline d2 div2(d2 a, d2 b) { return wasm_f64x2_div(a, b); }
+inline d2 gt2(d2 a, d2 b) { return wasm_f64x2_gt(a, b); }
+inline d2 bit_and2(d2 a, d2 b) { return wasm_v128_and(a, b); }
+inline d2 bit_or2(d2 a, d2 b) { return wasm_v128_or(a, b); }
+inline d2 bits2(std::uint64_t v) { return wasm_i64x2_splat(static_cast<std::int64_t>(v)); }
+template <int n>
+inline d2 shr64(d2 a) { return wasm_u64x2_shr(a, n); }
+inline d2 select2(d2 mask, d2 a, d2 b) { return wasm_v128_bitselect(a, b, mask); }
+inline bool all_positive_finite(f4 x) {
+  return wasm_i32x4_all_true(
+      wasm_v128_and(wasm_f32x4_gt(x, wasm_f32x4_splat(0.0f)), wasm_f32x4_le(x, wasm_f32x4_splat(3.40282347e+38f))));
+}
+inline void widen(f4 x, d2& lo, d2& hi) {
+  lo = wasm_f64x2_promote_low_f32x4(x);
+  hi = wasm_f64x2_promote_low_f32x4(wasm_i32x4_shuffle(x, x, 2, 3, 2, 3));
+}
+inline f4 narrow(d2 lo, d2 hi) {
+  return wasm_i32x4_shuffle(wasm_f32x4_demote_f64x2_zero(lo), wasm_f32x4_demote_f64x2_zero(hi), 0, 1, 4, 5);
 }
 #endif
 
