@@ -34,10 +34,13 @@ export function xyPlot({ locus, points = [], arrows = [], white, width = 460, ob
   const marks = [
     Plot.line(L.line, { x: 'x', y: 'y', stroke: '#444', strokeWidth: 1.2 }),
     Plot.dot(L.ticks, { x: 'x', y: 'y', r: 1.5, fill: '#444' }),
-    Plot.text(L.ticks.filter((d) => d.nm < 510), { x: 'x', y: 'y', text: (d) => `${d.nm}`, dx: -6, textAnchor: 'end', fontSize: 9, fill: '#444' }),
-    Plot.text(L.ticks.filter((d) => d.nm >= 510), { x: 'x', y: 'y', text: (d) => `${d.nm}`, dx: 6, textAnchor: 'start', fontSize: 9, fill: '#444' }),
+    // Outside the locus, except where the blue-green limb runs along the y axis (490, 500 nm:
+    // x < 0.06), where a label on the left would sit on the axis's tick labels: inside there.
+    Plot.text(L.ticks.filter((d) => d.nm < 510 && d.x >= 0.06), { x: 'x', y: 'y', text: (d) => `${d.nm}`, dx: -6, textAnchor: 'end', fontSize: 9, fill: '#444' }),
+    Plot.text(L.ticks.filter((d) => d.nm >= 510 || d.x < 0.06), { x: 'x', y: 'y', text: (d) => `${d.nm}`, dx: 6, textAnchor: 'start', fontSize: 9, fill: '#444' }),
     Plot.line(SRGB_GAMUT, { x: 'x', y: 'y', stroke: '#888', strokeDasharray: '4,3' }),
-    Plot.text([{ x: 0.64, y: 0.33 }], { x: 'x', y: 'y', text: () => 'sRGB', dx: 16, dy: 6, fontSize: 10, fill: '#666' }),
+    // Above the green primary, inside the locus (beside the red one it crossed the locus near 615 nm).
+    Plot.text([{ x: 0.30, y: 0.60 }], { x: 'x', y: 'y', text: () => 'sRGB', dy: -9, fontSize: 10, fill: '#666' }),
   ];
   if (white) marks.push(Plot.dot([white], { x: 'x', y: 'y', symbol: 'plus', r: 5, stroke: '#000', title: () => `reference white x=${white.x.toFixed(4)} y=${white.y.toFixed(4)}` }));
   if (arrows.length) {
