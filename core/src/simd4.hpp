@@ -1,7 +1,10 @@
 // Four-lane float vectors for the per-pixel image kernels: SSE2 natively on x86, SIMD128 in wasm
 // (-msimd128, set for the wasm build in CMakeLists.txt; Node 16.4+, Chromium 91+, Firefox 89+). The operations are
 // plain IEEE ones (add, mul, correctly rounded sqrt, no FMA), so the same kernel gives bit-identical
-// results on both targets. TRISTIM_SIMD4 is undefined elsewhere: callers keep a scalar path.
+// results on both targets. Also two-lane doubles (d2: add, mul, div, compare, bit operations,
+// float <-> double), for a kernel that works in double on float data (detmath::log_float_n). The
+// SSE2 and SIMD128 halves below are the same API written twice, one per target.
+// TRISTIM_SIMD4 is undefined elsewhere: callers keep a scalar path.
 #pragma once
 #include <cstddef>
 #include <cstdint>
