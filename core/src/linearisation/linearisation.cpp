@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "rows.hpp"
@@ -76,21 +77,36 @@ void linearise_image(const Linearisation& fitted, float* rgb, size_t n_pixels) {
       // The curves (gamma, sRGB, log-polynomials, eq 8) call detmath's pow / exp / log, ~4× the C
       // library's cost. Samples that are whole numbers 0..65535 (8- and 16-bit JPEG, PNG, TIFF)
       // take the value from a table filled on first use: the same float as a call per sample.
-      std::vector<float> table(65536);
-      std::vector<std::uint8_t> filled(65536, 0);
+      // Without a float-to-int conversion (wasm guards each one) or a second array of flags: a
+      // sample's bits, as an unsigned number, are at most 65535.0f's exactly when it is +0..65535
+      // (−0, negatives and NaN have larger bits); x + 2^23 rounds x to a whole number, exactly x
+      // when x is one, and its low 23 bits are then x. An entry not yet filled holds a signalling
+      // NaN, which no curve's float (a converted double: NaNs come out quiet) can be; were one
+      // to, the entry would only be computed again. wasm 2.2× and natively 1.5× faster on a
+      // 16-bit 24 MP image than a conversion and a flag per sample (session 24).
+      constexpr std::uint32_t kEmpty = 0x7fa5a5a5u, kMaxBits = 0x477fff00u;  // 65535.0f
+      constexpr float kTwo23 = 8388608.0f;
+      std::vector<std::uint32_t> table(65536, kEmpty);
       for (size_t i = 0; i < n_pixels; ++i) {
         float& v = rgb[3 * i + c];
         const float x = v;
-        if (!std::signbit(x) && x <= 65535.0f && x == static_cast<float>(static_cast<int>(x))) {  // not −0, NaN
-          const int k = static_cast<int>(x);
-          if (!filled[k]) {
-            table[k] = static_cast<float>(m.apply(fitted, c, x));
-            filled[k] = 1;
+        std::uint32_t bits;
+        std::memcpy(&bits, &x, 4);
+        if (bits <= kMaxBits) {
+          const float whole = x + kTwo23;
+          if (whole - kTwo23 == x) {
+            std::uint32_t k;
+            std::memcpy(&k, &whole, 4);
+            std::uint32_t& entry = table[k & 0x7fffffu];
+            if (entry == kEmpty) {
+              const float y = static_cast<float>(m.apply(fitted, c, x));
+              std::memcpy(&entry, &y, 4);
+            }
+            std::memcpy(&v, &entry, 4);
+            continue;
           }
-          v = table[k];
-        } else {
-          v = static_cast<float>(m.apply(fitted, c, x));
         }
+        v = static_cast<float>(m.apply(fitted, c, x));
       }
     }
   }

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <random>
 
 #include "detmath.hpp"
@@ -283,6 +284,12 @@ TEST_CASE("linearise_image: whole-number samples from a table — the same float
   std::vector<float> img;
   for (int v = 0; v < 300; ++v) img.push_back(static_cast<float>(v));  // 8-bit values, some repeated below
   for (float v : {0.5f, 254.75f, -3.0f, -0.0f, 65535.0f, 65536.0f, 70000.5f, 1e9f, 12.0f, 12.0f, 299.0f})
+    img.push_back(v);
+  // Near the whole-number test's edges: halves (x + 2^23 rounds them to even), the largest float
+  // below 65535 and a whole number just past it, subnormals, ∞, NaN, 2^23.
+  for (float v : {65534.5f, 32767.5f, 1.5f, 2.5f, std::nextafter(65535.0f, 0.0f), 65537.0f,
+                  std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::denorm_min(),
+                  std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN(), 8388608.0f, 1.0f})
     img.push_back(v);
   while (img.size() % 3) img.push_back(7.0f);
   LinearisationData none;
