@@ -1,7 +1,7 @@
 // Four-lane float vectors for the per-pixel image kernels: SSE2 natively on x86, SIMD128 in wasm
 // (-msimd128, set for the wasm build in CMakeLists.txt; Node 16.4+, Chromium 91+, Firefox 89+). The operations are
 // plain IEEE ones (add, mul, correctly rounded sqrt, no FMA), so the same kernel gives bit-identical
-// results on both targets. Also two-lane doubles (d2: add, mul, div, compare, bit operations,
+// results on both targets (div is IEEE division, as the scalar '/'). Also two-lane doubles (d2: add, mul, div, compare, bit operations,
 // float <-> double), for a kernel that works in double on float data (detmath::log_float_n). The
 // SSE2 and SIMD128 halves below are the same API written twice, one per target.
 // TRISTIM_SIMD4 is undefined elsewhere: callers keep a scalar path.
@@ -47,6 +47,10 @@ inline f4 ge(f4 a, f4 b) { return _mm_cmpge_ps(a, b); }
 inline f4 min_std(f4 a, f4 b) { return _mm_min_ps(b, a); }
 inline f4 max_std(f4 a, f4 b) { return _mm_max_ps(b, a); }
 inline f4 le(f4 a, f4 b) { return _mm_cmple_ps(a, b); }
+inline f4 gt(f4 a, f4 b) { return _mm_cmpgt_ps(a, b); }
+inline f4 div(f4 a, f4 b) { return _mm_div_ps(a, b); }
+/// Bit i set when lane i of a comparison's mask is set.
+inline int mask_bits(f4 mask) { return _mm_movemask_ps(mask); }
 inline f4 sqrt(f4 a) { return _mm_sqrt_ps(a); }
 /// x with the lanes of `mask` cleared; mask ? a : b.
 inline f4 and_not(f4 x, f4 mask) { return _mm_andnot_ps(mask, x); }
@@ -147,6 +151,9 @@ inline f4 ge(f4 a, f4 b) { return wasm_f32x4_ge(a, b); }
 inline f4 min_std(f4 a, f4 b) { return wasm_f32x4_pmin(a, b); }
 inline f4 max_std(f4 a, f4 b) { return wasm_f32x4_pmax(a, b); }
 inline f4 le(f4 a, f4 b) { return wasm_f32x4_le(a, b); }
+inline f4 gt(f4 a, f4 b) { return wasm_f32x4_gt(a, b); }
+inline f4 div(f4 a, f4 b) { return wasm_f32x4_div(a, b); }
+inline int mask_bits(f4 mask) { return static_cast<int>(wasm_i32x4_bitmask(mask)); }
 inline f4 sqrt(f4 a) { return wasm_f32x4_sqrt(a); }
 inline f4 and_not(f4 x, f4 mask) { return wasm_v128_andnot(x, mask); }
 inline f4 select(f4 mask, f4 a, f4 b) { return wasm_v128_bitselect(a, b, mask); }

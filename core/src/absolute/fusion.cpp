@@ -365,11 +365,41 @@ void ExposureFusion::add(const RawImage& frame, const ExposureSettings& exposure
   }
 }
 
+#ifdef TRISTIM_SIMD4
+// ExposureFusion::finish's loop four pixels (twelve sums) per step: the same IEEE division, NaN
+// where no exposure contributed, and the pixels with such a channel counted from the comparison's
+// lane bits (lane 3j + c is pixel j's channel c). Returns the pixels done (a multiple of 4).
+static size_t finish_simd(float* swl, const float* sw, size_t npix, size_t& saturated) {
+  using namespace simd4;
+  const f4 zero = splat(0.0f), nan = splat(std::numeric_limits<float>::quiet_NaN());
+  size_t p = 0;
+  for (; p + 4 <= npix; p += 4) {
+    int none = 0;  // bit l: lane l had no contribution
+    for (int j = 0; j < 3; ++j) {
+      const size_t at = 3 * p + 4 * static_cast<size_t>(j);
+      const f4 w = load(sw + at), some = gt(w, zero);
+      store(swl + at, select(some, div(load(swl + at), w), nan));
+      none |= (~mask_bits(some) & 0xf) << (4 * j);
+    }
+    const int pixel = none | none >> 1 | none >> 2;  // bit 3j: any channel of pixel j
+    saturated += static_cast<size_t>(__builtin_popcount(pixel & 0x249));
+  }
+  return p;
+}
+#endif
+
 FusedLuminance ExposureFusion::finish() {
   if (out_.exposures.empty()) throw Error(ErrorCode::InvalidArgument, "no exposures were added");
   const size_t npix = static_cast<size_t>(out_.width) * out_.height;
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  for (size_t p = 0; p < npix; ++p) {
+#ifdef TRISTIM_SIMD4
+  size_t saturated_simd = 0;
+  const size_t done = finish_simd(sum_wL_.data(), sum_w_.data(), npix, saturated_simd);
+  out_.saturated_pixels += saturated_simd;
+#else
+  const size_t done = 0;
+#endif
+  for (size_t p = done; p < npix; ++p) {
     bool saturated = false;
     for (int c = 0; c < 3; ++c) {
       const float sw = sum_w_[p * 3 + c];
