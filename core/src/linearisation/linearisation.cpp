@@ -60,54 +60,64 @@ PatchMatrix delinearise(const Linearisation& fitted, const PatchMatrix& linear_R
 }
 
 void linearise_image(const Linearisation& fitted, float* rgb, size_t n_pixels) {
-  const LinearisationMethod& m = linearisation_method(fitted.choice.method);
-  if (fitted.choice.method == "identity") return;
-  const bool polynomial = m.apply == linearisation_detail::apply_polynomial;
-  for (int c = 0; c < 3; ++c) {
-    if (polynomial) {  // Horner inline: no call per sample
-      const std::vector<double>& k = fitted.coefficients[c];
-      const double inv = 1.0 / fitted.full_scale;
+  ImageLineariser(fitted).apply(rgb, n_pixels);
+}
+
+ImageLineariser::ImageLineariser(const Linearisation& fitted)
+    : fitted_(fitted), method_(linearisation_method(fitted.choice.method)) {}
+
+void ImageLineariser::apply(float* rgb, size_t n_pixels) {
+  if (fitted_.choice.method == "identity") return;
+  const LinearisationMethod& m = method_;
+  if (m.apply == linearisation_detail::apply_polynomial) {  // Horner inline: no call per sample
+    const double inv = 1.0 / fitted_.full_scale;
+    for (int c = 0; c < 3; ++c) {
+      const std::vector<double>& k = fitted_.coefficients[c];
       for (size_t i = 0; i < n_pixels; ++i) {
         const double x = rgb[3 * i + c] * inv;
         double y = 0;
         for (size_t j = k.size(); j-- > 0;) y = y * x + k[j];
         rgb[3 * i + c] = static_cast<float>(y);
       }
-    } else {
-      // The curves (gamma, sRGB, log-polynomials, eq 8) call detmath's pow / exp / log, ~4× the C
-      // library's cost. Samples that are whole numbers 0..65535 (8- and 16-bit JPEG, PNG, TIFF)
-      // take the value from a table filled on first use: the same float as a call per sample.
-      // Without a float-to-int conversion (wasm guards each one) or a second array of flags: a
-      // sample's bits, as an unsigned number, are at most 65535.0f's exactly when it is +0..65535
-      // (−0, negatives and NaN have larger bits); x + 2^23 rounds x to a whole number, exactly x
-      // when x is one, and its low 23 bits are then x. An entry not yet filled holds a signalling
-      // NaN, which no curve's float (a converted double: NaNs come out quiet) can be; were one
-      // to, the entry would only be computed again. wasm 2.2× and natively 1.5× faster on a
-      // 16-bit 24 MP image than a conversion and a flag per sample (session 24).
-      constexpr std::uint32_t kEmpty = 0x7fa5a5a5u, kMaxBits = 0x477fff00u;  // 65535.0f
-      constexpr float kTwo23 = 8388608.0f;
-      std::vector<std::uint32_t> table(65536, kEmpty);
-      for (size_t i = 0; i < n_pixels; ++i) {
-        float& v = rgb[3 * i + c];
-        const float x = v;
-        std::uint32_t bits;
-        std::memcpy(&bits, &x, 4);
-        if (bits <= kMaxBits) {
-          const float whole = x + kTwo23;
-          if (whole - kTwo23 == x) {
-            std::uint32_t k;
-            std::memcpy(&k, &whole, 4);
-            std::uint32_t& entry = table[k & 0x7fffffu];
-            if (entry == kEmpty) {
-              const float y = static_cast<float>(m.apply(fitted, c, x));
-              std::memcpy(&entry, &y, 4);
-            }
-            std::memcpy(&v, &entry, 4);
-            continue;
+    }
+    return;
+  }
+  // The curves (gamma, sRGB, log-polynomials, eq 8) call detmath's pow / exp / log, ~4× the C
+  // library's cost. Samples that are whole numbers 0..65535 (8- and 16-bit JPEG, PNG, TIFF) take
+  // the value from their channel's table, filled on first use: the same float as a call per
+  // sample. Without a float-to-int conversion (wasm guards each one) or a second array of flags: a
+  // sample's bits, as an unsigned number, are at most 65535.0f's exactly when it is +0..65535
+  // (−0, negatives and NaN have larger bits); x + 2^23 rounds x to a whole number, exactly x when
+  // x is one, and its low 23 bits are then x. An entry not yet filled holds a signalling NaN,
+  // which no curve's float (a converted double: NaNs come out quiet) can be; were one to, the
+  // entry would only be computed again. A channel at a time: one 256 KB table stays in cache (all
+  // three at once was slower). wasm 2.2× and natively 1.5× faster on a 16-bit 24 MP image than a
+  // conversion and a flag per sample (session 24).
+  constexpr std::uint32_t kEmpty = 0x7fa5a5a5u, kMaxBits = 0x477fff00u;  // 65535.0f
+  constexpr float kTwo23 = 8388608.0f;
+  if (tables_.empty()) tables_.assign(3 * 65536, kEmpty);
+  for (int c = 0; c < 3; ++c) {
+    std::uint32_t* table = tables_.data() + 65536 * static_cast<size_t>(c);
+    for (size_t i = 0; i < n_pixels; ++i) {
+      float& v = rgb[3 * i + c];
+      const float x = v;
+      std::uint32_t bits;
+      std::memcpy(&bits, &x, 4);
+      if (bits <= kMaxBits) {
+        const float whole = x + kTwo23;
+        if (whole - kTwo23 == x) {
+          std::uint32_t k;
+          std::memcpy(&k, &whole, 4);
+          std::uint32_t& entry = table[k & 0x7fffffu];
+          if (entry == kEmpty) {
+            const float y = static_cast<float>(m.apply(fitted_, c, x));
+            std::memcpy(&entry, &y, 4);
           }
+          std::memcpy(&v, &entry, 4);
+          continue;
         }
-        v = static_cast<float>(m.apply(fitted, c, x));
       }
+      v = static_cast<float>(m.apply(fitted_, c, x));
     }
   }
 }

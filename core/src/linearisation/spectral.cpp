@@ -108,10 +108,11 @@ void estimate_reflectance_image(const SpectralModel& model, const float* rgb, si
   }
   const size_t block = 4096;
   std::vector<float> u(3 * block);
+  ImageLineariser lineariser(model.linearisation);  // its tables made once, not per block
   for (size_t start = 0; start < n_pixels; start += block) {
     const size_t n = std::min(block, n_pixels - start);
     std::copy(rgb + 3 * start, rgb + 3 * (start + n), u.begin());
-    linearise_image(model.linearisation, u.data(), n);
+    lineariser.apply(u.data(), n);
     for (size_t p = 0; p < n; ++p) {
       const float a = u[3 * p], b = u[3 * p + 1], c = u[3 * p + 2];
       float* out = bands + (start + p) * N;

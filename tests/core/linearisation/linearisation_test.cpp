@@ -1,5 +1,6 @@
 // The linearisation table: fixed curves, grey- and colour-based polynomials, grey choice,
 // inverses, JSON round trip and bad input.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -301,6 +302,12 @@ TEST_CASE("linearise_image: whole-number samples from a table — the same float
     const LinearisationMethod& m = linearisation_method(id);
     std::vector<float> out = img;
     linearise_image(l, out.data(), out.size() / 3);
+    // In pieces through one ImageLineariser (its tables kept between calls): the same floats.
+    std::vector<float> pieces = img;
+    ImageLineariser lineariser(l);
+    for (size_t at = 0, step = 1; at < pieces.size() / 3; at += step, step = step * 2 + 1)
+      lineariser.apply(pieces.data() + 3 * at, std::min(step, pieces.size() / 3 - at));
+    CHECK(std::memcmp(pieces.data(), out.data(), out.size() * sizeof(float)) == 0);
     for (size_t i = 0; i < img.size(); ++i) {
       const float want = static_cast<float>(m.apply(l, static_cast<int>(i % 3), img[i]));
       INFO(id << ": sample " << i << " = " << img[i] << " -> " << out[i] << ", per sample " << want);

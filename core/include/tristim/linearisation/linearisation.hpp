@@ -30,6 +30,7 @@
 #pragma once
 #include <array>
 #include <limits>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,19 @@ PatchMatrix linearise(const Linearisation& fitted, const PatchMatrix& camera_RGB
 PatchMatrix delinearise(const Linearisation& fitted, const PatchMatrix& linear_RGB);
 /// Applies a fitted linearisation to an interleaved RGB image in place (n_pixels × 3 floats).
 void linearise_image(const Linearisation& fitted, float* rgb, size_t n_pixels);
+/// linearise_image for an image taken in pieces (a strip or block at a time): the per-channel
+/// tables of whole-number samples (3 × 256 KB) are filled once and kept between calls, not made
+/// afresh for every piece. The same floats as linearise_image. `fitted` must outlive it.
+class ImageLineariser {
+ public:
+  explicit ImageLineariser(const Linearisation& fitted);
+  void apply(float* rgb, size_t n_pixels);
+
+ private:
+  const Linearisation& fitted_;
+  const LinearisationMethod& method_;
+  std::vector<std::uint32_t> tables_;  // 3 × 65536 floats' bits, made on first use
+};
 
 /// The curve of one channel sampled at `n` stored values evenly spaced over its fitted range
 /// (domain), for plots: x (stored / full_scale), the curve and, for Shen2008 with greys, the
