@@ -1,9 +1,10 @@
 // Four-lane float vectors for the per-pixel image kernels: SSE2 natively on x86, SIMD128 in wasm
 // (-msimd128, set for the wasm build in CMakeLists.txt; Node 16.4+, Chromium 91+, Firefox 89+). The operations are
-// plain IEEE ones (add, mul, correctly rounded sqrt, no FMA), so the same kernel gives bit-identical
-// results on both targets (div is IEEE division, as the scalar '/'). Also two-lane doubles (d2: add, mul, div, compare, bit operations,
-// float <-> double), for a kernel that works in double on float data (detmath::log_float_n). The
-// SSE2 and SIMD128 halves below are the same API written twice, one per target.
+// plain IEEE ones (add, mul, div, correctly rounded sqrt, no FMA), so the same kernel gives
+// bit-identical results on both targets, and the scalar loop's. Also two-lane doubles (d2: add,
+// mul, div, compare, bit operations, float <-> double), for a kernel that works in double on float
+// data (detmath::log_float_n). The SSE2 and SIMD128 halves below are the same API written twice,
+// one per target.
 // TRISTIM_SIMD4 is undefined elsewhere: callers keep a scalar path.
 #pragma once
 #include <cstddef>
