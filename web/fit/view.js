@@ -185,13 +185,22 @@ export function mount(section, app) {
     const sample = { layout, homography, patches };
     const t0 = performance.now();
     let done = 0, autoKey = null, frame = 0, lastDraw = 0, shownFirst = null;
-    // The results step redraws at most every 250 ms (in an animation frame) while rows arrive: each
-    // redraw (table, layout, paint) takes the page ~50 ms of a core the workers need.
+    // The page draws what the arriving rows change — the results table, the rows' log lines, the
+    // progress — at most every 250 ms (in an animation frame), not once per row: each redraw
+    // (layout, paint) takes the page a few ms of a core the workers need, the table's ~50 ms. On a
+    // 2-core machine the per-row log and progress updates alone (48 rows, ~90 paints) cost the
+    // compare 0.2–0.3 s (Chromium trace of the DNG journey, scripts/profile_page.mjs).
+    const pendingLog = [];   // [job, li] of rows ended since the last redraw
+    const flush = () => {
+      for (const [job, li] of pendingLog.splice(0)) logRow(job, li);
+      say(done);
+    };
     const stream = () => {
       frame ||= setTimeout(() => requestAnimationFrame(() => {
         if (!frame) return;
         frame = 0; lastDraw = performance.now();
-        app.emit('results', results);
+        flush();
+        if (autoKey) app.emit('results', results);
       }), Math.max(0, lastDraw + 250 - performance.now()));
     };
     try {
@@ -211,14 +220,14 @@ export function mount(section, app) {
         const m = models.find((x) => x.id === mId) ?? describe(mId);
         const label = `${m.label} · ${objectives.find((o) => o.id === obj)?.label ?? obj}`;
         if (error) {
-          logRow(job, h('li', { class: 'error', dataset: { code: error.code } }, `${label}: ${error.message} (${error.code})`));
+          pendingLog.push([job, h('li', { class: 'error', dataset: { code: error.code } }, `${label}: ${error.message} (${error.code})`)]);
         } else {
           results.push({ key: `${mId}|${obj}|${JSON.stringify(recipe.characterisation.objective)}`, modelId: mId, objective: obj, label,
             recipe: fit.recipe, white: fit.recipe.characterisation.lab_white, ids: fit.ids, rgb: fit.linear_RGB, xyz: fit.reference_XYZ,
             fit, heldOut: fit.held_out ?? null, referenceText: referenceText(ref), camera: cameraOf(app.derived.image?.metadata) });
           const { status, message } = fit.evaluation.fit;
           const joint = jointSurface(recipe.surface, ref.settings) ? `; surface fitted jointly (Phase II): ${choiceText(fit.surface)} (${fit.surface_status})` : '';
-          logRow(job, h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}${joint}`));
+          pendingLog.push([job, h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}${joint}`)]);
         }
         // The first job's row (the default model) replaces the previous results and is shown; rows
         // that end before it wait for it (or for its error), so the first plots are the default's.
@@ -226,15 +235,17 @@ export function mount(section, app) {
         if (!autoKey && (job === jobs[0] || shownFirst === false) && results.length) {
           app.session.results = results;
           app.session.selected = autoKey = (row && job === jobs[0] ? row : results[0]).key;
+          flush();
           app.emit('results', results);
           onFirst?.();
-        } else if (autoKey) stream();
+        } else stream();
         if (job === jobs[0] && error) shownFirst = false;   // the default failed: show the next row to arrive
-        say(done);
       };
       // The first row alone, then the others: its plots are drawn before the long rows take the cores.
       const finished = await (firstOnEngine ? pool.one({ call: (...a) => engine.call(...a) }, jobs[0], task, onRow) : pool.map(jobs.slice(0, 1), task, onRow))
         && await pool.map(jobs.slice(1), task, onRow);
+      clearTimeout(frame); frame = 0;
+      flush();   // the last rows' log lines and the final count, before the summary line
       running = false;
       app.emit('compare', { done, total, running });
       const seconds = ((performance.now() - t0) / 1000).toFixed(2);
@@ -261,6 +272,7 @@ export function mount(section, app) {
       showError(runBtn, e, 'Fit');
       return null;
     } finally {
+      if (pendingLog.length) { clearTimeout(frame); frame = 0; flush(); }
       if (running) app.emit('compare', { done, total, running: false });
       running = false; runBtn.disabled = false; cancelBtn.disabled = true;
       progress.done();
