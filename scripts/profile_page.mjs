@@ -8,10 +8,15 @@
 //   - per pool worker: rows, time running fits, idle gaps between rows, and the longest rows.
 // Journeys: first (a new session's first screen, the module cached), dng (the Passport DNG dropped,
 // then every row compared), cr2 (the Canon CR2 chosen in step 5, its Y map drawn).
-// usage: node scripts/profile_page.mjs [first|dng|cr2] [--reps N] [--site DIR] [--trace FILE]
+// usage: node scripts/profile_page.mjs [first|dng|cr2] [--reps N] [--site DIR] [--trace FILE] [--node]
 //   --site: the built site (default build/wasm/site); it is copied to a temporary folder and its
 //           worker.js instrumented (the site itself is left as is).
 //   --trace: also writes a Chromium trace (chrome://tracing, Perfetto) of the last repetition.
+//   --node: replays the last repetition's fit requests, one after the other, through the same
+//           site's worker handler (web/fit/handlers.js, the same tristim.mjs/.wasm) under node, three
+//           times: what the rows cost in wasm on one thread with nothing else running, next to the
+//           pool workers' time (the difference is the page sharing the cores: its own thread, the
+//           other worker, Chromium's threads).
 // Figures are wall-clock times: on a busy machine say the load (printed) next to them, and compare
 // two sites by alternating runs (A, B, A, B) rather than against figures taken at another time.
 import fs from 'node:fs';
@@ -23,7 +28,7 @@ import { fileURLToPath } from 'node:url';
 const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const { values: opt, positionals } = parseArgs({
   allowPositionals: true,
-  options: { reps: { type: 'string', default: '1' }, site: { type: 'string' }, trace: { type: 'string' } },
+  options: { reps: { type: 'string', default: '1' }, site: { type: 'string' }, trace: { type: 'string' }, node: { type: 'boolean', default: false } },
 });
 const journey = positionals[0] ?? 'first';
 if (!['first', 'dng', 'cr2'].includes(journey)) throw new Error(`unknown journey '${journey}' (first, dng or cr2)`);
@@ -38,7 +43,8 @@ let w = fs.readFileSync(workerJs, 'utf8');
 const patch = (from, to) => { if (!w.includes(from)) throw new Error(`worker.js changed: cannot instrument at '${from.trim()}'`); w = w.replace(from, to); };
 patch("self.onmessage = async (ev) => {\n  const msg = ev.data;",
   "self.onmessage = async (ev) => {\n  const msg = ev.data;\n  const __t0 = __abs();\n"
-  + "  if (msg.type === 'module') engine().then(() => __log({ ev: 'instantiated', t: __abs() }));");
+  + "  if (msg.type === 'module') engine().then(() => __log({ ev: 'instantiated', t: __abs() }));"
+  + (opt.node ? "\n  if (msg.type === 'fit') __log({ ev: 'request', t: __t0, msg: JSON.stringify(msg, (k, v) => (ArrayBuffer.isView(v) ? { __typed: v.constructor.name, v: Array.from(v) } : v)) });" : ''));
 patch('    const out = await handler(T, msg, { state, progress });',
   '    const __t1 = __abs();\n    const out = await handler(T, msg, { state, progress });\n'
   + '    __log({ ev: msg.type, id: msg.id, recv: __t0, start: __t1, end: __abs(), model: msg.recipe?.characterisation?.model, obj: msg.recipe?.characterisation?.objective?.method });');
@@ -146,6 +152,36 @@ function report(t0, end) {
   if (longest.length) console.log(`  longest rows: ${longest.map((r) => `${r.model} ${r.obj} ${(r.end - r.start).toFixed(0)}`).join(', ')}`);
 }
 
+/// The fit requests the page sent (in the order they arrived at the workers), through the site's
+/// own fit handler under node on one thread, three times; prints the total and the longest rows,
+/// next to the page's workers.
+async function replayInNode(requests) {
+  if (!requests.length) { console.log('--node: this journey sent no fit request'); return; }
+  const revive = (k, v) => (v && v.__typed ? new globalThis[v.__typed](v.v) : v);
+  const msgs = requests.sort((a, b) => a.t - b.t).map((e) => JSON.parse(e.msg, revive));
+  const { default: createTristim } = await import(path.join(copy, 'tristim.mjs'));
+  const { handlers } = await import(path.join(copy, 'fit/handlers.js'));
+  const T = await createTristim();
+  const fits = logs.filter((e) => e.ev === 'fit' && e.start);
+  const inPage = fits.reduce((a, r) => a + r.end - r.start, 0);
+  console.log(`--- node ${process.version}, one thread, the same ${msgs.length} fit requests through the site's fit handler (web/fit/handlers.js)`
+    + ` (the page's workers: ${inPage.toFixed(0)} ms running them, over ${new Set(fits.map((r) => r.w)).size} workers)`);
+  for (let rep = 1; rep <= 3; rep++) {
+    let total = 0, refused = 0;
+    const rows = [];
+    for (const m of msgs) {
+      const msg = structuredClone(m);
+      const t = performance.now();
+      try { handlers.fit(T, msg, { progress: () => {} }); } catch { refused++; }
+      const dt = performance.now() - t;
+      total += dt;
+      rows.push([`${msg.recipe.characterisation.model} ${msg.recipe.characterisation.objective.method}`, dt]);
+    }
+    rows.sort((a, b) => b[1] - a[1]);
+    console.log(`  run ${rep}: ${total.toFixed(0)} ms (${refused} refused); longest ${rows.slice(0, 4).map(([n, d]) => `${n} ${d.toFixed(0)}`).join(', ')}`);
+  }
+}
+
 try {
   await page.goto(`${b.origin}/`);
   await waitReady(page, 120000);
@@ -156,6 +192,7 @@ try {
     report(t0, end);
   }
   if (b.problems.length) console.log('problems:', b.problems);
+  if (opt.node) await replayInNode(logs.filter((e) => e.ev === 'request'));
 } finally {
   await b.close();
   fs.rmSync(copy, { recursive: true, force: true });

@@ -95,7 +95,9 @@ if (fs.existsSync(cli)) {
   try {
     fs.writeFileSync(path.join(tmp, 'rgb.csv'), execFileSync(cli, ['sample', DNG, '--chart', 'passport', '--corners', example.corners.join(',')]));
     fs.writeFileSync(path.join(tmp, 'xyz.csv'), execFileSync(cli, ['reference', '--chart', 'passport', '--illuminant', 'D50']));
-    console.log(`  compare every model × objective (leave-one-out): ${time(['compare', '--rgb', path.join(tmp, 'rgb.csv'), '--xyz', path.join(tmp, 'xyz.csv')])}`);
+    console.log(`  compare every model × objective (leave-one-out): ${time(['compare', '--rgb', path.join(tmp, 'rgb.csv'), '--xyz', path.join(tmp, 'xyz.csv')])}`
+      + ` (one thread: ${time(['compare', '--rgb', path.join(tmp, 'rgb.csv'), '--xyz', path.join(tmp, 'xyz.csv'), '--threads', '1'])};`
+      + ' the page\'s rows in wasm one after the other: scripts/profile_page.mjs dng --node)');
     console.log(`  fit Finlayson2015-2: ${time(['fit', '--rgb', path.join(tmp, 'rgb.csv'), '--xyz', path.join(tmp, 'xyz.csv'), '--model', 'Finlayson2015-2', '--out', path.join(tmp, 'Finlayson2015-2.json')])}`);
     const applied = time(['apply', path.join(tmp, 'Finlayson2015-2.json'), CR2, '--out', path.join(tmp, 'xyz.pfm')]);
     console.log(`  apply Finlayson2015-2 to the CR2: ${applied.startsWith('failed') ? 'n/a (this CLI applies profiles to PFM images, not RAW files)' : applied}`);
