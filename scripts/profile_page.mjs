@@ -115,7 +115,8 @@ async function runOnce(last) {
     await withTrace(last, async () => {
       await upload(page, '#step-images input[data-slot="chart"]', 'passport-p.dng', fileBuffer(DNG));
       await page.waitForFunction(() => window.tristim.derived.sample && window.tristim.derived.sample !== window.__oldSample, null, { timeout: 60000 });
-      await page.evaluate(() => window.tristim.views.fit.run({ onFirst: () => window.tristim.goto('results') }));
+      // (returns nothing: the results handed back to node would be serialised on the page's thread)
+      await page.evaluate(async () => { await window.tristim.views.fit.run({ onFirst: () => window.tristim.goto('results') }); });
     });
   } else {
     await step(page, 'apply');
