@@ -62,6 +62,12 @@ self.onmessage = async (ev) => {
   const msg = ev.data;
   if (msg.type === 'module') { receiveModule(msg.module); engine(); return; }
   const handler = handlers[msg.type];
+  // A request naming a file of the site (the example's RAW: decode's `url`) starts its download
+  // now, while the module may still be instantiating; the handler takes the response from here.
+  if (handler && typeof msg.url === 'string') {
+    msg.response = fetch(msg.url);
+    msg.response.catch(() => {});   // a failed download is reported by the handler, which awaits it
+  }
   try {
     if (!handler) throw Object.assign(new Error(`unknown request '${msg.type}'`), { code: 'INVALID_ARGUMENT' });
     const T = await engine();

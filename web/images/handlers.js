@@ -34,9 +34,9 @@ export const handlers = {
   /// `bytesList` (dark frames): several files, decoded and averaged by the engine (setDark).
   /// `url` instead of bytes: a file of the site fetched by the worker (the example, web/boot.js:
   /// its decode does not wait for the page's main thread).
-  decode: async (T, { slot = 'chart', bytes, bytesList, url, flatMode, previewSide = 1200 }, { state, progress }) => {
+  decode: async (T, { slot = 'chart', bytes, bytesList, url, response, flatMode, previewSide = 1200 }, { state, progress }) => {
     if (url) {
-      const res = await fetch(url);
+      const res = await (response ?? fetch(url));   // worker.js started the download on arrival
       if (!res.ok) throw coded(`${url}: HTTP ${res.status}`, 'EXAMPLE_MISSING');
       bytes = await res.arrayBuffer();
     }
