@@ -17,7 +17,7 @@ export class WorkerPool {
     this.generation = 0;   // bumped by stop(): answers of an earlier run are dropped
   }
 
-  /// Starts the workers (their module compiles while the page does other work).
+  /// Starts the workers (each instantiates the page's compiled module), if not yet running.
   warm() {
     while (this.clients.length < this.size) {
       const c = this.spawn();

@@ -132,7 +132,11 @@ export function mount(section, app) {
       engine.dispatchEvent(new CustomEvent('crashed', { detail: reason }));
     },
   });
-  pool.warm();
+  // The pool's workers start with the first compare (map() warms them), not here: on a new
+  // session's first screen that is once the first row (fitted in the engine's worker) is plotted.
+  // Started at mount, their module graphs and instances competed with the example's decode for
+  // the cores: the first screen's first row 920–930 ms → 770–800 (median of 3, twice, on a 2-core
+  // VM), every row no later.
   const nTerms = new Map(app.catalog.models.map((m) => [m.id, m.n_terms]));
   let running = false;
   cancelBtn.addEventListener('click', () => {
