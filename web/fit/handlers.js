@@ -8,7 +8,10 @@ export const handlers = {
 
   /// Fits a recipe on the chart sample paired with the reference (and evaluates the profile on
   /// the held-out set {name, ids, rgb, xyz} when there is one).
+  /// `worker_ms`: how long the row ran here (the page's log; timed on the page, a row that waited
+  /// in the worker's queue, or whose reply waited for the page's busy thread, read 1 ms or 2×).
   fit: (T, { recipe, sample, reference, heldOut }, { progress }) => {
+    const t0 = performance.now();
     progress(NaN, `fitting ${recipe.characterisation.model}`);
     if (heldOut) recipe.evaluation.held_out_digest = T.trainingDigest(heldOut.ids, heldOut.rgb, heldOut.xyz);
     // A built-in chart with a surface correction: the reference is the recipe's (the chart's
@@ -17,6 +20,7 @@ export const handlers = {
     const out = T.fitSample(recipe, sample, corrected ? T.recipeReference(recipe) : reference);
     out.display = displayOf(T, out.reference_XYZ, out.evaluation.fit.fitted, out.recipe.characterisation.lab_white);
     if (heldOut) out.held_out = { ...T.evaluateProfile(out.profile, heldOut.rgb, heldOut.xyz, heldOut.ids).metrics, set: heldOut.name };
+    out.worker_ms = performance.now() - t0;
     return reply(out);
   },
 };

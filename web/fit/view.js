@@ -210,16 +210,10 @@ export function mount(section, app) {
     try {
       const task = (client, job) => {
         job.recipe = recipeFor(job.mId, job.obj, ref, data);
-        job.t1 = performance.now();
-        job.client = client;
         return client.call('fit', { recipe: job.recipe, sample, reference, heldOut });
       };
       const onRow = (job, { result: fit, error }) => {
-        const { mId, obj, recipe, client } = job;
-        // A worker runs its queued rows one after the other: this row started when it was sent or
-        // when the worker's previous row ended, whichever is later.
-        const t1 = Math.max(job.t1, client.lastEnd ?? 0);
-        client.lastEnd = performance.now();
+        const { mId, obj, recipe } = job;
         done++;
         const m = models.find((x) => x.id === mId) ?? describe(mId);
         const label = `${m.label} · ${objectives.find((o) => o.id === obj)?.label ?? obj}`;
@@ -231,7 +225,7 @@ export function mount(section, app) {
             fit, heldOut: fit.held_out ?? null, referenceText: referenceText(ref), camera: cameraOf(app.derived.image?.metadata) });
           const { status, message } = fit.evaluation.fit;
           const joint = jointSurface(recipe.surface, ref.settings) ? `; surface fitted jointly (Phase II): ${choiceText(fit.surface)} (${fit.surface_status})` : '';
-          pendingLog.push([job, h('li', {}, `${label}: done in ${(performance.now() - t1).toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}${joint}`)]);
+          pendingLog.push([job, h('li', {}, `${label}: done in ${fit.worker_ms.toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}${joint}`)]);
         }
         // The first job's row (the default model) replaces the previous results and is shown; rows
         // that end before it wait for it (or for its error), so the first plots are the default's.
