@@ -73,6 +73,15 @@ size_t simd_affine(const float* in, size_t n, float* out, const float (&a)[3][4]
   return m;
 }
 
+// True when no lane of R, G or B has its sign bit set: then every product of two of them is +0,
+// positive or NaN, and sqrt alone gives signed_sqrt's floats (sqrt(+0) = +0; a NaN stays the same
+// NaN). Skipping the sign's masking on such steps (the sign test costs two ORs and a movemask):
+// session 26, 24 MP, ~12 % faster in wasm (V8 spends its registers on the 18 coefficients) and
+// ~10 % natively with SSE2.
+inline bool no_sign_bit(simd4::f4 R, simd4::f4 G, simd4::f4 B) {
+  return simd4::mask_bits(simd4::bit_or(simd4::bit_or(R, G), B)) == 0;
+}
+
 size_t simd_root2(const float* in, size_t n, float* out, const float (&a)[3][6]) {
   using namespace simd4;
   f4 k[3][6];
@@ -83,7 +92,16 @@ size_t simd_root2(const float* in, size_t n, float* out, const float (&a)[3][6])
     prefetch_ahead(in + 3 * i);
     f4 R, G, B;
     load_rgb(in + 3 * i, R, G, B);
-    const f4 P = signed_sqrt(mul(R, G)), Q = signed_sqrt(mul(R, B)), S = signed_sqrt(mul(G, B));
+    f4 P, Q, S;
+    if (no_sign_bit(R, G, B)) {  // the usual pixel: plain square roots, the same floats
+      P = sqrt(mul(R, G));
+      Q = sqrt(mul(R, B));
+      S = sqrt(mul(G, B));
+    } else {
+      P = signed_sqrt(mul(R, G));
+      Q = signed_sqrt(mul(R, B));
+      S = signed_sqrt(mul(G, B));
+    }
     f4 o[3];
     for (int c = 0; c < 3; ++c)
       o[c] = add(add(add(mul(k[c][0], R), mul(k[c][1], G)), add(mul(k[c][2], B), mul(k[c][3], P))),
@@ -117,8 +135,16 @@ __attribute__((target("avx2,fma"))) size_t avx2_root2(const float* in, size_t n,
     simd4::load_rgb(in + 3 * i, R0, G0, B0);
     simd4::load_rgb(in + 3 * i + 12, R1, G1, B1);
     const __m256 R = join8(R0, R1), G = join8(G0, G1), B = join8(B0, B1);
-    const __m256 P = signed_sqrt8(_mm256_mul_ps(R, G)), Q = signed_sqrt8(_mm256_mul_ps(R, B)),
-                 S = signed_sqrt8(_mm256_mul_ps(G, B));
+    __m256 P, Q, S;
+    if (_mm256_movemask_ps(_mm256_or_ps(_mm256_or_ps(R, G), B)) == 0) {  // as no_sign_bit
+      P = _mm256_sqrt_ps(_mm256_mul_ps(R, G));
+      Q = _mm256_sqrt_ps(_mm256_mul_ps(R, B));
+      S = _mm256_sqrt_ps(_mm256_mul_ps(G, B));
+    } else {
+      P = signed_sqrt8(_mm256_mul_ps(R, G));
+      Q = signed_sqrt8(_mm256_mul_ps(R, B));
+      S = signed_sqrt8(_mm256_mul_ps(G, B));
+    }
     __m256 o[3];
     for (int c = 0; c < 3; ++c) {
       __m256 v = _mm256_mul_ps(k[c][0], R);

@@ -487,6 +487,16 @@ TEST_CASE("apply_to_image: vector kernels equal the scalar float formula bit for
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-0.05f, 1.2f);  // some negative values: signed roots
   for (float& v : img) v = u(rng);
+  // The root-polynomial kernels take plain square roots on a step whose R, G, B have no sign bit
+  // and signed ones otherwise: both kinds of 4-pixel step must be in the image.
+  size_t steps_signed = 0, steps_plain = 0;
+  for (size_t i = 0; i + 4 <= n; i += 4) {
+    bool any = false;
+    for (size_t k = 0; k < 12; ++k) any = any || std::signbit(img[3 * i + k]);
+    ++(any ? steps_signed : steps_plain);
+  }
+  REQUIRE(steps_signed > 100);
+  REQUIRE(steps_plain > 100);
   const auto ssqrt = [](float p) { const float r = std::sqrt(std::fabs(p)); return p < 0.f ? -r : r; };
   for (const char* id : {"matrix-3x3", "matrix-3x4", "Finlayson2015-2"}) {
     const ModelInfo& info = model_info(id);
