@@ -216,7 +216,7 @@ export function mount(section, app) {
         const { mId, obj, recipe } = job;
         done++;
         const m = models.find((x) => x.id === mId) ?? describe(mId);
-        const label = `${m.label} · ${objectives.find((o) => o.id === obj)?.label ?? obj}`;
+        const label = `${m.label} · ${objectiveText(objectives.find((o) => o.id === obj), recipe.characterisation.objective) ?? obj}`;
         if (error) {
           pendingLog.push([job, h('li', { class: 'error', dataset: { code: error.code } }, `${label}: ${error.message} (${error.code})`)]);
         } else {
@@ -279,6 +279,17 @@ export function mount(section, app) {
   runBtn.addEventListener('click', () => { run({ onFirst: () => app.goto('results') }); });
 
   /// The recipe of one fit: every setting of steps 1–3 that decides the profile.
+  // A row's name for its objective as it ran: the catalogue's CIEDE2000 entry covers two losses
+  // (mean, RMS) and several optimisers; the results say which loss the row minimised, and how.
+  function objectiveText(o, choice) {
+    if (o?.id !== 'de2000') return o?.label;
+    const rms = !!choice?.parameters?.rms;
+    const alg = choice?.settings?.algorithm ?? 'auto';
+    const how = alg === 'auto' ? (rms ? 'Levenberg-Marquardt' : 'reweighted Levenberg-Marquardt')
+      : alg === 'lm' ? 'Levenberg-Marquardt' : alg === 'irls' ? 'reweighted Levenberg-Marquardt' : `NLopt ${alg}`;
+    return `CIEDE2000 ${rms ? 'RMS' : 'mean'} (${how})`;
+  }
+
   function recipeFor(model, objective, ref, data) {
     const s = app.session, rs = ref.settings;
     const flat = !!s['files.flat'], radial = s.flatMode === 'radial';
