@@ -95,6 +95,8 @@ export function mount(section, app) {
   exTrainingSel.dataset.role = 'abs-example-training';
   exTrainingSel.addEventListener('change', () => { if (exTrainingSel.value === 'reflective' && transforms.some((t) => t.value === 'T2R')) transformSel.value = 'T2R'; });
   const fitBtn = h('button', { type: 'button', class: 'primary', 'data-role': 'abs-fit' }, 'Fit and measure the series');
+  // Two grid columns for a field whose choices are long (the chosen text stays readable).
+  const wide = (el) => { el.classList.add('abs-wide'); return el; };
   const progress = progressBar('Absolute');
 
   section.append(intro,
@@ -107,10 +109,10 @@ export function mount(section, app) {
       field('Saturation S (DN)', satInput, 'Empty: measured from the frames (where the body clips)'),
       field('Sensitivities for A_R, A_G, A_B', cameraSel, 'Eq (7) channel areas: built-in measured sensitivities, or an upload or estimate (below)'),
       h('div', { class: 'abs-ssf-box' }, ssf.el),
-      field('Colour matrix', transformSel),
-      field('Exposure fusion', fusionSel),
+      wide(field('Colour matrix', transformSel)),
+      wide(field('Exposure fusion', fusionSel)),
       field('Example: light on the chart', exLightSel, 'The paper\'s booth lights'),
-      field('Example: colour training', exTrainingSel, 'Under A and F2 projected colours cannot meet Table 4 with this camera (metamerism); reflective colours under the scene\'s light with T2R do'),
+      wide(field('Example: colour training', exTrainingSel, 'Under A and F2 projected colours cannot meet Table 4 with this camera (metamerism); reflective colours under the scene\'s light with T2R do')),
       h('div', { class: 'buttons' }, exampleBtn, fitBtn)),
     progress.el);
   fitBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'abs-fit-error' });

@@ -160,7 +160,7 @@ export function mount(section, app) {
       if (t) t.values.forEach((v, w) => curves.push({ id: p.ids[i], kind: 'target', wavelength: t.wavelengths[w], value: v, colour, last: false }));
     }
     curveBox.replaceChildren(figure(reflectancePlot(curves), { name: 'surface-reflectances',
-      caption: `Reflectance factors of ${chosen.map((i) => p.ids[i]).join(', ')}: as measured (solid), corrected by ${p.text} (dashed)${cmp ? ', the second measurement (dotted)' : ''}` }));
+      caption: `Reflectance factors of ${chosen.map((i) => p.ids[i]).join(', ')}: as measured (solid)${choice.method === 'none' ? ' (no correction chosen)' : `, corrected by ${p.text} (dashed)`}${cmp ? ', the second measurement (dotted)' : ''}` }));
     const bars = p.ids.map((id, i) => ({ id, value: p.dE00[i], fill: colours[i], title: `${id}: ΔE00 ${fmt(p.dE00[i])}` }));
     barBox.replaceChildren(choice.method === 'none' ? '' : figure(patchBarsPlot(bars), { name: 'surface-de00',
       caption: `CIEDE2000 between each patch's reference as measured and as corrected (${rs.illuminant}, CIE ${rs.observer}): what the correction changes` }));
