@@ -22,7 +22,7 @@ export function mount(section, app) {
   const decodedGen = {};     // slot -> engine generation in which it was decoded
   const progress = progressBar('Decoding');
   const drop = h('div', { class: 'drop-zone', tabindex: -1 }, 'Drop a RAW, TIFF, PNG or JPEG file here, or choose one below.');
-  const fileRow = h('div', { class: 'controls' });
+  const fileRow = h('div', { class: 'controls file-row' });
   for (const [slot, s] of Object.entries(SLOTS)) {
     inputs[slot] = h('input', { type: 'file', dataset: { slot }, multiple: slot === 'dark' });
     names[slot] = h('span', { class: 'file-state' });
