@@ -61,7 +61,7 @@ export function mount(section, app) {
       return h('th', { scope: 'col', 'aria-sort': sort.key === c.key ? (sort.dir > 0 ? 'ascending' : 'descending') : 'none', dataset: { col: c.key } }, b);
     };
     return h('table', { class: 'compare' },
-      h('caption', {}, 'CIEDE2000 errors of every fitted model (lower is better). Leave-one-out: each patch predicted by a fit made without it — the honest estimate for colours the model was not trained on. Held-out chart: a second chart the fit never saw (– when none was given). Click a heading to sort.'),
+      h('caption', {}, 'CIEDE2000 errors of every fitted model (lower is better). Leave-one-out: each patch predicted by a fit made without it — the honest estimate for colours the model was not trained on (for a model with many terms fitted to CIEDE2000 it also depends on where the optimiser stopped, the loss being flat where the coefficients are not: read it next to the same model's least-squares row). Held-out chart: a second chart the fit never saw (– when none was given). Click a heading to sort.'),
       h('thead', {}, h('tr', {}, h('th', { scope: 'col' }, 'Model · objective'), COLUMNS.map(th), h('th', { scope: 'col', class: 'status' }, 'status'), h('th', { scope: 'col' }, 'show'))),
       h('tbody', {}, rows.map((r) => h('tr', { class: [r === selected ? 'selected' : '', r === best && Number.isFinite(loo(r)) ? 'best' : ''].join(' ').trim(), dataset: { key: r.key } },
         h('th', { scope: 'row' }, r.label, r === best && Number.isFinite(loo(r)) ? h('small', { class: 'best-mark', title: 'the lowest leave-one-out mean CIEDE2000' }, ' best') : null),
