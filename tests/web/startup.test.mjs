@@ -54,6 +54,9 @@ test('first screen: the example is sampled and fitted, engine in a worker, no co
     const rows = page.locator('#step-results table.compare tbody tr');
     assert.ok(n > total / 2, `${n} of ${total} rows fitted`);
     assert.equal(await rows.count(), n);
+    // A CIEDE2000 row names the loss it minimised (the default: the mean, by reweighted LM).
+    const de2000Labels = await page.evaluate(() => window.tristim.session.results.filter((r) => r.objective === 'de2000').map((r) => r.label));
+    assert.ok(de2000Labels.length > 5 && de2000Labels.every((l) => / · CIEDE2000 mean \(reweighted Levenberg-Marquardt\)$/.test(l)), de2000Labels.join('; '));
     // (a model with as many terms as patches less one has no leave-one-out figure: '–')
     const withLoo = await page.evaluate(() => window.tristim.session.results.filter((r) => r.fit.evaluation.has_loo).length);
     assert.ok(withLoo > n - 5, `${withLoo} of ${n} rows have a leave-one-out figure`);
