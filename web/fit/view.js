@@ -278,9 +278,8 @@ export function mount(section, app) {
   }
   runBtn.addEventListener('click', () => { run({ onFirst: () => app.goto('results') }); });
 
-  /// The recipe of one fit: every setting of steps 1–3 that decides the profile.
-  // A row's name for its objective as it ran: the catalogue's CIEDE2000 entry covers two losses
-  // (mean, RMS) and several optimisers; the results say which loss the row minimised, and how.
+  /// A row's name for its objective as it ran: the catalogue's CIEDE2000 entry covers two losses
+  /// (mean, RMS) and several optimisers; the results say which loss the row minimised, and how.
   function objectiveText(o, choice) {
     if (o?.id !== 'de2000') return o?.label;
     const rms = !!choice?.parameters?.rms;
@@ -290,6 +289,7 @@ export function mount(section, app) {
     return `CIEDE2000 ${rms ? 'RMS' : 'mean'} (${how})`;
   }
 
+  /// The recipe of one fit: every setting of steps 1–3 that decides the profile.
   function recipeFor(model, objective, ref, data) {
     const s = app.session, rs = ref.settings;
     const flat = !!s['files.flat'], radial = s.flatMode === 'radial';
