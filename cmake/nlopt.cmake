@@ -4,7 +4,7 @@
 #
 # Natively and in wasm the same code must take the same steps, so that a fit in the page gives the
 # numbers of the command line to the bit (tests/core/characterisation/models_test.cpp, "NLopt's
-# other optimisers …", pins them in both builds). Debian's libnlopt.so did not (session 20): its
+# other optimisers …", pins them in both builds). Debian's libnlopt.so did not: its
 # code is the same but it calls the C library, which differs between glibc (native) and musl
 # (Emscripten):
 #  - SBPLX sorts its subspaces with nlopt_qsort_r, which is glibc's qsort_r natively (a merge sort)

@@ -11,13 +11,12 @@
 # libraw-bin) timings on the real RAW files, for scale.
 # Each program runs BENCH_RUNS times (default 3) in each mode, the modes interleaved (native, wasm,
 # opt, native, …), and every row prints the median: a row is often a single first call (decode,
-# fresh memory), which one run's noise on a shared 2-core machine moves by 1.5×.
+# fresh memory), which one run's noise on a busy 2-core machine moves by 1.5×.
 # usage: scripts/bench.sh [topic...]   e.g. `scripts/bench.sh detect` runs only bench_detect;
 #        BENCH_RUNS=1 scripts/bench.sh   one run of each (quicker, noisier).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 export NODE_PATH=/usr/share/nodejs
-shared=${TRISTIM_SHARED_DATA:-$(cd .. && pwd)/shared/data}
 names=$(ls tests/bench/bench_*.cpp 2>/dev/null | xargs -n1 basename | sed 's/\.cpp$//')
 if [ $# -gt 0 ]; then
   wanted=$(printf 'bench_%s\n' "${@#bench_}")
@@ -41,9 +40,9 @@ for n in $names; do
   echo
   echo "=== $n ==="
   for r in $(seq 1 "$runs"); do
-    TRISTIM_SHARED_DATA="$shared" "$native" >"$tmp/native.$r" 2>&1 || echo "[bench] $n native exited $?"
-    TRISTIM_SHARED_DATA="$shared" node "$wasm" >"$tmp/wasm.$r" 2>&1 || echo "[bench] $n wasm exited $?"
-    TRISTIM_SHARED_DATA="$shared" node --no-liftoff --no-wasm-lazy-compilation "$wasm" >"$tmp/opt.$r" 2>&1 || echo "[bench] $n wasm optimised-only exited $?"
+    "$native" >"$tmp/native.$r" 2>&1 || echo "[bench] $n native exited $?"
+    node "$wasm" >"$tmp/wasm.$r" 2>&1 || echo "[bench] $n wasm exited $?"
+    node --no-liftoff --no-wasm-lazy-compilation "$wasm" >"$tmp/opt.$r" 2>&1 || echo "[bench] $n wasm optimised-only exited $?"
   done
   files=()
   for mode in native wasm opt; do for r in $(seq 1 "$runs"); do files+=("$tmp/$mode.$r"); done; done
@@ -88,10 +87,10 @@ done
 if command -v dcraw_emu >/dev/null; then
   echo
   echo "=== for scale: LibRaw dcraw_emu -h (half-size, native) ==="
-  for f in raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng \
-           raw-images/debian-rawtran-doc/IMG_5952_canon_eos_30d.CR2; do
-    [ -f "$shared/$f" ] || continue
-    s=$(date +%s%N); dcraw_emu -h -Z - "$shared/$f" >/dev/null 2>&1; e=$(date +%s%N)
+  # The same files as bench_raw (tests/support/test_files.hpp).
+  for f in examples/web/passport.dng /usr/share/doc/rawtran/IMG_5952.CR2; do
+    [ -f "$f" ] || { echo "[bench] $f not found (scripts/install-deps.sh installs it)"; exit 1; }
+    s=$(date +%s%N); dcraw_emu -h -Z - "$f" >/dev/null 2>&1; e=$(date +%s%N)
     printf "  %-60s %8.1f ms\n" "$(basename "$f")" "$(echo "($e - $s) / 1000000" | bc -l)"
   done
 else

@@ -11,9 +11,9 @@ cmake -S . -B build/native -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build/native -j"$jobs"
 
 echo "[build] wasm"
-export NODE_PATH=/usr/share/nodejs   # emcc needs acorn (TOOLCHAIN.md gotcha 1)
+export NODE_PATH=/usr/share/nodejs   # emcc needs acorn (Debian's emscripten finds acorn there)
 if [ ! -f build/wasm/CMakeCache.txt ]; then
-  # The test emulator is plain node: emcmake's default adds a flag node 20 rejects (gotcha 2).
+  # The test emulator is plain node: emcmake's default adds a flag node 20 rejects.
   emcmake cmake -S . -B build/wasm -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_CROSSCOMPILING_EMULATOR="$(command -v node)" >/dev/null
 fi

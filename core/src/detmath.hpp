@@ -2,7 +2,7 @@
 // (and log_float, a cheaper log for floats).
 //
 // Natively the C library's (glibc) and in wasm Emscripten's (musl) round these differently in the
-// last place for many arguments (cbrt: 48 % of 200,000 random arguments, session 19), so a fit
+// last place for many arguments (cbrt: 48 % of 200,000 random arguments), so a fit
 // that evaluates Lab or CIEDE2000 took other steps in the page than on the command line. These
 // use only +, −, ×, ÷, sqrt and exact scaling (powers of 2 built from their bits), which IEEE 754 defines to
 // the bit, in a fixed order. Nothing is fused into an FMA: x86-64's baseline target has no FMA

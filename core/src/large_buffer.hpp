@@ -3,8 +3,8 @@
 // Memory fresh from the system costs a page fault per 4 KiB page at first touch. On Linux the
 // kernel is asked to map and zero the pages of a large buffer in one call before it is filled
 // (MADV_POPULATE_WRITE, Linux 5.14+; older kernels refuse it and the pages fault as usual): a
-// 72 MB buffer filled in 19–27 ms instead of 32–41 ms on session 18's VM. Not huge pages: with
-// MADV_HUGEPAGE (sessions 10–17) a kernel whose THP defrag policy is "madvise" (the default)
+// 72 MB buffer filled in 19–27 ms instead of 32–41 ms on an Intel Xeon VM. Not huge pages: with
+// MADV_HUGEPAGE a kernel whose THP defrag policy is "madvise" (the default)
 // compacts memory in the faulting thread, and once the machine's memory was fragmented that cost
 // up to 0.8 s per 256 MB (24 MP dark + flat frames in 99–510 ms, 50 MP in ~1 s, against a steady
 // 130 ms and 270 ms with 4 KiB pages). Elsewhere (wasm, other systems) a plain assign.

@@ -23,9 +23,9 @@
 namespace tristim::simd4 {
 
 /// Bytes ahead of the current pixel that the image kernels ask the CPU to fetch: the loops read
-/// the input sequentially, yet on the Intel VM of sessions 13–17 the hardware prefetcher alone
-/// kept the AVX-512 root-polynomial kernel waiting on memory (session 17: 42 ms for 24 MP, with
-/// compute alone 19 ms and memory alone 28 ms; 31 ms with this prefetch 6 KB ahead).
+/// the input sequentially, yet on an Intel Xeon VM the hardware prefetcher alone kept the
+/// AVX-512 root-polynomial kernel waiting on memory (42 ms for 24 MP, with compute alone 19 ms
+/// and memory alone 28 ms; 31 ms with this prefetch 6 KB ahead).
 constexpr std::ptrdiff_t kPrefetchAhead = 6144;
 
 #if defined(__SSE2__)

@@ -14,7 +14,7 @@ and prints the figures side by side. Exit status 1 if a claim fails:
   - and (with --assert-speed; otherwise printed as a warning) it is >= 10x faster than OpenCV's
     fit (CPU time of the fit alone, best of 20 / 10 runs).
 
-Usage: compare_passport.py [--tristim PATH] [--shared DIR] [--reference before|after] [--all] [--json]
+Usage: compare_passport.py [--tristim PATH] [--reference before|after] [--all] [--json]
 Needs: the tristim CLI, Debian's argyll (colprof, profcheck) and python3-opencv. A tool that is
 missing is reported and its claim skipped (exit status 0 unless --strict).
 """
@@ -30,8 +30,8 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, '..', '..'))
-RGB_FILE = 'raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv'
-REF_FILE = 'colour-science/colorchecker24_xrite_{}_nov2014_Lab_D50.csv'
+RGB_FILE = 'tests/data/passport/camera_rgb_dcraw_emu.csv'
+REF_FILE = 'core/data/charts/colorchecker24_xrite_{}_nov2014_Lab_D50.csv'
 D50 = (96.4212, 100.0, 82.5188)
 
 
@@ -55,7 +55,6 @@ def run(cmd, **kw):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('--tristim', default=os.environ.get('TRISTIM_BIN', os.path.join(REPO, 'build/native/core/tristim')))
-    ap.add_argument('--shared', default=os.environ.get('TRISTIM_SHARED_DATA', os.path.join(REPO, '..', 'shared', 'data')))
     ap.add_argument('--reference', choices=['before', 'after'], default='before',
                     help="X-Rite CC24 reference edition (the Passport predates Nov 2014: 'before')")
     ap.add_argument('--json', action='store_true')
@@ -66,8 +65,8 @@ def main():
                          'assert on time, and this machine may be shared)')
     args = ap.parse_args()
 
-    rgb_rows = read_csv(os.path.join(args.shared, RGB_FILE))
-    ref_rows = {r['patch']: r for r in read_csv(os.path.join(args.shared, REF_FILE.format(args.reference)))}
+    rgb_rows = read_csv(os.path.join(REPO, RGB_FILE))
+    ref_rows = {r['patch']: r for r in read_csv(os.path.join(REPO, REF_FILE.format(args.reference)))}
     ids = ['ABCD'[i // 6] + str(i % 6 + 1) for i in range(24)]
     rgb = [[float(r['R']), float(r['G']), float(r['B'])] for r in rgb_rows]
     lab = [[float(ref_rows[r['patch']][k]) for k in ('L', 'a', 'b')] for r in rgb_rows]

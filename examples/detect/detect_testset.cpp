@@ -6,7 +6,7 @@
 // true white, for detectors that expect display images, e.g. OpenCV's mcc) and DIR/truth.csv
 // with the true corners and tristim's result per image (read by compare_mcc.py).
 //
-//   detect_testset [--count 300] [--seed 1] [--shared ../shared/data] [--write DIR] [--verbose]
+//   detect_testset [--count 300] [--seed 1] [--source CHECKOUT] [--write DIR] [--verbose]
 //                  [--only i]   (one scene, verbose: for debugging)
 //                  [--scale k]  (images k times wider and higher, e.g. 2: 1800-3200 px wide, where
 //                                detection works on a downsampled image; the same scenes otherwise)
@@ -144,17 +144,16 @@ struct Tally {
 int main(int argc, char** argv) {
   int count = 300;
   std::uint64_t seed = 1;
-  std::string shared = TRISTIM_SHARED_DATA_DIR, write_dir;
+  std::string source_dir = TRISTIM_SOURCE_DIR, write_dir;
   bool verbose = false;
   int only = -1;
   double scale = 1;
   bool pairs = false, dumping = false;
-  if (const char* env = std::getenv("TRISTIM_SHARED_DATA")) shared = env;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--count" && i + 1 < argc) count = std::atoi(argv[++i]);
     else if (a == "--seed" && i + 1 < argc) seed = std::strtoull(argv[++i], nullptr, 10);
-    else if (a == "--shared" && i + 1 < argc) shared = argv[++i];
+    else if (a == "--source" && i + 1 < argc) source_dir = argv[++i];
     else if (a == "--write" && i + 1 < argc) write_dir = argv[++i];
     else if (a == "--verbose") verbose = true;
     else if (a == "--only" && i + 1 < argc) only = std::atoi(argv[++i]), verbose = true;
@@ -162,7 +161,7 @@ int main(int argc, char** argv) {
     else if (a == "--pairs") pairs = true;
     else if (a == "--dump") dumping = true;
     else {
-      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--shared DIR] [--write DIR] [--verbose] [--only i] [--scale k] [--pairs] [--dump]\n");
+      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--source CHECKOUT] [--write DIR] [--verbose] [--only i] [--scale k] [--pairs] [--dump]\n");
       return 2;
     }
   }
@@ -170,10 +169,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "detect_testset: --scale must lie in (0, 8]\n");
     return 2;
   }
-  const std::vector<RawImage> photos = background_photos(shared);
+  std::vector<RawImage> photos;
+  try {
+    photos = background_photos(source_dir);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "detect_testset: %s\n", e.what());
+    return 1;
+  }
   std::vector<const RawImage*> photo_ptrs;
   for (const auto& p : photos) photo_ptrs.push_back(&p);
-  if (photos.empty()) std::printf("note: no real photos found under %s: synthetic backgrounds only\n", shared.c_str());
   if (pairs) return run_pairs(count, seed, scale, photo_ptrs, verbose, dumping);
   FILE* truth = nullptr;
   if (!write_dir.empty()) {

@@ -2,7 +2,7 @@
 """Gamma 2.2 + CIEDE2000 3x3: tristim next to OpenCV's ccm on the same 8-bit chart patches.
 
 Input: the 24 patches of a real photographed ColorChecker as OpenCV's own ccm tests use them
-(shared data `opencv-ccm/opencv_mcc_sample_colorchecker_rgb.csv`: 8-bit sRGB-encoded camera
+(`tests/data/opencv-ccm/opencv_mcc_sample_colorchecker_rgb.csv`: 8-bit sRGB-encoded camera
 values and OpenCV's ColorChecker 2005 L*a*b*, D50, 2 deg).
 
 OpenCV (Debian's python3-opencv, cv2.ccm, 4.6):
@@ -23,7 +23,7 @@ L*a*b* relative to D50), which differs from OpenCV's by the white and the adapta
 
 Exit status 1 if a claim fails: linearised values equal OpenCV's to 1e-12; tristim's RMS
 CIEDE2000 (scored by tristim) <= OpenCV's + 1e-3; the matrices agree to 2 % of their largest entry.
-Usage: opencv_gamma_ccm.py [--tristim PATH] [--shared DIR] [--json]
+Usage: opencv_gamma_ccm.py [--tristim PATH] [--json]
 """
 import argparse
 import csv
@@ -97,17 +97,17 @@ def tristim_fit(tristim, tmp, lin_csv, ref_rows, white_name, tag):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('--tristim', default=os.environ.get('TRISTIM_BIN', os.path.join(REPO, 'build/native/core/tristim')))
-    ap.add_argument('--shared', default=os.environ.get('TRISTIM_SHARED_DATA', os.path.join(REPO, '..', 'shared', 'data')))
     ap.add_argument('--json', action='store_true')
     args = ap.parse_args()
     try:
         import numpy as np
         import cv2
     except ImportError:
-        print('python3-opencv / numpy not importable: skipped (run with Debian\'s /usr/bin/python3)')
-        return 0
+        print('python3-opencv / numpy not importable (run with Debian\'s /usr/bin/python3; '
+              'scripts/install-deps.sh installs python3-opencv)')
+        return 1
 
-    with open(os.path.join(args.shared, 'opencv-ccm', 'opencv_mcc_sample_colorchecker_rgb.csv')) as f:
+    with open(os.path.join(REPO, 'tests', 'data', 'opencv-ccm', 'opencv_mcc_sample_colorchecker_rgb.csv')) as f:
         rows = list(csv.DictReader(f))
     ids = [r['index'] for r in rows]
     rgb = [[float(r['R_8bit']), float(r['G_8bit']), float(r['B_8bit'])] for r in rows]

@@ -10,7 +10,7 @@ CIE 1931 observer: mean and max CIEDE2000 before and after.
 Exit status 1 if the paper's ranking does not hold on mean CIEDE2000:
   scaler ~ none (within 15 %), offset < scaler, scaler-offset < offset, Saunderson <= scaler-offset.
 
-Usage: sg_two_geometries.py [--tristim PATH] [--shared DIR] [--json]
+Usage: sg_two_geometries.py [--tristim PATH] [--json]
 """
 import argparse
 import json
@@ -20,8 +20,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, '..', '..'))
-FROM = 'coolpi-indigo/XRCCSG_reflectance_360-740_10nm.csv'
-TO = 'dcamprof/colorcheckerSG_before_nov2014_reflectance_380-730_10nm.csv'
+FROM = 'examples/web/sg_d8_sci_coolpi.csv'
+TO = 'core/data/charts/colorcheckerSG_before_nov2014_reflectance_380-730_10nm.csv'
 
 # (label, method, extra arguments)
 ROWS = [
@@ -38,13 +38,12 @@ ROWS = [
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('--tristim', default=os.environ.get('TRISTIM_BIN', os.path.join(REPO, 'build/native/core/tristim')))
-    ap.add_argument('--shared', default=os.environ.get('TRISTIM_SHARED_DATA', os.path.join(REPO, '..', 'shared', 'data')))
     ap.add_argument('--json', action='store_true')
     a = ap.parse_args()
-    paths = [os.path.join(a.shared, p) for p in (FROM, TO)]
+    paths = [os.path.join(REPO, p) for p in (FROM, TO)]
     for p in paths:
         if not os.path.exists(p):
-            sys.exit(f'needs the project shared data: {p} not found (--shared or TRISTIM_SHARED_DATA)')
+            sys.exit(f'{p} not found: it is part of the repository')
     results = []
     for label, method, extra in ROWS:
         out = subprocess.run([a.tristim, 'surface', 'fit', '--from', paths[0], '--to', paths[1], '--method', method,

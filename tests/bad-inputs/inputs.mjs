@@ -1,33 +1,36 @@
 // The catalogue of bad inputs (catalogue.json) as bytes: each case is a committed file of the repo
 // or a generator below applied to one (big inputs are made here, at test time, never committed).
 // Walked by three runners with the same expectations: the CLI (run_cli.mjs, a native ctest), the
-// wasm module (tests/wasm/bad_inputs.test.mjs) and the page (tests/web/bad_inputs.test.mjs).
+// wasm module (tests/wasm/bad_inputs.test.mjs) and the page (tests/web/catalogue.test.mjs).
 //
 // A case: {id, kind, name, from?, generate?, args?, expect, expect_cli?, expect_module?, note?}
 //   kind     where it goes in: raw (the chart image input), reference (step 1's reference file),
 //            patches (a camera-RGB table: the fit step's held-out file), profile (a profile JSON:
 //            the export step's import), recipe (a recipe JSON; in the page embedded in a profile),
 //            corners (chart corners on the example Passport DNG)
-//   from     the base file, repo-relative ("shared:<path>" for the project's shared data)
+//   from     the base file, repo-relative (tests/support/test_files.mjs reads it)
 //   generate a generator name below, applied to the base bytes (or to nothing) with `args`
 //   expect   the error code; expect_cli / expect_module when the CLI or the module (wasm and the
 //            page) answer otherwise, expect_page when only the page does, with `note` saying why.
 import fs from 'node:fs';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { repoRoot, testFiles, readTestFile } from '../support/test_files.mjs';
 
-export const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-export const sharedData = process.env.TRISTIM_SHARED_DATA || path.resolve(repoRoot, '../shared/data');
+export { repoRoot };
 export const manifest = JSON.parse(fs.readFileSync(path.join(repoRoot, 'tests/bad-inputs/catalogue.json'), 'utf8'));
-/// The Passport DNG the corner cases (and the page's example) use, and its good corners.
-export const PASSPORT = 'shared:raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng';
+/// The Passport DNG the corner cases (and the page's example) use, repo-relative as in the
+/// catalogue, and its good corners.
+export const PASSPORT = path.relative(repoRoot, testFiles.passportDng);
 export const passportCorners = JSON.parse(fs.readFileSync(path.join(repoRoot, 'examples/web/passport.json'), 'utf8')).corners;
 
+/// The bytes of a base file (repo-relative, or absolute) in a fresh Uint8Array; a missing one
+/// throws an error naming it.
 export function readBase(rel) {
-  const file = rel.startsWith('shared:') ? path.join(sharedData, rel.slice(7)) : path.join(repoRoot, rel);
-  if (!fs.existsSync(file)) throw new Error(`catalogue base file not found: ${file}`);
-  return new Uint8Array(fs.readFileSync(file));
+  return new Uint8Array(readTestFile(rel));
 }
+
+/// The absolute path of a base file (repo-relative, or absolute).
+export const basePath = (rel) => (path.isAbsolute(rel) ? rel : path.join(repoRoot, rel));
 
 const enc = new TextEncoder();
 const dec = new TextDecoder();

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bench_util.hpp"
+#include "test_files.hpp"
 #include "chart_scene.hpp"
 #include "tristim/capture/raw.hpp"
 #include "tristim/chart/detect.hpp"
@@ -73,22 +74,20 @@ void run_case(const std::string& name, const RawImage& img, const std::string& c
 }  // namespace
 
 int main() {
-  const std::string data = TRISTIM_SHARED_DATA_DIR;
   try {
-    std::ifstream in(data + "/raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng",
-                     std::ios::binary);
+    const std::string dng_path = tristim::test::test_file_path(TRISTIM_SOURCE_DIR, tristim::test::passport_dng);
+    std::ifstream in(dng_path, std::ios::binary);
+    if (!in) throw Error(ErrorCode::InvalidArgument, "'" + dng_path + "' not found");
     std::ostringstream ss;
     ss << in.rdbuf();
     const std::string bytes = ss.str();
-    const std::vector<RawImage> photos = background_photos(data);
+    const std::vector<RawImage> photos = background_photos(TRISTIM_SOURCE_DIR);
     std::vector<const RawImage*> ptrs;
     for (const auto& p : photos) ptrs.push_back(&p);
-    if (!bytes.empty()) {
+    {
       const RawImage dng = decode_raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
       run_case("warm-up", dng, "passport", 1);  // wasm: let V8 tier up first
       run_case("passport_dng", dng, "passport", 5);
-    } else {
-      std::printf("SKIP passport_dng (shared data not found)\n");
     }
     for (const auto& size : {std::array<int, 2>{3000, 2000}, std::array<int, 2>{4000, 3000}})
       for (const std::string chart : {"cc24", "sg140"}) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "bench_util.hpp"
+#include "test_files.hpp"
 #include "simd4.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/evaluation/evaluation.hpp"
@@ -51,10 +53,16 @@ void make_patches(int n, PatchMatrix& rgb, PatchMatrix& xyz) {
 }
 
 // The Passport DNG's 24 patches (camera RGB derived by dcraw_emu) and the X-Rite after-Nov-2014
-// L*a*b* D50 reference, as examples/compare/compare_passport.py uses them. False if missing.
-bool read_passport(PatchMatrix& rgb, PatchMatrix& xyz) {
-  auto rows = [](const std::string& path) {
+// L*a*b* D50 reference, as examples/compare/compare_passport.py uses them. A missing or short file
+// ends the benchmark with an error naming it.
+void read_passport(PatchMatrix& rgb, PatchMatrix& xyz) {
+  auto rows = [](const std::string& file) {
+    const std::string path = tristim::test::test_file_path(TRISTIM_SOURCE_DIR, file);
     std::ifstream in(path);
+    if (!in) {
+      std::printf("ERROR bench_models: '%s' not found\n", path.c_str());
+      std::exit(1);
+    }
     std::vector<std::vector<std::string>> out;
     std::string line;
     std::getline(in, line);
@@ -67,10 +75,12 @@ bool read_passport(PatchMatrix& rgb, PatchMatrix& xyz) {
     }
     return out;
   };
-  const std::string data = TRISTIM_SHARED_DATA_DIR;
-  const auto r = rows(data + "/raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv");
-  const auto l = rows(data + "/colour-science/colorchecker24_xrite_after_nov2014_Lab_D50.csv");
-  if (r.size() != 24 || l.size() != 24) return false;
+  const auto r = rows(tristim::test::passport_rgb_csv);
+  const auto l = rows("core/data/charts/colorchecker24_xrite_after_nov2014_Lab_D50.csv");
+  if (r.size() != 24 || l.size() != 24) {
+    std::printf("ERROR bench_models: the Passport tables do not have 24 rows\n");
+    std::exit(1);
+  }
   rgb.resize(24, 3);
   xyz.resize(24, 3);
   for (int i = 0; i < 24; ++i) {
@@ -78,7 +88,6 @@ bool read_passport(PatchMatrix& rgb, PatchMatrix& xyz) {
     const Vec3 Lab(std::stod(l[i][2]), std::stod(l[i][3]), std::stod(l[i][4]));
     xyz.row(i) = Lab_to_XYZ(Lab, whites::D50()).transpose();
   }
-  return true;
 }
 
 }  // namespace
@@ -101,9 +110,9 @@ int main() {
   // Each model is fitted for ~30 ms before the timed fits: a fit takes microseconds, and V8 runs a
   // wasm function in its baseline tier (Liftoff) until it is hot and its optimised code arrives
   // from a background compile, so 20 cold fits timed mostly the baseline tier (1.4–1.8× slower
-  // than the optimised code, session 12). The warm-up brings the rows closer to steady state but
-  // not reliably all the way (tier-up arrives from a background compile; in session 12 default node
-  // still read ~2× the figures of `node --no-liftoff`, which runs the optimised code alone). The
+  // than the optimised code). The warm-up brings the rows closer to steady state but
+  // not reliably all the way (tier-up arrives from a background compile; default node has
+  // been seen at ~2× the figures of `node --no-liftoff`, which runs the optimised code alone). The
   // first fit of the process is printed for a human.
   std::printf("\n== least-squares fit, 140 patches (best of 20 after ~30 ms of warm-up) ==\n");
   for (const ModelInfo& m : model_table()) {
@@ -159,9 +168,8 @@ int main() {
   {
     PatchMatrix prgb, pxyz;
     std::printf("\n== Passport DNG patches, matrix-3x3, RMS CIEDE2000 (OpenCV ccm: 3.331), best of 20 ==\n");
-    if (!read_passport(prgb, pxyz)) std::printf("  shared data missing: skipped\n");
-    else
-      for (const char* alg : {"auto", "bobyqa"}) {
+    read_passport(prgb, pxyz);
+    for (const char* alg : {"auto", "bobyqa"}) {
         FitOptions o;
         o.objective = Objective::DeltaE2000;
         o.de2000.rms = true;
@@ -181,8 +189,8 @@ int main() {
     // leave-one-out (51 rows; natively the rows are spread over the hardware threads).
     PatchMatrix prgb, pxyz;
     std::printf("\n== compare: Passport patches, every model x objective with leave-one-out (best of 3) ==\n");
-    if (!read_passport(prgb, pxyz)) std::printf("  shared data missing: skipped\n");
-    else {
+    read_passport(prgb, pxyz);
+    {
       // One thread in both builds, so the ratio compares like with like: natively compare_models
       // spreads its rows over the hardware threads (the rows "<objective>_threads", native only, as
       // the CLI runs), while the wasm build runs them in order (the page spreads them over workers:

@@ -6,10 +6,12 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "bench_util.hpp"
+#include "test_files.hpp"
 #include "tristim/capture/calibration.hpp"
 #include "tristim/chart/layout.hpp"
 #include "dng_writer.hpp"
@@ -23,7 +25,7 @@ namespace {
 
 std::vector<std::uint8_t> read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
+  if (!in) throw std::runtime_error("'" + path + "' not found (tests/data/SOURCES.md says where it comes from)");
   std::ostringstream ss;
   ss << in.rdbuf();
   const std::string s = ss.str();
@@ -46,10 +48,6 @@ std::vector<std::uint8_t> synthetic_dng(int w, int h) {
 }
 
 void run_case(const std::string& name, std::vector<std::uint8_t> bytes, double file_mb, bool quiet = false) {
-  if (bytes.empty()) {
-    std::printf("SKIP %s (file not found)\n", name.c_str());
-    return;
-  }
   RawImage img;
   const double t_decode = time_ms([&] { img = decode_raw(bytes); });
   std::vector<std::uint8_t>().swap(bytes);
@@ -94,15 +92,15 @@ void run_case(const std::string& name, std::vector<std::uint8_t> bytes, double f
 }  // namespace
 
 int main() {
-  const std::string data = TRISTIM_SHARED_DATA_DIR;
+  auto data_file = [](const char* f) { return tristim::test::test_file_path(TRISTIM_SOURCE_DIR, f); };
   try {
-    auto dng = read_file(data + "/raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng");
+    auto dng = read_file(data_file(tristim::test::passport_dng));
     // Warm-up: V8 runs wasm first in its baseline compiler and swaps in optimised code only for
     // later calls (no on-stack replacement), so a first decode in node/the browser is slower
     // than these steady-state figures (about 2x for the Passport DNG).
     for (int i = 0; i < 2; ++i) run_case("warm-up", dng, 0, true);
     run_case("passport_dng_2.2MP", dng, dng.size() / 1e6);
-    auto cr2 = read_file(data + "/raw-images/debian-rawtran-doc/IMG_5952_canon_eos_30d.CR2");
+    auto cr2 = read_file(data_file(tristim::test::debian::canon_30d_cr2));
     run_case("canon30d_cr2_8.2MP", cr2, cr2.size() / 1e6);
     {
       auto b = synthetic_dng(6000, 4000);

@@ -1,5 +1,6 @@
 // Synthetic chart photographs for the detection tests (chart_scene.hpp).
 #include "chart_scene.hpp"
+#include "test_files.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -328,12 +329,14 @@ ChartScene render_chart_scene(const SceneSpec& spec, const std::vector<const Raw
   return out;
 }
 
-std::vector<RawImage> background_photos(const std::string& dir) {
+std::vector<RawImage> background_photos(const std::string& source_dir) {
   std::vector<RawImage> out;
-  for (const char* f : {"raw-images/debian-rawtran-doc/IMG_5952_canon_eos_30d.CR2", "raw-images/rawpy/RAW_KODAK_DC50.KDC",
-                        "raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng"}) {
-    std::ifstream in(dir + "/" + f, std::ios::binary);
-    if (!in) continue;
+  for (const char* f : {test::debian::canon_30d_cr2, test::kodak_dc50_kdc, test::passport_dng}) {
+    const std::string path = test::test_file_path(source_dir, f);
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+      throw Error(ErrorCode::InvalidArgument, "background photo not found: '" + path +
+                                                  "' (tests/data/SOURCES.md says where it comes from)");
     std::ostringstream ss;
     ss << in.rdbuf();
     const std::string bytes = ss.str();

@@ -63,10 +63,10 @@ ChartScene render_chart_scene(const SceneSpec& spec, const std::vector<const Raw
 /// glare on up to two patches (40 % of scenes), a photo background in half the scenes.
 SceneSpec random_scene_spec(const std::string& chart, std::uint64_t seed, int width, int height, bool photos);
 
-/// The real photos of ../shared/data/raw-images decoded (LibRaw) for backgrounds: the Canon 30D
-/// landscape, the Kodak DC50 city, and the Passport DNG's top rows (its creative side, without the
-/// classic side). Files that are missing are skipped.
-std::vector<RawImage> background_photos(const std::string& shared_data_dir);
+/// Real photos decoded (LibRaw) for backgrounds: the Canon 30D landscape, the Kodak DC50 city, and
+/// the Passport DNG's top rows (its creative side, without the classic side); test_files.hpp names
+/// them, `source_dir` is the checkout. A missing file throws Error naming it.
+std::vector<RawImage> background_photos(const std::string& source_dir);
 
 /// How a detection compares with a scene's truth. Corner error: mean distance of the four
 /// corners in the reported order; `located`: some cyclic order of the corners is within a

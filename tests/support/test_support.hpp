@@ -11,34 +11,26 @@
 #include <sstream>
 #include <string>
 
+#include "test_files.hpp"
 #include "tristim/error.hpp"
 
 namespace tristim::test {
 
-/// Folder of ../shared/data (env TRISTIM_SHARED_DATA overrides the configured path).
-inline std::string shared_data_dir() {
-  if (const char* env = std::getenv("TRISTIM_SHARED_DATA")) return env;
-  return TRISTIM_SHARED_DATA_DIR;
-}
+/// Full path of a file the tests read: repository-relative ("tests/data/…", "core/data/…",
+/// "examples/…"), or absolute for a file a Debian package installs (namespace debian).
+inline std::string test_file_path(const std::string& path) { return test_file_path(TRISTIM_SOURCE_DIR, path); }
 
-/// Reads a file of ../shared/data. A missing file fails the test with a message saying that
-/// this test needs the project's shared data and where it looked.
-inline std::string read_shared(const std::string& relative) {
-  const std::string path = shared_data_dir() + "/" + relative;
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    FAIL("this test needs the project's shared data, not found at '" << path
-         << "' (set TRISTIM_SHARED_DATA to the shared/data folder)");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-/// Reads a file of this repository (e.g. "examples/...").
-inline std::string read_repo(const std::string& relative) {
-  const std::string path = std::string(TRISTIM_SOURCE_DIR) + "/" + relative;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) FAIL("repository file not found: '" << path << "'");
+/// Reads a file the tests need (see test_file_path). A missing file fails the test with a message
+/// naming it; nothing is skipped.
+inline std::string read_test_file(const std::string& path) {
+  const std::string full = test_file_path(path);
+  std::ifstream in(full, std::ios::binary);
+  if (!in) {
+    if (!path.empty() && path[0] == '/')
+      FAIL("this test reads '" << full << "', which a Debian package installs: run scripts/install-deps.sh "
+                               "(tests/data/SOURCES.md names the package)");
+    FAIL("this test reads '" << full << "', a file of the repository, which is missing");
+  }
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();

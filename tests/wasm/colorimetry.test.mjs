@@ -3,9 +3,8 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { loadTristim, readShared, throwsCode, repoRoot } from './load.mjs';
+import { loadTristim, readText, testFiles, throwsCode, repoRoot } from './load.mjs';
 
-const text = (relative) => new TextDecoder().decode(readShared(relative));
 const close = (a, b, tol, what) => assert.ok(Math.abs(a - b) <= tol, `${what}: ${a} vs ${b} (tolerance ${tol})`);
 
 test('catalogue: charts, illuminants, cameras', async () => {
@@ -47,11 +46,11 @@ test('referenceChart: shapes and values', async () => {
 // Native and wasm: the same core, the same IEEE doubles; only libm differs (glibc natively, musl
 // in Emscripten), whose pow/cbrt/log/sin may differ in the last bit. The CLI prints 17 significant
 // digits (round-trip exact). Sums and products (XYZ, linear camera RGB) must be bit-identical, and
-// so must Lab (its cube roots are core/src/detmath.hpp's, not the C library's, since session 19)
-// and the virtual camera's noise (Box-Muller through detmath's log, sin, cos since session 22).
+// so must Lab (its cube roots are core/src/detmath.hpp's, not the C library's) and the virtual
+// camera's noise (Box-Muller through detmath's log, sin, cos).
 test('referenceChart and simulateCamera agree with the native CLI (when the native build exists)', async (t) => {
   const exe = path.join(repoRoot, 'build/native/core/tristim');
-  if (!fs.existsSync(exe)) return t.skip('no native build');
+  assert.ok(fs.existsSync(exe), `${exe} not found: scripts/build.sh builds it`);
   const T = await loadTristim();
   const worst = {};
   const compare = (kind, got, want, what) => {
@@ -86,7 +85,7 @@ test('referenceChart and simulateCamera agree with the native CLI (when the nati
 
 test('parseReferenceFile: spectral CSV, Lab CSV and CGATS', async () => {
   const T = await loadTristim();
-  const spectral = text('dcamprof/colorchecker24_after_nov2014_reflectance_380-730_10nm.csv');
+  const spectral = readText('core/data/charts/colorchecker24_after_nov2014_reflectance_380-730_10nm.csv');
   const a = T.parseReferenceFile(spectral, 'cc24.csv', 'D65', '1931');
   const b = T.referenceChart('cc24', 'D65', '1931');
   assert.equal(T.parsePatchFile(spectral, 'cc24.csv').format, 'csv-spectral');
@@ -95,8 +94,8 @@ test('parseReferenceFile: spectral CSV, Lab CSV and CGATS', async () => {
   const lab = T.parseReferenceFile('patch,L,a,b\nA01,50,10,-10\nA02,60,0,0\n', 'lab.csv', 'D50', '1931');
   assert.deepEqual(lab.ids, ['A1', 'A2']);
   assert.deepEqual(Array.from(lab.Lab.slice(0, 3)), [50, 10, -10]);
-  const cie = T.parseReferenceFile(text('debian-argyll-ref/original/ColorChecker.cie'), 'ColorChecker.cie', 'D50', '1931');
-  assert.equal(T.parsePatchFile(text('debian-argyll-ref/original/ColorChecker.cie'), 'ColorChecker.cie').format, 'cgats');
+  const cie = T.parseReferenceFile(readText(testFiles.argyllColorCheckerCie), 'ColorChecker.cie', 'D50', '1931');
+  assert.equal(T.parsePatchFile(readText(testFiles.argyllColorCheckerCie), 'ColorChecker.cie').format, 'cgats');
   assert.equal(cie.ids.length, 24);
   close(cie.Lab[0], 37.99, 1e-12, 'L of A1');
 });

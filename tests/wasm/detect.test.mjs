@@ -6,15 +6,15 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { loadTristim, readShared, throwsCode, repoRoot, sharedData, assertSampleCsv } from './load.mjs';
+import { loadTristim, readBytes, testPath, testFiles, throwsCode, repoRoot, assertSampleCsv } from './load.mjs';
 
-const PASSPORT = 'raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng';
-const KDC = 'raw-images/rawpy/RAW_KODAK_DC50.KDC';  // a city photo: no chart
+const PASSPORT = testFiles.passportDng;
+const KDC = testFiles.kodakDc50Kdc;  // a city photo: no chart
 const preset = JSON.parse(fs.readFileSync(path.join(repoRoot, 'examples/web/passport.json'), 'utf8'));
 const nativeCli = path.join(repoRoot, 'build/native/core/tristim');
 
 function withRaw(T, file, fn) {
-  const raw = T.decodeRaw(readShared(file));
+  const raw = T.decodeRaw(readBytes(file));
   try { return fn(raw); } finally { raw.delete(); }
 }
 const cornerError = (a, b) => Math.max(...[0, 1, 2, 3].map((k) => Math.hypot(a[2 * k] - b[2 * k], a[2 * k + 1] - b[2 * k + 1])));
@@ -51,9 +51,10 @@ test('the example Passport is detected upright, near the manual corners, sampled
   });
 });
 
-test('wasm finds the same corners as the native CLI (when build/native exists)', { skip: !fs.existsSync(nativeCli) && 'no native build' }, async () => {
+test('wasm finds the same corners as the native CLI', async () => {
+  assert.ok(fs.existsSync(nativeCli), `${nativeCli} not found: scripts/build.sh builds it`);
   const T = await loadTristim();
-  const native = JSON.parse(execFileSync(nativeCli, ['detect', path.join(sharedData, PASSPORT), '--chart', 'passport']).toString());
+  const native = JSON.parse(execFileSync(nativeCli, ['detect', testPath(PASSPORT), '--chart', 'passport']).toString());
   const n = native.candidates[0].corners.flat();
   withRaw(T, PASSPORT, (raw) => {
     const w = T.detectCharts(raw, { charts: ['passport'] })[0];
@@ -65,12 +66,13 @@ test('wasm finds the same corners as the native CLI (when build/native exists)',
   });
 });
 
-test('the CLI samples a detected chart as the page does: detect, then sample at those corners', { skip: !fs.existsSync(nativeCli) && 'no native build' }, async () => {
+test('the CLI samples a detected chart as the page does: detect, then sample at those corners', async () => {
+  assert.ok(fs.existsSync(nativeCli), `${nativeCli} not found: scripts/build.sh builds it`);
   // `tristim sample` without --corners detects the chart itself; the page detects in the module and
-  // samples at the corners found. Since session 22 detection gives the same bits in both builds, so
-  // the patch means agree to the CSV's printed digits (not only within the corners' tolerance).
+  // samples at the corners found. Detection gives the same bits in both builds, so the patch means
+  // agree to the CSV's printed digits (not only within the corners' tolerance).
   const T = await loadTristim();
-  const csv = execFileSync(nativeCli, ['sample', path.join(sharedData, PASSPORT), '--chart', 'passport'], { stdio: ['ignore', 'pipe', 'ignore'] })
+  const csv = execFileSync(nativeCli, ['sample', testPath(PASSPORT), '--chart', 'passport'], { stdio: ['ignore', 'pipe', 'ignore'] })
     .toString();
   withRaw(T, PASSPORT, (raw) => {
     const found = T.detectCharts(raw, { charts: ['passport'] })[0];

@@ -7,13 +7,11 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { loadTristim, readShared, repoRoot } from './load.mjs';
-
-const PASSPORT = 'raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng';
+import { loadTristim, readBytes, repoRoot, testFiles } from './load.mjs';
 
 test('100 decodes, samplings and fits in one module leave its memory where the first left it (±1 MB)', async () => {
   const T = await loadTristim();
-  const dng = readShared(PASSPORT);
+  const dng = readBytes(testFiles.passportDng);
   const recipe = fs.readFileSync(path.join(repoRoot, 'examples/recipes/passport-rootpoly2-psm.json'), 'utf8');
   const r = JSON.parse(recipe);
   const reference = T.referenceChart(r.reference.chart, r.reference.illuminant, r.reference.observer);

@@ -1,12 +1,12 @@
 // Loads the built wasm module for node --test suites (build/wasm/site/tristim.mjs by default;
-// TRISTIM_WASM_DIR overrides). Also locates ../shared/data for tests that need it.
+// TRISTIM_WASM_DIR overrides), and reads the test files (tests/support/test_files.mjs).
 import path from 'node:path';
 import fs from 'node:fs';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { pathToFileURL } from 'node:url';
+import { repoRoot, testFiles, readTestFile } from '../support/test_files.mjs';
 
-export const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+export { repoRoot, testFiles };
 export const siteDir = process.env.TRISTIM_WASM_DIR || path.join(repoRoot, 'build/wasm/site');
-export const sharedData = process.env.TRISTIM_SHARED_DATA || path.resolve(repoRoot, '../shared/data');
 
 let cached = null;
 export async function loadTristim() {
@@ -19,12 +19,22 @@ export async function loadTristim() {
   return cached;
 }
 
-/// Bytes of a shared/data file; throws a clear message when shared data is missing.
-export function readShared(relative) {
-  const file = path.join(sharedData, relative);
-  if (!fs.existsSync(file))
-    throw new Error(`this test needs the project's shared data, not found at ${file} (set TRISTIM_SHARED_DATA)`);
-  return new Uint8Array(fs.readFileSync(file));
+/// Bytes of a test file (a path of testFiles, or repository-relative) in a fresh Uint8Array. A
+/// missing file throws an error naming it: the test fails, it never skips.
+export function readBytes(file) {
+  return new Uint8Array(readTestFile(file));
+}
+
+/// The absolute path of a test file (a path of testFiles, or repository-relative) to give a command
+/// line, once it is known to exist (a missing file throws as readBytes).
+export function testPath(file) {
+  readTestFile(file);
+  return path.isAbsolute(file) ? file : path.join(repoRoot, file);
+}
+
+/// Text of a test file (a path of testFiles, or repository-relative), as readBytes.
+export function readText(file) {
+  return new TextDecoder().decode(readTestFile(file));
 }
 
 /// Asserts that fn() throws an Error whose .code is `code`.

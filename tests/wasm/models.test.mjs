@@ -1,10 +1,10 @@
 import test from 'node:test';
 import assert from 'node:assert/strict';
-import { loadTristim, readShared, throwsCode } from './load.mjs';
+import { loadTristim, readBytes, readText, testFiles, throwsCode } from './load.mjs';
 
 // The Passport patches (camera RGB derived from the DNG) and X-Rite's CC24 reference (Lab D50).
-function csvRows(relative) {
-  const text = new TextDecoder().decode(readShared(relative));
+function csvRows(file) {
+  const text = readText(file);
   const [head, ...lines] = text.trim().split('\n');
   const cols = head.split(',');
   return lines.map((l) => Object.fromEntries(l.split(',').map((v, i) => [cols[i], v])));
@@ -15,8 +15,8 @@ function labToXYZ([L, a, b], w = [96.4212, 100, 82.5188]) {
   return [w[0] * inv(fx), w[1] * inv(fy), w[2] * inv(fz)];
 }
 function passport() {
-  const rgbRows = csvRows('raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv');
-  const refRows = csvRows('colour-science/colorchecker24_xrite_before_nov2014_Lab_D50.csv');
+  const rgbRows = csvRows(testFiles.passportRgbCsv);
+  const refRows = csvRows('core/data/charts/colorchecker24_xrite_before_nov2014_Lab_D50.csv');
   const rgb = new Float64Array(72), xyz = new Float64Array(72);
   const ids = [];
   rgbRows.forEach((r, i) => {
@@ -150,7 +150,7 @@ test('applyProfile on a decoded RAW gives an XYZ image of the RAW size', async (
   const T = await loadTristim();
   const { rgb, xyz, ids } = passport();
   const r = fitModel(T, rgb, xyz, ids, { model: 'matrix-3x3' }, { leave_one_out: false });
-  const raw = T.decodeRaw(readShared('raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng'));
+  const raw = T.decodeRaw(readBytes(testFiles.passportDng));
   try {
     const out = T.applyProfile(r.profile, raw);
     assert.equal(out.width, raw.width());

@@ -5,12 +5,12 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { loadTristim, readShared, throwsCode, repoRoot, assertSampleCsv } from './load.mjs';
+import { loadTristim, readBytes, testPath, testFiles, throwsCode, repoRoot, assertSampleCsv } from './load.mjs';
 
-const PASSPORT = 'raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng';
-const CR2 = 'raw-images/debian-rawtran-doc/IMG_5952_canon_eos_30d.CR2';
-const KDC = 'raw-images/rawpy/RAW_KODAK_DC50.KDC';
-// FNV-1a hashes of the linear data recorded from the native build (tests/core/raw_test.cpp has
+const PASSPORT = testFiles.passportDng;
+const CR2 = testFiles.canon30dCr2;
+const KDC = testFiles.kodakDc50Kdc;
+// FNV-1a hashes of the linear data recorded from the native build (tests/core/capture/raw_test.cpp has
 // the same numbers; when build/native exists the CLI is asked as well).
 const FILES = [
   { file: PASSPORT, width: 867, height: 578, cfa: 'RGGB', hash: '7509a785b9c2f349' },
@@ -28,15 +28,16 @@ function withRaw(T, bytes, fn) {
 test('the three real RAW files decode with the native build\'s linear data', async () => {
   const T = await loadTristim();
   for (const c of FILES) {
-    withRaw(T, readShared(c.file), (raw) => {
+    withRaw(T, readBytes(c.file), (raw) => {
       assert.equal(raw.width(), c.width, c.file);
       assert.equal(raw.height(), c.height, c.file);
       const m = raw.metadata();
       assert.equal(m.cfa_pattern, c.cfa);
       assert.equal(m.width, c.width);
       assert.equal(raw.linearHash(), c.hash, `${c.file}: wasm linear data differ from native`);
-      if (fs.existsSync(nativeCli)) {
-        const native = JSON.parse(execFileSync(nativeCli, ['inspect', path.join(process.env.TRISTIM_SHARED_DATA || path.resolve(repoRoot, '../shared/data'), c.file)]).toString());
+      assert.ok(fs.existsSync(nativeCli), `${nativeCli} not found: scripts/build.sh builds it`);
+      {
+        const native = JSON.parse(execFileSync(nativeCli, ['inspect', testPath(c.file)]).toString());
         assert.equal(native.linear_hash, raw.linearHash(), `${c.file}: native CLI vs wasm`);
         assert.equal(native.white_level, m.white_level);
         assert.deepEqual(native.black_level, m.black_level);
@@ -53,7 +54,7 @@ test('the three real RAW files decode with the native build\'s linear data', asy
 
 test('metadata is a plain object with exposure, levels and matrices', async () => {
   const T = await loadTristim();
-  withRaw(T, readShared(CR2), (raw) => {
+  withRaw(T, readBytes(CR2), (raw) => {
     const m = raw.metadata();
     assert.equal(m.make, 'Canon');
     assert.equal(m.model, 'EOS 30D');
@@ -68,7 +69,7 @@ test('metadata is a plain object with exposure, levels and matrices', async () =
 
 test('preview: RGBA bytes at most maxSide wide, scale maps back to the measurement image', async () => {
   const T = await loadTristim();
-  withRaw(T, readShared(PASSPORT), (raw) => {
+  withRaw(T, readBytes(PASSPORT), (raw) => {
     const pv = raw.preview(400);
     assert.equal(pv.scale, 3);
     assert.ok(pv.width <= 400 && pv.height <= 400);
@@ -81,7 +82,7 @@ test('preview: RGBA bytes at most maxSide wide, scale maps back to the measureme
 test('sampleChart on the example Passport: 24 patches with ids A1..D6 and typed arrays', async () => {
   const T = await loadTristim();
   assert.ok(T.listChartLayouts().includes('passport'));
-  withRaw(T, readShared(PASSPORT), (raw) => {
+  withRaw(T, readBytes(PASSPORT), (raw) => {
     const s = T.sampleChart(raw, { chart: passportJson.chart }, new Float64Array(passportJson.corners), { area: 0.5 });
     assert.equal(s.ids.length, 24);
     assert.equal(s.ids[0], 'A1');
@@ -96,8 +97,9 @@ test('sampleChart on the example Passport: 24 patches with ids A1..D6 and typed 
     assert.equal(s.patch_quads.length, 24 * 8);
     assert.equal(s.homography.length, 9);
     // D1 (white) is the brightest neutral; 3-argument form works too.
-    if (fs.existsSync(nativeCli)) {  // the native CLI samples the same numbers (CSV: 8 significant digits)
-      const csv = execFileSync(nativeCli, ['sample', path.join(process.env.TRISTIM_SHARED_DATA || path.resolve(repoRoot, '../shared/data'), PASSPORT),
+    assert.ok(fs.existsSync(nativeCli), `${nativeCli} not found: scripts/build.sh builds it`);
+    {  // the native CLI samples the same numbers (CSV: 8 significant digits)
+      const csv = execFileSync(nativeCli, ['sample', testPath(PASSPORT),
         '--chart', 'passport', '--corners', passportJson.corners.join(',')]).toString();
       assertSampleCsv(assert, csv, s);
     }
@@ -110,9 +112,9 @@ test('sampleChart on the example Passport: 24 patches with ids A1..D6 and typed 
 
 test('a dark frame and a flat field change what sampleChart reports; mismatches are coded', async () => {
   const T = await loadTristim();
-  const img = T.decodeRaw(readShared(PASSPORT));
-  const same = T.decodeRaw(readShared(PASSPORT));
-  const other = T.decodeRaw(readShared(KDC));
+  const img = T.decodeRaw(readBytes(PASSPORT));
+  const same = T.decodeRaw(readBytes(PASSPORT));
+  const other = T.decodeRaw(readBytes(KDC));
   try {
     const before = T.sampleChart(img, { chart: 'passport' }, passportJson.corners);
     const d = img.setDark([same], 'channel');
@@ -137,9 +139,9 @@ test('a dark frame and a flat field change what sampleChart reports; mismatches 
 test('bad RAW input: every case has its code and the module stays usable', async () => {
   const T = await loadTristim();
   throwsCode(assert, () => T.decodeRaw(new Uint8Array(0)), 'EMPTY_FILE');
-  throwsCode(assert, () => T.decodeRaw(readShared(PASSPORT).slice(0, 1 << 20)), 'RAW_TRUNCATED');
+  throwsCode(assert, () => T.decodeRaw(readBytes(PASSPORT).slice(0, 1 << 20)), 'RAW_TRUNCATED');
   // Images that are no RAW go to their own decoders (capture/image.hpp): bad ones have their codes.
-  const jpeg = readShared('raw-images/tinydng/colorchart_preview_dcraw_emu_srgb.jpg');
+  const jpeg = readBytes(testFiles.passportJpeg);
   throwsCode(assert, () => T.decodeRaw(jpeg.slice(0, jpeg.length >> 1)), 'IMAGE_CORRUPT');
   throwsCode(assert, () => T.decodeRaw(Uint8Array.from([71, 73, 70, 56, 57, 97, 1, 0, 1, 0, 0, 0, 0, 59])), 'IMAGE_UNSUPPORTED');  // GIF
   let seed = 42;
@@ -147,7 +149,7 @@ test('bad RAW input: every case has its code and the module stays usable', async
   throwsCode(assert, () => T.decodeRaw(random), 'RAW_UNSUPPORTED');
   // DNG headers claiming absurd / inconsistent sizes: patch the Passport's width and height tags.
   const patched = (w, h) => {
-    const b = readShared(PASSPORT).slice(0, 1 << 16);
+    const b = readBytes(PASSPORT).slice(0, 1 << 16);
     const dv = new DataView(b.buffer);
     const ifd = dv.getUint32(4, true);
     for (let i = 0; i < dv.getUint16(ifd, true); i++) {
@@ -159,7 +161,7 @@ test('bad RAW input: every case has its code and the module stays usable', async
   };
   throwsCode(assert, () => T.decodeRaw(patched(60000, 60000)), 'RAW_TOO_LARGE');
   throwsCode(assert, () => T.decodeRaw(patched(6000, 4000)), 'RAW_TRUNCATED');
-  withRaw(T, readShared(PASSPORT), (raw) => {
+  withRaw(T, readBytes(PASSPORT), (raw) => {
     const L = { chart: 'passport' };
     throwsCode(assert, () => T.sampleChart(raw, L, [335, 291, 9649, 285, 649, 486, 328, 488]), 'CORNERS_OUTSIDE');
     throwsCode(assert, () => T.sampleChart(raw, L, [335, 291, 649, 285, 328, 488, 649, 486]), 'CORNERS_CROSSED');
@@ -173,7 +175,7 @@ test('bad RAW input: every case has its code and the module stays usable', async
 
 test('decodeRaw reads a JPEG, PNG or TIFF with its values as stored, and says so in the metadata', async () => {
   const T = await loadTristim();
-  const jpeg = T.decodeRaw(readShared('raw-images/tinydng/colorchart_preview_dcraw_emu_srgb.jpg'));
+  const jpeg = T.decodeRaw(readBytes(testFiles.passportJpeg));
   try {
     const m = jpeg.metadata();
     assert.equal(m.format, 'jpeg');

@@ -3,7 +3,7 @@
 // real two-geometry SG data, and coded errors for bad input.
 import test from 'node:test';
 import assert from 'node:assert/strict';
-import { loadTristim, readShared, throwsCode } from './load.mjs';
+import { loadTristim, readText, throwsCode } from './load.mjs';
 
 const near = (a, b, tol, what) => assert.ok(Math.abs(a - b) <= tol, `${what}: ${a} vs ${b} (tolerance ${tol})`);
 const SG = 'sg140-2005';
@@ -98,7 +98,7 @@ test('surfaceTable4: the simulated Table IV, surface-corrected methods beat the 
 
 test('real data: the SG in two geometries (d:8 SCI -> X-Rite), the paper\'s ranking on mean CIEDE2000', async () => {
   const T = await loadTristim();
-  const sci = T.parsePatchFile(new TextDecoder().decode(readShared('coolpi-indigo/XRCCSG_reflectance_360-740_10nm.csv')), 'XRCCSG.csv');
+  const sci = T.parsePatchFile(readText('examples/web/sg_d8_sci_coolpi.csv'), 'XRCCSG.csv');
   assert.ok(sci.has_spectra);
   const xrite = T.chartReflectances(SG);
   const o = { range_min: 400, range_max: 700 };

@@ -8,7 +8,7 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import { screenshot } from './harness.mjs';
-import { openPage, step, upload, errorNear, markCounts, DNG, CR2 } from './journey.mjs';
+import { openPage, step, upload, errorNear, markCounts, DNG, CR2, filePath } from './journey.mjs';
 import { loadTristim } from '../wasm/load.mjs';
 
 const S = '#step-absolute';
@@ -119,7 +119,7 @@ test('absolute: example bracket fitted, OECF curves, luminance map, read-out aga
     const nm = await errorNear(page, `${S} [data-role="abs-stimuli"]`);
     assert.equal(nm.code, 'NON_MONOTONIC');
     assert.match(nm.text, /Y600@3|Y300@3/);
-    await page.setInputFiles(`${S} [data-role="abs-series"]`, [DNG, CR2]);
+    await page.setInputFiles(`${S} [data-role="abs-series"]`, [filePath(DNG), filePath(CR2)]);
     const fm = await errorNear(page, `${S} [data-role="abs-series"]`, 60000);
     assert.equal(fm.code, 'FRAME_MISMATCH');
     assert.match(fm.text, /IMG_5952/);

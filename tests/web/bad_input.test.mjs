@@ -39,7 +39,7 @@ test('bad RAW files, corners and calibration frames: coded errors next to their 
     assert.equal(await rowCount(page), 24, 'the example chart is sampled');
     const plainA1 = await page.textContent(A1);
     const dng = fileBuffer(DNG);
-    const jpeg = fs.readFileSync(JPEG);   // a real JPEG: its first half, renamed .CR2 (decoded by signature, not by name)
+    const jpeg = fileBuffer(JPEG);   // a real JPEG: its first half, renamed .CR2 (decoded by signature, not by name)
     const cases = [
       ['empty.dng', Buffer.alloc(0), 'EMPTY_FILE'],
       ['truncated.dng', dng.subarray(0, 1 << 20), 'RAW_TRUNCATED'],

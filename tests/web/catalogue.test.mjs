@@ -9,7 +9,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { screenshot } from './harness.mjs';
 import { openPage, step, noErrorNear, errorFor } from './journey.mjs';
-import { materialise, expected, readBase, passportCorners, PASSPORT, sharedData } from '../bad-inputs/inputs.mjs';
+import { materialise, expected, readBase, basePath, passportCorners, PASSPORT } from '../bad-inputs/inputs.mjs';
 
 const INPUT = {
   raw: ['images', '#step-images input[data-slot="chart"]'],
@@ -87,7 +87,7 @@ test('every catalogue case shows its code next to its input, and the page still 
           // Its own detection must have finished before the corners are set, or a late detection
           // moves them again (seen under load: A1 then never matched).
           const runs = await page.evaluate(() => Number(document.querySelector('#step-images .detect-panel').dataset.runs ?? 0));
-          await page.setInputFiles(selector, path.join(sharedData, PASSPORT.slice('shared:'.length)));
+          await page.setInputFiles(selector, basePath(PASSPORT));
           await page.waitForFunction(() => document.querySelectorAll('#step-images .patch-table tbody tr').length === 24, null, { timeout: 60000 });
           await page.waitForFunction((r) => Number(document.querySelector('#step-images .detect-panel').dataset.runs ?? 0) > r, runs, { timeout: 60000 });
           await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, passportCorners);

@@ -6,11 +6,12 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { screenshot, repoRoot, sharedData } from './harness.mjs';
+import { screenshot, repoRoot } from './harness.mjs';
 import { openPage, step, upload, fileBuffer, waitSampled } from './journey.mjs';
+import { testFiles } from '../support/test_files.mjs';
 
 const example = JSON.parse(fs.readFileSync(path.join(repoRoot, 'examples/web/passport.json'), 'utf8'));
-const KDC = path.join(sharedData, 'raw-images/rawpy/RAW_KODAK_DC50.KDC');   // a city photo: no chart
+const KDC = testFiles.kodakDc50Kdc;   // a city photo: no chart
 const PANEL = '#step-images .detect-panel';
 const panelState = (page, state, timeout = 60000) =>
   page.waitForFunction(([sel, s]) => document.querySelector(sel)?.dataset.state === s, [PANEL, state], { timeout });

@@ -28,11 +28,11 @@ test('full journey: Passport DNG to fitted models, plots, applied image and re-i
     await page.waitForSelector('#step-reference .swatch');
     await screenshot(page, 'journey-1-reference');
 
-    // 2 Images: the real DNG from the shared data, corners placed, table with flags.
+    // 2 Images: the real DNG uploaded, corners placed, table with flags.
     await step(page, 'images');
     // (A name of its own: the example is also called passport.dng.)
-    await upload(page, '#step-images input[data-slot="chart"]', 'passport-from-shared-data.dng', fileBuffer(DNG));
-    await page.waitForFunction(() => /passport-from-shared-data\.dng — \d+×\d+/.test(document.querySelector('#step-images .file-state')?.textContent ?? ''), null, { timeout: 60000 });
+    await upload(page, '#step-images input[data-slot="chart"]', 'passport-uploaded.dng', fileBuffer(DNG));
+    await page.waitForFunction(() => /passport-uploaded\.dng — \d+×\d+/.test(document.querySelector('#step-images .file-state')?.textContent ?? ''), null, { timeout: 60000 });
     await setCorners(page, example.corners);
     assert.equal(await page.locator('#step-images .patch-table tbody tr').count(), 24);
     const table0 = await page.textContent('#step-images .patch-table tbody tr[data-id="A1"]');

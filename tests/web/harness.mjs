@@ -11,11 +11,6 @@ import { serve } from '../../scripts/serve.mjs';
 export const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 export const siteDir = process.env.TRISTIM_SITE_DIR || path.join(repoRoot, 'build/wasm/site');
 export const artifacts = path.join(repoRoot, 'test-artifacts');
-// The shared data folder: $TRISTIM_SHARED_DATA, or ../shared/data next to the checkout (or one
-// level further up, for a git worktree kept in a subfolder).
-export const sharedData = process.env.TRISTIM_SHARED_DATA
-  || ['../shared/data', '../../shared/data'].map((p) => path.resolve(repoRoot, p)).find((p) => fs.existsSync(p))
-  || path.resolve(repoRoot, '../shared/data');
 
 export async function openBrowser() {
   const server = await serve(siteDir, 0);

@@ -1,12 +1,14 @@
 // Helpers shared by the journey tests: open the page fresh, wait for it, move between steps,
 // upload files, read errors, count plot marks.
-import fs from 'node:fs';
 import path from 'node:path';
-import { openBrowser, sharedData, repoRoot } from './harness.mjs';
+import { openBrowser, repoRoot } from './harness.mjs';
+import { testFiles, readTestFile } from '../support/test_files.mjs';
 
-export const DNG = path.join(sharedData, 'raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng');
-export const CR2 = path.join(sharedData, 'raw-images/debian-rawtran-doc/IMG_5952_canon_eos_30d.CR2');
-export const JPEG = path.join(sharedData, 'raw-images/tinydng/colorchart_preview_dcraw_emu_srgb.jpg');
+/// The real images the journeys upload (tests/support/test_files.mjs): the example Passport DNG,
+/// a Canon EOS 30D CR2 (another camera, 8.2 MP) and the Passport's sRGB preview JPEG.
+export const DNG = testFiles.passportDng;
+export const CR2 = testFiles.canon30dCr2;
+export const JPEG = testFiles.passportJpeg;
 export const fixture = (name) => path.join(repoRoot, 'tests/web/fixtures', name);
 
 /// Opens the page and waits until it has restored (or built) its session.
@@ -30,7 +32,10 @@ export async function step(page, name) {
 export async function upload(page, selector, name, buffer) {
   await page.setInputFiles(selector, { name, mimeType: 'application/octet-stream', buffer });
 }
-export const fileBuffer = (p, n) => (n ? fs.readFileSync(p).subarray(0, n) : fs.readFileSync(p));
+/// The bytes of a file (its first n if n is given). A missing test file throws an error naming it.
+export const fileBuffer = (p, n) => (n ? readTestFile(p).subarray(0, n) : readTestFile(p));
+/// A test file's path for page.setInputFiles, once it is known to exist (else as fileBuffer).
+export const filePath = (p) => { readTestFile(p); return p; };
 
 /// The coded error shown next to a control (its aria-describedby slot): {code, text} or null.
 /// The coded error next to `selector` once its text names `name` (so an earlier error on the same

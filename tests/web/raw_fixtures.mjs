@@ -1,6 +1,6 @@
-// Bad RAW files made at test time from the Passport DNG of the shared data (nothing binary is
-// committed): its one IFD is little-endian TIFF with an uncompressed, 14-bit packed CFA strip,
-// so the width/height tags and the pixel bytes can be edited in place.
+// Bad RAW files made at test time from the example Passport DNG, examples/web/passport.dng
+// (nothing binary is committed): its one IFD is little-endian TIFF with an uncompressed, 14-bit
+// packed CFA strip, so the width/height tags and the pixel bytes can be edited in place.
 const TAGS = { width: 256, height: 257, rowsPerStrip: 278, stripOffsets: 273, bitsPerSample: 258, activeArea: 50829, defaultCropSize: 50720 };
 const SIZE = { 1: 1, 2: 1, 3: 2, 4: 4, 5: 8, 7: 1, 10: 8 };
 

@@ -3,14 +3,14 @@
 
 The expected_*.csv files were written by `tristim compare --json` at commit 8389a72 (main before
 issue 13; mean-CIEDE2000 objective by NLopt BOBYQA), on
-  * passport: the 24 Passport DNG patches (shared data raw-images/tinydng, camera RGB derived by
-    dcraw_emu) against X-Rite's ColorChecker Classic before-Nov-2014 L*a*b* D50, plain and with
+  * passport: the 24 Passport DNG patches (tests/data/passport/camera_rgb_dcraw_emu.csv, camera
+    RGB derived by dcraw_emu) against X-Rite's ColorChecker Classic before-Nov-2014 L*a*b* D50, plain and with
     the white patch D1 preserved (--white D1), as examples/compare/compare_passport.py builds them;
   * sg140: sg140_camera_rgb.csv = `tristim simulate --camera Canon_EOS_5D_Mark_II --reflectances
     sg140 --illuminant D50 --white 4000 --noise 5 --seed 140`, sg140_reference_XYZ_D50.csv =
     `tristim reference --chart sg140 --illuminant D50 --precision 17` (X, Y, Z columns).
 
-The ls and psm rows were re-recorded in session 19 (`--record`), when the fits became the same
+The ls and psm rows were re-recorded (`--record`) when the fits became the same
 bits natively and in wasm (Eigen scalar in both builds, Lab and CIEDE2000 through
 core/src/detmath.hpp): the last bits moved, and three things amplify them -- the pattern search
 (Guarnera 2018 Algorithm 2) is a discrete search whose end point moves with its start's last bits
@@ -29,7 +29,7 @@ Stated tolerance (exit status 1 otherwise):
     most the recorded one + 0.001 ΔE00 (+ 0.01 for a fit flagged ill_conditioned, whose
     coefficients are poorly determined); the leave-one-out figures change with the optimum and
     are printed, not compared.
-Usage: check_compare.py --tristim PATH --shared DIR [--only passport|sg140] [--record]
+Usage: check_compare.py --tristim PATH [--only passport|sg140] [--record]
   --record: rewrite the ls and psm rows of the expected files from this run (de2000 rows kept).
 """
 import argparse
@@ -41,6 +41,7 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.abspath(os.path.join(HERE, '..', '..', '..'))
 
 
 def expected(name):
@@ -112,7 +113,6 @@ def compare(tristim, rgb, xyz, extra, exp_name, rerecord=False):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('--tristim', required=True)
-    ap.add_argument('--shared', required=True)
     ap.add_argument('--only', choices=['passport', 'sg140'])
     ap.add_argument('--record', action='store_true')
     args = ap.parse_args()
@@ -120,10 +120,10 @@ def main():
     if args.only in (None, 'passport'):
         with tempfile.TemporaryDirectory(prefix='tristim_cmp_') as tmp:
             def rows(path):
-                with open(os.path.join(args.shared, path), newline='') as f:
+                with open(os.path.join(REPO, path), newline='') as f:
                     return list(csv.DictReader(f))
-            rgb = rows('raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv')
-            lab = {r['patch']: r for r in rows('colour-science/colorchecker24_xrite_before_nov2014_Lab_D50.csv')}
+            rgb = rows('tests/data/passport/camera_rgb_dcraw_emu.csv')
+            lab = {r['patch']: r for r in rows('core/data/charts/colorchecker24_xrite_before_nov2014_Lab_D50.csv')}
             ids = ['ABCD'[i // 6] + str(i % 6 + 1) for i in range(24)]
             rgb_csv, ref_csv = os.path.join(tmp, 'rgb.csv'), os.path.join(tmp, 'ref.csv')
             with open(rgb_csv, 'w') as f:

@@ -66,9 +66,9 @@ Vec3 central_sum(const AbsoluteImage& img, const ExampleRegion& g, int& count) {
 }  // namespace
 
 TEST_CASE("absolute: the example is the same natively and in wasm (pinned hashes)", "[absolute]") {
-  // The page builds this example in wasm, `tristim absolute example` natively: since session 22
-  // the virtual camera's noise and response use detmath, so the frames, the fit and the measured
-  // XYZ must agree to the bit (the user's chain as in the next test).
+  // The page builds this example in wasm, `tristim absolute example` natively: the virtual
+  // camera's noise and response use detmath, so the frames, the fit and the measured XYZ
+  // must agree to the bit (the user's chain as in the next test).
   const AbsoluteExample ex = make_absolute_example();
   test::BitHash frames;
   for (const RawImage& f : ex.frames)

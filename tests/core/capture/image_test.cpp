@@ -18,10 +18,10 @@ using tristim::test::TestImage;
 
 namespace {
 
-const char* kSharedJpeg = "raw-images/tinydng/colorchart_preview_dcraw_emu_srgb.jpg";
-const char* kPassport = "raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng";
-const char* kCr2 = "raw-images/debian-rawtran-doc/IMG_5952_canon_eos_30d.CR2";
-const char* kKdc = "raw-images/rawpy/RAW_KODAK_DC50.KDC";
+const char* kJpeg = test::passport_jpeg;
+const char* kPassport = test::passport_dng;
+const char* kCr2 = test::debian::canon_30d_cr2;
+const char* kKdc = test::kodak_dc50_kdc;
 
 std::vector<std::uint8_t> bytes_of(const std::string& s) { return {s.begin(), s.end()}; }
 
@@ -261,10 +261,10 @@ TEST_CASE("JPEG: an ICC profile is reported, not applied", "[image]") {
 }
 
 TEST_CASE("decodes are identical natively and in wasm (golden hashes)", "[image]") {
-  // The real chart JPEG of the shared data (libjpeg-turbo's SIMD IDCT natively, plain C in wasm).
-  const RawImage jpeg = decode_any(bytes_of(test::read_shared(kSharedJpeg)));
+  // The real chart JPEG (tests/data/passport; libjpeg-turbo's SIMD IDCT natively, plain C in wasm).
+  const RawImage jpeg = decode_any(bytes_of(test::read_test_file(kJpeg)));
   CHECK(jpeg.meta.format == "jpeg");
-  INFO("the shared chart JPEG: " << jpeg.width << " x " << jpeg.height);
+  INFO("the chart JPEG: " << jpeg.width << " x " << jpeg.height);
   CHECK(hash_hex(linear_data_hash(jpeg)) == "f627301c32fffcff");
   // A 4:2:0 progressive JPEG written here (encoder and decoder both in the comparison).
   const TestImage im = test::make_image(61, 45, 3, 8, [](int x, int y, int c) { return (x * 7 + y * 3 + c * 50) % 256; });
@@ -322,13 +322,13 @@ TEST_CASE("the preview of an image shows its stored values", "[image]") {
 }
 
 TEST_CASE("the format comes from the bytes, not the name: RAW, image, other image, garbage", "[image]") {
-  const auto jpeg = bytes_of(test::read_shared(kSharedJpeg));
+  const auto jpeg = bytes_of(test::read_test_file(kJpeg));
   CHECK(detect_format(jpeg.data(), jpeg.size()) == FileFormat::Jpeg);  // the same bytes as "x.CR2"
-  const auto dng = bytes_of(test::read_shared(kPassport));
+  const auto dng = bytes_of(test::read_test_file(kPassport));
   CHECK(detect_format(dng.data(), dng.size()) == FileFormat::Raw);  // TIFF-structured, DNGVersion
-  const auto cr2 = bytes_of(test::read_shared(kCr2));
+  const auto cr2 = bytes_of(test::read_test_file(kCr2));
   CHECK(detect_format(cr2.data(), cr2.size()) == FileFormat::Raw);  // TIFF-structured, "CR"
-  const auto kdc = bytes_of(test::read_shared(kKdc));
+  const auto kdc = bytes_of(test::read_test_file(kKdc));
   CHECK(detect_format(kdc.data(), kdc.size()) == FileFormat::Raw);  // TIFF-structured, LibRaw's
   CHECK(decode_any(dng).meta.format == "raw");
   CHECK(decode_any(dng).meta.encoding == "linear");

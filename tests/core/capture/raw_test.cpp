@@ -11,9 +11,9 @@ using namespace tristim;
 
 namespace {
 
-const char* kPassport = "raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng";
-const char* kCr2 = "raw-images/debian-rawtran-doc/IMG_5952_canon_eos_30d.CR2";
-const char* kKdc = "raw-images/rawpy/RAW_KODAK_DC50.KDC";
+const char* kPassport = test::passport_dng;
+const char* kCr2 = test::debian::canon_30d_cr2;
+const char* kKdc = test::kodak_dc50_kdc;
 
 std::vector<std::uint8_t> bytes_of(const std::string& s) { return {s.begin(), s.end()}; }
 
@@ -96,7 +96,7 @@ TEST_CASE("the three real RAW files decode, with the same linear data in every b
   };
   for (const auto& c : cases) {
     INFO(c.file);
-    const RawImage img = decode_raw(bytes_of(test::read_shared(c.file)));
+    const RawImage img = decode_raw(bytes_of(test::read_test_file(c.file)));
     CHECK(img.meta.make == c.make);
     CHECK(img.width == c.width);
     CHECK(img.height == c.height);
@@ -107,7 +107,7 @@ TEST_CASE("the three real RAW files decode, with the same linear data in every b
 }
 
 TEST_CASE("Passport DNG metadata: levels and matrices", "[raw][real]") {
-  const RawImage img = decode_raw(bytes_of(test::read_shared(kPassport)));
+  const RawImage img = decode_raw(bytes_of(test::read_test_file(kPassport)));
   const auto& m = img.meta;
   CHECK(m.model == "EOS Kiss X4");
   CHECK(m.bits == 14);
@@ -124,7 +124,7 @@ TEST_CASE("Passport DNG metadata: levels and matrices", "[raw][real]") {
 }
 
 TEST_CASE("CR2 metadata: exposure, lens, timestamp", "[raw][real]") {
-  const RawImage img = decode_raw(bytes_of(test::read_shared(kCr2)));
+  const RawImage img = decode_raw(bytes_of(test::read_test_file(kCr2)));
   const auto& m = img.meta;
   CHECK(m.model == "EOS 30D");
   CHECK(m.iso == Approx(640));
@@ -136,7 +136,7 @@ TEST_CASE("CR2 metadata: exposure, lens, timestamp", "[raw][real]") {
 }
 
 TEST_CASE("the preview is small, opaque and not the measurement data", "[raw]") {
-  const RawImage img = decode_raw(bytes_of(test::read_shared(kPassport)));
+  const RawImage img = decode_raw(bytes_of(test::read_test_file(kPassport)));
   const Preview pv = render_preview(img, 300);
   CHECK(pv.scale == 3);
   CHECK(pv.width == 867 / 3);
@@ -183,17 +183,17 @@ TEST_CASE("a strip thinner than the preview's scale is previewed from its own ro
 TEST_CASE("bad RAW input gives a coded error, never a crash", "[raw][bad]") {
   SECTION("zero bytes") { CHECK(decode_code({}) == ErrorCode::EmptyFile); }
   SECTION("truncated DNG: the first 1 MB") {
-    auto b = bytes_of(test::read_shared(kPassport));
+    auto b = bytes_of(test::read_test_file(kPassport));
     b.resize(1 << 20);
     CHECK(decode_code(b) == ErrorCode::RawTruncated);
   }
   SECTION("truncated CR2 (lossless JPEG)") {
-    auto b = bytes_of(test::read_shared(kCr2));
+    auto b = bytes_of(test::read_test_file(kCr2));
     b.resize(b.size() / 2);
     CHECK(decode_code(b) == ErrorCode::RawTruncated);
   }
   SECTION("a JPEG renamed .CR2") {
-    CHECK(decode_code(bytes_of(test::read_shared("raw-images/tinydng/colorchart_preview_dcraw_emu_srgb.jpg"))) ==
+    CHECK(decode_code(bytes_of(test::read_test_file(test::passport_jpeg))) ==
           ErrorCode::RawUnsupported);
   }
   SECTION("a PNG renamed .CR2") {

@@ -25,7 +25,7 @@ namespace {
 
 const json::Value& correction_expected() {
   static const json::Value v =
-      json::parse(test::read_shared("colour-science/test-expectations/colour_test_correction_expected.json"));
+      json::parse(test::read_test_file("tests/data/colour-science/colour_test_correction_expected.json"));
   return v;
 }
 
@@ -275,7 +275,7 @@ namespace {
 // L*a*b* D50 reference as XYZ.
 void passport_patches(PatchMatrix& rgb, PatchMatrix& xyz) {
   auto read = [](const std::string& path) {
-    std::istringstream in(test::read_shared(path));
+    std::istringstream in(test::read_test_file(path));
     std::string line;
     std::getline(in, line);
     std::vector<std::vector<std::string>> rows;
@@ -288,8 +288,8 @@ void passport_patches(PatchMatrix& rgb, PatchMatrix& xyz) {
     }
     return rows;
   };
-  const auto rgb_rows = read("raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv");
-  const auto lab_rows = read("colour-science/colorchecker24_xrite_after_nov2014_Lab_D50.csv");
+  const auto rgb_rows = read(test::passport_rgb_csv);
+  const auto lab_rows = read("core/data/charts/colorchecker24_xrite_after_nov2014_Lab_D50.csv");
   REQUIRE(rgb_rows.size() == 24);
   REQUIRE(lab_rows.size() == 24);
   rgb.resize(24, 3);
@@ -661,8 +661,8 @@ void sg140_patches(PatchMatrix& rgb, PatchMatrix& xyz) {
   for (int i = 0; i < 140; ++i) rgb.row(i) = cam[i].transpose(), xyz.row(i) = ref.XYZ[i].transpose();
 }
 
-// Least squares written out plainly, as fit() computed it up to session 11: A_s = A·diag(s) with
-// s_j = 1/||A_j||, B = A_s·Z, Householder QR of B, X = diag(s)·(Xp + Z·z), one Eigen expression
+// Least squares written out plainly, as fit() computed it before it skipped the identity
+// products: A_s = A·diag(s) with s_j = 1/||A_j||, B = A_s·Z, Householder QR of B, X = diag(s)·(Xp + Z·z), one Eigen expression
 // per step (Z = I and Xp = 0 without the white constraint).
 Eigen::MatrixXd plain_least_squares(const ModelInfo& info, const PatchMatrix& rgb, const PatchMatrix& xyz) {
   Eigen::MatrixXd A(rgb.rows(), info.n_terms);
@@ -688,7 +688,7 @@ Eigen::MatrixXd plain_least_squares(const ModelInfo& info, const PatchMatrix& rg
 }  // namespace
 
 TEST_CASE("least squares gives the plain formulation's coefficients bit for bit (Passport 24, SG 140)", "[models][ls]") {
-  // fit() skips the products with Z = I and Xp = 0 (session 12: they were Eigen's scalar GEMM in
+  // fit() skips the products with Z = I and Xp = 0 (they were Eigen's scalar GEMM in
   // wasm); the numbers must not move, in either build. Exact equality, no tolerance.
   for (const bool sg : {false, true}) {
     PatchMatrix rgb, xyz;
@@ -729,7 +729,7 @@ TEST_CASE("least squares gives the plain formulation's coefficients bit for bit 
 }
 
 TEST_CASE("expand forms each term as the product r^a·g^b·b^c of repeated products, bit for bit", "[models][ls]") {
-  // expand() takes the powers from a table (session 12); the doubles must be those of the plain
+  // expand() takes the powers from a table; the doubles must be those of the plain
   // formula x^e = ((1·x)·x)…, then r^a·g^b·b^c left to right, then the root of degree a+b+c
   // (cube roots by detmath.hpp, fourth roots as two square roots: the same bits in both builds).
   auto ipow = [](double x, int e) {
@@ -839,7 +839,7 @@ TEST_CASE("NLopt's other optimisers take the same steps natively and in wasm (pi
   // The CIEDE2000 objective's `algorithm` may name any of NLopt's derivative-free optimisers. NLopt
   // is compiled from the same source in both builds with its sort and its sin / cos / atan made
   // the same (cmake/nlopt.cmake), and PRAXIS's random numbers seeded (fit.cpp). Before (Debian's
-  // libnlopt natively, session 20): SBPLX 1800 evaluations natively vs 1195 in wasm on the 3x3,
+  // libnlopt natively): SBPLX 1800 evaluations natively vs 1195 in wasm on the 3x3,
   // NEWUOA 884 vs 605 on the root-polynomial, PRAXIS another 11th digit on every run.
   // The same hashes in both builds; RMS ΔE00 on the first 24 patches.
   PatchMatrix rgb, xyz;

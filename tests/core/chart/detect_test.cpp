@@ -347,7 +347,7 @@ TEST_CASE("a custom grid: found, orientation from given colours or reported unre
 
 TEST_CASE("synthetic test set (a subset of examples/detect): rate, corner error, no wrong orientation",
           "[detect][testset]") {
-  const std::vector<RawImage> photos = background_photos(test::shared_data_dir());
+  const std::vector<RawImage> photos = background_photos(TRISTIM_SOURCE_DIR);
   std::vector<const RawImage*> ptrs;
   for (const auto& p : photos) ptrs.push_back(&p);
   const char* charts[3] = {"cc24", "passport", "sg140"};
@@ -381,8 +381,7 @@ TEST_CASE("synthetic test set (a subset of examples/detect): rate, corner error,
 }
 
 TEST_CASE("Passport DNG: the classic side found, upright, sampled like the manual corners", "[detect][real]") {
-  const std::string raw = test::read_shared(
-      "raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng");
+  const std::string raw = test::read_test_file(test::passport_dng);
   const RawImage img = decode_raw(std::vector<std::uint8_t>(raw.begin(), raw.end()));
   DetectOptions o;
   o.charts = {"passport"};
@@ -423,14 +422,13 @@ TEST_CASE("Passport DNG: the classic side found, upright, sampled like the manua
 }
 
 // Detection runs in the page (wasm) and on the command line; the same RAW must give the same
-// corners to the bit, and so the same patch means and the same fits. Until session 22 it did not
+// corners to the bit, and so the same patch means and the same fits. Before detmath it did not
 // (0.0004 px apart on this DNG): the C library's atan2, log, exp, cos, sin differ between glibc and
 // Emscripten's musl in the last place, and two sorts ordered ties as libstdc++ or libc++ happen to
 // (the noise model's level bins, the neighbour sweep). Now detmath and tie-free orders. The
 // hashes cover every number of each candidate and the patches sampled at its corners.
 TEST_CASE("detection gives the same corners natively and in wasm (pinned hashes)", "[detect][real]") {
-  const std::string raw = test::read_shared(
-      "raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng");
+  const std::string raw = test::read_test_file(test::passport_dng);
   const RawImage img = decode_raw(std::vector<std::uint8_t>(raw.begin(), raw.end()));
   const struct {
     const char* hint;

@@ -193,8 +193,7 @@ TEST_CASE("bad corners and tiny patches give coded errors", "[chart][bad]") {
 }
 
 TEST_CASE("Passport DNG: sampled patches match dcraw_emu's derived table up to one scale", "[chart][real]") {
-  const std::string raw = test::read_shared(
-      "raw-images/tinydng/colorchart_canon_eos_kiss_x4_magiclantern_colorchecker_passport.dng");
+  const std::string raw = test::read_test_file(test::passport_dng);
   const RawImage img = decode_raw(std::vector<std::uint8_t>(raw.begin(), raw.end()));
   LayoutOptions lo;
   lo.chart = "passport";
@@ -202,7 +201,7 @@ TEST_CASE("Passport DNG: sampled patches match dcraw_emu's derived table up to o
   REQUIRE(s.patches.size() == 24);
   // The derived table: 11x11-pixel means of dcraw_emu -4 -o 0 -r 1 1 1 1 -h, scaled to 16 bit
   // by LibRaw (its scale, not ours) and clipped at 0: compare after one global scale factor.
-  std::istringstream in(test::read_shared("raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv"));
+  std::istringstream in(test::read_test_file(test::passport_rgb_csv));
   std::string line;
   std::getline(in, line);
   std::vector<std::array<double, 6>> ref;

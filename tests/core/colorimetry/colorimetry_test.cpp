@@ -9,7 +9,7 @@
 using namespace tristim;
 
 TEST_CASE("CIEDE2000 reproduces the Sharma, Wu & Dalal (2005) test pairs to 1e-4", "[colorimetry][de2000]") {
-  std::istringstream in(test::read_shared("colour-science/test-expectations/ciede2000_sharma2005_test_pairs.csv"));
+  std::istringstream in(test::read_test_file("tests/data/colour-science/ciede2000_sharma2005_test_pairs.csv"));
   std::string line;
   std::getline(in, line);  // header: pair,L1,a1,b1,L2,a2,b2,dE00
   int n = 0;
@@ -80,7 +80,7 @@ TEST_CASE("XYZ -> sRGB: D65 white is (1,1,1), black is 0", "[colorimetry]") {
 }
 
 TEST_CASE("dE76, dE94 and dE2000 match colour-science's expected values (1e-7)", "[colorimetry]") {
-  // colour/difference/tests/test_delta_e.py (shared/data/colour-science/test-expectations).
+  // colour/difference/tests/test_delta_e.py (colour-science; transcribed here, tests/data/SOURCES.md).
   const Vec3 ref(100.0, 21.57210357, 272.2281935);
   const Vec3 s1(100.0, 426.67945353, 72.39590835), s2(100.0, 74.05216981, 276.45318193),
       s3(100.0, 8.32281957, -73.58297716);

@@ -238,7 +238,7 @@ TEST_CASE("detmath: the same bits in every build (a pinned hash of 100,000 resul
     h.add(dm::atan2(a, d.in(-10, 10)));
   }
   CHECK(h.value == 0x6ef1a704ce2f7863ULL);
-  // log and pow (session 21), a hash of their own: the one above stays as it was.
+  // log and pow, a hash of their own: the one above stays as it was.
   h = {};
   for (int i = 0; i < 20000; ++i) {
     const double mantissa = d.in(0.5, 1.0);  // one draw per statement: the same order in both builds
@@ -249,7 +249,7 @@ TEST_CASE("detmath: the same bits in every build (a pinned hash of 100,000 resul
     h.add(dm::pow(d.in(0, 1), 1.0 / 2.4));
   }
   CHECK(h.value == 0x070bb164dcd5766eULL);
-  // log_float (session 22).
+  // log_float, a hash of its own.
   h = {};
   for (int i = 0; i < 20000; ++i) {
     const double mantissa = d.in(0.5, 1.0);

@@ -42,7 +42,7 @@ std::vector<double> json_numbers_after(const std::string& text, const std::strin
   return out;
 }
 
-const std::string kExpect = "colour-science/test-expectations/colour_test_tristimulus_values_expected.json";
+const std::string kExpect = "tests/data/colour-science/colour_test_tristimulus_values_expected.json";
 
 }  // namespace
 
@@ -88,7 +88,7 @@ TEST_CASE("non-uniform data are interpolated linearly and extrapolation holds th
 // so this test pins the rule down) and held from 780 to 830 nm, and the 1 nm summation. Same rule, same data, so only
 // floating-point summation order separates us: tolerance 1e-7 (colour's own atol).
 TEST_CASE("XYZ of colour-science's MSDS_TWO under D65 matches colour's integration to 1e-7", "[spectra][colour]") {
-  const std::string json = test::read_shared(kExpect);
+  const std::string json = test::read_test_file(kExpect);
   const auto data = json_numbers_after(json, "\"DATA_TWO\"");
   const auto expected = json_numbers_after(json, "\"TVS_D65_INTEGRATION_MSDS\"");
   REQUIRE(data.size() == 72);
@@ -120,11 +120,11 @@ TEST_CASE("XYZ of colour-science's MSDS_TWO under D65 matches colour's integrati
 // method, not by a bug: on these smooth 10 nm reflectances the two differ by at most 3.7e-4 in
 // XYZ (0..100). Tolerance 2e-3 (far below any visible difference, well above rounding).
 TEST_CASE("ColorChecker BabelColor average under E matches colour's sd_to_XYZ within 2e-3", "[spectra][colour]") {
-  const std::string json = test::read_shared(kExpect);
+  const std::string json = test::read_test_file(kExpect);
   const auto expected = json_numbers_after(json, "SDS_COLOURCHECKERS['babel_average']", "\"expected\"");
   REQUIRE(expected.size() == 72);
   const PatchTable babel = read_patch_file(
-      test::read_shared("colour-science/colorchecker24_babelcolor_average_reflectance_380-730_10nm.csv"), "babel.csv");
+      test::read_test_file("tests/data/colour-science/colorchecker24_babelcolor_average_reflectance_380-730_10nm.csv"), "babel.csv");
   REQUIRE(babel.spectra.size() == 24);
   const auto XYZ = reflectances_to_XYZ(babel.spectra, illuminant_spd("E"), Observer::CIE1931_2);
   double worst = 0;
@@ -213,7 +213,7 @@ TEST_CASE("spectral locus and observer ids", "[spectra]") {
 namespace {
 
 /// The per-column formula reflectances_to_XYZ used before the weights were pulled back onto the
-/// reflectance grid (session 14): every column interpolated to the 1 nm CMF grid, then
+/// reflectance grid: every column interpolated to the 1 nm CMF grid, then
 /// X = k Σ S x̄ R with k = 100 / Σ S ȳ (CIE 15:2004 eqs 7.1-7.2).
 std::vector<Vec3> XYZ_per_column(const SpectralData& refl, const SpectralData& illuminant, Observer observer) {
   const SpectralData& c = cmfs(observer);

@@ -79,7 +79,7 @@ TEST_CASE("spectral CSV: first column wavelength, one column per patch", "[io]")
   CHECK(t.spectra.wavelengths == std::vector<double>{400, 410, 420});
   CHECK(t.spectra.values[1][2] == 0.3);
   const auto real = read_patch_file(
-      test::read_shared("dcamprof/colorchecker24_after_nov2014_reflectance_380-730_10nm.csv"), "cc24.csv");
+      test::read_test_file("core/data/charts/colorchecker24_after_nov2014_reflectance_380-730_10nm.csv"), "cc24.csv");
   CHECK(real.ids.size() == 24);
   CHECK(real.ids.front() == "A1");
   CHECK(real.ids.back() == "D6");
@@ -99,7 +99,7 @@ TEST_CASE("illuminant CSV: the wavelength and exactly one non-negative value col
 }
 
 TEST_CASE("CGATS: Argyll .cie with spectra in percent, and a Lab reference", "[io]") {
-  const PatchTable t = read_patch_file(test::read_shared("dcamprof/original/cc24_ref-new.cie"), "cc24_ref-new.cie");
+  const PatchTable t = read_patch_file(test::read_test_file("tests/data/copyleft/dcamprof/cc24_ref-new.cie"), "cc24_ref-new.cie");
   CHECK(t.format == "cgats");
   REQUIRE(t.ids.size() == 24);
   CHECK(t.ids[0] == "A1");
@@ -111,13 +111,13 @@ TEST_CASE("CGATS: Argyll .cie with spectra in percent, and a Lab reference", "[i
   CHECK(t.spectra.values[0][0] == Approx(0.051603));  // 5.1603 % -> fraction
   CHECK(t.XYZ[0][1] == Approx(10.43));
   CHECK(t.keywords.at("ORIGINATOR") == "ColorChecker24 - November2014 and newer");
-  const PatchTable lab = read_patch_file(test::read_shared("debian-argyll-ref/original/ColorChecker.cie"), "ColorChecker.cie");
+  const PatchTable lab = read_patch_file(test::read_test_file(test::debian::argyll_colorchecker_cie), "ColorChecker.cie");
   REQUIRE(lab.ids.size() == 24);
   CHECK(lab.has_Lab);
   CHECK(lab.Lab[0] == Vec3(37.99, 13.56, 14.06));
   // SAMPLE_LOC ids and XYZ + Lab (Passport by Ben Goren)
   const PatchTable pp =
-      read_patch_file(test::read_shared("debian-argyll-ref/original/ColorCheckerPassport.cie"), "ColorCheckerPassport.cie");
+      read_patch_file(test::read_test_file(test::debian::argyll_passport_cie), "ColorCheckerPassport.cie");
   CHECK(pp.ids.size() == 50);
   CHECK(pp.has_XYZ);
   CHECK(pp.has_Lab);

@@ -172,7 +172,7 @@ TEST_CASE("JSON counts: as_int takes whole numbers in range and refuses the rest
   // The profile the long fuzz run found has "patches": 07000000001 (tests/fuzz/corpus/profile/
   // crash-6c3b46f4…; the parser now refuses the leading zero too): every count a profile stores is
   // read through as_int.
-  std::string text = test::read_repo("tests/fuzz/corpus/profile/root2.json");
+  std::string text = test::read_test_file("tests/fuzz/corpus/profile/root2.json");
   const std::string from = "\"patches\": 24";
   REQUIRE(text.find(from) != std::string::npos);
   CHECK(profile_from_json(text).training_patches == 24);

@@ -227,7 +227,7 @@ TEST_CASE("linearisation: JSON round trip is exact", "[linearisation]") {
 TEST_CASE("linearisations give the same bits natively and in wasm (pinned hashes)", "[linearisation][cross-build]") {
   // Power laws, log-polynomials and Guarnera's eq (8) use detmath's pow, exp and log (detmath.hpp),
   // not the C library's, which round differently natively (glibc) and in wasm (musl): pow in
-  // 0.14 % of 300,000 draws, log 0.02 %, exp 0.07 % (session 21) — enough for the BOBYQA fit of
+  // 0.14 % of 300,000 draws, log 0.02 %, exp 0.07 % — enough for the BOBYQA fit of
   // eq (8) below to take other steps (with the C library's: 110 evaluations natively, 109 in wasm,
   // other coefficients). The same hashes are expected in both builds; re-pin both after a
   // change that moves a bit. Data: the cc24 chart with a power-law camera and 1 % of

@@ -273,7 +273,7 @@ TEST_CASE("Shen2008: real RAW patches through an 8-bit γ = 2.2 encoding (a Tabl
   // The Passport DNG's 24 patches (Canon 550D, linear RAW means derived by dcraw_emu), encoded as
   // an 8-bit camera would: ρ = round(255 (u / 1.02 u_max)^(1/2.2)). Reflectances: X-Rite's
   // ColorChecker before Nov 2014 (the Passport predates it). Greys D1-D6 only for R².
-  const PatchTable raw = read_patch_file(test::read_shared("raw-images/tinydng/colorchart_colorchecker24_camera_rgb_derived.csv"),
+  const PatchTable raw = read_patch_file(test::read_test_file(test::passport_rgb_csv),
                                          "passport.csv");
   REQUIRE(raw.RGB.size() == 24);
   double top = 0;

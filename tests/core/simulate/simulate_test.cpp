@@ -37,9 +37,9 @@ std::map<std::string, std::vector<double>> plain_csv(const std::string& text) {
 // past 730 nm the reflectance is held at its 730 nm value (the documented extrapolation).
 // camera_RGB_c = Σ SSF_c·D65·R / Σ SSF_G·D65. Only summation order differs: tolerance 1e-12.
 TEST_CASE("simulate: Canon 5D Mark II, ColorChecker, D65 equals a hand calculation", "[simulate]") {
-  auto cams = plain_csv(test::read_shared("rawtoaces-data/camera_sensitivities_52cameras_380-780_5nm.csv"));
-  auto ill = plain_csv(test::read_shared("colour-science/cie_illuminants_A_B_C_D_E_300-830_5nm.csv"));
-  auto cc = plain_csv(test::read_shared("dcamprof/colorchecker24_before_nov2014_reflectance_380-730_5nm.csv"));
+  auto cams = plain_csv(test::read_test_file("core/data/cameras/camera_sensitivities_52cameras_380-780_5nm.csv"));
+  auto ill = plain_csv(test::read_test_file("core/data/illuminants/D65_300-780_5nm.csv"));
+  auto cc = plain_csv(test::read_test_file("core/data/charts/colorchecker24_before_nov2014_reflectance_380-730_5nm.csv"));
   const auto& ssfR = cams["Canon_EOS_5D_Mark_II_R"];
   const auto& ssfG = cams["Canon_EOS_5D_Mark_II_G"];
   const auto& ssfB = cams["Canon_EOS_5D_Mark_II_B"];

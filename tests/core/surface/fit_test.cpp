@@ -15,13 +15,13 @@ using namespace tristim;
 
 namespace {
 
-// The built-in-like SG spectra of ../shared/data (dcamprof, X-Rite before Nov 2014), 400-700 nm.
+// The built-in SG spectra (core/data: X-Rite before Nov 2014, as dcamprof redistributes them), 400-700 nm.
 SpectralData sg_before() {
-  return read_spectral_csv(test::read_shared("dcamprof/colorcheckerSG_before_nov2014_reflectance_380-730_10nm.csv"),
+  return read_spectral_csv(test::read_test_file("core/data/charts/colorcheckerSG_before_nov2014_reflectance_380-730_10nm.csv"),
                            "dcamprof SG before 2014");
 }
 SpectralData sg_sci() {
-  return read_spectral_csv(test::read_shared("coolpi-indigo/XRCCSG_reflectance_360-740_10nm.csv"), "coolpi XRCCSG");
+  return read_spectral_csv(test::read_test_file("examples/web/sg_d8_sci_coolpi.csv"), "coolpi XRCCSG");
 }
 
 // `d` corrected by `choice`, column names as given.
