@@ -62,7 +62,7 @@ def main():
     ap.add_argument('--strict', action='store_true', help='fail when Argyll or OpenCV is missing')
     ap.add_argument('--assert-speed', action='store_true',
                     help='also fail when the 10x speed claim does not hold (off by default: tests never '
-                         'assert on time, and this machine may be shared)')
+                         'assert on time, and this machine may be busy)')
     args = ap.parse_args()
 
     rgb_rows = read_csv(os.path.join(REPO, RGB_FILE))

@@ -84,7 +84,7 @@ TEST_CASE("spectral: per-pixel estimates equal the per-patch ones, CSV and JSON 
   for (size_t q = 0; q < est.size(); ++q)
     for (size_t i = 0; i < 31; ++i) worst = std::max(worst, std::fabs(bands[q * 31 + i] - est.values[q][i]));
   CHECK(worst < 1e-5);  // float pixels
-  // CSV: read back by the shared reader as a spectral table.
+  // CSV: read back by the patch-file reader as a spectral table.
   const PatchTable t = read_patch_file(spectral_csv(est), "estimates.csv");
   REQUIRE(t.has_spectra);
   CHECK(t.ids == p.ids);
