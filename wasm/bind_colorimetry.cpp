@@ -54,9 +54,9 @@ SimulatedChart simulate_camera(const std::string& camera, const std::string& cha
 
 EMSCRIPTEN_BINDINGS(tristim_colorimetry) {
   { using S = ReferenceChart; value_object<S>("ReferenceChart") FIELD(chart_id) FIELD(illuminant_id) FIELD(observer)
-      FIELD(ids) FIELD(XYZ) FIELD(Lab) FIELD(sRGB) FIELD(white); }
+      FIELD(ids) FIELD(labels) FIELD(XYZ) FIELD(Lab) FIELD(sRGB) FIELD(white); }
   { using S = SpectralData; value_object<S>("SpectralData") FIELD(wavelengths) FIELD(names) FIELD(values) FIELD(linear); }
-  { using S = PatchTable; value_object<S>("PatchTable") FIELD(format) FIELD(ids) FIELD(has_XYZ) FIELD(has_Lab)
+  { using S = PatchTable; value_object<S>("PatchTable") FIELD(format) FIELD(ids) FIELD(labels) FIELD(has_XYZ) FIELD(has_Lab)
       FIELD(has_RGB) FIELD(has_spectra) FIELD(XYZ) FIELD(Lab) FIELD(RGB) FIELD(spectra) FIELD(keywords); }
   { using S = PatchPairs; value_object<S>("PatchPairs") FIELD(ids) FIELD(measured) FIELD(reference)
       FIELD(missing_in_measured) FIELD(missing_in_reference); }

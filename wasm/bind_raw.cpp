@@ -5,7 +5,8 @@
 //
 // RawImage methods: width(), height() (the measurement image: half resolution for Bayer),
 // metadata() -> RawMetadata, linearHash(), preview(maxSide) -> Preview (display only),
-// setDark(frames: RawImage | RawImage[], mode 'pixel' | 'channel') -> DarkFrame summary,
+// setDark(frames: RawImage | RawImage[], mode 'per_pixel' | 'per_channel' (default per_pixel; the
+// recipe's capture.dark_mode; 'pixel' | 'channel' accepted as aliases)) -> DarkFrame summary,
 // clearDark(), setFlat(flat, mode 'pixel' | 'radial', white_reflectance?: number | [r, g, b])
 // -> FlatField summary or FalloffFit, clearFlat(), saturationMask() -> Uint8Array(w·h),
 // linearRGB() -> Float32Array(3·w·h) with the dark/flat set on this image applied,
@@ -47,10 +48,10 @@ void set_calibration(RawHandle& h, FrameCalibration next) {
 val set_dark(RawHandle& h, val frames, val mode) {
   return guard([&] {
     const std::string m = Conv<std::string>::from(mode);
-    if (!m.empty() && m != "pixel" && m != "channel") throw Error(ErrorCode::InvalidArgument, "dark mode is 'pixel' or 'channel'");
+    const DarkMode dark_mode = m.empty() ? DarkMode::PerPixel : dark_mode_from_id(m);
     FrameCalibration next = h.calibration;
     next.dark = average_dark_frames(images_of(frames));
-    next.dark_mode = m == "channel" ? DarkMode::PerChannel : DarkMode::PerPixel;
+    next.dark_mode = dark_mode;
     set_calibration(h, next);
     return val(*h.calibration.dark);
   });

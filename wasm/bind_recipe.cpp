@@ -12,9 +12,10 @@ namespace {
 
 /// What a fit hands back to the page: the completed recipe, the training set as fitted (after
 /// the linearisation stage), the evaluation and the profile JSON (which embeds the recipe).
+/// `labels`: the training patches as the user's reference file spells them (the per-patch CSV's ids).
 struct FitOutcome {
   Recipe recipe;
-  std::vector<std::string> ids, excluded;
+  std::vector<std::string> ids, labels, excluded;
   PatchMatrix linear_RGB, reference_XYZ;
   ModelEvaluation evaluation;
   std::string profile;
@@ -23,7 +24,7 @@ struct FitOutcome {
 };
 FitOutcome outcome(const Recipe& recipe, const TrainingSet& training) {
   const Characterisation c = characterise(recipe, training);
-  return {c.recipe, training.ids, training.excluded, c.linear_RGB, c.reference_XYZ, c.evaluation, profile_to_json(c.profile),
+  return {c.recipe, training.ids, training.labels, training.excluded, c.linear_RGB, c.reference_XYZ, c.evaluation, profile_to_json(c.profile),
           c.surface, c.surface_status};
 }
 /// fitSample(recipe, sample, reference): a chart sample paired with a reference by patch id.
@@ -48,7 +49,7 @@ EMSCRIPTEN_BINDINGS(tristim_recipe) {
   { using S = EvaluationStage; value_object<S>("EvaluationStage") FIELD(leave_one_out) FIELD(held_out_digest); }
   { using S = Recipe; value_object<S>("Recipe") FIELD(version) FIELD(reference) FIELD(capture) FIELD(sampling)
       FIELD(linearisation) FIELD(surface) FIELD(characterisation) FIELD(evaluation); }
-  { using S = FitOutcome; value_object<S>("FitOutcome") FIELD(recipe) FIELD(ids) FIELD(excluded) FIELD(linear_RGB)
+  { using S = FitOutcome; value_object<S>("FitOutcome") FIELD(recipe) FIELD(ids) FIELD(labels) FIELD(excluded) FIELD(linear_RGB)
       FIELD(reference_XYZ) FIELD(evaluation) FIELD(profile) FIELD(surface) FIELD(surface_status); }
 
   def<&fit_sample>("fitSample");

@@ -10,6 +10,7 @@ namespace tristim {
 struct RawImage;
 struct SpectralData;
 struct LayoutOptions;
+struct MethodInfo;
 }
 
 namespace tristim::cli {
@@ -33,6 +34,9 @@ struct Command {
   std::string summary;  // one line, for `tristim --help`
   std::string usage;    // full help text for `tristim <name> --help`
   std::function<int(const Args&, std::ostream& out)> run;
+  /// Printed by --help after `usage`: the methods the command takes, each with the reference its
+  /// engine table gives (methods_help), so a citation is written once, in the table.
+  std::function<std::string()> details{};
 };
 
 /// Adds a command; called from static initialisers in cmd_*.cpp via CommandRegistration.
@@ -42,6 +46,12 @@ const std::map<std::string, Command>& commands();
 struct CommandRegistration {
   explicit CommandRegistration(Command command) { register_command(std::move(command)); }
 };
+
+/// A --help section: `title`, then one line per row, "id: label — reference" (the row's own
+/// reference, from its engine table).
+std::string methods_help(const std::string& title, const std::vector<MethodInfo>& rows);
+/// The characterisation models (model_table(), duplicates named as such) as a methods_help section.
+std::string models_help();
 
 /// Reads a whole file as bytes/text; Error(InvalidArgument) naming the path if unreadable.
 std::string read_file(const std::string& path);
@@ -54,6 +64,9 @@ SpectralData illuminant_arg(const std::string& value);
 /// --reflectances' value: a built-in chart id (chart_reflectances, names as normalised patch ids)
 /// or a readable patch file with spectra (read_reflectance_file); Error(UnknownId) otherwise.
 SpectralData reflectances_arg(const std::string& value);
+/// The names to write for columns `names` of reflectances_arg(value): a file's own spelling of
+/// each patch id (its column or row "A01", where the data's names are the keys "A1"); a chart's ids.
+std::vector<std::string> reflectance_labels(const std::string& value, const std::vector<std::string>& names);
 
 /// Decodes a RAW file (cmd_raw.cpp); errors name the path.
 RawImage load_raw(const std::string& path);

@@ -130,10 +130,11 @@ int run_simulate(const Args& args, std::ostream& out) {
     o.quantise = true;
   }
   const auto rgb = simulate_camera_RGB(ssf, reflectances, ill, o);
+  const std::vector<std::string> ids = reflectance_labels(refl, reflectances.names);  // as the file spells them
   out << "patch,R,G,B\n";
   const int decimals = o.quantise ? 0 : 8;
   for (size_t i = 0; i < rgb.size(); ++i)
-    out << reflectances.names[i] << ',' << num(rgb[i][0], decimals) << ',' << num(rgb[i][1], decimals) << ','
+    out << ids[i] << ',' << num(rgb[i][0], decimals) << ',' << num(rgb[i][1], decimals) << ','
         << num(rgb[i][2], decimals) << '\n';
   return 0;
 }
@@ -173,7 +174,7 @@ CommandRegistration reg_simulate({"simulate", "virtual camera: RGB of reflectanc
                                   "                 [--illuminant D65|...|spd.csv] [--white 1] [--noise sigma --seed n]\n"
                                   "                 [--oecf gamma=1.8,scale=22[,max=255]] [--levels 255]\n"
                                   "Prints CSV patch,R,G,B. Linear RGB has the perfect diffuser at G = --white; --oecf applies\n"
-                                  "Shen & Xin (2008) eq 29 rho = scale*u^(1/gamma); --noise adds seeded Gaussian noise (after the\n"
+                                  "Shen et al. (2008) eq 29 rho = scale*u^(1/gamma); --noise adds seeded Gaussian noise (after the\n"
                                   "OECF if any); --levels clips to [0, levels] and rounds. `tristim list --what cameras` lists cameras.",
                                   run_simulate});
 CommandRegistration reg_list({"list", "built-in charts, illuminants, observers and cameras (CSV)",

@@ -30,7 +30,7 @@ const char* kFitUsage =
     "  --white preserves that patch exactly. Reference tables may be XYZ (Y = 100 for the perfect\n"
     "  diffuser) or L*a*b* (converted with --ref-white, default D50). --lab-white is the white of\n"
     "  the CIELAB errors and of the de2000 objective (default D50). --de-rms minimises the RMS\n"
-    "  instead of the mean CIEDE2000. Models: tristim models\n"
+    "  instead of the mean CIEDE2000. Models, objectives and linearisations: below (tristim models)\n"
     "  With --recipe every setting comes from the recipe (a profile's \"recipe\" or one the page\n"
     "  saved): --raw samples the chart with the recipe's layout and corners; without --xyz the\n"
     "  reference is the recipe's built-in chart under its illuminant and observer (after its surface\n"
@@ -56,10 +56,12 @@ Recipe recipe_from_flags(const Args& args, const PatchData& d, const std::string
 PatchData pair_with_reference(const PatchTable& rgb, const ReferenceChart& ref, const std::string& rgb_path) {
   const PatchPairs pairs = pair_by_id(ref.ids, ref.XYZ, rgb.ids, rgb.RGB);
   if (!pairs.missing_in_reference.empty())
-    throw Error(ErrorCode::PatchMismatch, "patch '" + pairs.missing_in_reference.front() + "' of " + rgb_path +
+    throw Error(ErrorCode::PatchMismatch, "patch '" + patch_labels(rgb, {pairs.missing_in_reference.front()}).front() +
+                                              "' of " + rgb_path +
                                               " is not in the recipe's chart '" + ref.chart_id + "'");
   PatchData d;
   d.ids = pairs.ids;
+  d.labels = patch_labels(rgb, pairs.ids);
   d.rgb = to_matrix(pairs.measured);
   d.xyz = to_matrix(pairs.reference);
   return d;
@@ -106,12 +108,12 @@ TrainingSet training_from_recipe(const Args& args, Recipe& recipe) {
   const std::string rgb_path = args.get("rgb");
   if (args.has("xyz")) {
     const PatchData d = load_pairs(rgb_path, args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
-    return training_set(recipe, d.ids, d.rgb, d.xyz);
+    return training_set(recipe, d.labels, d.rgb, d.xyz);  // the labels: the keys are their normalised forms
   }
   const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
   if (!rgb.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
   const PatchData d = pair_with_reference(rgb, recipe_reference(recipe), rgb_path);
-  return training_set(recipe, d.ids, d.rgb, d.xyz);
+  return training_set(recipe, d.labels, d.rgb, d.xyz);
 }
 
 int run_fit(const Args& args, std::ostream& out) {
@@ -127,7 +129,7 @@ int run_fit(const Args& args, std::ostream& out) {
                      "de-max-evaluations", "de-rms", "de-step", "no-loo", "recipe-out", "linearisation"});
     const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
     recipe = recipe_from_flags(args, d, read_file(args.get("xyz")));
-    training = training_set(recipe, d.ids, d.rgb, d.xyz);
+    training = training_set(recipe, d.labels, d.rgb, d.xyz);
   }
   for (const auto& e : training.excluded) std::cerr << "tristim fit: left out " << e << "\n";
   const Characterisation c = characterise(recipe, training);
@@ -138,7 +140,7 @@ int run_fit(const Args& args, std::ostream& out) {
     write_bytes(args.get("recipe-out"), r.data(), r.size());
   }
   if (args.has("csv")) {
-    const std::string csv = patch_csv(training.ids, c.linear_RGB, training.reference_XYZ, ev.fit.fitted,
+    const std::string csv = patch_csv(training.labels, c.linear_RGB, training.reference_XYZ, ev.fit.fitted,
                                       c.recipe.characterisation.lab_white, ev.has_loo ? ev.loo_XYZ : PatchMatrix());
     write_bytes(args.get("csv"), csv.data(), csv.size());
   }
@@ -154,7 +156,8 @@ int run_fit(const Args& args, std::ostream& out) {
   return 0;
 }
 
-const CommandRegistration reg_fit({"fit", "fit a camera characterisation model -> profile JSON", kFitUsage, run_fit});
+const CommandRegistration reg_fit({"fit", "fit a camera characterisation model -> profile JSON", kFitUsage, run_fit,
+                                   fit_methods_help});
 
 }  // namespace
 }  // namespace tristim::cli

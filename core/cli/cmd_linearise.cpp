@@ -55,9 +55,10 @@ Vec3 white_arg(const Args& args) {
 }
 
 /// Camera RGB and whatever reference the options give, paired by patch id (the RGB file's order).
-LinearisationData load_data(const Args& args) {
+/// `rgb` receives the RGB file's table: its labels are the ids the outputs write.
+LinearisationData load_data(const Args& args, PatchTable& rgb) {
   const std::string rgb_path = args.get("rgb");
-  const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
+  rgb = read_patch_file(read_file(rgb_path), rgb_path);
   if (!rgb.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
   LinearisationData d;
   d.ids = rgb.ids;
@@ -84,7 +85,7 @@ LinearisationData load_data(const Args& args) {
       size_t j = 0;
       while (j < ref.ids.size() && ref.ids[j] != d.ids[i]) ++j;
       if (j == ref.ids.size())
-        throw Error(ErrorCode::PatchMismatch, "patch '" + d.ids[i] + "' of " + rgb_path + " is not in " + path);
+        throw Error(ErrorCode::PatchMismatch, "patch '" + rgb.labels[i] + "' of " + rgb_path + " is not in " + path);
       d.reference_XYZ.row(static_cast<Eigen::Index>(i)) =
           (ref.has_XYZ ? ref.XYZ[j] : Lab_to_XYZ(ref.Lab[j], d.white)).transpose();
     }
@@ -130,7 +131,7 @@ json::Value curves_json(const Linearisation& l) {
   return a;
 }
 
-// 17 significant digits: the values read back are the values computed.
+// 17 significant digits: the values read back are the values computed. `ids`: as the input spelled them.
 std::string linear_csv(const std::vector<std::string>& ids, const PatchMatrix& lin) {
   std::string out = "patch,R,G,B\n";
   char buf[96];
@@ -155,15 +156,15 @@ const char* kLineariseUsage =
     "                  [--grey id,id,...] [--J 8 --K 2 --L 2] [--basis munsell1269|patches|set.csv]\n"
     "                  [--full-scale 255] [--out linear.csv] [--json]\n"
     "  Fits one linearisation (the inverse OECF per channel) and writes the linearised per-patch\n"
-    "  values (same ids, columns R,G,B) to stdout or --out; with --json, stdout gets the fitted\n"
-    "  curves (coefficients, 101 samples per channel over the fitted range, the grey-based curve\n"
-    "  for Shen2008), R² per channel, the greys used and why, and the warnings (also on stderr).\n"
+    "  values (the ids as --rgb spells them, columns R,G,B) to stdout or --out; with --json, stdout\n"
+    "  gets the fitted curves (coefficients, 101 samples per channel over the fitted range, the\n"
+    "  grey-based curve for Shen2008), R² per channel, the greys used and why, and the warnings\n"
+    "  (also on stderr).\n"
     "  --json output loads back as --linearisation file.json (fit, compare, apply, spectral).\n"
-    "  Methods (tristim linearise --list): identity, gamma, sRGB, grey-polynomial,\n"
-    "  grey-log-polynomial, colour-polynomial, colour-log-polynomial, Shen2008 (needs\n"
-    "  --reflectances). --full-scale: the encoding's largest value (default 1, 255 or 65535,\n"
-    "  whichever first holds every value). --illuminant: for XYZ from reflectances (greys, colour\n"
-    "  targets). Values of --xyz may be XYZ or L*a*b* (with --ref-white).";
+    "  Methods: below (tristim linearise --list as JSON); Shen2008 needs --reflectances.\n"
+    "  --full-scale: the encoding's largest value (default 1, 255 or 65535, whichever first holds\n"
+    "  every value). --illuminant: for XYZ from reflectances (greys, colour targets). Values of\n"
+    "  --xyz may be XYZ or L*a*b* (with --ref-white).";
 
 int run_linearise(const Args& args, std::ostream& out) {
   args.allow_only({"method", "rgb", "reflectances", "xyz", "illuminant", "ref-white", "grey", "J", "K", "L", "basis",
@@ -184,12 +185,13 @@ int run_linearise(const Args& args, std::ostream& out) {
     out << a.dump(2) << "\n";
     return 0;
   }
-  LinearisationData d = load_data(args);
+  PatchTable rgb;
+  LinearisationData d = load_data(args, rgb);
   const MethodChoice choice = choice_of(args, "method", d);
   const Linearisation l = fit_linearisation(choice, d);
   warn("linearise", l);
   const PatchMatrix lin = linearise(l, d.camera_RGB);
-  const std::string csv = linear_csv(d.ids, lin);
+  const std::string csv = linear_csv(rgb.labels, lin);
   if (args.has("out")) write_text(args.get("out"), csv);
   if (args.has("json")) {
     json::Value o = json::Value::object();
@@ -200,7 +202,10 @@ int run_linearise(const Args& args, std::ostream& out) {
     o.set("r_squared", r2);
     o.set("monotonic", l.monotonic);
     o.set("warnings", l.message);
-    o.set("linearisation", linearisation_json(l));
+    Linearisation shown = l;  // the patches it names, as the RGB file spells them
+    shown.fitted = patch_labels(rgb, l.fitted);
+    shown.greys = patch_labels(rgb, l.greys);
+    o.set("linearisation", linearisation_json(shown));
     o.set("curves", curves_json(l));
     out << o.dump(2) << "\n";
   } else if (!args.has("out")) {
@@ -212,6 +217,12 @@ int run_linearise(const Args& args, std::ostream& out) {
 }  // namespace
 
 // ---- the --linearisation option of other commands ------------------------------------------------
+
+std::string linearisations_help() {
+  std::vector<MethodInfo> rows;
+  for (const auto& m : linearisation_table()) rows.push_back(m.info);
+  return methods_help("Linearisations (--method, --linearisation; tristim linearise --list)", rows);
+}
 
 const std::vector<std::string>& linearisation_option_names() {
   static const std::vector<std::string> names{"linearisation", "reflectances", "full-scale"};
@@ -280,7 +291,15 @@ const char* kSpectralUsage =
     "  --json, their errors as JSON instead — or of an image as a multi-band 32-bit float TIFF\n"
     "  (one band per wavelength).";
 
-json::Value evaluation_json(const SpectralEvaluation& e) {
+/// Estimated reflectances with each column named as the patch file spells its id.
+SpectralData labelled(SpectralData estimates, const PatchTable& table) {
+  estimates.names = patch_labels(table, estimates.names);
+  return estimates;
+}
+
+/// The errors as JSON, each patch named as `table` (the RGB file) spells it.
+json::Value evaluation_json(const SpectralEvaluation& e, const PatchTable& table) {
+  const std::vector<std::string> labels = patch_labels(table, e.ids);
   json::Value o = json::Value::object();
   json::Value s = json::Value::object();
   s.set("spectral_rms_mean", e.rms_summary.mean);
@@ -293,7 +312,7 @@ json::Value evaluation_json(const SpectralEvaluation& e) {
   json::Value p = json::Value::array();
   for (size_t i = 0; i < e.ids.size(); ++i) {
     json::Value r = json::Value::object();
-    r.set("patch", e.ids[i]);
+    r.set("patch", labels[i]);
     r.set("spectral_rms", e.rms[i]);
     r.set("dE00", e.dE00[i]);
     p.push(r);
@@ -309,15 +328,16 @@ int run_spectral(const Args& args, std::ostream& out) {
   if (what == "fit") {
     args.allow_only({"rgb", "reflectances", "linearisation", "full-scale", "illuminant", "observer", "out", "csv"});
     if (args.positional.size() != 1) throw Error(ErrorCode::InvalidArgument, "spectral fit takes no positional argument");
-    LinearisationData d = load_data(args);
+    PatchTable table;
+    LinearisationData d = load_data(args, table);
     PatchMatrix rgb = d.camera_RGB;
     const Linearisation l = linearisation_option(args, "spectral", d.ids, rgb, d.reference_XYZ, d.white);
     if (d.reflectances.size() == 0) throw Error(ErrorCode::MissingColumn, "spectral fit needs --reflectances");
     const SpectralModel m = fit_spectral(l, d.ids, d.camera_RGB, d.reflectances);
     const SpectralEvaluation e = evaluate_spectral(m, d.ids, d.camera_RGB, d.reflectances, illuminant_of(args), observer);
-    if (args.has("csv")) write_text(args.get("csv"), spectral_csv(estimate_reflectances(m, d.ids, d.camera_RGB)));
+    if (args.has("csv")) write_text(args.get("csv"), spectral_csv(labelled(estimate_reflectances(m, d.ids, d.camera_RGB), table)));
     json::Value o = spectral_model_json(m);
-    o.set("training", evaluation_json(e));
+    o.set("training", evaluation_json(e, table));
     if (args.has("out")) {
       write_text(args.get("out"), o.dump(2) + "\n");
       std::cerr << "tristim spectral: " << d.ids.size() << " patches, spectral RMS mean " << e.rms_summary.mean
@@ -364,11 +384,11 @@ int run_spectral(const Args& args, std::ostream& out) {
   if (!t.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
   PatchMatrix rgb(static_cast<Eigen::Index>(t.ids.size()), 3);
   for (size_t i = 0; i < t.ids.size(); ++i) rgb.row(static_cast<Eigen::Index>(i)) = t.RGB[i].transpose();
-  const SpectralData est = estimate_reflectances(m, t.ids, rgb);
+  const SpectralData est = labelled(estimate_reflectances(m, t.ids, rgb), t);
   if (args.has("json")) {
     if (!args.has("reflectances")) throw Error(ErrorCode::InvalidArgument, "spectral apply --json needs --reflectances");
     const SpectralData measured = reflectances_arg(args.get("reflectances"));
-    out << evaluation_json(evaluate_spectral(m, t.ids, rgb, measured, illuminant_of(args), observer)).dump(2) << "\n";
+    out << evaluation_json(evaluate_spectral(m, t.ids, rgb, measured, illuminant_of(args), observer), t).dump(2) << "\n";
     if (args.has("out")) write_text(args.get("out"), spectral_csv(est));
     return 0;
   }
@@ -378,9 +398,9 @@ int run_spectral(const Args& args, std::ostream& out) {
 }
 
 const CommandRegistration reg_linearise({"linearise", "fit a linearisation (inverse OECF) -> linear patches CSV / JSON",
-                                         kLineariseUsage, run_linearise});
+                                         kLineariseUsage, run_linearise, linearisations_help});
 const CommandRegistration reg_spectral({"spectral", "spectral characterisation: fit W, estimate reflectances",
-                                        kSpectralUsage, run_spectral});
+                                        kSpectralUsage, run_spectral, linearisations_help});
 
 }  // namespace
 }  // namespace tristim::cli

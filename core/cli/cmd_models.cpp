@@ -43,10 +43,10 @@ int run_evaluate(const Args& args, std::ostream& out) {
   o.set("white", json::Value(std::vector<double>{p.white[0], p.white[1], p.white[2]}));
   o.set("patches", static_cast<int>(d.rgb.rows()));
   o.set("same_data_as_training", training_digest(d.ids, d.rgb, d.xyz) == p.training_digest);
-  o.set("metrics", metrics_json(m, d.ids, true));
+  o.set("metrics", metrics_json(m, d.labels, true));
   out << o.dump(2) << "\n";
   if (args.has("csv")) {
-    const std::string csv = patch_csv(d.ids, d.rgb, d.xyz, est, p.white);
+    const std::string csv = patch_csv(d.labels, d.rgb, d.xyz, est, p.white);
     write_bytes(args.get("csv"), csv.data(), csv.size());
   }
   return 0;
@@ -281,7 +281,8 @@ int run_models(const Args& args, std::ostream& out) {
 }
 
 const CommandRegistration reg_eval({"evaluate", "evaluate a profile on test patches (JSON)", kEvaluateUsage, run_evaluate});
-const CommandRegistration reg_cmp({"compare", "every model x objective, sorted by held-out error", kCompareUsage, run_compare});
+const CommandRegistration reg_cmp({"compare", "every model x objective, sorted by held-out error", kCompareUsage, run_compare,
+                                   fit_methods_help});
 const CommandRegistration reg_apply({"apply", "apply a profile to a linear image -> float XYZ TIFF/PFM", kApplyUsage, run_apply});
 const CommandRegistration reg_export({"export", "export a profile as ICC or .cube", kExportUsage, run_export});
 const CommandRegistration reg_models({"models", "list the characterisation models", "tristim models [--json]", run_models});

@@ -100,10 +100,11 @@ int run_sample(const Args& args, std::ostream& out) {
     std::cerr << "\n";
   }
   FrameCalibration cal;
-  const std::string dark_mode = args.get("dark-mode", "pixel");
-  if (dark_mode != "pixel" && dark_mode != "channel")
-    throw Error(ErrorCode::InvalidArgument, "--dark-mode is 'pixel' or 'channel'");
-  cal.dark_mode = dark_mode == "pixel" ? DarkMode::PerPixel : DarkMode::PerChannel;
+  try {
+    cal.dark_mode = dark_mode_from_id(args.get("dark-mode", dark_mode_id(DarkMode::PerPixel)));
+  } catch (const Error& e) {
+    throw Error(e.code(), std::string("--dark-mode: ") + e.what());
+  }
   if (args.has("dark")) {
     std::vector<RawImage> darks;
     for (const auto& f : args.all("dark")) darks.push_back(load_raw(f));
@@ -162,7 +163,7 @@ const CommandRegistration inspect_cmd{Command{
 const CommandRegistration sample_cmd{Command{
     "sample", "per-patch camera RGB of a chart in a RAW, TIFF, PNG or JPEG file (CSV)",
     "usage: tristim sample <file> --chart <id> [--corners x1,y1,x2,y2,x3,y3,x4,y4]\n"
-    "                      [--dark f ...] [--dark-mode pixel|channel]\n"
+    "                      [--dark f ...] [--dark-mode per_pixel|per_channel]\n"
     "                      [--flat f] [--flat-mode pixel|radial] [--white-reflectance r | r,g,b]\n"
     "                      [--area 0.5] [--rows N --columns M --margins l,t,r,b]\n"
     "                      [--light-trap x1,y1,x2,y2,x3,y3,x4,y4]\n"
@@ -174,7 +175,9 @@ const CommandRegistration sample_cmd{Command{
     "  full-resolution pixel coordinates for TIFF, PNG and JPEG images.\n"
     "  Without --corners the chart is detected (`tristim detect`) and the corners used are\n"
     "  printed on stderr; CHART_NOT_FOUND when there is none.\n"
-    "--dark: dark frames (repeat the option), averaged, subtracted per pixel or per channel.\n"
+    "--dark: dark frames (repeat the option), averaged, subtracted per pixel or per channel\n"
+    "  (--dark-mode, default per_pixel; the recipe's capture.dark_mode; pixel and channel are\n"
+    "  accepted as aliases).\n"
     "--flat: flat-field frame: per-pixel gains (Abed 2013 App. C) or a radial fall-off fit\n"
     "  (Guarnera 2018 eq 7; coefficients printed on stderr).\n"
     "--light-trap: the four corners of an in-scene light trap (a black cavity, marked like a patch,\n"

@@ -27,11 +27,13 @@ std::string fixed(double v, int decimals) {
   return buf;
 }
 
-SpectralData read_reflectances(const std::string& path) {
-  const PatchTable t = read_patch_file(read_file(path), path);
+/// A spectral patch file (its spectra: t.spectra, columns named by the normalised ids; t.labels:
+/// the ids as the file spells them, for the output).
+PatchTable read_reflectances(const std::string& path) {
+  PatchTable t = read_patch_file(read_file(path), path);
   if (!t.has_spectra)
     throw Error(ErrorCode::MissingColumn, path + ": no spectral data (a wavelength_nm column and one column per patch)");
-  return t.spectra;
+  return t;
 }
 
 SpectralData illuminant_of(const std::string& value) {
@@ -111,7 +113,9 @@ int run_fit(const Args& args, std::ostream& out) {
   o.free = args.get("free", "capture");
   o.per_wavelength = args.has("per-wavelength");
   const MethodChoice start = start_choice(args);
-  const SurfaceFitResult r = fit_surface(start, read_reflectances(from), read_reflectances(to), o);
+  const PatchTable measured = read_reflectances(from);
+  const SurfaceFitResult r = fit_surface(start, measured.spectra, read_reflectances(to).spectra, o);
+  const std::vector<std::string> ids = patch_labels(measured, r.ids);  // as --from spells them
   const double lo = r.wavelengths.front(), hi = r.wavelengths.back();
   if (args.has("json")) {
     json::Value j = json::Value::object();
@@ -139,7 +143,7 @@ int run_fit(const Args& args, std::ostream& out) {
     json::Value patches = json::Value::array();
     for (size_t i = 0; i < r.ids.size(); ++i) {
       json::Value p = json::Value::object();
-      p.set("patch", r.ids[i]);
+      p.set("patch", ids[i]);
       p.set("rms_before", r.rms_before[i]);
       p.set("rms_after", r.rms_after[i]);
       p.set("dE00_before", r.dE00_before[i]);
@@ -162,7 +166,7 @@ int run_fit(const Args& args, std::ostream& out) {
       << fixed(r.summary_dE00_after.max, 3) << "\n";
   out << "patch,rms_before,rms_after,dE00_before,dE00_after\n";
   for (size_t i = 0; i < r.ids.size(); ++i)
-    out << r.ids[i] << ',' << fixed(r.rms_before[i], 6) << ',' << fixed(r.rms_after[i], 6) << ','
+    out << ids[i] << ',' << fixed(r.rms_before[i], 6) << ',' << fixed(r.rms_after[i], 6) << ','
         << fixed(r.dE00_before[i], 4) << ',' << fixed(r.dE00_after[i], 4) << '\n';
   return 0;
 }
@@ -195,7 +199,7 @@ int run_joint(const Args& args, std::ostream& out) {
   const std::string rgb_path = args.get("rgb"), refl_path = args.get("reflectances");
   const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
   if (!rgb.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
-  const SpectralData refl = read_reflectances(refl_path);
+  const SpectralData refl = read_reflectances(refl_path).spectra;
   // Pair by id: the RGB file's patches, in its order, each needing a spectrum.
   SpectralData paired;
   paired.wavelengths = refl.wavelengths;
@@ -205,7 +209,7 @@ int run_joint(const Args& args, std::ostream& out) {
   for (size_t i = 0; i < rgb.ids.size(); ++i) {
     size_t k = 0;
     while (k < refl.names.size() && normalise_patch_id(refl.names[k]) != rgb.ids[i]) ++k;
-    if (k == refl.names.size()) { missing += (missing.empty() ? "" : ", ") + rgb.ids[i]; continue; }
+    if (k == refl.names.size()) { missing += (missing.empty() ? "" : ", ") + rgb.labels[i]; continue; }
     camera_RGB.row(static_cast<Eigen::Index>(paired.size())) = rgb.RGB[i].transpose();
     paired.names.push_back(rgb.ids[i]);
     paired.values.push_back(refl.values[k]);
@@ -340,7 +344,11 @@ CommandRegistration reg_surface(
      "tristim surface presets    Saunderson coefficients of common geometries, with their sources (CSV)\n"
      "tristim surface methods    the surface-correction table (CSV)\n"
      "Apply a correction to a chart's reference: tristim reference --chart sg140 --surface <value of '# surface:'>",
-     run_surface});
+     run_surface, [] {
+       std::vector<MethodInfo> rows;
+       for (const auto& m : surface_table()) rows.push_back(m.info);
+       return methods_help("Surface corrections (--method; tristim surface methods)", rows);
+     }});
 
 }  // namespace
 

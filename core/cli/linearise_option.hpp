@@ -25,6 +25,9 @@ Linearisation linearisation_option(const Args& args, const std::string& command,
 /// with --full-scale (default 255). Without the option: identity.
 Linearisation linearisation_for_image(const Args& args);
 
+/// The linearisation table as a --help section (methods_help), each row with its reference.
+std::string linearisations_help();
+
 /// The encoding's full scale when none is given: 1 if every value is <= 1, 255 if <= 255,
 /// 65535 if <= 65535, else the largest value.
 double default_full_scale(const PatchMatrix& rgb);

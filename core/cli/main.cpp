@@ -5,7 +5,9 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "tristim/characterisation/models.hpp"
 #include "tristim/chart/reference.hpp"
+#include "tristim/methods.hpp"
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
@@ -23,7 +25,21 @@ std::map<std::string, Command>& registry() {
 }  // namespace
 
 void register_command(Command command) { registry()[command.name] = std::move(command); }
+
 const std::map<std::string, Command>& commands() { return registry(); }
+
+std::string methods_help(const std::string& title, const std::vector<MethodInfo>& rows) {
+  std::string s = title + ":\n";
+  for (const auto& r : rows) s += "  " + r.id + ": " + r.label + " — " + r.reference + "\n";
+  return s;
+}
+
+std::string models_help() {
+  std::vector<MethodInfo> rows;
+  for (const auto& m : model_table())
+    rows.push_back({m.id, m.label + (m.duplicate_of.empty() ? "" : " (same as " + m.duplicate_of + ")"), m.reference, {}});
+  return methods_help("Models (--model; tristim models)", rows);
+}
 
 std::string Args::get(const std::string& key) const {
   auto it = options.find(key);
@@ -81,6 +97,12 @@ SpectralData reflectances_arg(const std::string& value) {
   if (!file_exists(value))
     throw Error(ErrorCode::UnknownId, "--reflectances '" + value + "' is neither a chart id nor a readable file");
   return read_reflectance_file(read_file(value), value);
+}
+
+std::vector<std::string> reflectance_labels(const std::string& value, const std::vector<std::string>& names) {
+  for (const auto& c : list_charts())
+    if (c.id == value) return names;
+  return patch_labels(read_patch_file(read_file(value), value), names);
 }
 
 }  // namespace tristim::cli
@@ -146,6 +168,7 @@ int main(int argc, char** argv) {
     }
     if (args.has("help")) {
       std::cout << it->second.usage << "\n";
+      if (it->second.details) std::cout << "\n" << it->second.details();
       return 0;
     }
     return it->second.run(args, std::cout);

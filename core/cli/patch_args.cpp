@@ -9,6 +9,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "linearise_option.hpp"
+#include "tristim/characterisation/objectives.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/number.hpp"
@@ -17,8 +19,9 @@
 namespace tristim::cli {
 
 // ---- patch tables -----------------------------------------------------------------------
-// Read with the shared readers (tristim/io.hpp: CSV or CGATS, ids normalised) and paired by id
-// strictly: every patch of one file must be in the other.
+// Read with the shared readers (tristim/io/patch_files.hpp: CSV or CGATS) and paired by id
+// strictly: every patch of one file must be in the other. Pairing uses the normalised ids; what
+// the commands write uses the ids as the user's file spells them (PatchTable::labels).
 
 Vec3 parse_white(const Args& args, const std::string& key, const Vec3& fallback) {
   if (!args.has(key)) return fallback;
@@ -82,13 +85,14 @@ PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, c
                                               xyz_path + " has " + std::to_string(ref.ids.size()));
   const PatchPairs pairs = pair_by_id(ref.ids, ref_xyz, rgb.ids, rgb.RGB);
   if (!pairs.missing_in_measured.empty())
-    throw Error(ErrorCode::PatchMismatch,
-                "patch '" + pairs.missing_in_measured.front() + "' of " + xyz_path + " is not in " + rgb_path);
+    throw Error(ErrorCode::PatchMismatch, "patch '" + patch_labels(ref, {pairs.missing_in_measured.front()}).front() +
+                                              "' of " + xyz_path + " is not in " + rgb_path);
   if (!pairs.missing_in_reference.empty())
-    throw Error(ErrorCode::PatchMismatch,
-                "patch '" + pairs.missing_in_reference.front() + "' of " + rgb_path + " is not in " + xyz_path);
+    throw Error(ErrorCode::PatchMismatch, "patch '" + patch_labels(rgb, {pairs.missing_in_reference.front()}).front() +
+                                              "' of " + rgb_path + " is not in " + xyz_path);
   PatchData d;
   d.ids = pairs.ids;
+  d.labels = patch_labels(rgb, pairs.ids);
   d.rgb = to_matrix(pairs.measured);
   d.xyz = to_matrix(pairs.reference);
   return d;
@@ -99,6 +103,13 @@ int patch_index(const std::vector<std::string>& ids, const std::string& id) {
   for (size_t i = 0; i < ids.size(); ++i)
     if (ids[i] == n) return static_cast<int>(i);
   throw Error(ErrorCode::UnknownId, "--white: no patch '" + id + "' in the RGB table");
+}
+
+std::string fit_methods_help() {
+  std::vector<MethodInfo> objectives;
+  for (const auto& o : objective_table()) objectives.push_back(o.info);
+  return models_help() + "\n" + methods_help("Objectives (--objective, --objectives)", objectives) + "\n" +
+         linearisations_help();
 }
 
 FitOptions fit_options(const Args& args, const PatchData& d, int& white_index) {

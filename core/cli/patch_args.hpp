@@ -16,15 +16,19 @@ std::string lower(std::string s);
 
 /// Camera RGB and reference XYZ paired by patch id.
 struct PatchData {
-  std::vector<std::string> ids;
+  std::vector<std::string> ids;     // keys (normalise_patch_id): for pairing, lookups and digests
+  std::vector<std::string> labels;  // the same patches as the RGB file spells them: for outputs
   PatchMatrix rgb, xyz;
 };
 PatchMatrix to_matrix(const std::vector<Vec3>& v);
 /// Reads both tables (CSV or CGATS) and pairs them strictly by id: every patch of one file must
-/// be in the other (PatchMismatch). Reference L*a*b* is converted with ref_white.
+/// be in the other (PatchMismatch). Reference L*a*b* is converted with ref_white. Labels: the
+/// RGB file's own spelling of each id ("A01" paired with the reference's "A1" stays "A01").
 PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, const Vec3& ref_white);
 /// Row of `id` in ids (normalised); Error(UnknownId) naming --white otherwise.
 int patch_index(const std::vector<std::string>& ids, const std::string& id);
+/// --help of fit and compare: the models, objectives and linearisations, each with its table's reference.
+std::string fit_methods_help();
 /// FitOptions from --objective, --lab-white, --white and the --psm-* / --de-* flags.
 FitOptions fit_options(const Args& args, const PatchData& d, int& white_index);
 

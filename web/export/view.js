@@ -23,8 +23,10 @@ export function mount(section, app) {
     btn('Profile JSON', (r) => download(`${base(r)}.json`, r.fit.profile, 'application/json')),
     btn('Per-patch CSV', async (r) => {
       // The engine's per-patch CSV: estimates, every ΔE, and the leave-one-out estimates when there are.
+      // Its ids as the reference file spelled them (r.labels; "A01" stays "A01"), not the matching keys.
       const e = r.fit.evaluation;
-      const { text } = await engine.call('patchCsv', { ids: r.ids, rgb: r.rgb, xyz: r.xyz, estimated: e.fit.fitted, white: r.white, loo: e.loo_XYZ ?? [] });
+      const ids = r.labels?.length === r.ids.length ? r.labels : r.ids;
+      const { text } = await engine.call('patchCsv', { ids, rgb: r.rgb, xyz: r.xyz, estimated: e.fit.fitted, white: r.white, loo: e.loo_XYZ ?? [] });
       download(`${base(r)}-patches.csv`, text, 'text/csv');
     }),
     btn('ICC profile', async (r) => { const { bytes } = await engine.call('exportIcc', { profile: r.fit.profile }); download(`${base(r)}.icc`, bytes, 'application/vnd.iccprofile'); }),
@@ -98,7 +100,7 @@ export function mount(section, app) {
       },
     };
     const result = { key: `imported|${f.name}|${Date.now()}`, modelId: profile.model.id, objective: profile.objective,
-      label: `${modelLabel} · ${profile.objective} (imported ${f.name})`, ids: data.ids, rgb: data.rgb, xyz: data.xyz, white: profile.white, fit, evaluation };
+      label: `${modelLabel} · ${profile.objective} (imported ${f.name})`, ids: data.ids, labels: data.labels, rgb: data.rgb, xyz: data.xyz, white: profile.white, fit, evaluation };
     const results = [...(app.session.results ?? []), result];
     await app.save('results', results);
     await app.save('selected', result.key);

@@ -221,7 +221,7 @@ export function mount(section, app) {
           pendingLog.push([job, h('li', { class: 'error', dataset: { code: error.code } }, `${label}: ${error.message} (${error.code})`)]);
         } else {
           results.push({ key: `${mId}|${obj}|${JSON.stringify(recipe.characterisation.objective)}`, modelId: mId, objective: obj, label,
-            recipe: fit.recipe, white: fit.recipe.characterisation.lab_white, ids: fit.ids, rgb: fit.linear_RGB, xyz: fit.reference_XYZ,
+            recipe: fit.recipe, white: fit.recipe.characterisation.lab_white, ids: fit.ids, labels: fit.labels, rgb: fit.linear_RGB, xyz: fit.reference_XYZ,
             fit, heldOut: fit.held_out ?? null, referenceText: referenceText(ref), camera: cameraOf(app.derived.image?.metadata) });
           const { status, message } = fit.evaluation.fit;
           const joint = jointSurface(recipe.surface, ref.settings) ? `; surface fitted jointly (Phase II): ${choiceText(fit.surface)} (${fit.surface_status})` : '';
@@ -297,7 +297,8 @@ export function mount(section, app) {
     return {
       reference: rs.referenceFile ? { chart: 'file', data_digest: ref.data_digest, illuminant: rs.illuminant, observer: rs.observer }
         : { chart: rs.chart, illuminant: rs.illuminant, observer: rs.observer },
-      capture: { dark_frames: s['files.dark'] ? s['files.dark'].list?.length ?? 1 : 0, flat_field: flat && !radial, falloff: flat && radial,
+      // dark_mode: the mode the worker subtracts the dark frame with (images/handlers.js, setDark)
+      capture: { dark_frames: s['files.dark'] ? s['files.dark'].list?.length ?? 1 : 0, dark_mode: 'per_pixel', flat_field: flat && !radial, falloff: flat && radial,
         saturation: storedFullScale(app.derived.image?.metadata),
         // the light trap of step 2 (Abed 2013 App. C step 1) and the flare it subtracted
         ...(sample.lightTrap ? { light_trap: sample.lightTrapCorners, flare: Array.from(sample.lightTrap.mean) } : {}) },

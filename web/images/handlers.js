@@ -9,7 +9,7 @@ function calibrate(state) {
   const chart = state.raw?.chart;
   if (!chart) return null;
   const out = {};
-  if (state.raw.dark) out.dark = chart.setDark(state.raw.dark, 'pixel'); else chart.clearDark();
+  if (state.raw.dark) out.dark = chart.setDark(state.raw.dark, 'per_pixel'); else chart.clearDark();
   if (state.raw.flat) {
     out.flat = chart.setFlat(state.raw.flat, state.flatMode ?? 'pixel');
     out.flat.mode = state.flatMode ?? 'pixel';

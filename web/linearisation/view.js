@@ -55,7 +55,7 @@ export function mount(section, app) {
     h('p', {}, 'A RAW file holds values proportional to the light that reached the sensor; a JPEG, TIFF or PNG holds display-encoded values '
       + '(a tone curve, a gamma). A colorimetric fit needs the former: the linearisation stage recovers each channel\'s inverse opto-electronic '
       + 'conversion function (OECF) — from a stated encoding (gamma, sRGB), from the chart\'s grey patches (ISO 14524 style), or from its '
-      + 'non-grey patches with known reflectances (Shen, Xin, Yang & Lou 2008, Color Res. Appl. 33(2), eqs 6–22). '
+      + `non-grey patches with known reflectances (${byId.Shen2008?.reference ?? 'the Shen2008 row of the linearisation table'}). `
       + 'The fit (step 3) trains on the linearised camera RGB, and the profile\'s recipe records the choice.'),
     encoding, advice,
     h('div', { class: 'controls' }, field('Linearisation', methodSel, 'A row of the engine\'s linearisation table')),

@@ -97,9 +97,10 @@ export function mount(section, app) {
       const xyz = `XYZ ${fmt(ref.XYZ[3 * i])}, ${fmt(ref.XYZ[3 * i + 1])}, ${fmt(ref.XYZ[3 * i + 2])}`;
       const lab = `L*a*b* ${fmt(ref.Lab[3 * i], 1)}, ${fmt(ref.Lab[3 * i + 1], 1)}, ${fmt(ref.Lab[3 * i + 2], 1)}`;
       const p = pos(id);
-      return h('div', { class: 'swatch', dataset: { id }, title: `${id}: ${xyz}; ${lab}`, style: p ? { gridRow: p.row, gridColumn: p.col } : {} },
+      const label = ref.labels?.[i] ?? id;   // an uploaded file's own spelling ("A01"); data-id is the matching key
+      return h('div', { class: 'swatch', dataset: { id }, title: `${label}: ${xyz}; ${lab}`, style: p ? { gridRow: p.row, gridColumn: p.col } : {} },
         h('div', { class: 'chip', style: { background: colours[i] }, 'aria-hidden': 'true' }),
-        h('div', { class: 'swatch-text' }, h('strong', {}, id), compact ? null : [h('br'), xyz, h('br'), lab]));
+        h('div', { class: 'swatch-text' }, h('strong', {}, label), compact ? null : [h('br'), xyz, h('br'), lab]));
     }));
     const points = ref.ids.map((id, i) => ({
       id, ...xy[i], fill: colours[i],

@@ -21,6 +21,8 @@ export function mount(section, app) {
   const rows = app.catalog.surfaces;                       // the engine's surface table (MethodInfo rows)
   const presets = app.catalog.surfacePresets ?? [];
   const byId = Object.fromEntries(rows.map((r) => [r.id, r]));
+  // A correction's citation is its table row's reference (the engine's one place for it).
+  const cite = (id) => (byId[id] ? `${byId[id].label}: ${byId[id].reference}` : '');
   const choice = (app.session.surface = completeChoice(byId[app.session.surface?.method] ?? rows[0], app.session.surface));
   const st = (app.session.surfaceSettings ??= { measurement: '45-0', capture: 'diffuse', free: 'capture', range: [400, 700], patches: '' });
 
@@ -65,7 +67,7 @@ export function mount(section, app) {
     h('p', {}, 'A chart\'s reference reflectances come from an instrument with its own illumination and viewing geometry '
       + '(d:8 with or without the specular component, 45°:0°); the camera sees the same glossy or semi-gloss surface in another '
       + '(a diffuse booth, lamps at 45°). The surface correction converts the reference to the capture geometry '
-      + '(Abed, Berns & Masaoka 2013, Color Res. Appl. 39: the Saunderson equations (1)–(4) and the scaler-offset eq (5)). '
+      + `(${['saunderson', 'scaler-offset'].map(cite).filter(Boolean).join('; ')}). `
       + 'It applies to a built-in chart\'s spectra; the fit (step 3) uses the corrected reference, and the profile\'s recipe records the choice.'),
     h('div', { class: 'controls' }, field('Surface correction', methodSel, 'A row of the engine\'s surface table')),
     about, presetBox, presetSource, formBox, note,

@@ -30,7 +30,9 @@ struct OptionSpec {
 struct MethodInfo {
   std::string id;         ///< the same string in C++, JS, files and the UI
   std::string label;      ///< human-readable
-  std::string reference;  ///< the paper and equation(s), or "" for trivial methods
+  std::string reference;  ///< the paper and equation(s) (core/src/citations.hpp: one spelling per
+                          ///< work), or for a trivial method why it needs none; never empty: the
+                          ///< CLI's --help and the page show it, and nothing else cites the method
   std::vector<OptionSpec> options;
 };
 

@@ -85,6 +85,15 @@ DarkFrame average_dark_frames(const std::vector<const RawImage*>& frames) {
   return d;
 }
 
+const char* dark_mode_id(DarkMode mode) { return mode == DarkMode::PerChannel ? "per_channel" : "per_pixel"; }
+
+DarkMode dark_mode_from_id(std::string_view id) {
+  if (id == "per_pixel" || id == "pixel") return DarkMode::PerPixel;
+  if (id == "per_channel" || id == "channel") return DarkMode::PerChannel;
+  throw Error(ErrorCode::InvalidArgument,
+              "dark mode '" + std::string(id) + "' is not per_pixel or per_channel (aliases: pixel, channel)");
+}
+
 FlatField make_flat_field(const RawImage& flat, const DarkFrame* dark, DarkMode dark_mode,
                           const std::optional<std::array<double, 3>>& white_reflectance) {
   FlatField f;

@@ -700,7 +700,7 @@ De2000Outcome minimise_de2000(const Problem& pr, const FitOptions& options, Eige
   double minf = 0;
   // PRAXIS perturbs its search with NLopt's random numbers, which NLopt seeds from the clock
   // unless told: without a fixed seed every run took other steps (348 or 350 evaluations, the
-  // 11th digit moving, session 21). The generator's state is per thread natively (one compare row
+  // 11th digit moving). The generator's state is per thread natively (one compare row
   // per thread) and global in the single-threaded wasm module.
   nlopt_srand(20130401);
   const nlopt_result res = nlopt_optimize(opt, x.data(), &minf);

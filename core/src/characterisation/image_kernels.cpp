@@ -9,11 +9,11 @@
 // other), and differ from the scalar loop by FMA rounding (tests/core/characterisation/models_test.cpp).
 // In place (out == in) is allowed: every kernel reads a step's pixels before it writes them, so
 // the buffers are not declared __restrict.
-// Plain stores, except the AVX-512 kernels' on large outputs: on session 10's AMD VM 16-byte
+// Plain stores, except the AVX-512 kernels' on large outputs: on an AMD EPYC VM 16-byte
 // non-temporal stores made the 24 MP apply slower (3×3 at 63 % of memcpy speed with them, 93 %
-// without; root-polynomial AVX2 47 % vs 65 %); on session 13's Intel VM the AVX-512 kernel's
+// without; root-polynomial AVX2 47 % vs 65 %); on an Intel Xeon VM the AVX-512 kernel's
 // whole-line (64-byte, aligned) non-temporal stores are faster than its plain ones. Natively every
-// kernel asks for its input 6 KB ahead (simd4::prefetch_ahead; session 17: the Intel VM's
+// kernel asks for its input 6 KB ahead (simd4::prefetch_ahead: the Intel VM's
 // hardware prefetcher alone left the 24 MP apply waiting on memory).
 #include <algorithm>
 #include <cmath>
@@ -76,8 +76,8 @@ size_t simd_affine(const float* in, size_t n, float* out, const float (&a)[3][4]
 // True when no lane of R, G or B has its sign bit set: then every product of two of them is +0,
 // positive or NaN, and sqrt alone gives signed_sqrt's floats (sqrt(+0) = +0; a NaN stays the same
 // NaN). Skipping the sign's masking on such steps (the sign test costs two ORs and a movemask):
-// session 26, 24 MP, ~12 % faster in wasm (V8 spends its registers on the 18 coefficients) and
-// ~10 % natively with SSE2.
+// 24 MP on an AMD EPYC VM, ~12 % faster in wasm (V8 spends its registers on the 18 coefficients)
+// and ~10 % natively with SSE2.
 inline bool no_sign_bit(simd4::f4 R, simd4::f4 G, simd4::f4 B) {
   return simd4::mask_bits(simd4::bit_or(simd4::bit_or(R, G), B)) == 0;
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "../detmath.hpp"
+#include "../citations.hpp"
 #include "tristim/error.hpp"
 
 namespace tristim {
@@ -141,18 +142,19 @@ ModelInfo make(const std::string& id, const std::string& label, const std::strin
 
 std::vector<ModelInfo> build_table() {
   std::vector<ModelInfo> t;
-  t.push_back(make("matrix-3x3", "Linear 3×3 matrix", "Abed 2013 eq (7); Guarnera 2018 T1 eq (13)",
+  const std::string abed = citation::kAbed2013, guarnera = citation::kGuarnera2018;
+  t.push_back(make("matrix-3x3", "Linear 3×3 matrix", abed + ", eq (7); " + guarnera + ", T1 eq (13)",
                    kR_G_B, false));
   t.push_back(make("matrix-3x4", "Affine 3×4 matrix (with offset)",
-                   "Abed 2013 eqs (6), (26); Guarnera 2018 To eq (14)", cat({kR_G_B, {kOne}}), false));
+                   abed + ", eqs (6), (26); " + guarnera + ", To eq (14)", cat({kR_G_B, {kOne}}), false));
   t.push_back(make("Shen2008", "Second-order polynomial, 10 terms",
-                   "Shen, Xin, Yang & Lou 2008 eqs (23)-(25)", kShen2008, false));
+                   std::string(citation::kShen2008) + ", eqs (23)-(25)", kShen2008, false));
   for (int d = 1; d <= 4; ++d) {
     Terms terms = finlayson_root_terms(d);
     const std::string label = "Root-polynomial, degree " + std::to_string(d) + " (" +
                               std::to_string(terms.size()) + " terms)";
     t.push_back(make("Finlayson2015-" + std::to_string(d), label,
-                     "Finlayson, Mackiewicz & Hurlbert 2015 (root-polynomial)", std::move(terms), true,
+                     std::string(citation::kFinlayson2015) + " (root-polynomial)", std::move(terms), true,
                      d == 1 ? "matrix-3x3" : ""));
   }
   for (int n : {3, 4, 5, 7, 8, 10, 11, 14, 16, 17, 19, 20, 22, 35}) {
@@ -162,15 +164,15 @@ std::vector<ModelInfo> build_table() {
     if (n == 10) dup = "Shen2008";
     t.push_back(make("Cheung2004-" + std::to_string(n),
                      "Polynomial, " + std::to_string(n) + " terms",
-                     "Cheung, Westland, Connah & Ripamonti 2004 (colour-science's terms)",
+                     std::string(citation::kCheung2004) + " (colour-science's terms)",
                      cheung_terms(n), false, dup));
   }
-  t.push_back(make("Guarnera2018-T1", "Guarnera T1 (linear)", "Guarnera 2018 eq (13)", kR_G_B, false,
+  t.push_back(make("Guarnera2018-T1", "Guarnera T1 (linear)", guarnera + ", eq (13)", kR_G_B, false,
                    "matrix-3x3"));
-  t.push_back(make("Guarnera2018-To", "Guarnera To (linear + offset)", "Guarnera 2018 eq (14)",
+  t.push_back(make("Guarnera2018-To", "Guarnera To (linear + offset)", guarnera + ", eq (14)",
                    cat({kR_G_B, {kOne}}), false, "matrix-3x4"));
   t.push_back(make("Guarnera2018-T2R", "Guarnera T2R (second-order root-polynomial)",
-                   "Guarnera 2018 eq (15)", kGuarneraT2R, true, "Finlayson2015-2"));
+                   guarnera + ", eq (15)", kGuarneraT2R, true, "Finlayson2015-2"));
   return t;
 }
 

@@ -2,6 +2,7 @@
 #include "tristim/characterisation/objectives.hpp"
 
 #include "tristim/error.hpp"
+#include "../citations.hpp"
 
 namespace tristim {
 
@@ -24,10 +25,11 @@ std::vector<ObjectiveMethod> build_table() {
   const PatternSearchOptions psm;
   const DeltaE2000Options de;
   std::vector<ObjectiveMethod> t;
-  t.push_back({{"ls", "Least squares", "pseudo-inverse: Abed 2013 eq (26), Shen 2008 eq (25)", {}},
+  t.push_back({{"ls", "Least squares",
+                std::string("pseudo-inverse: ") + citation::kAbed2013 + ", eq (26); " + citation::kShen2008 + ", eq (25)", {}},
                Objective::LeastSquares});
   t.push_back({{"psm", "Pattern search: median + mean + max of the L1 XYZ error",
-                "Guarnera 2018 eqs (11)-(12), Algorithm 2",
+                std::string(citation::kGuarnera2018) + ", eqs (11)-(12), Algorithm 2",
                 {number("initial_step", "Initial step Δ₀", psm.initial_step, 1e-9, 1e6, "first mesh size, relative to each output channel's scale"),
                  number("expansion", "Expansion α", psm.expansion, 1, 100, "mesh growth after a successful poll (α > 1)"),
                  number("contraction", "Contraction β", psm.contraction, 1e-6, 1, "mesh shrink after a failed poll (β < 1)"),

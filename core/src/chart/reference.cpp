@@ -91,6 +91,7 @@ ReferenceChart reference_from_spectra(const SpectralData& reflectances, const Sp
   r.illuminant_id = illuminant.names.empty() ? "" : illuminant.names[0];
   r.observer = observer;
   r.ids = reflectances.names;
+  r.labels = reflectances.names;
   r.XYZ = reflectances_to_XYZ(reflectances, illuminant, observer, &r.white);  // the white too (one weighting)
   const Mat3 display = display_matrix(r.white);  // once, not per patch (display_sRGB, the same floats)
   for (const auto& xyz : r.XYZ) {
@@ -110,7 +111,9 @@ ReferenceChart reference_from_table(const PatchTable& table, const SpectralData&
   if (table.has_spectra) {
     SpectralData s = table.spectra;
     reflectance_to_fraction(s);
-    return reference_from_spectra(s, illuminant, observer);
+    ReferenceChart r = reference_from_spectra(s, illuminant, observer);
+    if (table.labels.size() == r.ids.size()) r.labels = table.labels;  // the file's own spelling
+    return r;
   }
   if (!table.has_XYZ && !table.has_Lab)
     throw Error(ErrorCode::MissingColumn, "the file has no spectral, XYZ or Lab columns to use as a reference");
@@ -118,6 +121,7 @@ ReferenceChart reference_from_table(const PatchTable& table, const SpectralData&
   r.illuminant_id = illuminant.names.empty() ? "" : illuminant.names[0];
   r.observer = observer;
   r.ids = table.ids;
+  r.labels = table.labels.size() == table.ids.size() ? table.labels : table.ids;
   r.white = illuminant_white_XYZ(illuminant, observer);
   // XYZ tables on the 0..1 scale (every Y <= 1.5) are brought to the Y = 100 scale of the white.
   double max_Y = 0;

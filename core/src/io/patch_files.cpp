@@ -1,4 +1,4 @@
-// CSV and CGATS.17 readers (see tristim/io.hpp for the rules and error codes).
+// CSV and CGATS.17 readers (see tristim/io/patch_files.hpp for the rules and error codes).
 #include "tristim/io/patch_files.hpp"
 
 #include <algorithm>
@@ -283,17 +283,21 @@ PatchTable fill_table(const std::vector<std::string>& header, const std::vector<
   for (size_t r = 0; r < rows.size(); ++r) {
     const auto& row = rows[r];
     const int line = lines[r];
-    std::string id;
-    if (m.id >= 0) id = normalise_patch_id(row[m.id]);
-    else if (m.index >= 0) id = normalise_patch_id(row[m.index]);
-    else id = std::to_string(r + 1);
+    // The key pairs the row with other data; the label is the id as written, for outputs.
+    const int id_col = m.id >= 0 ? m.id : m.index;
+    std::string label = id_col >= 0 ? trim(row[id_col]) : std::to_string(r + 1);
+    std::string id = id_col >= 0 ? normalise_patch_id(label) : label;
     if (id.empty())
-      throw Error(ErrorCode::ParseError, where(source, line) + ": empty patch id in column '" + header[m.id >= 0 ? m.id : m.index] + "'");
-    auto ins = seen.emplace(id, line);
-    if (!ins.second)
-      throw Error(ErrorCode::DuplicateId, where(source, line) + ": duplicate patch id '" + id + "' (first on line " +
-                                              std::to_string(ins.first->second) + ")");
+      throw Error(ErrorCode::ParseError, where(source, line) + ": empty patch id in column '" + header[id_col] + "'");
+    auto ins = seen.emplace(id, static_cast<int>(r));
+    if (!ins.second) {
+      const std::string& first = t.labels[static_cast<size_t>(ins.first->second)];
+      throw Error(ErrorCode::DuplicateId, where(source, line) + ": duplicate patch id '" + label + "' (first on line " +
+                                              std::to_string(lines[static_cast<size_t>(ins.first->second)]) +
+                                              (first == label ? "" : ", as '" + first + "'") + ")");
+    }
     t.ids.push_back(id);
+    t.labels.push_back(std::move(label));
     auto triplet = [&](const int (&c)[3], std::vector<Vec3>& out) {
       if (c[0] < 0) return;
       Vec3 v;
@@ -598,15 +602,33 @@ PatchTable read_patch_file(std::string_view text, std::string_view file_name) {
   p.has_spectra = true;
   std::map<std::string, size_t> seen;
   for (size_t k = 0; k < p.spectra.names.size(); ++k) {
-    std::string id = normalise_patch_id(p.spectra.names[k]);
+    std::string label = trim(p.spectra.names[k]);
+    std::string id = normalise_patch_id(label);
     if (id.empty())
       throw Error(ErrorCode::ParseError, where(file_name, t.header_line) + ": empty column name " + std::to_string(k + 2));
-    if (!seen.emplace(id, k).second)
-      throw Error(ErrorCode::DuplicateId, where(file_name, t.header_line) + ": duplicate patch id '" + id + "' in the header");
+    const auto ins = seen.emplace(id, k);
+    if (!ins.second) {
+      const std::string& first = p.labels[ins.first->second];
+      throw Error(ErrorCode::DuplicateId, where(file_name, t.header_line) + ": duplicate patch id '" + label + "' in the header" +
+                                              (first == label ? "" : " (the same patch as '" + first + "')"));
+    }
     p.spectra.names[k] = id;
     p.ids.push_back(id);
+    p.labels.push_back(std::move(label));
   }
   return p;
+}
+
+std::vector<std::string> patch_labels(const PatchTable& table, const std::vector<std::string>& ids) {
+  std::map<std::string, const std::string*> label_of;
+  for (size_t i = 0; i < table.ids.size() && i < table.labels.size(); ++i) label_of.emplace(table.ids[i], &table.labels[i]);
+  std::vector<std::string> out;
+  out.reserve(ids.size());
+  for (const auto& id : ids) {
+    const auto it = label_of.find(normalise_patch_id(id));
+    out.push_back(it == label_of.end() ? id : *it->second);
+  }
+  return out;
 }
 
 }  // namespace tristim

@@ -294,7 +294,8 @@ double inverse_sRGB(const Linearisation& l, int, double y) {
 }  // namespace
 
 LinearisationMethod row_identity() {
-  return {{"identity", "None (linear data, e.g. RAW)", "", {}}, "", fit_fixed, apply_identity, apply_identity};
+  return {{"identity", "None (linear data, e.g. RAW)", "no inverse OECF: RAW values are linear in exposure already", {}},
+          "", fit_fixed, apply_identity, apply_identity};
 }
 
 LinearisationMethod row_gamma() {

@@ -9,6 +9,7 @@
 
 #include "tristim/error.hpp"
 #include "../detmath.hpp"
+#include "../citations.hpp"
 
 namespace tristim {
 
@@ -252,7 +253,7 @@ LinearisationMethod linearisation_row_Guarnera2018() {
   MethodInfo info;
   info.id = "Guarnera2018";
   info.label = "Power law per channel, absolute (cd/m²)";
-  info.reference = "Guarnera, Bianco & Schettini 2018, eqs (7)-(8)";
+  info.reference = std::string(citation::kGuarnera2018) + ", eqs (7)-(8)";
   info.options = {
       number_option("noise_floor", "Noise floor n (DN)", 0, 0, 1e9, "mean level of the lens-cap frames, eq (7)"),
       number_option("saturation", "Saturation S (DN)", 0, 0, 1e9, "clip level, eq (7); 0: the data's full scale"),

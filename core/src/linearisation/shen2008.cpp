@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "rows.hpp"
+#include "../citations.hpp"
 #include "tristim/data.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/number.hpp"
@@ -358,7 +359,7 @@ LinearisationMethod row_Shen2008() {
        "1: the grey patches take part in the fit (the paper fits on non-grey samples only)"},
   };
   return {{"Shen2008", "Non-grey samples with known reflectances (Shen et al. 2008)",
-           "Shen, Xin, Yang & Lou 2008, Color Res. Appl. 33(2), eqs (6)-(22)", o},
+           std::string(citation::kShen2008) + ", eqs (6)-(22)", o},
           "reflectances", fit_Shen2008, apply_polynomial, inverse_polynomial};
 }
 

@@ -27,11 +27,12 @@ bool listed(const std::vector<std::string>& list, const std::string& id) {
   return std::find(list.begin(), list.end(), id) != list.end();
 }
 
-TrainingSet finish(std::vector<std::string> ids, std::vector<Vec3> rgb, std::vector<Vec3> xyz,
-                   std::vector<std::string> excluded) {
+TrainingSet finish(std::vector<std::string> ids, std::vector<std::string> labels, std::vector<Vec3> rgb,
+                   std::vector<Vec3> xyz, std::vector<std::string> excluded) {
   if (ids.empty()) throw Error(ErrorCode::TooFewPatches, "every patch was left out: nothing to fit");
   TrainingSet t;
   t.ids = std::move(ids);
+  t.labels = std::move(labels);
   t.excluded = std::move(excluded);
   t.camera_RGB.resize(static_cast<Eigen::Index>(rgb.size()), 3);
   t.reference_XYZ.resize(static_cast<Eigen::Index>(xyz.size()), 3);
@@ -95,29 +96,33 @@ PatchMatrix joint_surface_XYZ(Characterisation& c, const TrainingSet& t) {
 
 TrainingSet training_set(const Recipe& in, const ChartSample& sample, const ReferenceChart& reference) {
   const Recipe r = complete_recipe(in);
-  std::vector<std::string> ids, excluded;
+  std::vector<std::string> ids, labels, excluded;
   std::vector<Vec3> rgb, xyz;
+  // A reference handed over without labels (or with a different number of them) is labelled by its ids.
+  const bool labelled = reference.labels.size() == reference.ids.size();
   for (const PatchSample& p : sample.patches) {
     const std::string id = normalise_patch_id(p.id);
     size_t k = 0;
     while (k < reference.ids.size() && normalise_patch_id(reference.ids[k]) != id) ++k;
     if (k == reference.ids.size())
       throw Error(ErrorCode::PatchMismatch, "sampled patch '" + id + "' is not in the reference");
+    const std::string& label = labelled ? reference.labels[k] : reference.ids[k];
     if (listed(r.sampling.exclude, id)) {
-      excluded.push_back(id + " (excluded)");
+      excluded.push_back(label + " (excluded)");
       continue;
     }
     if (r.sampling.exclude_flagged && !p.flags.empty()) {
       std::string why;
       for (const auto& f : p.flags) why += (why.empty() ? "" : ", ") + f;
-      excluded.push_back(id + " (" + why + ")");
+      excluded.push_back(label + " (" + why + ")");
       continue;
     }
     ids.push_back(id);
+    labels.push_back(label);
     rgb.emplace_back(p.mean[0], p.mean[1], p.mean[2]);
     xyz.push_back(reference.XYZ[k]);
   }
-  return finish(std::move(ids), std::move(rgb), std::move(xyz), std::move(excluded));
+  return finish(std::move(ids), std::move(labels), std::move(rgb), std::move(xyz), std::move(excluded));
 }
 
 TrainingSet training_set(const Recipe& in, const std::vector<std::string>& in_ids, const PatchMatrix& camera_RGB,
@@ -125,19 +130,20 @@ TrainingSet training_set(const Recipe& in, const std::vector<std::string>& in_id
   const Recipe r = complete_recipe(in);
   if (camera_RGB.rows() != reference_XYZ.rows() || static_cast<Eigen::Index>(in_ids.size()) != camera_RGB.rows())
     throw Error(ErrorCode::PatchMismatch, "ids, camera RGB and reference XYZ differ in length");
-  std::vector<std::string> ids, excluded;
+  std::vector<std::string> ids, labels, excluded;
   std::vector<Vec3> rgb, xyz;
   for (size_t i = 0; i < in_ids.size(); ++i) {
     const std::string id = normalise_patch_id(in_ids[i]);
     if (listed(r.sampling.exclude, id)) {
-      excluded.push_back(id + " (excluded)");
+      excluded.push_back(in_ids[i] + " (excluded)");
       continue;
     }
     ids.push_back(id);
+    labels.push_back(in_ids[i]);
     rgb.push_back(camera_RGB.row(i).transpose());
     xyz.push_back(reference_XYZ.row(i).transpose());
   }
-  return finish(std::move(ids), std::move(rgb), std::move(xyz), std::move(excluded));
+  return finish(std::move(ids), std::move(labels), std::move(rgb), std::move(xyz), std::move(excluded));
 }
 
 Characterisation characterise(const Recipe& in, const TrainingSet& t) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "tristim/capture/calibration.hpp"
 #include "tristim/characterisation/objectives.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/colorimetry/spectra.hpp"
@@ -143,8 +144,12 @@ Recipe complete_recipe(const Recipe& in) {
     for (const auto& c : list_charts()) found = found || c.id == r.reference.chart;
     if (!found) throw Error(ErrorCode::UnknownId, "recipe: unknown reference chart '" + r.reference.chart + "'");
   }
-  if (r.capture.dark_mode != "per_pixel" && r.capture.dark_mode != "per_channel")
-    throw Error(ErrorCode::InvalidArgument, "recipe: capture.dark_mode must be per_pixel or per_channel");
+  // An alias ("pixel", "channel") is read and written back in the one spelling (dark_mode_id).
+  try {
+    r.capture.dark_mode = dark_mode_id(dark_mode_from_id(r.capture.dark_mode));
+  } catch (const Error& e) {
+    throw Error(ErrorCode::InvalidArgument, std::string("recipe: capture.dark_mode: ") + e.what());
+  }
   if (r.capture.dark_frames < 0 || r.capture.saturation < 0 || r.capture.noise_floor < 0)
     throw Error(ErrorCode::InvalidArgument, "recipe: capture counts and levels must not be negative");
   chart_layout(r.sampling.layout);  // UnknownId / InvalidArgument for a bad layout

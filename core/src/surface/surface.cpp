@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "correction.hpp"
+#include "../citations.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/number.hpp"
 #include "tristim/surface/saunderson.hpp"
@@ -143,11 +144,12 @@ SpectralData apply_rows(const SpectralData& reflectances, const MethodChoice& ch
 }
 
 std::vector<SurfaceMethod> build_table() {
-  const std::string abed = "Abed, Berns & Masaoka 2013, ";
+  const std::string abed = std::string(citation::kAbed2013) + ", ";
   const std::string mu_text = "gain μ applied to every reflectance factor (1 = none)";
   const std::string rho_text = "offset ρ added to every reflectance factor (0 = none)";
   std::vector<SurfaceMethod> t;
-  t.push_back({{"none", "None (reflectances as measured)", "", {}}, apply_rows, {}});
+  t.push_back({{"none", "None (reflectances as measured)", abed + "no correction (the uncorrected reference of Phase I and Table IV)", {}},
+               apply_rows, {}});
   t.push_back({{"scaler", "Scaler (R' = μR)", abed + "Phase I 'scaler'",
                 {number_option("mu", "μ", 1, 0, 2, mu_text), spectral_option(), fit_option()}},
                apply_rows, {"mu"}});

@@ -79,7 +79,7 @@ TEST_CASE("simulate: Canon 5D Mark II, ColorChecker, D65 equals a hand calculati
   CHECK(got[18][1] == Approx(0.88).margin(0.05));
 }
 
-TEST_CASE("simulate: OECF (Shen & Xin 2008 eq 29), clipping, quantisation and seeded noise", "[simulate]") {
+TEST_CASE("simulate: OECF (Shen, Xin, Yang & Lou 2008 eq 29), clipping, quantisation and seeded noise", "[simulate]") {
   const SpectralData ssf = camera_ssf("Nikon_D850");
   const SpectralData refl = chart_reflectances("cc24");
   const SpectralData ill = illuminant_spd("D50");

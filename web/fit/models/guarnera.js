@@ -2,5 +2,5 @@
 export default {
   family: 'Guarnera et al. 2018',
   match: (id) => /^Guarnera2018/i.test(id),
-  about: 'T1 (eq 13), To (eq 14), T2R (eq 15); fitted by pattern search in the paper (objective "psm").',
+  about: 'The paper\'s T1, To and T2R; fitted by pattern search there (objective "psm").',
 };

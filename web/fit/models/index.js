@@ -1,6 +1,7 @@
 // The model families: one descriptor per family (family label, about). The picker shows the
 // models the engine's listModels() offers, grouped by the descriptor that matches each id, so a
-// new engine model appears without a page change.
+// new engine model appears without a page change. A family's `about` is advice only: each
+// model's citation is its engine row's `reference` (the picker's title), never written here.
 import matrix from './matrix.js';
 import polynomial from './polynomial.js';
 import rootPolynomial from './root_polynomial.js';

@@ -2,5 +2,5 @@
 export default {
   family: 'Matrices',
   match: (id) => /^matrix-/i.test(id),
-  about: 'Abed et al. 2013 eqs (6), (7), (26): XYZ = M·RGB, or M·[R, G, B, 1] with an offset.',
+  about: 'XYZ = M·RGB, or M·[R, G, B, 1] with an offset.',
 };

@@ -3,5 +3,5 @@
 export default {
   family: 'Polynomials',
   match: (id) => /^(Shen2008|Cheung2004)/i.test(id),
-  about: 'Shen et al. 2008 eq (23); Cheung et al. 2004. Many terms fit 24 patches closely: judge them by the leave-one-out error.',
+  about: 'Many terms fit 24 patches closely: judge them by the leave-one-out error.',
 };

@@ -2,5 +2,5 @@
 export default {
   family: 'Root-polynomials',
   match: (id) => /^Finlayson2015/i.test(id),
-  about: 'Finlayson et al. 2015: exposure-invariant; degree 2 is Guarnera et al. 2018 T2R (eq 15).',
+  about: 'Exposure-invariant; degree 2 is Guarnera T2R.',
 };

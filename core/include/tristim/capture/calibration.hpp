@@ -14,6 +14,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tristim/capture/raw.hpp"
@@ -24,6 +25,15 @@ enum class DarkMode {
   PerPixel,    ///< subtract the averaged dark frame pixel by pixel
   PerChannel,  ///< subtract one mean value per channel (robust for few, noisy dark frames)
 };
+
+/// The mode's one spelling, "per_pixel" | "per_channel": what the CLI's --dark-mode, the recipe's
+/// capture.dark_mode, the page and the wasm binding's setDark all write and document.
+const char* dark_mode_id(DarkMode mode);
+/// The mode an id names: "per_pixel" | "per_channel", or the aliases "pixel" | "channel" (the
+/// spelling `sample --dark-mode` and setDark took before there was one spelling; accepted on input
+/// so existing command lines, scripts and recipes keep working, never written).
+/// Error(InvalidArgument) naming the canonical ids otherwise.
+DarkMode dark_mode_from_id(std::string_view id);
 
 /// Average of N dark frames (same camera, same size), black-subtracted DN.
 struct DarkFrame {

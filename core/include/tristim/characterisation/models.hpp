@@ -34,7 +34,7 @@ struct Monomial {
 struct ModelInfo {
   std::string id;          ///< e.g. "Finlayson2015-2"; the same string in C++, JS, files, UI
   std::string label;       ///< human-readable, e.g. "Root-polynomial, degree 2 (6 terms)"
-  std::string reference;   ///< the paper and equation
+  std::string reference;   ///< the paper and equation (core/src/citations.hpp), never empty
   int n_terms;             ///< P
   std::vector<std::string> term_names;  ///< e.g. {"R","G","B","(RG)^1/2",...}
   std::vector<Monomial> terms;          ///< the expansion φ, in order
@@ -202,7 +202,7 @@ FitResult fit_Shen2008(const PatchMatrix& camera_RGB, const PatchMatrix& referen
 /// Cheung et al. 2004 polynomial of `terms` terms (colour-science's expansion).
 FitResult fit_Cheung2004(const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ, int terms,
                          const FitOptions& options = {});
-/// Finlayson, Mackiewicz & Hurlbert 2015 root-polynomial of `degree` 1..4 (IEEE TIP 24(5)).
+/// Finlayson, Mackiewicz & Hurlbert 2015 root-polynomial of `degree` 1..4 (IEEE Trans. Image Process. 24(5)).
 FitResult fit_Finlayson2015(const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ,
                             int degree, const FitOptions& options = {});
 /// Guarnera et al. 2018 transforms: "T1" (eq 13), "To" (eq 14), "T2R" (eq 15, term order of

@@ -42,7 +42,9 @@ struct ReferenceChart {
   std::string chart_id;      // "cc24", or the file name for parsed files
   std::string illuminant_id; // "D65", or "" when the data came as XYZ/Lab
   Observer observer = Observer::CIE1931_2;
-  std::vector<std::string> ids;
+  std::vector<std::string> ids;     // the patches' keys (a file's normalised ids: normalise_patch_id)
+  std::vector<std::string> labels;  // the same ids as the data spell them, one per id (a user
+                                    // file's "A01"; the chart's own ids): what outputs write
   std::vector<Vec3> XYZ, Lab, sRGB;
   Vec3 white = Vec3(0, 0, 0);
 };

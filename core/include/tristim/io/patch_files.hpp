@@ -22,6 +22,8 @@ namespace tristim {
 
 /// "A01" -> "A1", "a01" -> "A1", " B 3 " -> "B3", "R01C02" -> "R1C2"; other ids are trimmed and
 /// returned unchanged. Letters are upper-cased only in letter+digits ids (chart patch ids).
+/// This is the key patches are matched by (a file's "A01" pairs with a chart's "A1"); it is never
+/// what an output writes: outputs write the id as the user's file spelled it (PatchTable::labels).
 std::string normalise_patch_id(std::string_view id);
 
 /// Cells of a delimited text file: header and rows, with the 1-based line of each row.
@@ -58,12 +60,18 @@ SpectralData read_reflectance_file(std::string_view text, std::string_view sourc
 /// A file of per-patch measurements, any of the quantities present.
 struct PatchTable {
   std::string format;  // "csv-spectral", "csv", "cgats"
-  std::vector<std::string> ids;  // normalised patch ids, unique
+  std::vector<std::string> ids;     // normalised patch ids (normalise_patch_id), unique: the matching keys
+  std::vector<std::string> labels;  // the same ids as the file spells them (trimmed), one per id:
+                                    // what every output writes back ("Q001" stays "Q001")
   bool has_XYZ = false, has_Lab = false, has_RGB = false, has_spectra = false;
   std::vector<Vec3> XYZ, Lab, RGB;  // one per id when present
-  SpectralData spectra;             // names = ids, when has_spectra (reflectance as in the file)
+  SpectralData spectra;             // names = ids (the keys), when has_spectra (reflectance as in the file)
   std::map<std::string, std::string> keywords;  // CGATS keywords (e.g. ORIGINATOR), unquoted
 };
+
+/// The file's own spelling of each of `ids` (normalised ids, e.g. those of a pairing): the label
+/// of the table's row with that key, or the id itself when the table has no such row.
+std::vector<std::string> patch_labels(const PatchTable& table, const std::vector<std::string>& ids);
 
 /// Per-patch CSV: an id column (patch/id/sample_id/sample_name/sample_loc/name/sample; when there
 /// are several, the first whose values are not all plain numbers — i1Profiler's SampleID 1..N next

@@ -27,7 +27,9 @@ ReferenceChart recipe_reference(const Recipe& recipe);
 
 /// Patches that go into the fit, paired by id.
 struct TrainingSet {
-  std::vector<std::string> ids;
+  std::vector<std::string> ids;       ///< the patches' keys (normalise_patch_id): what pairs and digests use
+  std::vector<std::string> labels;    ///< the same patches as the user's data spell them (a reference or
+                                      ///< patch file's "A01", "Q001"): what per-patch outputs write
   PatchMatrix camera_RGB;     ///< as sampled (before the linearisation stage), N × 3
   PatchMatrix reference_XYZ;  ///< N × 3, Y = 100 for the perfect diffuser
   std::vector<std::string> excluded;  ///< ids left out, with the reason: "A3 (nonuniform)"
@@ -35,9 +37,11 @@ struct TrainingSet {
 
 /// Pairs a chart sample with a reference by patch id, leaving out the recipe's sampling.exclude
 /// ids and, with sampling.exclude_flagged, every flagged patch. Error(PatchMismatch) when a
-/// sampled patch is not in the reference; Error(TooFewPatches) when nothing is left.
+/// sampled patch is not in the reference; Error(TooFewPatches) when nothing is left. Labels: the
+/// reference's (a user file's own spelling; the layout's ids for a built-in chart).
 TrainingSet training_set(const Recipe& recipe, const ChartSample& sample, const ReferenceChart& reference);
-/// The same from paired tables (rows already matched by id).
+/// The same from paired tables (rows already matched by id). `ids` as the user's file spells them
+/// (or already normalised): they are the labels, their normalised forms the keys.
 TrainingSet training_set(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& camera_RGB,
                          const PatchMatrix& reference_XYZ);
 

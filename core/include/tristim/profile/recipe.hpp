@@ -51,7 +51,8 @@ struct ReferenceStage {
 /// Frame calibration settings (capture/calibration.hpp). The frames themselves are inputs.
 struct CaptureStage {
   int dark_frames = 0;                   ///< how many dark frames were averaged (0: none)
-  std::string dark_mode = "per_pixel";   ///< "per_pixel" | "per_channel"
+  std::string dark_mode = "per_pixel";   ///< "per_pixel" | "per_channel" (dark_mode_id; the aliases
+                                         ///< "pixel" | "channel" are read and completed to these)
   bool flat_field = false;               ///< a flat field was applied
   bool falloff = false;                  ///< the radial fall-off fit (Guarnera eq 7) replaced the flat
   double saturation = 0;                 ///< clip level in DN; 0: LibRaw's maximum. A TIFF/PNG/JPEG

@@ -6,7 +6,7 @@
 //   k   = white_level / Σ_λ SSF_G(λ) S(λ)                        (perfect diffuser: G = white_level)
 // summed on the SSF's own wavelength grid (the measured samples, not interpolated); S and R are
 // aligned to it by the spectra.hpp rule (Sprague/linear, constant extrapolation).
-// Then, optionally (Shen & Xin 2008, eq 29: ρ = l·u^(1/γ) + n, noise in the non-linear space):
+// Then, optionally (Shen, Xin, Yang & Lou 2008, eq 29: ρ = l·u^(1/γ) + n, noise in the non-linear space):
 //   OECF:   ρ = l · u^(1/γ)          (u < 0 -> 0)
 //   noise:  + n, n ~ N(0, σ²), seeded (noise is added after the OECF when there is one, else to u)
 //   clip:   to [0, clip_max] if clip_max > 0
@@ -37,7 +37,7 @@ struct SimulationOptions {
   double white_level = 1.0;  ///< linear G response of the perfect diffuser
   double noise_sigma = 0;    ///< standard deviation of the additive Gaussian noise (output units)
   uint64_t seed = 1;         ///< noise seed (same seed -> same numbers, native and wasm)
-  bool oecf = false;         ///< apply ρ = l·u^(1/γ) (Shen & Xin 2008 eq 29)
+  bool oecf = false;         ///< apply ρ = l·u^(1/γ) (Shen, Xin, Yang & Lou 2008 eq 29)
   double oecf_gamma = 1.8;   ///< γ
   double oecf_scale = 22;    ///< l
   double clip_max = 0;       ///< clip to [0, clip_max] when > 0 (Shen: 255)
