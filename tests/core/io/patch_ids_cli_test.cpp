@@ -12,7 +12,7 @@
 
 #include <unistd.h>
 
-#include "test_support.hpp"
+#include "shell.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/io/json.hpp"
 #include "tristim/io/patch_files.hpp"
@@ -30,31 +30,14 @@ struct Dir {
   std::string operator/(const std::string& name) const { return path + "/" + name; }
 };
 
-void spit(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::slurp;
+using test::spit;
 
 /// Runs the CLI with `args`; its stdout. Fails the test on a non-zero exit, showing stderr.
 std::string cli(const std::string& args, const Dir& d) {
   const std::string err = d / "stderr.txt";
-  const std::string cmd = std::string(TRISTIM_CLI) + " " + args + " 2>" + err;
-  FILE* f = popen(cmd.c_str(), "r");
-  REQUIRE(f != nullptr);
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
-  const int rc = pclose(f);
-  INFO("command: " << cmd << "\nstderr: " << slurp(err) << "\nstdout: " << out.substr(0, 2000));
-  REQUIRE(rc == 0);
-  return out;
+  return test::run_shell(std::string(TRISTIM_CLI) + " " + args + " 2>" + err, true,
+                         [&] { return "stderr: " + slurp(err); });
 }
 
 /// The first cell of every data row of a CSV (lines starting with '#' skipped).

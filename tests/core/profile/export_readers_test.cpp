@@ -21,7 +21,7 @@
 
 #include <unistd.h>
 
-#include "test_support.hpp"
+#include "shell.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/profile/export.hpp"
@@ -31,30 +31,12 @@ using namespace tristim;
 
 namespace {
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-void spit(const std::string& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out << bytes;
-}
+using test::slurp;
+using test::spit;
 
 /// Runs a shell command; its stdout (stderr joins it when `merge`). Fails the test on a non-zero exit.
 std::string run(const std::string& cmd, bool merge = false, bool must_succeed = true) {
-  const std::string full = cmd + (merge ? " 2>&1" : " 2>/dev/null");
-  FILE* f = popen(full.c_str(), "r");
-  REQUIRE(f != nullptr);
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
-  const int rc = pclose(f);
-  INFO("command: " << cmd << "\noutput: " << out.substr(0, 3000));
-  if (must_succeed) REQUIRE(rc == 0);
-  return out;
+  return test::run_shell(cmd + (merge ? " 2>&1" : " 2>/dev/null"), must_succeed);
 }
 
 void need_tool(const char* tool, const char* package) {
