@@ -1,6 +1,7 @@
 // Declarations: version, built-in data, and every table the page builds its pickers from —
-// charts, illuminants, models, the method tables of each stage (MethodInfo / OptionSpec rows),
-// chart layouts and the corner homography.
+// charts, illuminants, observers, models and their families, the method tables of each stage
+// (MethodInfo / OptionSpec rows; the flat-field modes too), chart layouts and the corner homography.
+#include "tristim/capture/calibration.hpp"
 #include "tristim/characterisation/objectives.hpp"
 #include "tristim/chart/layout.hpp"
 #include "tristim/chart/reference.hpp"
@@ -23,18 +24,36 @@ std::vector<MethodInfo> infos(const std::vector<Row>& rows) {
   return out;
 }
 std::vector<MethodInfo> objectives() { return infos(objective_table()); }
-std::vector<MethodInfo> surfaces() { return infos(surface_table()); }
+/// One row of the surface table as the page lists it: the MethodInfo with the row's coefficient
+/// names, its equation and, for Saunderson, the option each geometry field sets per role.
+struct SurfaceRow {
+  std::string id, label, reference;
+  std::vector<OptionSpec> options;
+  std::vector<std::string> coefficients;
+  std::string equation;
+  std::map<std::string, std::map<std::string, std::string>> geometry;
+};
+std::vector<SurfaceRow> surfaces() {
+  std::vector<SurfaceRow> out;
+  for (const auto& r : surface_table())
+    out.push_back({r.info.id, r.info.label, r.info.reference, r.info.options, r.coefficients, r.equation, r.geometry});
+  return out;
+}
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(tristim_catalog) {
   { using S = ChartInfo; value_object<S>("ChartInfo") FIELD(id) FIELD(name) FIELD(patches) FIELD(rows) FIELD(columns) FIELD(source); }
   { using S = IlluminantInfo; value_object<S>("IlluminantInfo") FIELD(id) FIELD(name); }
+  { using S = ObserverInfo; value_object<S>("ObserverInfo") FIELD(id) FIELD(name); }
   { using S = Monomial; value_object<S>("Monomial") FIELD(r) FIELD(g) FIELD(b); }
   { using S = ModelInfo; value_object<S>("ModelInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(n_terms)
-      FIELD(term_names) FIELD(terms) FIELD(root) FIELD(linear) FIELD(exposure_invariant) FIELD(duplicate_of); }
+      FIELD(term_names) FIELD(terms) FIELD(root) FIELD(linear) FIELD(exposure_invariant) FIELD(duplicate_of) FIELD(family); }
+  { using S = ModelFamily; value_object<S>("ModelFamily") FIELD(id) FIELD(label) FIELD(about); }
   { using S = OptionSpec; value_object<S>("OptionSpec") FIELD(name) FIELD(type) FIELD(label) FIELD(default_number)
       FIELD(default_text) FIELD(min) FIELD(max) FIELD(choices) FIELD(description); }
   { using S = MethodInfo; value_object<S>("MethodInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(options); }
+  { using S = SurfaceRow; value_object<S>("SurfaceRow") FIELD(id) FIELD(label) FIELD(reference) FIELD(options)
+      FIELD(coefficients) FIELD(equation) FIELD(geometry); }
   { using S = MethodChoice; value_object<S>("MethodChoice") FIELD(method) FIELD(parameters) FIELD(settings); }
   { using S = LayoutOptions; value_object<S>("LayoutOptions") FIELD(chart) FIELD(rows) FIELD(columns)
       FIELD(margin_left) FIELD(margin_top) FIELD(margin_right) FIELD(margin_bottom) FIELD(gap); }
@@ -46,10 +65,14 @@ EMSCRIPTEN_BINDINGS(tristim_catalog) {
   def<&builtin_file>("builtinFile");
   def<&list_charts>("listCharts");
   def<&list_illuminants>("listIlluminants");
+  def<&list_observers>("listObservers");
   def<&camera_names>("cameraNames");
   def<&model_table>("listModels");
+  def<&model_families>("listModelFamilies");
   def<&objectives>("listObjectives");
+  def<&objective_choice_label>("objectiveChoiceLabel");
   def<&surfaces>("listSurfaceCorrections");
+  def<&flat_field_methods>("listFlatFieldModes");
   def<&complete_choice>("completeChoice");
   def<&parse_choice>("parseChoice");
   def<&chart_layout_ids>("listChartLayouts");

@@ -68,6 +68,7 @@ EMSCRIPTEN_BINDINGS(tristim_colorimetry) {
   def<&reference_chart>("referenceChart");
   def<&parse_reference_file>("parseReferenceFile");
   def<&read_patch_file>("parsePatchFile");
+  def<&normalise_patch_id>("normalisePatchId");
   def<&pair_by_id>("pairById");
   def<&spectral_locus>("spectralLocus");
   def<&delta_E>("deltaE");

@@ -15,14 +15,15 @@ using wasm::def;
 namespace {
 
 /// One row of the linearisation table as the page lists it: the MethodInfo and what the fit needs
-/// besides camera RGB ("", "greys", "reference", "reflectances").
+/// besides camera RGB ("", "greys", "reference", "reflectances"), with that need in words.
 struct LinearisationRow {
-  std::string id, label, reference, needs;
+  std::string id, label, reference, needs, needs_text;
   std::vector<OptionSpec> options;
 };
 std::vector<LinearisationRow> linearisation_rows() {
   std::vector<LinearisationRow> out;
-  for (const auto& r : linearisation_table()) out.push_back({r.info.id, r.info.label, r.info.reference, r.needs, r.info.options});
+  for (const auto& r : linearisation_table())
+    out.push_back({r.info.id, r.info.label, r.info.reference, r.needs, linearisation_needs_text(r.needs), r.info.options});
   return out;
 }
 
@@ -45,7 +46,7 @@ std::string spectral_model_text(const SpectralModel& m) { return spectral_model_
 
 EMSCRIPTEN_BINDINGS(tristim_linearisation) {
   { using S = LinearisationRow; value_object<S>("LinearisationRow") FIELD(id) FIELD(label) FIELD(reference) FIELD(needs)
-      FIELD(options); }
+      FIELD(needs_text) FIELD(options); }
   { using S = LinearisationData; value_object<S>("LinearisationData") FIELD(camera_RGB) FIELD(ids) FIELD(full_scale)
       FIELD(reference_XYZ) FIELD(white) FIELD(reflectances) FIELD(basis_reflectances); }
   { using S = Linearisation; value_object<S>("Linearisation") FIELD(choice) FIELD(coefficients) FIELD(full_scale)

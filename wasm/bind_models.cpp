@@ -52,6 +52,7 @@ EMSCRIPTEN_BINDINGS(tristim_models) {
   def<&profile_from_json>("profileFromJson");
   def<static_cast<PatchMatrix (*)(const Model&, const PatchMatrix&)>(&predict)>("predict");
   def<&evaluate>("evaluate");
+  def<&quantile>("quantile");
   def<&training_digest>("trainingDigest");
   def<&profile_predict>("profilePredict");
   def<&export_icc>("exportIcc");

@@ -20,6 +20,20 @@ struct Conv<const RawHandle*> {
   }
 };
 
+/// A frame for a core function that reads frames as decoded (the absolute chain normalises them
+/// itself, eq 7: a dark or flat set on the handle is not applied): the handle's image; null: none.
+template <>
+struct Conv<const RawImage*> {
+  static const RawImage* from(const val& v) { return absent(v) ? nullptr : &Conv<const RawHandle*>::from(v)->image; }
+  static val to(const RawImage* p) { return p ? val(RawHandle{*p, {}}) : val::null(); }
+};
+/// A frame the core made (the virtual camera's) as a new RawImage handle (call .delete()).
+template <>
+struct Conv<RawImage> {
+  static val to(const RawImage& r) { return val(RawHandle{r, {}}); }
+  static RawImage from(const val& v) { return Conv<const RawHandle*>::from(v)->image; }
+};
+
 /// f(the image with its dark/flat applied), without a copy when there is no calibration.
 template <class F>
 auto with_calibrated(const RawHandle& h, F f) {

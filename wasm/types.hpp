@@ -3,6 +3,7 @@
 // "id:name=value" text, a Recipe or a Profile also from its JSON text.
 #pragma once
 #include "boundary.hpp"
+#include "tristim/characterisation/fit.hpp"
 #include "tristim/characterisation/models.hpp"
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/methods.hpp"

@@ -20,9 +20,10 @@ const handlers = {
   hello: (T) => ({ result: { version: T.version() } }),
   /// Every table the page builds its pickers from (the engine's method tables and layouts).
   catalog: (T) => reply({
-    charts: T.listCharts(), illuminants: T.listIlluminants(), cameras: T.listCameras(), models: T.listModels(),
-    objectives: T.listObjectives(), linearisations: T.listLinearisations(), surfaces: T.listSurfaceCorrections(),
-    surfacePresets: T.listSurfacePresets(),
+    charts: T.listCharts(), illuminants: T.listIlluminants(), observers: T.listObservers(), cameras: T.listCameras(),
+    models: T.listModels(), modelFamilies: T.listModelFamilies(), objectives: T.listObjectives(),
+    linearisations: T.listLinearisations(), surfaces: T.listSurfaceCorrections(), surfacePresets: T.listSurfacePresets(),
+    flatFieldModes: T.listFlatFieldModes(), absoluteOptions: T.listAbsoluteOptions(),
     layouts: Object.fromEntries(T.listChartLayouts().map((id) => [id, id === 'custom' ? null : T.chartLayout({ chart: id })])),
   }),
   /// Test-only (tests/web/worker_restart.test.mjs): makes this worker die the two ways a real one

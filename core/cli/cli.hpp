@@ -74,6 +74,12 @@ RawImage load_raw(const std::string& path);
 /// --chart, --rows, --columns, --margins l,t,r,b as chart layout options (cmd_raw.cpp).
 LayoutOptions layout_options(const Args& args);
 
+/// `tristim export --dcp …` (cmd_dcp.cpp): run_export hands every option to it when --dcp is given.
+int run_export_dcp(const Args& args, std::ostream& out);
+/// `tristim inspect` of a DNG camera profile (cmd_dcp.cpp): prints its tags as JSON and returns
+/// true when the file starts like a DCP; returns false, having printed nothing, otherwise.
+bool inspect_dcp(const std::string& path, std::ostream& out);
+
 /// Comma-separated finite numbers of option --`option`; Error(InvalidArgument) naming it otherwise.
 std::vector<double> numbers(const std::string& text, const std::string& option);
 

@@ -2,7 +2,9 @@
 // sensitivities (Jiang et al. 2013):
 //   tristim sensitivities estimate --rgb patches.csv --reflectances spectra.csv --illuminant D65|file.csv [--out ssf.csv]
 //   tristim absolute fit --stimuli stimuli.csv [--dark f ...] [--flat f] [--camera NAME | --ssf f.csv] [--out p.json]
+//   tristim absolute fit --recipe absrecipe.json [--out p.json]                       (cmd_absolute_fit.cpp)
 //   tristim absolute apply <profile.json> <raw>... --out xyz.tiff [--source-map map.tiff]
+//   tristim absolute evaluate <profile.json> --stimuli test.csv [<raw>...] [--json]   (cmd_absolute_evaluate.cpp)
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -12,9 +14,8 @@
 #include <optional>
 #include <sstream>
 
-#include "cli.hpp"
-#include "tristim/absolute/fit_frames.hpp"
-#include "tristim/absolute/profile.hpp"
+#include "absolute_cli.hpp"
+#include "tristim/absolute/characterise.hpp"
 #include "tristim/absolute/sensitivities.hpp"
 #include "tristim/absolute/stimuli_file.hpp"
 #include "tristim/chart/reference.hpp"
@@ -24,7 +25,6 @@
 #include "tristim/simulate/virtual_camera.hpp"
 
 namespace tristim::cli {
-namespace {
 
 RawImage load_raw_file(const std::string& path) {
   const std::string bytes = read_file(path);
@@ -35,6 +35,36 @@ RawImage load_raw_file(const std::string& path) {
   }
 }
 
+std::string dirname_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+std::string locate_file(const std::string& name, const std::string& base) {
+  if (name.empty() || name[0] == '/' || base.empty()) return name;
+  return file_exists(base + name) ? base + name : name;
+}
+
+std::vector<ExposureSettings> exposure_args(const Args& args, size_t files) {
+  const auto given = args.all("exposure");
+  if (!given.empty() && given.size() != files)
+    throw Error(ErrorCode::InvalidArgument, "give one --exposure t,N[,ISO] per RAW file, in order, or none");
+  std::vector<ExposureSettings> out;
+  for (const auto& g : given) {
+    const auto v = numbers(g, "exposure");
+    if (v.size() < 2 || v.size() > 3) throw Error(ErrorCode::InvalidArgument, "--exposure is t,N or t,N,ISO");
+    out.push_back({v[0], v[1], v.size() == 3 ? v[2] : 0.0});
+  }
+  return out;
+}
+
+void rethrow_with_exposure_hint(const Error& e) {
+  if (e.code() == ErrorCode::MissingMetadata) throw Error(e.code(), std::string(e.what()) + " with --exposure t,N[,ISO]");
+  throw e;
+}
+
+namespace {
+
 void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   std::ofstream f(path, std::ios::binary);
   f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
@@ -43,12 +73,6 @@ void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes
 
 void write_text(const std::string& path, const std::string& text) {
   write_bytes(path, std::vector<std::uint8_t>(text.begin(), text.end()));
-}
-
-
-std::string dirname_of(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? "" : path.substr(0, slash + 1);
 }
 
 // ---- tristim sensitivities estimate ------------------------------------------------------
@@ -101,99 +125,6 @@ int run_sensitivities(const Args& args, std::ostream& out) {
   return 0;
 }
 
-// ---- tristim absolute fit ----------------------------------------------------------------
-
-/// The stimuli CSV (tristim/absolute/stimuli_file.hpp) with region files relative to the CSV.
-std::vector<StimulusRow> read_stimuli(const std::string& path) {
-  std::vector<StimulusRow> rows = read_stimuli_csv(read_file(path), path);
-  const std::string dir = dirname_of(path);
-  for (auto& r : rows)
-    if (!r.file.empty() && r.file[0] != '/') r.file = dir + r.file;
-  return rows;
-}
-
-int run_fit(const Args& args, std::ostream& out) {
-  args.allow_only({"stimuli", "dark", "flat", "camera", "ssf", "noise-floor", "saturation", "w", "transform", "fusion", "out"});
-  const std::string path = args.get("stimuli");
-  const std::vector<StimulusRow> rows = read_stimuli(path);
-  AbsoluteFitFrames in;
-  // Lens-cap frames (the noise floor n, eq 7), the flat (f(r)), the training frames: decoded once each.
-  std::vector<RawImage> darks;
-  for (const auto& f : args.all("dark")) darks.push_back(load_raw_file(f));
-  for (const auto& d : darks) in.lens_cap.push_back(&d);
-  std::optional<RawImage> flat;
-  if (args.has("flat")) flat = load_raw_file(args.get("flat"));
-  if (flat) in.flat = &*flat;
-  std::map<std::string, std::unique_ptr<RawImage>> frames;
-  for (const auto& r : rows)
-    if (!r.file.empty() && !frames.count(r.file)) frames[r.file] = std::make_unique<RawImage>(load_raw_file(r.file));
-  for (const auto& r : rows) {
-    FrameStimulus s;
-    s.stimulus = r.stimulus;
-    s.where = "'" + path + "', line " + std::to_string(r.line) + " (" + r.stimulus.id + ")";
-    if (!r.file.empty()) {
-      s.frame = frames[r.file].get();
-      s.frame_name = "'" + r.file + "'";
-      s.x = r.x, s.y = r.y, s.w = r.w, s.h = r.h;
-    }
-    in.stimuli.push_back(s);
-  }
-  if (args.has("saturation")) {
-    in.saturation = args.get_double("saturation", 0);
-    if (!(in.saturation > 0)) throw Error(ErrorCode::InvalidArgument, "--saturation must be a positive level in DN");
-  } else if (frames.empty()) {
-    throw Error(ErrorCode::InvalidArgument, "per-patch stimuli need --saturation (the clip level in DN)");
-  }
-  if (args.has("camera")) {
-    in.ssf = camera_ssf(args.get("camera"));
-    in.areas_source = "camera:" + args.get("camera");
-  } else if (args.has("ssf")) {
-    in.ssf = read_ssf_csv(read_file(args.get("ssf")), args.get("ssf"));
-    in.areas_source = "file:" + args.get("ssf");
-  }
-  in.noise_floor = args.get_double("noise-floor", 0);
-  in.w = args.get_double("w", 10);
-  in.options.transform = args.get("transform", "T1");
-  in.fusion = fusion_mode_from_id(args.get("fusion", "weighted"));
-  const AbsoluteFitFromFrames fitted = fit_absolute_from_frames(in);
-  const AbsoluteProfile& p = fitted.profile;
-  const std::vector<TrainingStimulus>& stimuli = fitted.stimuli;
-  const SaturationEstimate& sat = p.saturation;
-  const std::string& areas_source = p.areas_source;
-  const std::string profile = absolute_profile_to_json(p);
-  json::Value s = json::Value::object();
-  int lum = 0;
-  for (const auto& st : stimuli) lum += st.luminance_set;
-  s.set("luminance_stimuli", lum);
-  s.set("colour_stimuli", p.colour_stimuli);
-  s.set("exposures", static_cast<int>(p.luminance.exposures.size()));
-  s.set("reciprocity_ok", p.luminance.reciprocity_ok);
-  s.set("reciprocity_message", p.luminance.message);
-  json::Value ks = json::Value::array();
-  for (int c = 0; c < 3; ++c) {
-    const auto& k = p.luminance.curves[c];
-    json::Value ch = json::Value::object();
-    ch.set("k1", k.k1);
-    ch.set("k2", k.k2);
-    ch.set("k3", k.k3);
-    ch.set("rms_relative", p.luminance.fits[c].rms_relative);
-    ks.push(ch);
-  }
-  s.set("inverse_oecf", ks);
-  s.set("saturation_fraction", json::Value(std::vector<double>{sat.fraction[0], sat.fraction[1], sat.fraction[2]}));
-  s.set("areas_source", areas_source);
-  s.set("colour_message", p.colour_message);
-  if (areas_source == "none") std::cerr << "tristim absolute fit: no sensitivities given (--camera or --ssf): A_R = A_G = A_B\n";
-  if (args.has("out")) {
-    write_text(args.get("out"), profile);
-    out << s.dump() << "\n";
-  } else {
-    out << profile;
-    std::cerr << s.dump() << "\n";
-  }
-  return 0;
-}
-
 // ---- tristim absolute apply --------------------------------------------------------------
 
 // Mean X, Y, Z over a window around each point of a CSV (id, x, y[, X, Y, Z reference]).
@@ -206,27 +137,15 @@ json::Value point_readout(const std::string& path, const AbsoluteImage& img, int
   };
   const int id = col("id"), x = col("x"), y = col("y"), X = col("X"), Y = col("Y"), Z = col("Z");
   if (x < 0 || y < 0) throw Error(ErrorCode::MissingColumn, path + ": points need x and y columns");
-  const int W = img.luminance.width, H = img.luminance.height, half = std::max(0, window / 2);
   json::Value out = json::Value::array();
   for (size_t r = 0; r < t.rows.size(); ++r) {
-    const int px = static_cast<int>(parse_cell(t.rows[r][x], path, t.lines[r], "x"));
-    const int py = static_cast<int>(parse_cell(t.rows[r][y], path, t.lines[r], "y"));
-    if (px < 0 || py < 0 || px >= W || py >= H)
+    const double px = parse_cell(t.rows[r][x], path, t.lines[r], "x"), py = parse_cell(t.rows[r][y], path, t.lines[r], "y");
+    if (!(px >= 0 && py >= 0 && px < img.luminance.width && py < img.luminance.height))
       throw Error(ErrorCode::InvalidArgument, path + ", line " + std::to_string(t.lines[r]) + ": point outside the image");
-    Vec3 sum = Vec3::Zero();
     int n = 0;
-    for (int yy = std::max(0, py - half); yy <= std::min(H - 1, py + half); ++yy)
-      for (int xx = std::max(0, px - half); xx <= std::min(W - 1, px + half); ++xx) {
-        const size_t q = static_cast<size_t>(yy) * W + xx;
-        const Vec3 v(img.XYZ[q * 3], img.XYZ[q * 3 + 1], img.XYZ[q * 3 + 2]);
-        if (v.allFinite()) {
-          sum += v;
-          ++n;
-        }
-      }
+    const Vec3 m = window_mean(img, static_cast<int>(px), static_cast<int>(py), window, n);
     json::Value o = json::Value::object();
     o.set("id", id >= 0 ? t.rows[r][id] : std::to_string(r + 1));
-    const Vec3 m = n ? Vec3(sum / n) : Vec3::Constant(NAN);
     o.set("XYZ", json::Value(std::vector<double>{m[0], m[1], m[2]}));
     if (X >= 0 && Y >= 0 && Z >= 0) {
       const Vec3 ref(parse_cell(t.rows[r][X], path, t.lines[r], "X"), parse_cell(t.rows[r][Y], path, t.lines[r], "Y"),
@@ -246,20 +165,13 @@ int run_apply(const Args& args, std::ostream& out) {
   AbsoluteProfile p = absolute_profile_from_json(read_file(args.positional[1]));
   if (args.has("mode")) p.fusion = fusion_mode_from_id(args.get("mode"));
   const std::vector<std::string> files(args.positional.begin() + 2, args.positional.end());
-  const auto given = args.all("exposure");
-  if (!given.empty() && given.size() != files.size())
-    throw Error(ErrorCode::InvalidArgument, "give one --exposure t,N[,ISO] per RAW file, in order, or none");
+  const std::vector<ExposureSettings> given = exposure_args(args, files.size());
   auto exposure_of = [&](size_t i, const RawImage& f) {
-    if (given.empty()) {
-      try {
-        return exposure_from_metadata(f.meta, "'" + files[i] + "'");
-      } catch (const Error& e) {
-        throw Error(e.code(), std::string(e.what()) + " with --exposure t,N[,ISO]");
-      }
+    try {
+      return frame_exposure(f, "'" + files[i] + "'", given.empty() ? ExposureSettings{} : given[i]);
+    } catch (const Error& e) {
+      rethrow_with_exposure_hint(e);
     }
-    const auto v = numbers(given[i], "exposure");
-    if (v.size() < 2 || v.size() > 3) throw Error(ErrorCode::InvalidArgument, "--exposure is t,N or t,N,ISO");
-    return ExposureSettings{v[0], v[1], v.size() == 3 ? v[2] : 0.0};
   };
   const std::string out_path = args.get("out");
   AbsoluteImage img;
@@ -329,13 +241,14 @@ int run_apply(const Args& args, std::ostream& out) {
 }
 
 int run_absolute(const Args& args, std::ostream& out) {
-  if (args.positional.empty()) throw Error(ErrorCode::InvalidArgument, "usage: tristim absolute fit|apply … (--help)");
+  if (args.positional.empty()) throw Error(ErrorCode::InvalidArgument, "usage: tristim absolute fit|apply|evaluate … (--help)");
   if (args.positional[0] == "fit") {
     if (args.positional.size() != 1) throw Error(ErrorCode::InvalidArgument, "absolute fit takes no positional arguments");
-    return run_fit(args, out);
+    return run_absolute_fit(args, out);
   }
   if (args.positional[0] == "apply") return run_apply(args, out);
-  throw Error(ErrorCode::InvalidArgument, "unknown subcommand '" + args.positional[0] + "' (fit, apply)");
+  if (args.positional[0] == "evaluate") return run_absolute_evaluate(args, out);
+  throw Error(ErrorCode::InvalidArgument, "unknown subcommand '" + args.positional[0] + "' (fit, apply, evaluate)");
 }
 
 const CommandRegistration sensitivities_cmd{Command{
@@ -354,11 +267,16 @@ const CommandRegistration sensitivities_cmd{Command{
 
 const CommandRegistration absolute_cmd{Command{
     "absolute", "absolute X, Y, Z in cd/m² from bracketed RAWs (Guarnera 2018)",
-    "usage: tristim absolute fit --stimuli stimuli.csv [--dark capN.raw ...] [--flat flat.raw]\n"
+    "usage: tristim absolute fit --stimuli stimuli.csv [--dark capN.raw ...] [--flat flat.raw] [--bracket scene.raw ...]\n"
     "                            [--camera NAME | --ssf ssf.csv] [--saturation DN] [--noise-floor DN]\n"
     "                            [--w 10] [--transform T1|To|T2R] [--fusion weighted|recursive] [--out profile.json]\n"
+    "                            [--recipe-out absrecipe.json]\n"
+    "       tristim absolute fit --recipe absrecipe.json|profile.json [--stimuli s.csv] [--dark f ...] [--flat f]\n"
+    "                            [--bracket f ...] [--out profile.json] [--recipe-out absrecipe.json]\n"
     "       tristim absolute apply <profile.json> <raw>... --out xyz.tiff [--source-map map.tiff]\n"
     "                            [--mode weighted|recursive] [--exposure t,N[,ISO] ...] [--points p.csv [--window 5]]\n"
+    "       tristim absolute evaluate <profile.json> --stimuli test.csv [<raw>...] [--json] [--white ID|E]\n"
+    "                            [--mode weighted|recursive] [--exposure t,N[,ISO] ...]\n"
     "fit: stimuli CSV (column names exact, case-sensitive), one row per stimulus and shot: id, set (luminance|colour; default: luminance when\n"
     "  X = Y = Z within 2 %), exposure_s, f_number, iso (empty: from the RAW metadata), and either file + x,\n"
     "  y, w, h (a region of a RAW, measurement pixels, path relative to the CSV) or R, G, B (black-subtracted\n"
@@ -366,14 +284,28 @@ const CommandRegistration absolute_cmd{Command{
     "  the training frames the saturation level (measured where the body clips below LibRaw's maximum),\n"
     "  --flat the radial fall-off (eq 7), --camera/--ssf the channel areas A_R, A_G, A_B. The inverse OECF\n"
     "  per channel (eq 8) is fitted across every exposure with t/N² scaling and a reciprocity report; the\n"
-    "  colour matrix (eqs 11-15, pattern search) on the colour stimuli. Profile JSON to --out (summary on\n"
-    "  stdout) or to stdout.\n"
+    "  colour matrix (eqs 11-15, pattern search) on the colour stimuli. --bracket: the scene's frames (S is\n"
+    "  measured on them too, and region rows may name them). --w (more than 2): the zones Z_u, Z_c, Z_o of\n"
+    "  section 3.1. Profile JSON to --out (summary on stdout) or to stdout; the profile embeds the recipe\n"
+    "  (the stimuli rows, the files named, the settings) and the figures on the training stimuli.\n"
+    "fit --recipe: every setting and the stimuli from an absolute recipe (--recipe-out, the page's, or the\n"
+    "  one a profile embeds); the files it names are read relative to its folder, or as given on the\n"
+    "  command line (--stimuli/--dark/--flat/--bracket replace them). Same recipe and files: same profile.\n"
     "apply: one or more bracketed RAWs of one scene (same camera and size; exposure from the metadata or\n"
     "  --exposure per file) -> 32-bit float TIFF of X, Y, Z in cd/m² (NaN where every exposure clipped);\n"
     "  --source-map: float TIFF of (dominant exposure index or -1, number of exposures used, their bit mask).\n"
     "  weighted (default) streams the frames and weights each usable one by its zone reliability times t/N²;\n"
     "  recursive is the paper's Algorithm 1. Summary JSON on stdout; --points: the mean X, Y, Z over a\n"
-    "  window around each (id, x, y) of a CSV, with the relative Y error when it also has X, Y, Z.",
+    "  window around each (id, x, y) of a CSV, with the relative Y error when it also has X, Y, Z.\n"
+    "evaluate: a test scene — a stimuli CSV of per-patch rows (R, G, B as for fit) and region rows (file, x, y,\n"
+    "  w, h naming a RAW of the bracket) with their measured X, Y, Z — through the profile: the bracket (the\n"
+    "  RAWs given, else the files the region rows name, relative to the CSV) is fused, each region's mean\n"
+    "  over its central half compared. Prints the report the page shows: the fit (eq 8 per channel,\n"
+    "  reciprocity), the training figures, the section 4.1 figures of the scene — dE94, dE00 (CIELAB white\n"
+    "  per eq 16: --white ID the white patch, default the brightest chromatic stimulus; E: X = Y = Z),\n"
+    "  NRMSE per X, Y, Z, relative Y error, median absolute error — over every row and over the chromatic\n"
+    "  and equal-tristimulus rows apart, the per-point and per-region rows, and the exposure-selection\n"
+    "  summary. Text, or JSON with --json.",
     run_absolute}};
 
 }  // namespace

@@ -8,7 +8,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 #include "tristim/colorimetry/spectra.hpp"

@@ -13,7 +13,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/json.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/linearisation/spectral.hpp"
 #include "tristim/profile/export.hpp"

@@ -20,6 +20,7 @@
 #include "tristim/profile/export.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/io/json.hpp"
+#include "tristim/characterisation/fit.hpp"
 #include "tristim/characterisation/models.hpp"
 #include "tristim/profile/profile.hpp"
 #include "tristim/capture/raw.hpp"
@@ -236,12 +237,24 @@ const char* kExportUsage =
     "               --cube out.cube [--size 33]) [--rgb-scale S]\n"
     "  ICC input profile (lcms2; matrix/shaper for 3×3 models, AToB0 LUT otherwise) or a .cube\n"
     "  (Resolve convention: 1D shaper u = d^(1/2.2), then a 3D LUT; read by Resolve and OpenColorIO).\n"
-    "  Device value d = 1.0 = camera RGB S (default: the profile's largest training value).";
+    "  Device value d = 1.0 = camera RGB S (default: the profile's largest training value).\n"
+    "tristim export --profile p.json --dcp camera.dcp [--second p2.json] [--hue-sat-map 90,30,30]\n"
+    "               (--camera-model \"<Make> <Model>\" | --raw photo.dng) [--illuminant D50] [--second-illuminant A]\n"
+    "               [--profile-name T] [--copyright T] [--embed-policy allow-copying|embed-if-used|never|no-restrictions]\n"
+    "               [--tone-curve linear] [--rgb-scale S]\n"
+    "  DNG camera profile (Adobe DNG 1.6; Lightroom, Camera Raw, RawTherapee): ColorMatrix and ForwardMatrix from\n"
+    "  the model (its linear part at neutral), with --second a dual-illuminant profile from a second profile of the\n"
+    "  same camera under another illuminant, with --hue-sat-map a HueSatMap of hue,saturation,value divisions\n"
+    "  carrying what a non-linear model adds. The calibration illuminant is the profile's reference illuminant\n"
+    "  (--illuminant / --second-illuminant name it otherwise: A, F2, F11, D50, D55, D65, D75). The camera name\n"
+    "  (UniqueCameraModel) comes from --camera-model or the RAW's make and model. `tristim inspect camera.dcp`\n"
+    "  reads it back.";
 
-int run_export(const Args& args, std::ostream&) {
+int run_export(const Args& args, std::ostream& out) {
+  if (args.has("dcp")) return run_export_dcp(args, out);  // cmd_dcp.cpp
   args.allow_only({"profile", "icc", "cube", "size", "grid", "rgb-scale", "icc-version"});
   const Profile p = profile_from_json(read_file(args.get("profile")));
-  if (!args.has("icc") && !args.has("cube")) throw Error(ErrorCode::InvalidArgument, "export needs --icc or --cube");
+  if (!args.has("icc") && !args.has("cube")) throw Error(ErrorCode::InvalidArgument, "export needs --icc, --cube or --dcp");
   const double scale = args.get_double("rgb-scale", 0);
   if (args.has("icc")) {
     IccOptions o;
@@ -269,6 +282,7 @@ int run_models(const Args& args, std::ostream& out) {
       o.set("reference", m.reference);
       o.set("n_terms", m.n_terms);
       o.set("duplicate_of", m.duplicate_of);
+      o.set("family", m.family);
       a.push(o);
     }
     out << a.dump(2) << "\n";
@@ -284,7 +298,7 @@ const CommandRegistration reg_eval({"evaluate", "evaluate a profile on test patc
 const CommandRegistration reg_cmp({"compare", "every model x objective, sorted by held-out error", kCompareUsage, run_compare,
                                    fit_methods_help});
 const CommandRegistration reg_apply({"apply", "apply a profile to a linear image -> float XYZ TIFF/PFM", kApplyUsage, run_apply});
-const CommandRegistration reg_export({"export", "export a profile as ICC or .cube", kExportUsage, run_export});
+const CommandRegistration reg_export({"export", "export a profile as ICC, .cube or DNG camera profile (DCP)", kExportUsage, run_export});
 const CommandRegistration reg_models({"models", "list the characterisation models", "tristim models [--json]", run_models});
 
 }  // namespace

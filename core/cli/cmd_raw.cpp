@@ -16,7 +16,7 @@
 #include "tristim/error.hpp"
 #include "tristim/capture/image.hpp"
 #include "tristim/capture/raw.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 
 namespace tristim::cli {
 
@@ -64,7 +64,8 @@ namespace {
 int run_inspect(const Args& args, std::ostream& out) {
   args.allow_only({});
   if (args.positional.size() != 1)
-    throw Error(ErrorCode::InvalidArgument, "inspect takes exactly one RAW, TIFF, PNG or JPEG file");
+    throw Error(ErrorCode::InvalidArgument, "inspect takes exactly one RAW, TIFF, PNG or JPEG file (or a DCP)");
+  if (inspect_dcp(args.positional[0], out)) return 0;  // a DNG camera profile (cmd_dcp.cpp)
   const RawImage img = load_raw(args.positional[0]);
   std::string json = metadata_to_json(img.meta);
   json.pop_back();  // add the hash of the linear data to the object
@@ -157,7 +158,9 @@ const CommandRegistration inspect_cmd{Command{
     "model, lens, iso, shutter_s, f_number, timestamp, layout, cfa_pattern, bits, black and white\n"
     "levels (an image's white_level is its full scale, 255 or 65535), LibRaw's camera matrices\n"
     "(preview only), the measurement image size (width, height: half resolution for Bayer sensors)\n"
-    "and linear_hash (FNV-1a of the decoded data).",
+    "and linear_hash (FNV-1a of the decoded data).\n"
+    "A DNG camera profile (.dcp, recognised by its \"IIRC\" magic) is read strictly instead and its tags printed\n"
+    "(matrices, illuminants, HueSatMap range) with, per illuminant, the camera neutral and what it renders as.",
     run_inspect}};
 
 const CommandRegistration sample_cmd{Command{

@@ -9,7 +9,7 @@
 #include "cli.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/json.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/surface/fit.hpp"
 #include "tristim/surface/geometry_table.hpp"

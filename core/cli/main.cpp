@@ -11,7 +11,7 @@
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 #include "tristim/memory.hpp"
 #include "tristim/version.hpp"
 

@@ -13,7 +13,7 @@
 #include "tristim/characterisation/objectives.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 #include "tristim/io/patch_files.hpp"
 
 namespace tristim::cli {

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "cli.hpp"
-#include "tristim/characterisation/models.hpp"
+#include "tristim/characterisation/fit.hpp"
 
 namespace tristim::cli {
 

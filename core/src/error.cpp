@@ -31,6 +31,7 @@ const char* error_code_name(ErrorCode code) {
     case ErrorCode::ProfileVersion: return "PROFILE_VERSION";
     case ErrorCode::ProfileInvalid: return "PROFILE_INVALID";
     case ErrorCode::ExportFailed: return "EXPORT_FAILED";
+    case ErrorCode::SameIlluminant: return "SAME_ILLUMINANT";
     case ErrorCode::RecipeVersion: return "RECIPE_VERSION";
     case ErrorCode::RecipeInvalid: return "RECIPE_INVALID";
     case ErrorCode::ImageUnsupported: return "IMAGE_UNSUPPORTED";

@@ -5,7 +5,7 @@
 #include <cstdlib>
 
 #include "tristim/error.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 
 namespace tristim {
 

@@ -17,4 +17,7 @@ echo "== fit: lens cap, flat, 155 luminance stimuli at 5 exposures, 24 projected
 echo "== apply: five exposures fused, XYZ TIFF in cd/m2 and the source-exposure map"
 "$t" absolute apply profile.json scene_1.dng scene_2.dng scene_3.dng scene_4.dng scene_5.dng \
     --out xyz.tiff --source-map source.tiff --points scene_truth.csv
+echo "== evaluate: the scene as a test scene (regions of the bracket and per-patch rows), section 4.1 figures"
+"$t" absolute evaluate profile.json --stimuli scene_test.csv --white D1 scene_1.dng scene_2.dng scene_3.dng scene_4.dng scene_5.dng \
+    | sed -n '/^test, /,/^$/p'
 echo "outputs in $out"

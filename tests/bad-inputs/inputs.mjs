@@ -7,9 +7,11 @@
 //   kind     where it goes in: raw (the chart image input), reference (step 1's reference file),
 //            patches (a camera-RGB table: the fit step's held-out file), profile (a profile JSON:
 //            the export step's import), recipe (a recipe JSON; in the page embedded in a profile),
-//            corners (chart corners on the example Passport DNG)
+//            corners (chart corners on the example Passport DNG), dcp (a DNG camera profile:
+//            `tristim inspect`; the module and the page read none yet)
 //   from     the base file, repo-relative (tests/support/test_files.mjs reads it)
 //   generate a generator name below, applied to the base bytes (or to nothing) with `args`
+//   runners  the runners that take the case (["cli"]: only the CLI reads such a file); absent: all
 //   expect   the error code; expect_cli / expect_module when the CLI or the module (wasm and the
 //            page) answer otherwise, expect_page when only the page does, with `note` saying why.
 import fs from 'node:fs';
@@ -142,9 +144,10 @@ export const generators = {
   },
 };
 
-/// Every case with its bytes: [{...case, bytes: Uint8Array}]. `filter(case)` selects.
-export function materialise(filter = () => true) {
-  return manifest.cases.filter(filter).map((c) => {
+/// Every case with its bytes: [{...case, bytes: Uint8Array}]. `filter(case)` selects; `where`
+/// ('cli' or 'module', the wasm module and the page) leaves out the cases whose runners exclude it.
+export function materialise(filter = () => true, where = 'module') {
+  return manifest.cases.filter((c) => (!c.runners || c.runners.includes(where)) && filter(c)).map((c) => {
     const base = c.from ? readBase(c.from) : null;
     let bytes = base;
     if (c.generate) {

@@ -9,6 +9,7 @@
 //   profile   tristim evaluate --profile <file> --rgb <good> --xyz <good>
 //   recipe    tristim fit --recipe <file> --rgb <good> --xyz <good>
 //   corners   tristim sample <Passport DNG> --chart passport --corners <corners>
+//   dcp       tristim inspect <file>       (a DNG camera profile, read strictly)
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -41,13 +42,14 @@ function command(c, file) {
     case 'profile': return ['evaluate', '--profile', file, '--rgb', goodRgb, '--xyz', goodRef];
     case 'recipe': return ['fit', '--recipe', file, '--rgb', goodRgb, '--xyz', goodRef];
     case 'corners': return ['sample', file, '--chart', 'passport', '--corners', c.corners.join(',')];
+    case 'dcp': return ['inspect', file];
     default: throw new Error(`${c.id}: unknown kind ${c.kind}`);
   }
 }
 
 let failed = 0, n = 0;
 const t0 = Date.now();
-for (const c of materialise((c) => c.id.includes(only))) {
+for (const c of materialise((c) => c.id.includes(only), 'cli')) {
   const file = path.join(dir, `${c.id}-${c.name}`);
   fs.writeFileSync(file, c.bytes);
   const t = Date.now();

@@ -20,6 +20,7 @@
 #include "simd4.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/evaluation/evaluation.hpp"
+#include "tristim/characterisation/fit.hpp"
 #include "tristim/characterisation/models.hpp"
 
 using namespace tristim;

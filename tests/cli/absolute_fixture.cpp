@@ -12,7 +12,18 @@
 //   stimuli.csv                the training stimuli (file, region, measured X, Y, Z in cd/m²)
 //   nonmonotonic.csv           the same with two luminances swapped
 //   scene_truth.csv            the scene's patches: id, centre x, y, X, Y, Z (cd/m²)
+//   scene_test.csv             a test scene for `absolute evaluate`: the 24 patches as region rows of
+//                              scene_3.dng (central 18 px) with their X, Y, Z, and 24 per-patch rows
+//                              (the example's projected colours, R, G, B at 1/60 s f/8 ISO 100)
+//   train_test.csv             the training chart's stimuli of 1/60 s as region rows (a test scene on
+//                              the training bracket, as the page takes it: rows naming its files)
 //   patches_rgb.csv            linear camera RGB of a ColorChecker under D65 (for `sensitivities estimate`)
+//   example/                   the page's virtual-camera example (make_absolute_example, defaults) as
+//                              files named as the page names its frames: virtual-1..5.raw (DNGs of the
+//                              bracket, ISO 100), virtual-cap-1..4.raw, virtual-flat.raw, stimuli.csv,
+//                              test.csv (the cells as region rows), recipe.json (the page's recipe:
+//                              `absolute fit --recipe` reads it), white_id.txt, exposures.txt (the
+//                              bracket's exposures to 17 digits: LibRaw keeps a DNG's as float)
 // usage: absolute_fixture <output folder>
 #include <algorithm>
 #include <cstdio>
@@ -23,6 +34,8 @@
 #include <sys/stat.h>
 
 #include "dng_writer.hpp"
+#include "tristim/absolute/example.hpp"
+#include "tristim/absolute/recipe.hpp"
 #include "tristim/absolute/virtual_bracket.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -46,16 +59,56 @@ void write_text(const std::string& path, const std::string& text) {
 }
 
 void dng(const std::string& path, const VirtualSensor& s, const VirtualScene& scene, const ExposureSettings& e,
-         std::uint64_t seed, bool tags = true) {
+         std::uint64_t seed, bool tags = true, int black = 0) {
   DngWriteOptions o;
   o.make = s.make;
   o.model = s.model;
-  o.white = static_cast<std::uint32_t>(s.reported_saturation);
+  o.black = static_cast<std::uint16_t>(black);
+  o.white = static_cast<std::uint32_t>(s.reported_saturation) + o.black;
   if (tags) {
     o.exposure_s = e.exposure_s;
     o.f_number = e.f_number;
+    o.iso = static_cast<std::uint16_t>(e.iso);
   }
-  write(path, write_dng(capture_virtual_mosaic(s, scene, e, seed), 2 * scene.width, 2 * scene.height, o));
+  write(path, write_dng(capture_virtual_mosaic(s, scene, e, seed, black), 2 * scene.width, 2 * scene.height, o));
+}
+
+std::string g17(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+/// The page's example as files (see the header comment); its colour stimuli for scene_test.csv.
+std::vector<AbsoluteStimulus> write_example(const std::string& dir) {
+  mkdir(dir.c_str(), 0755);
+  const AbsoluteExample ex = make_absolute_example();
+  // A black level of 64 DN keeps the read noise's values below 0 DN (lens cap): the files decode
+  // to the example's frames exactly.
+  for (size_t e = 0; e < ex.bracket.size(); ++e)
+    dng(dir + ex.frame_names[e], ex.sensor, ex.scene, ex.bracket[e], ex.frame_seeds[e], true, 64);
+  const ExposureSettings mid = ex.bracket[2];
+  for (size_t i = 0; i < ex.lens_cap_names.size(); ++i)
+    dng(dir + ex.lens_cap_names[i], ex.sensor, ex.lens_cap_scene, mid, ex.lens_cap_seeds[i], true, 64);
+  dng(dir + ex.flat_name, ex.sensor, ex.flat_scene, mid, ex.flat_seed, true, 64);
+  write_text(dir + "stimuli.csv", ex.stimuli_csv);
+  write_text(dir + "test.csv", ex.test_csv);
+  write_text(dir + "white_id.txt", ex.white_id + "\n");
+  std::string exposures;
+  for (const auto& e : ex.bracket) exposures += g17(e.exposure_s) + "," + g17(e.f_number) + "," + g17(e.iso) + "\n";
+  write_text(dir + "exposures.txt", exposures);
+  AbsoluteRecipe r;  // as the page makes it for the example
+  r.inputs.stimuli = read_absolute_stimuli(ex.stimuli_csv, "example-stimuli.csv");
+  r.inputs.bracket = ex.frame_names;
+  r.inputs.lens_cap = ex.lens_cap_names;
+  r.inputs.flat = ex.flat_name;
+  r.inputs.sensitivities.choice = "camera";
+  r.inputs.sensitivities.camera = ex.camera;
+  write_text(dir + "recipe.json", absolute_recipe_to_json(r));
+  std::vector<AbsoluteStimulus> colours;
+  for (const auto& s : r.inputs.stimuli)
+    if (s.set == "colour") colours.push_back(s);
+  return colours;
 }
 
 }  // namespace
@@ -121,6 +174,14 @@ int main(int argc, char** argv) {
       }
     }
     write_text(dir + "stimuli.csv", csv.str());
+    {  // the stimuli of 1/60 s as a test scene on the training bracket
+      std::istringstream rows(csv.str());
+      std::string line, test = "id,set,file,x,y,w,h,X,Y,Z\n";
+      std::getline(rows, line);
+      while (std::getline(rows, line))
+        if (line.find(",train_3.dng,") != std::string::npos) test += line.replace(line.find('@'), 2, "") + "\n";
+      write_text(dir + "train_test.csv", test);
+    }
     // Two stimuli of the middle exposure with their luminances swapped.
     std::string bad = csv.str();
     const std::string a = "Y150@3,luminance", b = "Y450@3,luminance";
@@ -156,6 +217,19 @@ int main(int argc, char** argv) {
       truth << refl.names[k] << "," << x0 + 9 << "," << y0 + 9 << "," << xyz[0] << "," << xyz[1] << "," << xyz[2] << "\n";
     }
     write_text(dir + "scene_truth.csv", truth.str());
+    // The test scene: the patches as region rows (their 18 px), then the example's projected colours per patch.
+    std::vector<AbsoluteStimulus> test;
+    for (int k = 0; k < 24; ++k) {
+      AbsoluteStimulus t;
+      t.id = refl.names[k];
+      t.file = "scene_3.dng";
+      t.x = ox + (k % 6) * 20 + 1, t.y = oy + (k / 6) * 20 + 1, t.w = t.h = 18;
+      t.XYZ = virtual_XYZ(s, scene, k);
+      t.set = "colour";
+      test.push_back(t);
+    }
+    for (const auto& c : write_example(dir + "example/")) test.push_back(c);
+    write_text(dir + "scene_test.csv", absolute_stimuli_to_csv(test));
     for (size_t e = 0; e < bracket.size(); ++e)
       dng(dir + "scene_" + std::to_string(e + 1) + ".dng", s, scene, bracket[e], 100 + e);
     dng(dir + "nometa.dng", s, scene, bracket[2], 200, false);

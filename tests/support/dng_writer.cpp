@@ -120,6 +120,7 @@ std::vector<std::uint8_t> write_dng(const std::vector<std::uint16_t>& values, in
   e.push_back(bytes(33422, cfa));
   if (o.exposure_s > 0) e.push_back(exact_rational(33434, o.exposure_s));
   if (o.f_number > 0) e.push_back(exact_rational(33437, o.f_number));
+  if (o.iso > 0) e.push_back(longs(34665, {0}));  // ExifIFD: its offset patched below
   e.push_back(bytes(50706, {1, 4, 0, 0}));
   e.push_back(bytes(50707, {1, 1, 0, 0}));
   e.push_back(ascii(50708, o.make + " " + o.model));
@@ -139,12 +140,13 @@ std::vector<std::uint8_t> write_dng(const std::vector<std::uint16_t>& values, in
   size_t extra = 8 + ifd_size;  // where out-of-line payloads go
   std::vector<std::uint8_t> payload;
   put16(out, static_cast<std::uint16_t>(e.size()));
-  size_t strip_offset_field = 0;
+  size_t strip_offset_field = 0, exif_offset_field = 0;
   for (const auto& x : e) {
     put16(out, x.tag);
     put16(out, x.type);
     put32(out, x.count);
     if (x.tag == 273) strip_offset_field = out.size();
+    if (x.tag == 34665) exif_offset_field = out.size();
     if (x.data.size() <= 4) {
       std::vector<std::uint8_t> inl = x.data;
       inl.resize(4, 0);
@@ -157,6 +159,16 @@ std::vector<std::uint8_t> write_dng(const std::vector<std::uint16_t>& values, in
   }
   put32(out, 0);  // no next IFD
   out.insert(out.end(), payload.begin(), payload.end());
+  if (o.iso > 0) {  // the EXIF IFD: one entry, ISOSpeedRatings
+    set32(out, exif_offset_field, static_cast<std::uint32_t>(out.size()));
+    put16(out, 1);
+    put16(out, 34855);
+    put16(out, SHORT);
+    put32(out, 1);
+    put16(out, o.iso);
+    put16(out, 0);
+    put32(out, 0);
+  }
   while (out.size() % 16) out.push_back(0);
   set32(out, strip_offset_field, static_cast<std::uint32_t>(out.size()));
   const size_t base = out.size();

@@ -20,8 +20,9 @@ struct DngWriteOptions {
                                      -0.0819, 0.1944, 0.5931};
   std::array<double, 3> as_shot_neutral{0.5, 1.0, 0.7};
   double exposure_s = 0;             ///< ExposureTime (33434), written when > 0
-  double f_number = 0;               ///< FNumber (33437), written when > 0 (no ISO: LibRaw reads
-                                     ///< ISO only from an EXIF sub-IFD, which this writer lacks)
+  double f_number = 0;               ///< FNumber (33437), written when > 0
+  std::uint16_t iso = 0;             ///< ISOSpeedRatings (34855), written when > 0 in an EXIF
+                                     ///< sub-IFD (34665): LibRaw reads ISO only from there
   std::uint32_t header_width = 0;    ///< if nonzero, the header claims this width (tests)
   std::uint32_t header_height = 0;   ///< if nonzero, the header claims this height (tests)
 };

@@ -37,6 +37,30 @@ test('method tables: objectives, linearisations, surface corrections, with optio
   assert.ok(T.listIlluminants().some((i) => i.id === 'F11' && /fluorescent/.test(i.name)));
 });
 
+test('the catalog\'s other tables: observers, flat-field modes, surface equations and geometries, needs', async () => {
+  const T = await loadTristim();
+  assert.deepEqual(T.listObservers(), [{ id: '1931', name: 'CIE 1931 2°' }, { id: '1964', name: 'CIE 1964 10°' }]);
+  assert.deepEqual(T.listFlatFieldModes().map((m) => m.id), ['pixel', 'radial']);
+  const surfaces = Object.fromEntries(T.listSurfaceCorrections().map((r) => [r.id, r]));
+  assert.equal(surfaces['scaler-offset'].equation, "R' = μR + ρ, eq (5)");
+  assert.deepEqual(surfaces['scaler-offset'].coefficients, ['mu', 'rho']);
+  assert.deepEqual(surfaces.saunderson.geometry.capture, { k1: 'k1_capture', k2: 'k2_capture', k_ins: 'k_ins_capture' });
+  assert.deepEqual(surfaces.none.geometry, {});
+  for (const r of T.listLinearisations()) assert.ok(r.needs_text, r.id);
+  for (const list of [T.listObservers(), T.listFlatFieldModes(), T.listModelFamilies(), T.listSurfaceCorrections()])
+    assert.deepEqual(camelKeys(list), []);
+});
+
+test('quantile: the engine\'s one percentile (Summary\'s rule); patch keys', async () => {
+  const T = await loadTristim();
+  const v = Float64Array.from([7, 1, 4, 10, 2, 3]);
+  assert.equal(T.quantile(v, 0.5), 3.5);
+  assert.equal(T.quantile(v, 0.25), 2.25);
+  assert.ok(Number.isNaN(T.quantile(Float64Array.from([NaN]), 0.5)));
+  throwsCode(assert, () => T.quantile(v, 2), 'INVALID_ARGUMENT');
+  assert.equal(T.normalisePatchId(' a01 '), 'A1');
+});
+
 test('choices: completed from the table, parsed from the CLI syntax, refused with codes', async () => {
   const T = await loadTristim();
   const psm = T.listObjectives().find((o) => o.id === 'psm');

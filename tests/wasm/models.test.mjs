@@ -42,6 +42,11 @@ test('listModels / listObjectives describe the method table', async () => {
   assert.equal(t2r.n_terms, 6);
   assert.equal(t2r.duplicate_of, 'Finlayson2015-2');
   assert.deepEqual(T.listObjectives().map((o) => o.id), ['ls', 'psm', 'de2000']);
+  // Every model names its family; the families come in the order of their first model.
+  const families = T.listModelFamilies();
+  assert.deepEqual(families.map((f) => f.id), [...new Set(models.map((m) => m.family))]);
+  assert.equal(t2r.family, 'Guarnera2018');
+  assert.ok(families.every((f) => f.label && f.about), 'each family has a label and its advice');
 });
 
 test('fitModel: planted 3x3 recovered, profile round-trips through evaluateProfile', async () => {

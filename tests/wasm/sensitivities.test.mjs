@@ -55,14 +55,19 @@ test('sensitivities: a given set feeds the absolute fit (areas as the built-in c
   const T = await loadTristim();
   const ex = T.absoluteExample({ seed: 1, cell: 12 });   // small frames: three fits follow
   const stimuli = T.readAbsoluteStimuli(ex.stimuli_csv, 'example.csv');
+  // The absolute recipe as the page makes it (the example's files), with each choice of sensitivities.
+  const fit = (sensitivities) => T.fitAbsolute({ inputs: { stimuli, bracket: ex.frame_names, lens_cap: ex.lens_cap_names, flat: ex.flat_name, sensitivities } },
+    { bracket: ex.frames, lens_cap: ex.lens_cap, flat: ex.flat }).report.fit;
   try {
     const uploaded = T.readSensitivitiesCsv(T.sensitivitiesToCsv(T.cameraSensitivities(ex.camera)), 'ssf.csv');
-    const given = T.fitAbsolute({ stimuli, ssf: uploaded, ssf_source: 'file:ssf.csv' }, [], ex.lens_cap, [ex.flat], ex.frames);
-    const builtIn = T.fitAbsolute({ stimuli, camera: ex.camera }, [], ex.lens_cap, [ex.flat], ex.frames);
+    const givenFit = T.fitAbsolute({ inputs: { stimuli, bracket: ex.frame_names, lens_cap: ex.lens_cap_names, flat: ex.flat_name,
+      sensitivities: { choice: 'given', ssf: uploaded, source: 'file:ssf.csv' } } }, { bracket: ex.frames, lens_cap: ex.lens_cap, flat: ex.flat });
+    const given = givenFit.report.fit;
+    const builtIn = fit({ choice: 'camera', camera: ex.camera });
     assert.equal(given.areas_source, 'file:ssf.csv');
-    assert.equal(JSON.parse(given.profile).areas_source ?? JSON.parse(given.profile).normalisation?.areas_source, 'file:ssf.csv');
+    assert.equal(JSON.parse(givenFit.profile).areas_source ?? JSON.parse(givenFit.profile).normalisation?.areas_source, 'file:ssf.csv');
     for (let c = 0; c < 3; c++) assert.ok(rel(given.areas[c] / given.areas[1], builtIn.areas[c] / builtIn.areas[1]) < 1e-6, `area ${c}`);
-    const none = T.fitAbsolute({ stimuli }, [], ex.lens_cap, [ex.flat], ex.frames);
+    const none = fit({ choice: 'none' });
     assert.equal(none.areas_source, 'none');
     assert.ok(rel(none.areas[0] / none.areas[1], builtIn.areas[0] / builtIn.areas[1]) > 0.01, 'the sensitivities change the areas');
   } finally {

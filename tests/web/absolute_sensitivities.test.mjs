@@ -143,11 +143,11 @@ test('absolute example under F2 with reflective colour training (T2R chosen with
     await page.selectOption(`${S} [data-role="abs-example-training"]`, 'reflective');
     await page.click(`${S} [data-role="abs-example"]`);
     await page.waitForSelector(`${S} .abs-maps:not([hidden])`, { timeout: 180000 });
-    assert.match(await page.textContent(`${S} [data-role="abs-stimuli-info"]`), /ColorChecker under F2/);
+    assert.match(await page.textContent(`${S} [data-role="abs-test-info"]`), /ColorChecker under F2/);
     assert.match(await page.textContent(`${S} [data-role="abs-fit-summary"]`), /Colour matrix T2R/);
-    // columns: training stimuli, all 36 cells, the 24 ColorChecker cells, the 12-cell ladder
+    // columns: training stimuli, all 36 cells, the 24 chromatic (ColorChecker) cells, the 12-cell ladder
     const heads = await page.$$eval(`${S} [data-role="abs-figures"] thead th`, (e) => e.map((x) => x.textContent));
-    assert.match(heads[3], /ColorChecker cells \(24\)/);
+    assert.match(heads[3], /chromatic \(24\)/);
     const relY = await page.$$eval(`${S} [data-role="abs-figures"] [data-col="relY"]`, (e) => e.map((x) => parseFloat(x.textContent)));
     assert.equal(relY.length, 4);
     assert.ok(relY[2] < 2.4, `relative Y error on the ColorChecker cells under F2 ${relY[2]} %`);

@@ -9,7 +9,6 @@ import { locusData } from '../../web/plots/xy.js';
 import { xyzScatterData } from '../../web/plots/xyz_scatter.js';
 import { readCube, readIccHeader } from '../../web/export/formats.js';
 import { renderXYZ } from '../../web/apply/render.js';
-import { describe as describeModel } from '../../web/fit/models/index.js';
 import { defaultChoice, completeChoice } from '../../web/lib/options_form.js';
 
 const close = (a, b, tol = 1e-9) => assert.ok(Math.abs(a - b) <= tol, `${a} vs ${b} (tol ${tol})`);
@@ -75,11 +74,4 @@ test('options forms: a MethodChoice from an OptionSpec table, stored choices com
   assert.deepEqual(defaultChoice(info), { method: 'de2000', parameters: { rms: 0, max_evaluations: 0 }, settings: { algorithm: 'auto' } });
   const stored = { method: 'de2000', parameters: { rms: 1, gone: 3 }, settings: {} };
   assert.deepEqual(completeChoice(info, stored), { method: 'de2000', parameters: { rms: 1, max_evaluations: 0 }, settings: { algorithm: 'auto' } });
-});
-
-test('model descriptors group the engine ids by family', () => {
-  assert.equal(describeModel({ id: 'Finlayson2015-2', label: 'Root-polynomial, degree 2' }).family, 'Root-polynomials');
-  assert.equal(describeModel('matrix-3x4').family, 'Matrices');
-  assert.equal(describeModel('Cheung2004-35').family, 'Polynomials');
-  assert.equal(describeModel('Whatever').family, 'Other models');
 });

@@ -1,8 +1,10 @@
 // Worker handlers of the Absolute mode (Guarnera, Bianco & Schettini 2018): a bracketed series of
-// RAWs, lens-cap frames and a flat decoded here (state.abs), the training stimuli CSV read by the
-// engine, the absolute profile fitted and applied to the series (the AbsoluteMaps handle stays
-// here), renders of the luminance and source-exposure maps, read-outs and region figures. The
-// example comes from the engine's virtual bracket camera.
+// RAWs, lens-cap frames and a flat decoded here (state.abs), the training and test stimuli CSVs
+// read by the engine (per-patch rows, and region rows naming files of the series), the absolute
+// recipe fitted (fitAbsolute) and the profile applied to the series (the AbsoluteMaps handle stays
+// here), the engine's report on the test scene (the one `tristim absolute evaluate` prints),
+// renders of the luminance and source-exposure maps and read-outs. The example comes from the
+// engine's virtual bracket camera.
 import { reply, coded } from '../lib/reply.js';
 import { renderLuminance, renderSource } from './render.js';
 import { handlers as sensitivities, chosenSensitivities } from './sensitivities_handlers.js';
@@ -14,6 +16,7 @@ function abs(state) {
   state.abs.series ??= [];
   state.abs.names ??= [];
   state.abs.lensCap ??= [];
+  state.abs.capNames ??= [];
   return state.abs;
 }
 
@@ -54,7 +57,7 @@ export const handlers = {
     const a = abs(state);
     const list = decodeAll(T, files, progress, 'frame');
     free(a.series); clearResults(a);
-    a.series = list; a.names = files.map((f) => f.name); a.regions = null;
+    a.series = list; a.names = files.map((f) => f.name);
     const rows = a.series.map((r, i) => describe(r, a.names[i]));
     try {
       return { result: { frames: checkSeries(T, a) } };
@@ -72,55 +75,62 @@ export const handlers = {
   absCalibration: (T, { kind, files }, { state, progress }) => {
     const a = abs(state);
     const list = files.length ? decodeAll(T, files, progress, kind === 'flat' ? 'flat field' : 'lens-cap frame') : [];
-    if (kind === 'flat') { free(a.flat); a.flat = list[0] ?? null; free(list.slice(1)); } else { free(a.lensCap); a.lensCap = list; }
+    if (kind === 'flat') { free(a.flat); a.flat = list[0] ?? null; a.flatName = files[0]?.name ?? ''; free(list.slice(1)); } else { free(a.lensCap); a.lensCap = list; a.capNames = files.map((f) => f.name); }
     return { result: { frames: list.map((r, i) => describe(r, files[i].name)) } };
   },
 
-  /// Reads a training-stimuli CSV (the engine's reader); keeps the rows.
-  absStimuli: (T, { text, name }, { state }) => {
+  /// Reads a stimuli CSV (the engine's reader): the training stimuli (kind 'training') or a test
+  /// scene (kind 'test'); keeps the rows. Region rows name files of the series.
+  absStimuli: (T, { text, name, kind = 'training' }, { state }) => {
     const a = abs(state);
     const rows = T.readAbsoluteStimuli(text, name);
-    a.stimuli = rows;
-    const exposures = new Set(rows.map((r) => `${r.exposure.exposure_s}/${r.exposure.f_number}/${r.exposure.iso}`));
-    return { result: { count: rows.length, luminance: rows.filter((r) => r.set === 'luminance').length, colour: rows.filter((r) => r.set === 'colour').length, exposures: exposures.size, regionRows: rows.filter((r) => r.file).length } };
+    if (kind === 'test') a.test = rows; else a.stimuli = rows;
+    const exposures = new Set(rows.filter((r) => !r.file).map((r) => `${r.exposure.exposure_s}/${r.exposure.f_number}/${r.exposure.iso}`));
+    return { result: { count: rows.length, luminance: rows.filter((r) => r.set === 'luminance').length, colour: rows.filter((r) => r.set === 'colour').length,
+      exposures: exposures.size, regionRows: rows.filter((r) => r.file).length, files: [...new Set(rows.filter((r) => r.file).map((r) => r.file))],
+      ids: rows.map((r) => r.id), colourIds: rows.filter((r) => r.set === 'colour').map((r) => r.id),
+      regions: rows.filter((r) => r.file).map(({ id, x, y, w, h }) => ({ id, x, y, w, h })) } };
   },
 
-  /// The virtual-camera example: the series, lens cap, flat and stimuli CSV take the place of
-  /// loaded files; the cells' known X, Y, Z are kept for the figures and the read-out.
+  /// Forgets the test scene.
+  absClearTest: (T, _msg, { state }) => { abs(state).test = null; return { result: true }; },
+
+  /// The virtual-camera example: the series, lens cap, flat, training stimuli and test scene (the
+  /// cells as region rows with their known X, Y, Z) take the place of loaded files.
   absExample: (T, { options = {} }, { state, progress }) => {
     const a = abs(state);
     progress(NaN, 'generating the bracketed series with the virtual camera');
     const ex = T.absoluteExample(options);
     free(a.series, a.lensCap, a.flat); clearResults(a);
     a.series = ex.frames; a.lensCap = ex.lens_cap; a.flat = ex.flat;
-    a.names = ex.labels.map((l, i) => `virtual-${i + 1}.raw`);
-    a.regions = ex.regions; a.whiteId = ex.white_id;
+    a.names = ex.frame_names; a.capNames = ex.lens_cap_names; a.flatName = ex.flat_name;
     return reply({
-      frames: checkSeries(T, a), lensCap: a.lensCap.map((r, i) => describe(r, `virtual lens cap ${i + 1}`)),
-      flat: describe(a.flat, 'virtual flat field'), stimuliCsv: ex.stimuli_csv, camera: ex.camera,
-      regions: ex.regions.map((r) => ({ id: r.id, x: r.x, y: r.y, w: r.w, h: r.h, XYZ: Array.from(r.XYZ) })), whiteId: ex.white_id,
+      frames: checkSeries(T, a), lensCap: a.lensCap.map((r, i) => describe(r, a.capNames[i])),
+      flat: describe(a.flat, a.flatName), stimuliCsv: ex.stimuli_csv, testCsv: ex.test_csv, camera: ex.camera, whiteId: ex.white_id,
     });
   },
 
-  /// Fits the absolute profile: stimuli + lens cap (n) + flat (f(r)) + the series (S measured).
+  /// Fits the absolute recipe: the stimuli (per patch, or regions of the series' files) + lens cap
+  /// (n) + flat (f(r)) + the series (S measured), the page's options. Returns the completed recipe,
+  /// the profile JSON, the OECF panels (fig 5) and the report (fit and training figures).
   absFit: (T, { options }, { state, progress }) => {
     const a = abs(state);
     if (!a.stimuli) throw coded('load the training stimuli first', 'NO_STIMULI');
-    const regionRows = a.stimuli.filter((s) => s.file);
-    if (regionRows.length) throw coded(`${regionRows.length} rows name a RAW region (e.g. '${regionRows[0].file}'): this page takes per-patch R, G, B rows; sample the regions with \`tristim absolute fit\``, 'INVALID_ARGUMENT');
     progress(NaN, 'fitting eq (8) per channel across every exposure, then the colour matrix');
     // The sensitivities for A_R, A_G, A_B: an uploaded CSV or an estimate kept here, else a built-in camera.
-    const { sensitivities, ...rest } = options;
+    const { sensitivities, camera, ...rest } = options;
     const given = chosenSensitivities(state, sensitivities);
-    const input = given ? { ...rest, camera: '', ssf: given.ssf, ssf_source: given.source } : rest;
-    const fit = T.fitAbsolute({ ...input, stimuli: a.stimuli }, [], a.lensCap, a.flat ? [a.flat] : [], a.series);
+    const choice = given ? { choice: 'given', ssf: given.ssf, source: given.source } : camera ? { choice: 'camera', camera } : { choice: 'none' };
+    const recipe = { inputs: { stimuli: a.stimuli, bracket: a.names, lens_cap: a.capNames, flat: a.flat ? a.flatName : '', sensitivities: choice }, options: rest };
+    const fit = T.fitAbsolute(recipe, { bracket: a.series, lens_cap: a.lensCap, flat: a.flat });
     a.fit = fit;
     clearResults(a);
-    return reply(fit);
+    return reply({ ...fit, recipeJson: T.absoluteRecipeToJson(fit.recipe) });
   },
 
-  /// Applies the fitted profile to the series; renders the maps.
-  absApply: (T, { mode, exposures, render }, { state, progress }) => {
+  /// Applies the fitted profile to the series; the engine's report on the test scene (white: an id
+  /// of the scene's, 'E', or '' for the engine's choice); renders the maps.
+  absApply: (T, { mode, exposures, white = '', render }, { state, progress }) => {
     const a = abs(state);
     if (!a.fit) throw coded('fit a profile first', 'NO_PROFILE');
     if (!a.series.length) throw coded('load a bracketed series first', 'NO_IMAGE');
@@ -129,24 +139,13 @@ export const handlers = {
     a.maps = T.applyAbsolute(a.fit.profile, a.series, { mode, exposures: exposures ?? [], names: a.names },
       (fraction, stage) => progress(0.8 * fraction, stage));
     const ms = performance.now() - t0;
-    progress(0.85, 'rendering');
-    a.summary = a.maps.summary();
+    progress(0.85, 'measuring the test scene');
+    const report = a.maps.report(a.test ?? [], { white });
+    a.summary = report.maps;
     a.xyz = a.maps.XYZ();
     a.source = a.maps.source();
-    let figures = null;
-    if (a.regions) {
-      const white = a.regions.find((r) => r.id === a.whiteId);
-      const yMax = Math.max(...a.regions.map((r) => r.XYZ[1]));
-      // eq (16): the white patch's chromaticity at the largest luminance of the scene
-      const w = T.whiteGuarnera2018(white.XYZ, yMax);
-      // and per kind of cell: the chart's reflective colours, the equal-tristimulus ladder (ids E<Y>)
-      const ladder = (r) => /^E[\d.]/.test(r.id);
-      const parts = [['ColorChecker cells', a.regions.filter((r) => !ladder(r))], ['Equal-tristimulus ladder', a.regions.filter(ladder)]]
-        .filter(([, rs]) => rs.length && rs.length < a.regions.length)
-        .map(([label, rs]) => ({ label, count: rs.length, metrics: a.maps.measure(rs, w).metrics }));
-      figures = { ...a.maps.measure(a.regions, w), whiteId: a.whiteId, yMax, parts };
-    }
-    return reply({ summary: a.summary, ms, figures, ...renderAll(a, render) });
+    progress(0.9, 'rendering');
+    return reply({ report, ms, ...renderAll(a, render) });
   },
 
   /// Re-renders the kept maps (colour map, log scale).
@@ -164,15 +163,15 @@ export const handlers = {
     return reply({ bytes: a.maps.tiff() });
   },
 
-  /// X, Y, Z (mean over a window), L(R, G, B) and the source exposure at a pixel; the known
-  /// region under it (example), with its reference X, Y, Z.
+  /// X, Y, Z (mean over a window), L(R, G, B) and the source exposure at a pixel; the test scene's
+  /// region under it, with its reference X, Y, Z.
   absReadout: (T, { x, y, window = 5 }, { state }) => {
     const a = abs(state);
     if (!a.maps) throw coded('no maps yet', 'NO_IMAGE');
     const { width, height } = a.summary;
     if (!(x >= 0 && y >= 0 && x < width && y < height)) return { result: null };
     const r = a.maps.readout(Math.floor(x), Math.floor(y), window);
-    const region = a.regions?.find((g) => x >= g.x && x < g.x + g.w && y >= g.y && y < g.y + g.h);
+    const region = a.test?.find((g) => g.file && x >= g.x && x < g.x + g.w && y >= g.y && y < g.y + g.h);
     return { result: { ...r, XYZ: Array.from(r.XYZ), L: Array.from(r.L), region: region ? { id: region.id, XYZ: Array.from(region.XYZ) } : null } };
   },
 };

@@ -2,8 +2,9 @@
 // training stimuli -> an absolute profile (eq 8 per channel across every exposure, the colour
 // matrix) -> X, Y, Z in cd/m² for every pixel. Shows the fitted OECFs per channel and exposure
 // (fig 5), the luminance map with a cd/m² colour bar (linear or log), the map of the exposure
-// that served each pixel, a pointer read-out and the section 4.1 figures. "Example" makes the
-// whole input with the engine's virtual bracket camera.
+// that served each pixel, a pointer read-out and the engine's report on a test scene (the section
+// 4.1 figures with the eq 16 white, the per-point and per-region rows: what `tristim absolute
+// evaluate` prints). "Example" makes the whole input with the engine's virtual bracket camera.
 import { h, field, select, setOptions, showError, clearError, numberValue, progressBar, fmt, fileBytes, download } from '../lib/ui.js';
 import { figure } from '../plots/common.js';
 import { oecfPlot } from '../plots/oecf.js';
@@ -64,6 +65,15 @@ export function mount(section, app) {
   const seriesTable = h('div', { class: 'abs-series' });
   const stimuliInput = h('input', { type: 'file', accept: '.csv,.txt,text/csv', 'data-role': 'abs-stimuli' });
   const stimuliInfo = h('span', { class: 'file-state', 'data-role': 'abs-stimuli-info' });
+  const testInput = h('input', { type: 'file', accept: '.csv,.txt,text/csv', 'data-role': 'abs-test' });
+  const testInfo = h('span', { class: 'file-state', 'data-role': 'abs-test-info' });
+  // The white of the test figures (section 4.1): the engine's choice, E, or a stimulus of the scene.
+  const WHITE_AUTO = [{ value: '', label: 'the brightest chromatic stimulus, eq (16)' }, { value: 'E', label: 'E (X = Y = Z) at the largest Y' }];
+  const whiteSel = select(WHITE_AUTO, '');
+  whiteSel.dataset.role = 'abs-white';
+  // The engine's option ranges (listAbsoluteOptions): the zone parameter w of section 3.1.
+  const wSpec = (app.catalog?.absoluteOptions ?? []).find((o) => o.name === 'w') ?? { default_number: 10, min: 2, max: 1e6 };
+  const wInput = h('input', { type: 'number', min: wSpec.min, max: wSpec.max, step: 'any', value: String(wSpec.default_number), 'data-role': 'abs-w', 'aria-label': 'Zone parameter w' });
   const capInput = h('input', { type: 'file', multiple: true, 'data-role': 'abs-lenscap' });
   const capInfo = h('span', { class: 'file-state' });
   const flatInput = h('input', { type: 'file', 'data-role': 'abs-flat' });
@@ -102,11 +112,14 @@ export function mount(section, app) {
   section.append(intro,
     h('div', { class: 'abs-inputs' },
       h('div', { class: 'abs-series-box' }, field('Bracketed series (RAW files of one scene)', seriesInput, 'Same camera and size; exposure time, f-number and ISO from each file (or typed in the table)'), seriesTable),
-      h('div', {}, field('Training stimuli (CSV)', stimuliInput, 'Per patch: id, set (luminance|colour), exposure_s, f_number, iso, R, G, B (black-subtracted DN), falloff, X, Y, Z (cd/m²)'), stimuliInfo),
+      h('div', {}, field('Training stimuli (CSV)', stimuliInput, 'Per patch: id, set (luminance|colour), exposure_s, f_number, iso, R, G, B (black-subtracted DN), falloff, X, Y, Z (cd/m²); or a region: file (a RAW of the series), x, y, w, h instead of R, G, B'), stimuliInfo),
+      h('div', {}, field('Test scene (CSV, optional)', testInput, 'The same columns: stimuli of the scene with their measured X, Y, Z; region rows are measured on the fused maps'), testInfo),
+      field('White of the test figures', whiteSel, 'CIELAB white of ΔE94/ΔE00 (Guarnera 2018 section 4.1)'),
       h('div', {}, field('Lens-cap frames (RAW, optional)', capInput, 'Averaged: the noise floor n of eq (7)'), capInfo),
       h('div', {}, field('Flat field (RAW, optional)', flatInput, 'Evenly lit: the radial fall-off f(r) of eq (7)'), flatInfo),
       field('Noise floor n (DN, without lens cap)', noiseInput),
       field('Saturation S (DN)', satInput, 'Empty: measured from the frames (where the body clips)'),
+      field('Zone parameter w', wInput, wSpec.description ?? 'Z_c = [1/w, (w−1)/w] of the usable range is the reliable zone (more than 2)'),
       field('Sensitivities for A_R, A_G, A_B', cameraSel, 'Eq (7) channel areas: built-in measured sensitivities, or an upload or estimate (below)'),
       h('div', { class: 'abs-ssf-box' }, ssf.el),
       wide(field('Colour matrix', transformSel)),
@@ -137,9 +150,15 @@ export function mount(section, app) {
   const readout = h('output', { class: 'readout', 'data-role': 'abs-readout', 'aria-live': 'polite' }, 'Move the pointer over a map (or focus it and use the arrow keys) to read X, Y, Z in cd/m² and the exposure that served the pixel.');
   const mapSummary = h('p', { class: 'summary', 'data-role': 'abs-map-summary' });
   // Downloads: the absolute profile (what `tristim absolute apply` takes) and the X, Y, Z map.
-  const fileBase = () => `${st.fit?.model || 'camera'}-absolute`.replace(/[^\w.-]+/g, '_');
+  const fileBase = () => `${st.fit?.report.fit.model || 'camera'}-absolute`.replace(/[^\w.-]+/g, '_');
   const profileBtn = h('button', { type: 'button', 'data-role': 'abs-download-profile' }, 'Download the absolute profile (JSON)');
   profileBtn.addEventListener('click', () => { if (st.fit) download(`${fileBase()}.json`, st.fit.profile, 'application/json'); });
+  // The recipe (`tristim absolute fit --recipe` reproduces the profile from it and the files it names)
+  // and the report (what `tristim absolute evaluate --json` prints).
+  const recipeBtn = h('button', { type: 'button', 'data-role': 'abs-download-recipe' }, 'Download the absolute recipe (JSON)');
+  recipeBtn.addEventListener('click', () => { if (st.fit) download(`${fileBase()}-recipe.json`, st.fit.recipeJson, 'application/json'); });
+  const reportBtn = h('button', { type: 'button', 'data-role': 'abs-download-report' }, 'Download the report (JSON)');
+  reportBtn.addEventListener('click', () => { if (st.report) download(`${fileBase()}-report.json`, `${JSON.stringify(st.report, null, 2)}\n`, 'application/json'); });
   const tiffBtn = h('button', { type: 'button', 'data-role': 'abs-download-xyz' }, 'Download X, Y, Z in cd/m² (32-bit float TIFF)');
   tiffBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true });
   tiffBtn.addEventListener('click', async () => {
@@ -160,7 +179,7 @@ export function mount(section, app) {
   section.append(fitSummary, oecfBox, maps, figuresBox);
 
   // ---- state (page side: what was loaded, for the messages and the read-out) ----
-  const st = { frames: [], exposures: null, fit: null, shown: null, regions: null };
+  const st = { frames: [], exposures: null, fit: null, shown: null, regions: null, report: null, testFromExample: false };
 
   function seriesRows(frames) {
     st.frames = frames;
@@ -197,7 +216,11 @@ export function mount(section, app) {
   seriesInput.addEventListener('change', async () => {
     if (!seriesInput.files.length) return;
     clearError(seriesInput);
-    st.regions = null;
+    if (st.testFromExample) {  // the example's test scene names the example's frames
+      st.regions = null; st.testFromExample = false; testInfo.textContent = '';
+      setOptions(whiteSel, WHITE_AUTO, '');
+      await engine.call('absClearTest', {}).catch(() => {});
+    }
     progress.start('Decoding the series…');
     try {
       const files = await readFiles(seriesInput);
@@ -208,17 +231,29 @@ export function mount(section, app) {
     } catch (e) { seriesRows([]); showError(seriesInput, e, 'Series'); } finally { progress.done(); }
   });
 
-  async function loadStimuli(text, name) {
-    clearError(stimuliInput);
+  /// Reads a stimuli CSV in the worker: the training stimuli, or (kind 'test') a test scene.
+  async function loadStimuli(text, name, kind = 'training') {
+    const [input, info] = kind === 'test' ? [testInput, testInfo] : [stimuliInput, stimuliInfo];
+    clearError(input);
     try {
-      const r = await engine.call('absStimuli', { text, name });
-      stimuliInfo.textContent = `${name}: ${r.count} stimuli (${r.luminance} luminance, ${r.colour} colour) over ${r.exposures} exposures.`;
-      return true;
-    } catch (e) { stimuliInfo.textContent = ''; showError(stimuliInput, e, name); return false; }
+      const r = await engine.call('absStimuli', { text, name, kind });
+      const regions = r.regionRows ? `, ${r.regionRows} of them regions of ${r.files.join(', ')}` : '';
+      info.textContent = `${name}: ${r.count} stimuli (${r.luminance} luminance, ${r.colour} colour${regions})${kind === 'test' ? '.' : ` over ${r.exposures} exposures.`}`;
+      if (kind === 'test') {
+        st.regions = r.regions;
+        setOptions(whiteSel, [...WHITE_AUTO, ...r.colourIds.map((id) => ({ value: id, label: `${id} (eq 16)` }))], whiteSel.value);
+      }
+      return r;
+    } catch (e) { info.textContent = ''; showError(input, e, name); return null; }
   }
   stimuliInput.addEventListener('change', async () => {
     const f = stimuliInput.files[0];
     if (f) await loadStimuli(await f.text(), f.name);
+  });
+  testInput.addEventListener('change', async () => {
+    const f = testInput.files[0];
+    st.testFromExample = false;
+    if (f) await loadStimuli(await f.text(), f.name, 'test');
   });
 
   async function loadCalibration(input, kind, info) {
@@ -237,7 +272,9 @@ export function mount(section, app) {
   function errorTarget(e, stage) {
     if (e.input) return e.input;   // a number box that could not be read
     const m = e.message ?? '';
+    if (stage === 'apply' && /stimulus|white patch|test scene/.test(m)) return testInput;
     if (['NON_MONOTONIC', 'TOO_FEW_PATCHES', 'NEGATIVE_VALUE', 'EMPTY_FILE', 'NO_STIMULI', 'MISSING_COLUMN'].includes(e.code)) return stimuliInput;
+    if (/zone parameter/.test(m)) return wInput;
     if (/lens-cap/.test(m)) return capInput;
     if (/flat/.test(m)) return flatInput;
     if (['FRAME_MISMATCH', 'MISSING_METADATA', 'NO_IMAGE', 'LIMIT_EXCEEDED'].includes(e.code) || e.typed) return seriesInput;
@@ -259,23 +296,26 @@ export function mount(section, app) {
 
   /// Fits the profile and applies it to the series. Returns {fit, apply} or null.
   async function run() {
-    for (const c of [fitBtn, seriesInput, stimuliInput, capInput, flatInput, noiseInput, satInput]) clearError(c);
+    for (const c of [fitBtn, seriesInput, stimuliInput, testInput, capInput, flatInput, noiseInput, satInput, wInput]) clearError(c);
     fitBtn.disabled = exampleBtn.disabled = true;
     let stage = 'fit';
     try {
       progress.start('Fitting the absolute profile…');
       const given = cameraSel.value.startsWith('@');
       const options = { camera: given ? '' : cameraSel.value, sensitivities: given ? cameraSel.value.slice(1) : '', transform: transformSel.value, fusion: fusionSel.value,
-        noise_floor: numberValue(noiseInput, 0), saturation: numberValue(satInput, 0) };
+        noise_floor: numberValue(noiseInput, 0), saturation: numberValue(satInput, 0), w: numberValue(wInput) };
       const fit = await engine.call('absFit', { options }, { onProgress: progress.update });
       st.fit = fit;
+      st.report = fit.report;
       showFit(fit);
+      showFigures(fit.report);
       if (!st.frames.length) { maps.hidden = true; return { fit }; }
       stage = 'apply';
       progress.start('Measuring the series…');
-      const out = await engine.call('absApply', { mode: fusionSel.value, exposures: typedExposures(), render: renderOptions() }, { onProgress: progress.update });
+      const out = await engine.call('absApply', { mode: fusionSel.value, exposures: typedExposures(), white: whiteSel.value, render: renderOptions() }, { onProgress: progress.update });
+      st.report = out.report;
       showMaps(out);
-      showFigures(fit, out.figures);
+      showFigures(out.report);
       app.mark('absolute', 'done');
       return { fit, apply: out };
     } catch (e) {
@@ -288,28 +328,31 @@ export function mount(section, app) {
   fitBtn.addEventListener('click', run);
 
   async function example() {
-    for (const c of [fitBtn, seriesInput, stimuliInput, capInput, flatInput]) clearError(c);
+    for (const c of [fitBtn, seriesInput, stimuliInput, testInput, capInput, flatInput]) clearError(c);
     progress.start('Generating the example with the virtual camera…');
     fitBtn.disabled = exampleBtn.disabled = true;
     let ex;
     try {
       ex = await engine.call('absExample', { options: { illuminant: exLightSel.value, colour_training: exTrainingSel.value } }, { onProgress: progress.update });
     } catch (e) { showError(exampleBtn, e, 'Example'); return null; } finally { progress.done(); fitBtn.disabled = exampleBtn.disabled = false; }
-    for (const i of [seriesInput, stimuliInput, capInput, flatInput]) i.value = '';
+    for (const i of [seriesInput, stimuliInput, testInput, capInput, flatInput]) i.value = '';
     seriesRows(ex.frames);
-    st.regions = ex.regions;
     capInfo.textContent = `${ex.lensCap.length} virtual lens-cap frames`;
     flatInfo.textContent = 'virtual flat field (equal-tristimulus light, 450 cd/m²)';
-    noiseInput.value = ''; satInput.value = '';
+    noiseInput.value = ''; satInput.value = ''; wInput.value = String(wSpec.default_number);
     setOptions(cameraSel, cameraOptions(), ex.camera);
     if (!(await loadStimuli(ex.stimuliCsv, 'example-stimuli.csv'))) return null;
-    stimuliInfo.textContent += ` Scene: a ColorChecker under ${exLightSel.value} (white ${num(ex.regions.find((r) => r.id === ex.whiteId).XYZ[1])} cd/m²) and 12 equal-tristimulus cells from 0.3 to 3000 cd/m², with their true X, Y, Z.`;
+    if (!(await loadStimuli(ex.testCsv, 'example-test.csv', 'test'))) return null;
+    st.testFromExample = true;
+    whiteSel.value = ex.whiteId;
+    testInfo.textContent += ` The scene's cells: a ColorChecker under ${exLightSel.value} (white patch ${ex.whiteId}) and 12 equal-tristimulus cells from 0.3 to 3000 cd/m², with their true X, Y, Z.`;
     return run();
   }
   exampleBtn.addEventListener('click', example);
 
   // ---- fit summary and OECF plot ----
-  function showFit(fit) {
+  function showFit({ report, panels }) {
+    const fit = report.fit, t = report.training;
     const ch = ['R', 'G', 'B'];
     const rows = fit.channels.map((c, i) => h('tr', {}, h('th', {}, ch[i]), h('td', {}, c.k1.toExponential(3)), h('td', {}, c.k2.toExponential(4)), h('td', { 'data-col': `k3-${ch[i]}` }, c.k3.toFixed(4)),
       h('td', {}, String(c.samples)), h('td', {}, pct(c.rms_relative)), h('td', {}, c.r_squared.toFixed(5)),
@@ -320,14 +363,14 @@ export function mount(section, app) {
       : h('p', { class: 'unavailable', 'data-role': 'abs-reciprocity' }, `Reciprocity fails: ${fit.reciprocity_message}. The common curve is used as fitted; values from these exposures are biased.`);
     fitSummary.replaceChildren(
       h('h3', {}, 'Fitted profile'),
-      h('p', {}, `${fit.make} ${fit.model}: ${fit.luminance_stimuli} luminance and ${fit.colour_stimuli} colour stimuli used${fit.saturated_stimuli ? `, ${fit.saturated_stimuli} left out (a channel saturated)` : ''}. `,
-        `Fall-off f(r): ${fit.has_falloff ? `p1 ${fit.falloff.p1.toFixed(4)}, p2 ${fit.falloff.p2.toFixed(4)} (from the flat field)` : 'none (f = 1)'}. Channel areas: ${fit.areas_source}. `,
+      h('p', {}, `${fit.make} ${fit.model}: ${t.luminance_stimuli} luminance and ${t.colour_stimuli} colour stimuli used${t.saturated_stimuli ? `, ${t.saturated_stimuli} left out (a channel saturated)` : ''}. `,
+        `Fall-off f(r): ${fit.falloff ? `p1 ${fit.falloff.p1.toFixed(4)}, p2 ${fit.falloff.p2.toFixed(4)} (from the flat field)` : 'none (f = 1)'}. Channel areas: ${fit.areas_source}. Zones: w = ${num(fit.w)}. `,
         `Colour matrix ${fit.transform}: ${fit.colour_message || 'fitted by pattern search (eqs 11–12)'}.`),
       h('table', { class: 'metrics abs-channels' },
         h('thead', {}, h('tr', {}, ['channel', 'k1', 'k2', 'k3', 'stimuli', 'RMS rel. error', 'R²', 'n (DN)', 'S (DN)', 'A_G/A_c'].map((t) => h('th', {}, t)))),
         h('tbody', {}, rows)),
-      recip, h('div', { class: 'buttons' }, profileBtn));
-    oecfBox.replaceChildren(figure(oecfPlot(fit.panels), { name: 'absolute-oecf', caption: "Fitted OECFs per channel and exposure (Guarnera 2018 fig 5): normalised R′, G′, B′ (eq 7) of the luminance training stimuli against Y; solid: the common eq (8) curve at each exposure's t/N², dashed: the exposure's own fit (reciprocity check); log axes" }));
+      recip, h('div', { class: 'buttons' }, profileBtn, recipeBtn));
+    oecfBox.replaceChildren(figure(oecfPlot(panels), { name: 'absolute-oecf', caption: "Fitted OECFs per channel and exposure (Guarnera 2018 fig 5): normalised R′, G′, B′ (eq 7) of the luminance training stimuli against Y; solid: the common eq (8) curve at each exposure's t/N², dashed: the exposure's own fit (reciprocity check); log axes" }));
   }
 
   // ---- maps ----
@@ -371,13 +414,13 @@ export function mount(section, app) {
   }
   labelsBox.addEventListener('change', showLabels);
   function showMaps(out) {
-    st.shown = out;
+    st.shown = { ...out, summary: out.report.maps };
     showLabels();
     draw(lumCanvas, out.luminance);
     draw(srcCanvas, out.source);
     lumLegend.replaceChildren(colourBar(out.luminance.range, out.luminance.log));
-    srcLegend.replaceChildren(...sourceLegend(out.summary));
-    const s = out.summary;
+    const s = out.report.maps;
+    srcLegend.replaceChildren(...sourceLegend(s));
     mapSummary.textContent = `${s.width}×${s.height} pixels from ${s.labels.length} exposure${s.labels.length > 1 ? 's' : ''} (${fusionSel.value === 'recursive' ? 'Algorithm 1' : 'weighted fusion'}) in ${fmt(out.ms, 0)} ms. `
       + `Y from ${num(s.Y.min)} to ${num(s.Y.max)} cd/m² (median ${num(s.Y.median)}); ${s.saturated_pixels} pixels saturated in every exposure, ${s.unreliable_pixels} without a reliable value.`;
     maps.hidden = false;
@@ -396,26 +439,38 @@ export function mount(section, app) {
   mapSel.addEventListener('change', rerender);
   logBox.addEventListener('change', rerender);
 
-  // ---- figures (section 4.1) ----
-  function showFigures(fit, figures) {
-    const cols = [['Training stimuli (fit)', fit.training, `white: E at ${num(fit.training.white[1])} cd/m²`]];
-    if (figures) {
-      cols.push([`Scene cells (${figures.ids.length}, measured vs true)`, figures.metrics, `white per eq (16): ${figures.whiteId} at ${num(figures.yMax)} cd/m²`]);
-      for (const p of figures.parts ?? []) cols.push([`${p.label} (${p.count})`, p.metrics, 'the same white']);
-    }
-    const row = (label, f) => h('tr', {}, h('th', {}, label), cols.map(([, m]) => h('td', {}, f(m))));
-    const s3 = (s) => `${s.mean.toFixed(2)} / ${s.median.toFixed(2)} / ${s.max.toFixed(2)}`;
+  // ---- figures (section 4.1): the engine's report, as `tristim absolute evaluate` prints it ----
+  const f2 = (x) => (Number.isFinite(x) ? x.toFixed(2) : '–');
+  function showFigures(report) {
+    const t = report.training, test = report.test;
+    const cols = [];
+    if (t) cols.push(['training', `Training stimuli (${t.evaluated})`, t.figures, `white: E at ${num(t.figures.white[1])} cd/m²`]);
+    const white = test ? (test.white_rule === 'eq16' ? `white per eq (16): ${test.white_id} at ${num(test.max_luminance)} cd/m²` : `white: E at ${num(test.max_luminance)} cd/m²`) : '';
+    for (const g of test?.figures ?? [])
+      cols.push([g.group, `${g.group === 'all' ? 'Test scene' : g.label} (${g.count}${g.group === 'all' ? ', measured vs true' : ''})`, g.metrics, g.group === 'all' ? white : 'the same white']);
+    const row = (label, f) => h('tr', {}, h('th', {}, label), cols.map(([group, , m]) => h('td', { 'data-group': group }, f(m))));
+    const s3 = (x) => `${f2(x.mean)} / ${f2(x.median)} / ${f2(x.max)}`;
+    const rows = test ? [...test.points, ...test.regions] : [];
+    const xyz = (v) => v.map(num).join(' / ');
+    const table = rows.length ? h('details', { class: 'abs-rows', 'data-role': 'abs-rows' },
+      h('summary', {}, `Per-stimulus rows (${test.points.length} per patch, ${test.regions.length} regions)`),
+      h('table', { class: 'metrics' },
+        h('thead', {}, h('tr', {}, ['id', 'set', 'estimated X / Y / Z (cd/m²)', 'reference X / Y / Z (cd/m²)', 'relative Y error', 'from'].map((x) => h('th', {}, x)))),
+        h('tbody', {}, rows.map((r) => h('tr', { dataset: { id: r.id } }, h('th', {}, r.id), h('td', {}, r.set), h('td', {}, xyz(r.estimated)), h('td', {}, xyz(r.reference)),
+          h('td', { 'data-col': 'row-relY' }, pct(r.relative_Y_error)),
+          h('td', {}, r.file ? `${r.file} (${r.region[0]}, ${r.region[1]}) ${r.region[2]}×${r.region[3]}: ${r.source_label || 'no exposure'}` : r.saturated ? 'per patch (saturated: left out)' : 'per patch')))))) : null;
     figuresBox.replaceChildren(h('h3', {}, 'Figures (Guarnera 2018 section 4.1)'),
       h('table', { class: 'metrics abs-figures-table' },
-        h('thead', {}, h('tr', {}, h('th', {}, ''), cols.map(([l]) => h('th', {}, l)))),
+        h('thead', {}, h('tr', {}, h('th', {}, ''), cols.map(([group, l]) => h('th', { 'data-group': group }, l)))),
         h('tbody', {},
           row('ΔE94 mean / median / max', (m) => s3(m.metrics.dE94)),
           row('ΔE00 mean / median / max', (m) => s3(m.metrics.dE00)),
-          row('NRMSE X / Y / Z', (m) => Array.from(m.metrics.NRMSE).map((v) => pct(v)).join(' / ')),
+          row('NRMSE X / Y / Z', (m) => m.metrics.NRMSE.map((v) => pct(v)).join(' / ')),
           row('relative Y error (mean |ΔY|/Y)', (m) => h('span', { 'data-col': 'relY' }, pct(m.relative_Y_error))),
-          row('median |ΔX| / |ΔY| / |ΔZ| (cd/m²)', (m) => Array.from(m.median_absolute_error).map(num).join(' / ')),
-          row('CIELAB white', (m) => `${Array.from(m.white).map(num).join(', ')} cd/m²`))),
-      h('small', { class: 'hint' }, cols.map(([l, , w]) => `${l}: ${w}.`).join(' '), ' NRMSE: RMS error over the range of the reference channel.'));
+          row('median |ΔX| / |ΔY| / |ΔZ| (cd/m²)', (m) => m.median_absolute_error.map(num).join(' / ')),
+          row('CIELAB white', (m) => `${m.white.map(num).join(', ')} cd/m²`))),
+      h('small', { class: 'hint' }, cols.map(([, l, , w]) => `${l}: ${w}.`).join(' '), ' NRMSE: RMS error over the range of the reference channel.'),
+      table, h('div', { class: 'buttons' }, reportBtn));
   }
 
   // ---- pointer read-out ----

@@ -1,7 +1,7 @@
 // Worker handlers of step 5: a profile applied to a decoded RAW (the XYZ image stays here,
 // state.xyz) rendered for display, and the values of one pixel.
 import { reply, coded } from '../lib/reply.js';
-import { renderXYZ, encodingTable } from './render.js';
+import { renderXYZ, encodingTable, ySample } from './render.js';
 
 export const handlers = {
   /// Applies a profile to a decoded RAW, keeps the XYZ image here and returns display renders.
@@ -14,8 +14,11 @@ export const handlers = {
     const tApply = performance.now() - t0;
     progress(0.7, 'rendering');
     state.xyz = { ...img, white };
+    // The Y map's top: the 99th percentile of Y (the engine's quantile, of a subsample).
+    const p99 = T.quantile(ySample(img.pixels), 0.99);
+    const yMax = p99 > 0 ? p99 : 1;
     const r = renderXYZ(img.pixels, img.width, img.height,
-      { matrix: T.displayMatrix(white), enc: encodingTable(T, white), lut: new Uint8Array(lut), maxSide });
+      { matrix: T.displayMatrix(white), enc: encodingTable(T, white), lut: new Uint8Array(lut), maxSide, yMax });
     return reply({ ...r, fullWidth: img.width, fullHeight: img.height, msApply: tApply, msRender: performance.now() - t0 - tApply });
   },
 

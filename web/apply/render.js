@@ -16,13 +16,12 @@ export function encodingTable(T, white) {
 
 /// xyz: Float32Array(3 w h); matrix: row-major XYZ -> linear sRGB (the engine's displayMatrix of
 /// the profile's white); enc: encodingTable(); lut: Uint8Array(256 * 3) colour map;
-/// yMax: Y mapped to the top of the map (default: 99th percentile).
-export function renderXYZ(xyz, width, height, { matrix: M, enc: ENC, lut, maxSide = 1400, yMax } = {}) {
+/// yMax: Y mapped to the top of the map (the caller's: the engine's 99th percentile of ySample).
+export function renderXYZ(xyz, width, height, { matrix: M, enc: ENC, lut, maxSide = 1400, yMax = 1 } = {}) {
   const f = Math.max(1, Math.ceil(Math.max(width, height) / maxSide));
   const w = Math.floor(width / f), hgt = Math.floor(height / f);
   const srgb = new Uint8ClampedArray(w * hgt * 4);
   const ymap = new Uint8ClampedArray(w * hgt * 4);
-  if (!yMax) yMax = percentileY(xyz, 0.99) || 1;
   const yScale = 255 / yMax;
   for (let j = 0; j < hgt; j++) {
     for (let i = 0; i < w; i++) {
@@ -42,22 +41,10 @@ export function renderXYZ(xyz, width, height, { matrix: M, enc: ENC, lut, maxSid
   return { width: w, height: hgt, factor: f, srgb, ymap, yMax };
 }
 
-/// Approximate percentile of Y (a 4096-bin histogram of a strided subsample: fast, for the
-/// colour-map range only).
-export function percentileY(xyz, p) {
-  const n = xyz.length / 3;
-  const step = Math.max(1, Math.floor(n / 250000));
-  let max = 0;
-  for (let i = 0; i < n; i += step) { const y = xyz[3 * i + 1]; if (y > max) max = y; }
-  if (!(max > 0)) return 0;
-  const bins = new Uint32Array(4096);
-  let count = 0;
-  for (let i = 0; i < n; i += step) {
-    const y = xyz[3 * i + 1];
-    if (y >= 0) { bins[Math.min(4095, ((y / max) * 4096) | 0)]++; count++; } else if (y < 0) { bins[0]++; count++; }
-  }
-  const target = p * count;
-  let acc = 0;
-  for (let b = 0; b < 4096; b++) { acc += bins[b]; if (acc >= target) return ((b + 1) / 4096) * max; }
-  return max;
+/// Y of every k-th pixel (at most ~250 000 values), for the engine's quantile of the map's range.
+export function ySample(xyz) {
+  const n = xyz.length / 3, step = Math.max(1, Math.floor(n / 250000));
+  const out = new Float64Array(Math.ceil(n / step));
+  for (let i = 0, k = 0; i < n; i += step, k++) out[k] = xyz[3 * i + 1];
+  return out;
 }

@@ -63,14 +63,8 @@ export function mount(section, app) {
         const hd = readIccHeader(new Uint8Array(await f.arrayBuffer()));
         imported.append(h('p', {}, `${f.name}: ICC v${hd.version} ${hd.deviceClass} profile, ${hd.colourSpace} → ${hd.pcs}, ${hd.size} bytes, tags ${hd.tags.join(' ')}.`));
       } else if (ext === 'csv') {
-        // tristim's per-patch CSV names the reference columns X_ref, Y_ref, Z_ref: read those.
-        const raw = await f.text();
-        const nl = raw.indexOf('\n');
-        const head = raw.slice(0, nl < 0 ? raw.length : nl);
-        const text = /(^|,)X_ref(,|$)/.test(head)
-          ? head.replace(/(^|,)([XYZ])_ref(?=,|\r?$)/g, '$1$2').replace(/(^|,)([XYZ])_est(?=,|\r?$)/g, '$1$2_estimate') + raw.slice(head.length)
-          : raw;
-        const r = await app.views.reference.useFile({ name: f.name, text });
+        // The engine reads its own per-patch CSV as a reference (its X_ref, Y_ref, Z_ref columns).
+        const r = await app.views.reference.useFile({ name: f.name, text: await f.text() });
         if (r instanceof Error) throw r;
         imported.append(h('p', {}, `${f.name}: loaded as the reference in step 1 (its X, Y, Z columns).`));
       } else throw Object.assign(new Error(`unknown file type .${ext}`), { code: 'UNSUPPORTED_FORMAT' });

@@ -19,6 +19,7 @@ export const handlers = {
     const corrected = recipe.reference.chart !== 'file' && (recipe.surface?.method ?? 'none') !== 'none';
     const out = T.fitSample(recipe, sample, corrected ? T.recipeReference(recipe) : reference);
     out.display = displayOf(T, out.reference_XYZ, out.evaluation.fit.fitted, out.recipe.characterisation.lab_white);
+    out.objective_label = T.objectiveChoiceLabel(recipe.characterisation.objective);   // the loss and optimiser it ran
     if (heldOut) out.held_out = { ...T.evaluateProfile(out.profile, heldOut.rgb, heldOut.xyz, heldOut.ids).metrics, set: heldOut.name };
     out.worker_ms = performance.now() - t0;
     return reply(out);

@@ -2,7 +2,6 @@
 // fit them in a few workers side by side, with progress, a cancel button (which terminates those
 // workers) and the rows streaming into the results as each finishes.
 import { h, field, showError, clearError, progressBar, readText } from '../lib/ui.js';
-import { describe, FAMILIES, DEFAULT_MODELS } from './models/index.js';
 import { pairData } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
@@ -10,23 +9,22 @@ import { WorkerPool } from './pool.js';
 
 export function mount(section, app) {
   const { engine } = app;
-  const models = app.catalog.models.map(describe);
+  const models = app.catalog.models;           // the engine's model table (ModelInfo rows, each naming its family)
+  const families = app.catalog.modelFamilies;  // the engine's model families, in the table's order
   const objectives = app.catalog.objectives;   // the engine's objective table (MethodInfo rows)
   const choice = (app.session.fitChoice ??= defaultChoice(models, objectives));
   // Each objective's options as a MethodChoice, completed from the table's defaults.
   choice.objectiveChoices = Object.fromEntries(objectives.map((o) => [o.id, completeChoice(o, choice.objectiveChoices?.[o.id])]));
 
   const modelBox = h('fieldset', { class: 'checklist' }, h('legend', {}, 'Models'));
-  const families = [...new Set(models.map((m) => m.family))];
   for (const fam of families) {
-    const group = h('div', { class: 'family' }, h('h4', {}, fam));
-    const about = FAMILIES.find((f) => f.family === fam)?.about;
-    if (about) group.append(h('small', { class: 'hint' }, about));
-    for (const m of models.filter((x) => x.family === fam)) {
+    const group = h('div', { class: 'family', dataset: { family: fam.id } }, h('h4', {}, fam.label));
+    if (fam.about) group.append(h('small', { class: 'hint' }, fam.about));
+    for (const m of models.filter((x) => x.family === fam.id)) {
       const cb = h('input', { type: 'checkbox', value: m.id, checked: choice.models.includes(m.id), dataset: { model: m.id } });
       cb.id = `model-${m.id}`;
       cb.addEventListener('change', () => { toggle(choice.models, m.id, cb.checked); persist(); });
-      group.append(h('div', { class: 'check', title: m.about }, cb, h('label', { for: cb.id }, m.label),
+      group.append(h('div', { class: 'check', title: m.reference }, cb, h('label', { for: cb.id }, m.label),
         h('code', { class: 'model-id' }, m.id), m.duplicate_of ? h('small', { class: 'hint' }, `same span as ${m.duplicate_of}`) : null));
     }
     modelBox.append(group);
@@ -165,7 +163,7 @@ export function mount(section, app) {
     const jobs = rowOrder(choice.models, objectiveIds, nTerms);
     // The rows run longest first (rowOrder), and finish in any order; the log lists them as the
     // models and objectives are listed above (model by model), whatever order they finish in.
-    const listed = families.flatMap((fam) => models.filter((x) => x.family === fam).map((x) => x.id));
+    const listed = families.flatMap((fam) => models.filter((x) => x.family === fam.id).map((x) => x.id));
     const readingOrder = new Map(listed.flatMap((m, i) => objectiveIds.map((o, k) => [`${m}|${o}`, i * objectiveIds.length + k])));
     const logRow = (job, li) => {
       const n = readingOrder.get(`${job.mId}|${job.obj}`) ?? Infinity;
@@ -215,8 +213,10 @@ export function mount(section, app) {
       const onRow = (job, { result: fit, error }) => {
         const { mId, obj, recipe } = job;
         done++;
-        const m = models.find((x) => x.id === mId) ?? describe(mId);
-        const label = `${m.label} · ${objectiveText(objectives.find((o) => o.id === obj), recipe.characterisation.objective) ?? obj}`;
+        const m = models.find((x) => x.id === mId) ?? { label: mId };
+        // A fitted row names its objective as it ran (the engine's objectiveChoiceLabel: for
+        // CIEDE2000 the loss and the optimiser); a refused one by its table row.
+        const label = `${m.label} · ${fit?.objective_label ?? objectives.find((o) => o.id === obj)?.label ?? obj}`;
         if (error) {
           pendingLog.push([job, h('li', { class: 'error', dataset: { code: error.code } }, `${label}: ${error.message} (${error.code})`)]);
         } else {
@@ -277,17 +277,6 @@ export function mount(section, app) {
     }
   }
   runBtn.addEventListener('click', () => { run({ onFirst: () => app.goto('results') }); });
-
-  /// A row's name for its objective as it ran: the catalogue's CIEDE2000 entry covers two losses
-  /// (mean, RMS) and several optimisers; the results say which loss the row minimised, and how.
-  function objectiveText(o, choice) {
-    if (o?.id !== 'de2000') return o?.label;
-    const rms = !!choice?.parameters?.rms;
-    const alg = choice?.settings?.algorithm ?? 'auto';
-    const how = alg === 'auto' ? (rms ? 'Levenberg-Marquardt' : 'reweighted Levenberg-Marquardt')
-      : alg === 'lm' ? 'Levenberg-Marquardt' : alg === 'irls' ? 'reweighted Levenberg-Marquardt' : `NLopt ${alg}`;
-    return `CIEDE2000 ${rms ? 'RMS' : 'mean'} (${how})`;
-  }
 
   /// The recipe of one fit: every setting of steps 1–3 that decides the profile.
   function recipeFor(model, objective, ref, data) {
@@ -373,6 +362,10 @@ function defaultChoice(models, objectives) {
   return { models: models.filter((m) => !m.duplicate_of).map((m) => m.id), objectives: objectives.map((o) => o.id),
     excludeSaturated: true, excludeAllFlagged: false, preserveWhite: false };
 }
+
+/// The models whose rows a fresh session shows first (the first of these the engine has) while
+/// the compare runs: a choice of the page, not a property of the models.
+const DEFAULT_MODELS = ['matrix-3x3', 'Finlayson2015-2', 'Shen2008'];
 
 /// The rows (model × objective) in the order they are handed to the workers: first the first
 /// default model with the first objective (the first screen shows it while the others run), then

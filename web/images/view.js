@@ -34,7 +34,9 @@ export function mount(section, app) {
       else if (fs[0]) setFile(slot, fs[0]);
     });
   }
-  const flatMode = select([{ value: 'pixel', label: 'per pixel (Abed et al. 2013)' }, { value: 'radial', label: 'radial fall-off fit (Guarnera et al. 2018 eq 7)' }], app.session.flatMode ?? 'pixel');
+  // The engine's flat-field modes (MethodInfo rows: the citation is the option's title).
+  const flatMode = select(app.catalog.flatFieldModes.map((m) => ({ value: m.id, label: m.label })), app.session.flatMode ?? 'pixel');
+  for (const o of flatMode.options) o.title = app.catalog.flatFieldModes.find((m) => m.id === o.value)?.reference ?? '';
   flatMode.addEventListener('change', async () => {
     await app.save('flatMode', flatMode.value);
     const f = app.session['files.flat'];

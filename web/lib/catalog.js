@@ -5,8 +5,3 @@ export function options(list, fallback = []) {
     ? { value: c, label: c }
     : { value: String(c.id ?? c.value ?? c.name), label: c.label ?? c.name ?? String(c.id), ...c }));
 }
-
-export const OBSERVERS = [
-  { value: '1931', label: 'CIE 1931 2°' },
-  { value: '1964', label: 'CIE 1964 10°' },
-];

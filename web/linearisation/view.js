@@ -15,12 +15,6 @@ import { oecfPlot } from '../plots/inverse_oecf.js';
 import { reflectancePlot, patchBarsPlot } from '../plots/reflectance.js';
 import { storedFullScale } from '../fit/view.js';
 
-const NEEDS = {
-  '': 'needs nothing but the camera RGB',
-  greys: 'fitted on the chart\'s grey patches (found automatically from the reference, or listed)',
-  reference: 'fitted against the reference XYZ of every patch',
-  reflectances: 'fitted on non-grey patches with known reflectances (a built-in chart\'s spectra)',
-};
 const SPECTRAL_STYLES = {
   measured: { label: 'measured (the chart\'s reference spectrum)', dash: null },
   estimated: { label: 'estimated from the linearised camera RGB, eq (27)', dash: '6,3' },
@@ -29,7 +23,7 @@ const CHANNELS = ['R', 'G', 'B'];
 
 export function mount(section, app) {
   const { engine } = app;
-  const rows = app.catalog.linearisations;          // the engine's linearisation table (id, label, reference, needs, options)
+  const rows = app.catalog.linearisations;          // the engine's linearisation table (id, label, reference, needs and needs_text, options)
   const byId = Object.fromEntries(rows.map((r) => [r.id, r]));
   const choice = (app.session.linearisation = completeChoice(byId[app.session.linearisation?.method] ?? byId.identity ?? rows[0], app.session.linearisation));
   const st = (app.session.linearisationSettings ??= { patch: '' });
@@ -72,7 +66,7 @@ export function mount(section, app) {
 
   function renderForm() {
     const info = byId[choice.method];
-    about.textContent = `${info.label}${info.reference ? ` — ${info.reference}` : ''}; ${NEEDS[info.needs] ?? info.needs}.`;
+    about.textContent = `${info.label}${info.reference ? ` — ${info.reference}` : ''}; ${info.needs_text}.`;
     formBox.replaceChildren(...optionsForm(info, choice, () => changed()));
   }
 

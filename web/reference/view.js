@@ -1,7 +1,7 @@
 // Step 1: the reference — chart (built-in or uploaded CSV/CGATS), illuminant and observer; the
 // patches as swatches with XYZ and Lab, and the CIE xy diagram. Emits 'reference'.
 import { h, field, select, setOptions, showError, clearError, fmt, onFileText } from '../lib/ui.js';
-import { options, OBSERVERS } from '../lib/catalog.js';
+import { options } from '../lib/catalog.js';
 import { cssColours, xyFromXYZ, figure } from '../plots/common.js';
 import { xyPlot } from '../plots/xy.js';
 
@@ -12,10 +12,11 @@ export function mount(section, app) {
   const settings = (app.session.settings ??= { ...DEFAULT_SETTINGS });
   const charts = options(app.catalog.charts);
   const illuminants = options(app.catalog.illuminants);
+  const observers = options(app.catalog.observers);
 
   const chartSel = select(charts, settings.chart);
   const illumSel = select(illuminants, settings.illuminant);
-  const obsSel = select(OBSERVERS, settings.observer);
+  const obsSel = select(observers, settings.observer);
   const fileInput = h('input', { type: 'file', accept: '.csv,.txt,.cie,.ti3,.cgats,.it8' });
   const fileState = h('p', { class: 'file-state' });
   const useBuiltin = h('button', { type: 'button', hidden: true }, 'Use the built-in chart instead');
@@ -82,17 +83,14 @@ export function mount(section, app) {
     const xy = xyFromXYZ(ref.XYZ);
     summary.textContent = `${n} patches from the ${ref.source}, illuminant ${settings.illuminant}, `
       + `CIE ${settings.observer} observer; white X=${fmt(ref.white[0])} Y=${fmt(ref.white[1])} Z=${fmt(ref.white[2])}.`;
-    // Laid out as on the chart when the ids say where (cc24/passport: row letter; SG: column letter).
-    const sg = !s0().referenceFile && String(settings.chart).startsWith('sg140');
+    // A built-in chart's patches laid out as on the chart: each at its cell of the chart's layout
+    // (the engine's layout table); an uploaded file's in its own order, six to a row.
+    const layout = s0().referenceFile ? null : app.catalog.layouts[settings.chart];
+    const cells = new Map((layout?.patches ?? []).map((c) => [c.id, c]));
     const compact = n > 30;
-    const pos = (id) => {
-      const m = /^([A-Z])(\d+)$/.exec(id);
-      if (!m || s0().referenceFile) return null;
-      const letter = m[1].charCodeAt(0) - 65, number = Number(m[2]);
-      return sg ? { row: number, col: letter + 1 } : { row: letter + 1, col: number };
-    };
+    const pos = (id) => { const c = cells.get(id); return c ? { row: c.row + 1, col: c.column + 1 } : null; };
     swatches.className = `swatches${compact ? ' compact' : ''}`;
-    swatches.style.gridTemplateColumns = `repeat(${sg ? 14 : 6}, minmax(0, 1fr))`;
+    swatches.style.gridTemplateColumns = `repeat(${layout?.columns ?? 6}, minmax(0, 1fr))`;
     swatches.replaceChildren(...ref.ids.map((id, i) => {
       const xyz = `XYZ ${fmt(ref.XYZ[3 * i])}, ${fmt(ref.XYZ[3 * i + 1])}, ${fmt(ref.XYZ[3 * i + 2])}`;
       const lab = `L*a*b* ${fmt(ref.Lab[3 * i], 1)}, ${fmt(ref.Lab[3 * i + 1], 1)}, ${fmt(ref.Lab[3 * i + 2], 1)}`;

@@ -29,10 +29,13 @@ export const handlers = {
       return { ...r, text: T.surfaceChoiceText(r.choice) };
     });
     const colours = T.referenceChart(chart, illuminant || 'D50', options.observer ?? '1931');   // display colours of the fitted patches
-    const at = new Map(colours.ids.map((id, i) => [id.replace(/^([A-Z]+)0+(\d)/, '$1$2'), i]));
-    const sRGB = fits[0].ids.flatMap((id) => { const i = at.get(id.replace(/^([A-Z]+)0+(\d)/, '$1$2')); return i === undefined ? [0.5, 0.5, 0.5] : Array.from(colours.sRGB.slice(3 * i, 3 * i + 3)); });
+    const at = new Map(colours.ids.map((id, i) => [id, i]));   // both sets' ids are the engine's matching keys
+    const sRGB = fits[0].ids.flatMap((id) => { const i = at.get(id); return i === undefined ? [0.5, 0.5, 0.5] : Array.from(colours.sRGB.slice(3 * i, 3 * i + 3)); });
     return reply({ fits, target_ids: table.ids, sRGB: Float64Array.from(sRGB) });
   },
+
+  /// Patch ids as typed ("A01", " b3") -> the engine's matching keys (normalise_patch_id: "A1", "B3").
+  patchKeys: (T, { ids }) => ({ result: ids.map((id) => T.normalisePatchId(id)) }),
 
   /// The simulated Table IV (geometry_table.hpp) for one camera, illuminant and noise σ.
   surfaceTable4: (T, { camera, illuminant, noise }) => reply({ methods: T.surfaceTable4Methods(), cells: T.surfaceTable4(camera, illuminant, noise, 1) }),

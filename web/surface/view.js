@@ -13,14 +13,17 @@ import { cssColours } from '../plots/common.js';
 
 const EXAMPLE = { name: 'sg_d8_sci_coolpi.csv', chart: 'sg140-2005', url: 'examples/sg_d8_sci_coolpi.csv',
   label: 'ColorChecker SG (Jan 2007) measured d:8, specular included (COOLPI, Konica Minolta CM-600d)' };
-const GEOMETRY = { measurement: ['k1', 'k2', 'k_ins'], capture: ['k1_capture', 'k2_capture', 'k_ins_capture'] };
-const EQUATION = { none: '', scaler: "R' = μR", offset: "R' = R + ρ", 'scaler-offset': "R' = μR + ρ, eq (5)", saunderson: 'eq (3) as eq (4), App. A' };
 
 export function mount(section, app) {
   const { engine } = app;
-  const rows = app.catalog.surfaces;                       // the engine's surface table (MethodInfo rows)
+  // The engine's surface table: MethodInfo rows with each row's equation, coefficient names and,
+  // for a row of Saunderson geometries, the option each geometry field sets per role.
+  const rows = app.catalog.surfaces;
   const presets = app.catalog.surfacePresets ?? [];
   const byId = Object.fromEntries(rows.map((r) => [r.id, r]));
+  /// [[geometry field, option name]] a preset sets in `role` for row `id` ([] for a row without geometries).
+  const geometryOf = (id, role) => Object.entries(byId[id]?.geometry?.[role] ?? {});
+  const takesGeometry = (id) => Object.keys(byId[id]?.geometry ?? {}).length > 0;
   // A correction's citation is its table row's reference (the engine's one place for it).
   const cite = (id) => (byId[id] ? `${byId[id].label}: ${byId[id].reference}` : '');
   const choice = (app.session.surface = completeChoice(byId[app.session.surface?.method] ?? rows[0], app.session.surface));
@@ -93,23 +96,23 @@ export function mount(section, app) {
 
   function renderForm() {
     const info = byId[choice.method];
-    about.textContent = info.reference ? `${info.label} — ${info.reference}${EQUATION[info.id] ? ` (${EQUATION[info.id]})` : ''}.` : info.label;
-    presetBox.hidden = choice.method !== 'saunderson';
+    about.textContent = info.reference ? `${info.label} — ${info.reference}${info.equation ? ` (${info.equation})` : ''}.` : info.label;
+    presetBox.hidden = !takesGeometry(choice.method);
     const chosen = [st.measurement, st.capture].map((id) => presets.find((p) => p.id === id)).filter(Boolean);
     presetSource.hidden = presetBox.hidden || !chosen.length;
     presetSource.textContent = chosen.map((p) => `${p.id}: ${p.source}`).join(' · ');
-    formBox.replaceChildren(...optionsForm(info, choice, () => { if (choice.method === 'saunderson') unsetPresets(); changed(); }));
+    formBox.replaceChildren(...optionsForm(info, choice, () => { if (takesGeometry(choice.method)) unsetPresets(); changed(); }));
   }
   function unsetPresets() {
     for (const [role, sel] of [['measurement', measSel], ['capture', capSel]]) {
       const p = presets.find((x) => x.id === st[role]);
-      if (p && GEOMETRY[role].some((n, i) => choice.parameters[n] !== p.geometry[['k1', 'k2', 'k_ins'][i]])) { st[role] = ''; sel.value = ''; }
+      if (p && geometryOf(choice.method, role).some(([f, n]) => choice.parameters[n] !== p.geometry[f])) { st[role] = ''; sel.value = ''; }
     }
   }
   function applyPreset(role) {
     const p = presets.find((x) => x.id === st[role]);
     if (!p) return;
-    GEOMETRY[role].forEach((n, i) => { choice.parameters[n] = p.geometry[['k1', 'k2', 'k_ins'][i]]; });
+    for (const [f, n] of geometryOf(choice.method, role)) choice.parameters[n] = p.geometry[f];
   }
 
   let previewSeq = 0;
@@ -158,7 +161,7 @@ export function mount(section, app) {
         if (kind === 'corrected' && choice.method === 'none') continue;
         set.values[i].forEach((v, w) => curves.push({ id: p.ids[i], kind, wavelength: wl[w], value: v, colour, last: w === wl.length - 1 }));
       }
-      const t = cmp?.targetById?.[normId(p.ids[i])];
+      const t = cmp?.targetById?.[p.ids[i]];
       if (t) t.values.forEach((v, w) => curves.push({ id: p.ids[i], kind: 'target', wavelength: t.wavelengths[w], value: v, colour, last: false }));
     }
     curveBox.replaceChildren(figure(reflectancePlot(curves), { name: 'surface-reflectances',
@@ -168,9 +171,14 @@ export function mount(section, app) {
       caption: `CIEDE2000 between each patch's reference as measured and as corrected (${rs.illuminant}, CIE ${rs.observer}): what the correction changes` }));
   }
 
+  // The typed patch ids as the engine's matching keys (its normalise_patch_id: "A01" is "A1").
+  let wanted = [];
+  async function readPatches() {
+    const ids = patchInput.value.trim().split(/[\s,;]+/).filter(Boolean);
+    wanted = ids.length ? await engine.call('patchKeys', { ids }) : [];
+  }
   function patchesToPlot(p) {
-    const want = patchInput.value.trim().split(/[\s,;]+/).filter(Boolean).map(normId);
-    if (want.length) return want.map((id) => p.ids.findIndex((x) => normId(x) === id)).filter((i) => i >= 0);
+    if (wanted.length) return wanted.map((id) => p.ids.indexOf(id)).filter((i) => i >= 0);
     const Y = (i) => p.XYZ_before[3 * i + 1];
     const idx = p.ids.map((_, i) => i);
     const dark = idx.reduce((a, b) => (Y(b) < Y(a) ? b : a)), light = idx.reduce((a, b) => (Y(b) > Y(a) ? b : a));
@@ -192,11 +200,9 @@ export function mount(section, app) {
     persist();
     const starts = rows.map((r) => {
       const start = completeChoice(r, r.id === choice.method ? choice : null);
-      if (r.id === 'saunderson') {
-        for (const role of ['measurement', 'capture']) {
-          const pr = presets.find((x) => x.id === st[role]);
-          if (pr) GEOMETRY[role].forEach((n, i) => { start.parameters[n] = pr.geometry[['k1', 'k2', 'k_ins'][i]]; });
-        }
+      for (const role of Object.keys(r.geometry)) {
+        const pr = presets.find((x) => x.id === st[role]);
+        if (pr) for (const [f, n] of geometryOf(r.id, role)) start.parameters[n] = pr.geometry[f];
       }
       return { start, free: st.free };
     });
@@ -207,7 +213,7 @@ export function mount(section, app) {
       { onProgress: (m) => progress.update(m) });
       const targetById = {};
       const f0 = out.fits[0];
-      f0.ids.forEach((id, i) => { targetById[normId(id)] = { wavelengths: f0.wavelengths, values: f0.target.values[i] }; });
+      f0.ids.forEach((id, i) => { targetById[id] = { wavelengths: f0.wavelengths, values: f0.target.values[i] }; });   // matching keys, as p.ids
       const best = out.fits.reduce((a, f) => (f.summary_dE00_after.mean < a.summary_dE00_after.mean ? f : a));
       compare = { name: file.name, chart, fits: out.fits, targetById, colours: cssColours(out.sRGB), selected: best.choice.method };
       compareState.textContent = `${file.name}: ${f0.ids.length} patches paired with ${chart} over ${f0.wavelengths[0]}–${f0.wavelengths.at(-1)} nm.`;
@@ -243,7 +249,7 @@ export function mount(section, app) {
           title: 'Click to plot this correction below' });
         tr.addEventListener('click', (e) => { if (e.target.tagName !== 'BUTTON') { compare.selected = f.choice.method; renderRanking(); } });
         tr.append(
-          h('th', { scope: 'row' }, label, EQUATION[f.choice.method] ? h('small', { class: 'hint' }, ` ${EQUATION[f.choice.method]}`) : null),
+          h('th', { scope: 'row' }, label, byId[f.choice.method]?.equation ? h('small', { class: 'hint' }, ` ${byId[f.choice.method].equation}`) : null),
           h('td', {}, h('code', {}, coefficientText(f)), f.free.length ? h('small', { class: 'hint' }, ` (fitted: ${f.free.join(', ')})`) : null),
           h('td', { dataset: { col: 'rms' } }, `${fmt(f.spectral_rms_before, 4)} → ${fmt(f.spectral_rms_after, 4)}`),
           h('td', { dataset: { col: 'mean' } }, fmt(f.summary_dE00_after.mean)),
@@ -279,11 +285,16 @@ export function mount(section, app) {
       figure(beforeAfterBarsPlot(bars), { name: 'surface-compare-de00',
         caption: `CIEDE2000 between ${compare.chart} and ${compare.name} per patch: before (grey) and after (patch colour) ${label}; mean ${fmt(f.summary_dE00_before.mean)} → ${fmt(f.summary_dE00_after.mean)} over ${n} patches` }));
   }
-  const coefficientText = (f) => { const t = f.text.split(':')[1] ?? '—'; return t.split(',').map((kv) => { const [k, v] = kv.split('='); return v === undefined ? kv : `${k}=${Number(v).toPrecision(4)}`; }).join(', '); };
+  /// A fitted choice's coefficients (its row's, in the row's order) to 4 significant digits.
+  const coefficientText = (f) => {
+    if (f.choice.settings?.spectral) return 'per wavelength (spectral)';
+    return (byId[f.choice.method]?.coefficients ?? []).map((n) => `${n}=${Number(f.choice.parameters[n]).toPrecision(4)}`).join(', ') || '—';
+  };
 
   function syncPresetsFromChoice() {
     for (const [role, sel] of [['measurement', measSel], ['capture', capSel]]) {
-      const p = presets.find((x) => GEOMETRY[role].every((n, i) => choice.parameters[n] === x.geometry[['k1', 'k2', 'k_ins'][i]]));
+      const names = geometryOf(choice.method, role);
+      const p = names.length ? presets.find((x) => names.every(([f, n]) => choice.parameters[n] === x.geometry[f])) : null;
       st[role] = p?.id ?? ''; sel.value = st[role];
     }
   }
@@ -318,13 +329,17 @@ export function mount(section, app) {
     const info = byId[methodSel.value];
     for (const k of Object.keys(choice)) delete choice[k];
     Object.assign(choice, completeChoice(info, null));
-    if (info.id === 'saunderson') { applyPreset('measurement'); applyPreset('capture'); }
+    for (const role of Object.keys(info.geometry)) applyPreset(role);
     renderForm(); changed();
   });
   for (const [role, sel] of [['measurement', measSel], ['capture', capSel]]) {
     sel.addEventListener('change', () => { st[role] = sel.value; applyPreset(role); renderForm(); changed(); });
   }
-  patchInput.addEventListener('change', () => { st.patches = patchInput.value; persist(); if (app.derived.surface) render(app.derived.surface, reference().settings); });
+  patchInput.addEventListener('change', async () => {
+    st.patches = patchInput.value; persist();
+    await readPatches();
+    if (app.derived.surface) render(app.derived.surface, reference().settings);
+  });
   fileInput.addEventListener('change', async () => {
     const f = fileInput.files[0];
     const text = f && await readText(fileInput, f);
@@ -346,15 +361,13 @@ export function mount(section, app) {
   }
 
   renderForm();
+  if (st.patches) readPatches().then(() => { if (app.derived.surface) render(app.derived.surface, reference().settings); }, () => {});
   const ready = (async () => {   // a kept second measurement is compared again once the reference is back
     await app.views.reference?.ready;
     if (app.session.surfaceCompare) await runCompare(app.session.surfaceCompare);
   })();
   return { preview, runCompare, loadExample, runTable4, ready, choice: () => choice, controls: { methodSel, measSel, capSel, fileInput, exampleBtn, patchInput } };
 }
-
-/// "A01" and "A1" are the same patch (the engine's normalise_patch_id).
-const normId = (id) => String(id).trim().toUpperCase().replace(/^([A-Z]+)0+(\d)/, '$1$2');
 
 /// Curve colours when patches are told apart by line, not by their own colour (Okabe–Ito, CVD-safe).
 const PALETTE = ['#0072B2', '#D55E00', '#009E73', '#CC79A7', '#E69F00', '#56B4E9'];

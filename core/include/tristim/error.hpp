@@ -40,6 +40,7 @@ enum class ErrorCode {
   ProfileVersion,     ///< a profile of an unknown/unsupported version
   ProfileInvalid,     ///< a profile with missing or inconsistent fields
   ExportFailed,       ///< a writer (ICC, TIFF …) failed
+  SameIlluminant,     ///< a dual-illuminant camera profile (DCP) whose two calibration illuminants are equal
   // --- recipes (profile/recipe.hpp)
   RecipeVersion,      ///< a recipe of an unknown/unsupported version
   RecipeInvalid,      ///< a recipe with an unknown field, a missing field or a wrong type

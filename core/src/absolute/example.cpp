@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "../detmath.hpp"
+#include "tristim/absolute/recipe.hpp"
+#include "tristim/absolute/stimuli_file.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -102,12 +104,36 @@ AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
     const int cx = static_cast<int>(k % columns) * o.cell, cy = static_cast<int>(k / columns) * o.cell;
     ex.regions.push_back({scene.stimuli.names[k], cx, cy, o.cell, o.cell, virtual_XYZ(ex.sensor, scene, static_cast<int>(k))});
   }
-  for (const auto& e : ex.bracket) ex.frames.push_back(capture_virtual(ex.sensor, scene, e, seed++));
+  for (size_t e = 0; e < ex.bracket.size(); ++e) {
+    ex.frame_seeds.push_back(seed);
+    ex.frames.push_back(capture_virtual(ex.sensor, scene, ex.bracket[e], seed++));
+    ex.labels.push_back(ex.bracket[e].label());
+    ex.frame_names.push_back("virtual-" + std::to_string(e + 1) + ".raw");
+  }
+  // The test scene: the cells as region rows of the middle frame (any frame of the bracket names
+  // the same fused maps).
+  std::vector<AbsoluteStimulus> test;
+  for (const auto& g : ex.regions) {
+    AbsoluteStimulus t;
+    t.id = g.id, t.file = ex.frame_names[2], t.x = g.x, t.y = g.y, t.w = g.w, t.h = g.h, t.XYZ = g.XYZ;
+    t.set = equal_tristimulus(g.XYZ) ? "luminance" : "colour";
+    test.push_back(t);
+  }
+  ex.test_csv = absolute_stimuli_to_csv(test);
 
   // Calibration frames at the scene's size.
   const int W = scene.width, H = scene.height;
-  for (int i = 0; i < 4; ++i) ex.lens_cap.push_back(capture_virtual(ex.sensor, uniform_scene(W, H, E, 0.0), mid, seed++));
-  ex.flat = capture_virtual(ex.sensor, uniform_scene(W, H, E, 450.0), mid, seed++);
+  ex.lens_cap_scene = uniform_scene(W, H, E, 0.0);
+  ex.flat_scene = uniform_scene(W, H, E, 450.0);
+  for (int i = 0; i < 4; ++i) {
+    ex.lens_cap_seeds.push_back(seed);
+    ex.lens_cap.push_back(capture_virtual(ex.sensor, ex.lens_cap_scene, mid, seed++));
+    ex.lens_cap_names.push_back("virtual-cap-" + std::to_string(i + 1) + ".raw");
+  }
+  ex.flat_seed = seed;
+  ex.flat = capture_virtual(ex.sensor, ex.flat_scene, mid, seed++);
+  ex.flat_name = "virtual-flat.raw";
+  ex.scene = scene;
 
   // Training stimuli, sampled at the centre with the normalisation the page will rebuild from
   // the same frames (n from the lens cap, f(r) from the flat; S and areas do not enter sampling).
@@ -145,6 +171,7 @@ AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
       const RawImage f = capture_virtual(ex.sensor, s, mid, seed++);
       keep(sample_stimulus(f, rx, ry, 8, 8, n, mid, virtual_XYZ(ex.sensor, s, 0), "colour SG " + sg.names[k], false));
     }
+    ex.stimuli_csv = stimuli_to_csv(ex.stimuli);
     return ex;
   }
   const ReferenceChart ref = reference_chart("cc24", "D65");
@@ -158,6 +185,7 @@ AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
     const RawImage f = capture_virtual(ex.sensor, s, mid, seed++);
     keep(sample_stimulus(f, rx, ry, 8, 8, n, mid, virtual_XYZ(ex.sensor, s, 0), "colour " + ref.ids[k], false));
   }
+  ex.stimuli_csv = stimuli_to_csv(ex.stimuli);
   return ex;
 }
 

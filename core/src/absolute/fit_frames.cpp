@@ -34,8 +34,9 @@ AbsoluteFitFromFrames fit_absolute_from_frames(const AbsoluteFitFrames& in) {
   std::optional<DarkFrame> cap;
   if (!in.lens_cap.empty()) cap = average_dark_frames(in.lens_cap);
   SaturationEstimate sat;
-  std::vector<const RawImage*> all = training;
-  all.insert(all.end(), in.series.begin(), in.series.end());
+  std::vector<const RawImage*> all = training;  // each frame once: a region may lie in a frame of the series
+  for (const RawImage* f : in.series)
+    if (std::find(all.begin(), all.end(), f) == all.end()) all.push_back(f);
   if (in.saturation > 0) {
     sat.level = sat.reported = {in.saturation, in.saturation, in.saturation};
     sat.fraction = {1, 1, 1};

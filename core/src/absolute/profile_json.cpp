@@ -4,6 +4,7 @@
 #include "tristim/absolute/profile.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
+#include "tristim/profile/profile.hpp"
 #include "tristim/version.hpp"
 
 namespace tristim {
@@ -45,6 +46,82 @@ FitStatus status_named(const std::string& s) {
 
 }  // namespace
 
+json::Value falloff_fit_json(const FalloffFit& f) {
+  json::Value fo = json::Value::object();
+  fo.set("p1", f.p1);
+  fo.set("p2", f.p2);
+  fo.set("p3", f.p3);
+  fo.set("centre_x", f.centre_x);
+  fo.set("centre_y", f.centre_y);
+  fo.set("r_scale", f.r_scale);
+  fo.set("width", f.width);
+  fo.set("height", f.height);
+  fo.set("bins", f.bins);
+  fo.set("rms_residual", f.rms_residual);
+  fo.set("max_residual", f.max_residual);
+  return fo;
+}
+
+json::Value absolute_metrics_json(const AbsoluteMetrics& m) {
+  json::Value o = json::Value::object();
+  o.set("metrics", metrics_json(m.metrics));
+  o.set("relative_Y_error", m.relative_Y_error);
+  o.set("median_absolute_error", triple({m.median_absolute_error[0], m.median_absolute_error[1], m.median_absolute_error[2]}));
+  o.set("white", triple({m.white[0], m.white[1], m.white[2]}));
+  return o;
+}
+
+AbsoluteMetrics absolute_metrics_from_json(const json::Value& o, const std::string& where) {
+  // null is how the writer spells a non-finite figure (e.g. the mean ΔE of no stimuli)
+  auto number = [&](const json::Value& v, const std::string& what) {
+    return v.is_null() ? std::nan("") : v.as_number(where + "." + what);
+  };
+  auto vec3 = [&](const json::Value& v, const std::string& what) {
+    const auto& a = v.as_array(where + "." + what);
+    if (a.size() != 3) throw Error(ErrorCode::ProfileInvalid, where + "." + what + " must have 3 numbers");
+    return Vec3(number(a[0], what), number(a[1], what), number(a[2], what));
+  };
+  auto summary = [&](const json::Value& m, const std::string& key) {
+    const json::Value& s = m.at(key);
+    const std::string w = "metrics." + key;
+    return Summary{number(s.at("min"), w), number(s.at("median"), w), number(s.at("mean"), w), number(s.at("p95"), w),
+                   number(s.at("max"), w), number(s.at("rms"), w), number(s.at("std"), w)};
+  };
+  AbsoluteMetrics a;
+  const json::Value& m = o.at("metrics");
+  a.metrics.dE76 = summary(m, "dE76");
+  a.metrics.dE94 = summary(m, "dE94");
+  a.metrics.dE00 = summary(m, "dE00");
+  a.metrics.dE_xyz = summary(m, "dE_xyz");
+  a.metrics.abs_rel_Y = summary(m, "abs_rel_Y");
+  a.metrics.NRMSE = vec3(m.at("NRMSE"), "metrics.NRMSE");
+  a.relative_Y_error = number(o.at("relative_Y_error"), "relative_Y_error");
+  a.median_absolute_error = vec3(o.at("median_absolute_error"), "median_absolute_error");
+  a.white = vec3(o.at("white"), "white");
+  return a;
+}
+
+json::Value absolute_training_json(const AbsoluteTraining& t) {
+  json::Value o = json::Value::object();
+  o.set("luminance_stimuli", t.luminance_stimuli);
+  o.set("colour_stimuli", t.colour_stimuli);
+  o.set("saturated_stimuli", t.saturated_stimuli);
+  o.set("evaluated", t.evaluated);
+  o.set("figures", absolute_metrics_json(t.figures));
+  return o;
+}
+
+AbsoluteTraining absolute_training_from_json(const json::Value& o, const std::string& where) {
+  auto count = [&](const char* key) { return o.at(key).as_int(where + "." + key, 0, limits::kMaxJsonInt); };
+  AbsoluteTraining t;
+  t.luminance_stimuli = count("luminance_stimuli");
+  t.colour_stimuli = count("colour_stimuli");
+  t.saturated_stimuli = count("saturated_stimuli");
+  t.evaluated = count("evaluated");
+  t.figures = absolute_metrics_from_json(o.at("figures"), where + ".figures");
+  return t;
+}
+
 json::Value absolute_profile_json(const AbsoluteProfile& p) {
   json::Value o = json::Value::object();
   o.set("format", "tristim-absolute-profile");
@@ -66,24 +143,7 @@ json::Value absolute_profile_json(const AbsoluteProfile& p) {
   no.set("areas", triple(n.areas));
   no.set("areas_source", p.areas_source);
   no.set("w", n.w);
-  if (n.falloff) {
-    const FalloffFit& f = *n.falloff;
-    json::Value fo = json::Value::object();
-    fo.set("p1", f.p1);
-    fo.set("p2", f.p2);
-    fo.set("p3", f.p3);
-    fo.set("centre_x", f.centre_x);
-    fo.set("centre_y", f.centre_y);
-    fo.set("r_scale", f.r_scale);
-    fo.set("width", f.width);
-    fo.set("height", f.height);
-    fo.set("bins", f.bins);
-    fo.set("rms_residual", f.rms_residual);
-    fo.set("max_residual", f.max_residual);
-    no.set("falloff", fo);
-  } else {
-    no.set("falloff", nullptr);
-  }
+  no.set("falloff", n.falloff ? falloff_fit_json(*n.falloff) : json::Value());
   o.set("normalisation", no);
 
   json::Value sat = json::Value::object();
@@ -156,6 +216,8 @@ json::Value absolute_profile_json(const AbsoluteProfile& p) {
   col.set("objective_value", p.colour_objective);
   o.set("colour", col);
   o.set("fusion", fusion_mode_id(p.fusion));
+  if (p.has_training) o.set("training", absolute_training_json(p.training));
+  if (p.has_recipe) o.set("recipe", absolute_recipe_json(p.recipe));
   return o;
 }
 
@@ -283,9 +345,17 @@ AbsoluteProfile absolute_profile_from_json(const std::string& text) {
     p.colour_message = col.at("message").as_string("colour.message");
     p.colour_objective = col.at("objective_value").as_number("colour.objective_value");
     p.fusion = fusion_mode_from_id(o.at("fusion").as_string("fusion"));
+    if (const json::Value* tr = o.find("training")) {
+      p.training = absolute_training_from_json(*tr, "training");
+      p.has_training = true;
+    }
   } catch (const Error& e) {
     if (e.code() == ErrorCode::ProfileInvalid || e.code() == ErrorCode::ProfileVersion) throw;
     throw Error(ErrorCode::ProfileInvalid, std::string("absolute profile: ") + e.what());
+  }
+  if (const json::Value* r = o.find("recipe")) {  // its own errors: RecipeInvalid / RecipeVersion
+    p.recipe = absolute_recipe_from_json(*r);
+    p.has_recipe = true;
   }
   return p;
 }

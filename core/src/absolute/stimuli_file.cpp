@@ -9,6 +9,10 @@
 
 namespace tristim {
 
+bool equal_tristimulus(const Vec3& v) {
+  return std::fabs(v[0] - v[1]) <= 0.02 * v[1] && std::fabs(v[2] - v[1]) <= 0.02 * v[1];
+}
+
 std::vector<StimulusRow> read_stimuli_csv(std::string_view text, const std::string& path) {
   const TextTable t = parse_delimited(text, path);
   auto col = [&](const char* name) {
@@ -44,9 +48,8 @@ std::vector<StimulusRow> read_stimuli_csv(std::string_view text, const std::stri
       if (v != "luminance" && v != "oecf" && v != "colour" && v != "color")
         throw Error(ErrorCode::InvalidArgument, path + ", line " + std::to_string(line) + ": set is luminance or colour, not '" + v + "'");
       s.stimulus.luminance_set = v == "luminance" || v == "oecf";
-    } else {  // X = Y = Z within 2 %: an equal-tristimulus stimulus
-      const Vec3& v = s.stimulus.XYZ;
-      s.stimulus.luminance_set = std::fabs(v[0] - v[1]) <= 0.02 * v[1] && std::fabs(v[2] - v[1]) <= 0.02 * v[1];
+    } else {
+      s.stimulus.luminance_set = equal_tristimulus(s.stimulus.XYZ);
     }
     if (file >= 0 && !row[file].empty()) {
       if (x < 0 || y < 0 || w < 0 || h < 0) throw Error(ErrorCode::MissingColumn, path + ": a file row needs x, y, w, h");

@@ -242,10 +242,10 @@ RawImage capture_virtual(const VirtualSensor& s, const VirtualScene& scene, cons
 }
 
 std::vector<std::uint16_t> capture_virtual_mosaic(const VirtualSensor& s, const VirtualScene& scene,
-                                                  const ExposureSettings& e, std::uint64_t seed) {
+                                                  const ExposureSettings& e, std::uint64_t seed, int black) {
   const size_t W = 2 * static_cast<size_t>(scene.width);
   std::vector<std::uint16_t> out(W * 2 * scene.height);
-  auto dn = [](double v) { return static_cast<std::uint16_t>(std::clamp(std::round(v), 0.0, 65535.0)); };
+  auto dn = [black](double v) { return static_cast<std::uint16_t>(std::clamp(std::round(v) + black, 0.0, 65535.0)); };
   simulate_blocks(s, scene, e, seed, [&](int x, int y, const double* v) {
     const size_t r0 = 2 * static_cast<size_t>(y) * W + 2 * x;  // RGGB
     out[r0] = dn(v[0]);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../citations.hpp"
 #include "../large_buffer.hpp"
 #include "tristim/error.hpp"
 
@@ -83,6 +84,16 @@ DarkFrame average_dark_frames(const std::vector<const RawImage*>& frames) {
   const double dof = frames.size() > 1 ? npix * (1.0 - 1.0 / frames.size()) : npix - 1;
   for (int c = 0; c < 3; ++c) d.noise[c] = std::sqrt(ss[c] / std::max(1.0, dof));
   return d;
+}
+
+const std::vector<MethodInfo>& flat_field_methods() {
+  static const std::vector<MethodInfo> table = {
+      {"pixel", "Per pixel (a gain at every pixel)",
+       std::string(citation::kAbed2013) + ", App. C step 2", {}},
+      {"radial", "Radial fall-off fit (a smooth lens fall-off)",
+       std::string(citation::kGuarnera2018) + ", eq (7)", {}},
+  };
+  return table;
 }
 
 const char* dark_mode_id(DarkMode mode) { return mode == DarkMode::PerChannel ? "per_channel" : "per_pixel"; }

@@ -140,39 +140,53 @@ ModelInfo make(const std::string& id, const std::string& label, const std::strin
   return m;
 }
 
+// The families the pickers group the models by; every row of build_table names one.
+std::vector<ModelFamily> build_families() {
+  return {
+      {"matrix", "Matrices", "XYZ = M·RGB, or M·[R, G, B, 1] with an offset."},
+      {"polynomial", "Polynomials", "Many terms fit 24 patches closely: judge them by the leave-one-out error."},
+      {"root-polynomial", "Root-polynomials", "Exposure-invariant; degree 2 is Guarnera T2R."},
+      {"Guarnera2018", "Guarnera et al. 2018",
+       "The paper's T1, To and T2R; fitted by pattern search there (objective \"psm\")."},
+  };
+}
+
 std::vector<ModelInfo> build_table() {
   std::vector<ModelInfo> t;
   const std::string abed = citation::kAbed2013, guarnera = citation::kGuarnera2018;
-  t.push_back(make("matrix-3x3", "Linear 3×3 matrix", abed + ", eq (7); " + guarnera + ", T1 eq (13)",
-                   kR_G_B, false));
-  t.push_back(make("matrix-3x4", "Affine 3×4 matrix (with offset)",
-                   abed + ", eqs (6), (26); " + guarnera + ", To eq (14)", cat({kR_G_B, {kOne}}), false));
-  t.push_back(make("Shen2008", "Second-order polynomial, 10 terms",
-                   std::string(citation::kShen2008) + ", eqs (23)-(25)", kShen2008, false));
+  const auto add = [&t](const char* family, ModelInfo m) {
+    m.family = family;
+    t.push_back(std::move(m));
+  };
+  add("matrix", make("matrix-3x3", "Linear 3×3 matrix", abed + ", eq (7); " + guarnera + ", T1 eq (13)", kR_G_B,
+                     false));
+  add("matrix", make("matrix-3x4", "Affine 3×4 matrix (with offset)",
+                     abed + ", eqs (6), (26); " + guarnera + ", To eq (14)", cat({kR_G_B, {kOne}}), false));
+  add("polynomial", make("Shen2008", "Second-order polynomial, 10 terms",
+                         std::string(citation::kShen2008) + ", eqs (23)-(25)", kShen2008, false));
   for (int d = 1; d <= 4; ++d) {
     Terms terms = finlayson_root_terms(d);
     const std::string label = "Root-polynomial, degree " + std::to_string(d) + " (" +
                               std::to_string(terms.size()) + " terms)";
-    t.push_back(make("Finlayson2015-" + std::to_string(d), label,
-                     std::string(citation::kFinlayson2015) + " (root-polynomial)", std::move(terms), true,
-                     d == 1 ? "matrix-3x3" : ""));
+    add("root-polynomial", make("Finlayson2015-" + std::to_string(d), label,
+                                std::string(citation::kFinlayson2015) + " (root-polynomial)", std::move(terms),
+                                true, d == 1 ? "matrix-3x3" : ""));
   }
   for (int n : {3, 4, 5, 7, 8, 10, 11, 14, 16, 17, 19, 20, 22, 35}) {
     std::string dup;
     if (n == 3) dup = "matrix-3x3";
     if (n == 4) dup = "matrix-3x4";
     if (n == 10) dup = "Shen2008";
-    t.push_back(make("Cheung2004-" + std::to_string(n),
-                     "Polynomial, " + std::to_string(n) + " terms",
-                     std::string(citation::kCheung2004) + " (colour-science's terms)",
-                     cheung_terms(n), false, dup));
+    add("polynomial", make("Cheung2004-" + std::to_string(n), "Polynomial, " + std::to_string(n) + " terms",
+                           std::string(citation::kCheung2004) + " (colour-science's terms)", cheung_terms(n),
+                           false, dup));
   }
-  t.push_back(make("Guarnera2018-T1", "Guarnera T1 (linear)", guarnera + ", eq (13)", kR_G_B, false,
-                   "matrix-3x3"));
-  t.push_back(make("Guarnera2018-To", "Guarnera To (linear + offset)", guarnera + ", eq (14)",
-                   cat({kR_G_B, {kOne}}), false, "matrix-3x4"));
-  t.push_back(make("Guarnera2018-T2R", "Guarnera T2R (second-order root-polynomial)",
-                   guarnera + ", eq (15)", kGuarneraT2R, true, "Finlayson2015-2"));
+  add("Guarnera2018", make("Guarnera2018-T1", "Guarnera T1 (linear)", guarnera + ", eq (13)", kR_G_B, false,
+                           "matrix-3x3"));
+  add("Guarnera2018", make("Guarnera2018-To", "Guarnera To (linear + offset)", guarnera + ", eq (14)",
+                           cat({kR_G_B, {kOne}}), false, "matrix-3x4"));
+  add("Guarnera2018", make("Guarnera2018-T2R", "Guarnera T2R (second-order root-polynomial)",
+                           guarnera + ", eq (15)", kGuarneraT2R, true, "Finlayson2015-2"));
   return t;
 }
 
@@ -210,6 +224,11 @@ void check_coefficient_shape(const Model& model, const ModelInfo& info) {
 const std::vector<ModelInfo>& model_table() {
   static const std::vector<ModelInfo> table = build_table();
   return table;
+}
+
+const std::vector<ModelFamily>& model_families() {
+  static const std::vector<ModelFamily> families = build_families();
+  return families;
 }
 
 const ModelInfo& model_info(const std::string& id) {

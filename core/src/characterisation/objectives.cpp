@@ -111,4 +111,16 @@ MethodChoice objective_choice(const FitOptions& options) {
   return c;
 }
 
+std::string objective_choice_label(const MethodChoice& choice) {
+  const ObjectiveMethod& m = objective_method(choice.method);
+  if (m.objective != Objective::DeltaE2000) return m.info.label;
+  const MethodChoice c = complete_choice(m.info, choice);
+  const bool rms = choice_number(c, "rms") != 0;
+  const std::string& alg = choice_text(c, "algorithm");
+  // "auto" runs lm for the RMS loss and irls for the mean (fit_de2000.cpp).
+  const bool lm = alg == "lm" || (alg == "auto" && rms), irls = alg == "irls" || (alg == "auto" && !rms);
+  const std::string how = lm ? "Levenberg-Marquardt" : irls ? "reweighted Levenberg-Marquardt" : "NLopt " + alg;
+  return std::string("CIEDE2000 ") + (rms ? "RMS" : "mean") + " (" + how + ")";
+}
+
 }  // namespace tristim

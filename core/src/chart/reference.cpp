@@ -5,6 +5,7 @@
 
 #include <Eigen/LU>
 
+#include "tristim/chart/layout.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/data.hpp"
 #include "tristim/error.hpp"
@@ -13,32 +14,36 @@ namespace tristim {
 
 namespace {
 
+// A built-in chart's data files. Its grid (rows × columns, patch ids) is its layout's
+// (chart/layout.hpp: chart_layout), the one place a chart's geometry is written.
 struct ChartFiles {
-  ChartInfo info;
+  const char* id;
+  const char* name;
+  const char* source;  // where the spectra and Lab come from (short)
   const char* spectra;
   const char* lab;
 };
 
 const std::vector<ChartFiles>& chart_table() {
   static const std::vector<ChartFiles> t = {
-      {{"cc24", "ColorChecker Classic (X-Rite, Nov 2014 and newer)", 24, 4, 6,
-        "X-Rite reference spectra (380-730 nm, 10 nm) and Lab D50"},
+      {"cc24", "ColorChecker Classic (X-Rite, Nov 2014 and newer)",
+       "X-Rite reference spectra (380-730 nm, 10 nm) and Lab D50",
        "charts/colorchecker24_after_nov2014_reflectance_380-730_10nm.csv",
        "charts/colorchecker24_xrite_after_nov2014_Lab_D50.csv"},
-      {{"cc24-2005", "ColorChecker Classic (X-Rite/GretagMacbeth, before Nov 2014)", 24, 4, 6,
-        "X-Rite reference spectra (380-730 nm, 5 nm) and Lab D50"},
+      {"cc24-2005", "ColorChecker Classic (X-Rite/GretagMacbeth, before Nov 2014)",
+       "X-Rite reference spectra (380-730 nm, 5 nm) and Lab D50",
        "charts/colorchecker24_before_nov2014_reflectance_380-730_5nm.csv",
        "charts/colorchecker24_xrite_before_nov2014_Lab_D50.csv"},
-      {{"sg140", "ColorChecker Digital SG (X-Rite, Nov 2014 and newer)", 140, 10, 14,
-        "X-Rite reference spectra (380-730 nm, 10 nm) and Lab D50"},
+      {"sg140", "ColorChecker Digital SG (X-Rite, Nov 2014 and newer)",
+       "X-Rite reference spectra (380-730 nm, 10 nm) and Lab D50",
        "charts/colorcheckerSG_after_nov2014_reflectance_380-730_10nm.csv",
        "charts/colorcheckerSG140_xrite_after_nov2014_Lab_D50.csv"},
-      {{"sg140-2005", "ColorChecker Digital SG (X-Rite, before Nov 2014)", 140, 10, 14,
-        "X-Rite reference spectra (380-730 nm, 10 nm) and Lab D50"},
+      {"sg140-2005", "ColorChecker Digital SG (X-Rite, before Nov 2014)",
+       "X-Rite reference spectra (380-730 nm, 10 nm) and Lab D50",
        "charts/colorcheckerSG_before_nov2014_reflectance_380-730_10nm.csv",
        "charts/colorcheckerSG140_xrite_before_nov2014_Lab_D50.csv"},
-      {{"passport", "ColorChecker Passport, classic 24 side (X-Rite, Nov 2014 and newer)", 24, 4, 6,
-        "ColorChecker Classic (Nov 2014 and newer) reference spectra and Lab D50: same colorants"},
+      {"passport", "ColorChecker Passport, classic 24 side (X-Rite, Nov 2014 and newer)",
+       "ColorChecker Classic (Nov 2014 and newer) reference spectra and Lab D50: same colorants",
        "charts/colorchecker24_after_nov2014_reflectance_380-730_10nm.csv",
        "charts/colorchecker24_xrite_after_nov2014_Lab_D50.csv"},
   };
@@ -47,9 +52,9 @@ const std::vector<ChartFiles>& chart_table() {
 
 const ChartFiles& find_chart(std::string_view id) {
   for (const auto& c : chart_table())
-    if (c.info.id == id) return c;
+    if (c.id == id) return c;
   std::string known;
-  for (const auto& c : chart_table()) known += (known.empty() ? "" : ", ") + c.info.id;
+  for (const auto& c : chart_table()) known += (known.empty() ? "" : ", ") + std::string(c.id);
   throw Error(ErrorCode::UnknownId, "unknown chart '" + std::string(id) + "' (built-in: " + known + ")");
 }
 
@@ -57,7 +62,12 @@ const ChartFiles& find_chart(std::string_view id) {
 
 std::vector<ChartInfo> list_charts() {
   std::vector<ChartInfo> out;
-  for (const auto& c : chart_table()) out.push_back(c.info);
+  for (const auto& c : chart_table()) {
+    LayoutOptions o;
+    o.chart = c.id;
+    const ChartLayout layout = chart_layout(o);
+    out.push_back({c.id, c.name, static_cast<int>(layout.patches.size()), layout.rows, layout.columns, c.source});
+  }
   return out;
 }
 
@@ -173,11 +183,14 @@ PublishedReference published_reference_Lab(std::string_view chart_id) {
   p.chart_id = std::string(chart_id);
   p.source = "X-Rite (2016) CIELAB D50/2°, via colour-science";
   const int id_col = t.find({"patch"}), L = t.find({"l"}), a = t.find({"a"}), b = t.find({"b"});
-  const bool cc24 = c.info.patches == 24;
+  LayoutOptions o;
+  o.chart = c.id;
+  const ChartLayout layout = chart_layout(o);
+  const bool cc24 = layout.patches.size() == 24;
   for (size_t i = 0; i < t.rows.size(); ++i) {
-    // The CC24 tables name patches ("dark skin" ...) in chart order A1..A6, B1..: use the order.
-    const std::string id = cc24 ? std::string(1, static_cast<char>('A' + i / 6)) + std::to_string(i % 6 + 1)
-                                : normalise_patch_id(t.rows[i][id_col]);
+    // The CC24 tables name patches ("dark skin" ...) in chart order (the layout's, row-major
+    // A1..A6, B1..): use the order.
+    const std::string id = cc24 && i < layout.patches.size() ? layout.patches[i].id : normalise_patch_id(t.rows[i][id_col]);
     p.ids.push_back(id);
     p.Lab.emplace_back(parse_cell(t.rows[i][L], c.lab, t.lines[i], "L"), parse_cell(t.rows[i][a], c.lab, t.lines[i], "a"),
                        parse_cell(t.rows[i][b], c.lab, t.lines[i], "b"));

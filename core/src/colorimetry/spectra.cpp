@@ -8,8 +8,7 @@
 
 #include "tristim/data.hpp"
 #include "tristim/error.hpp"
-#include "tristim/io/number.hpp"
-#include "tristim/io/patch_files.hpp"
+#include "tristim/number.hpp"
 
 namespace tristim {
 
@@ -246,12 +245,61 @@ Observer parse_observer(std::string_view id) {
 
 const char* observer_name(Observer o) { return o == Observer::CIE1931_2 ? "1931" : "1964"; }
 
+std::vector<ObserverInfo> list_observers() {
+  return {{observer_name(Observer::CIE1931_2), "CIE 1931 2°"}, {observer_name(Observer::CIE1964_10), "CIE 1964 10°"}};
+}
+
+namespace {
+
+// A compiled-in CIE table (core/data/cmf, core/data/illuminants): a header of column names, the
+// first the wavelength, then one row of comma-separated numbers per wavelength. Read here rather
+// than with io's read_spectral_csv, as colorimetry includes nothing of io (io reads files into
+// colorimetry's types); parse_double reads each number as read_spectral_csv does, so the tables
+// hold the same doubles (tests/core/io/io_test.cpp compares the two).
+SpectralData builtin_spectra(std::string_view name) {
+  const std::string_view text = builtin_file(name);
+  auto bad = [&](const std::string& what) {
+    return Error(ErrorCode::ParseError, "built-in table " + std::string(name) + ": " + what);
+  };
+  SpectralData d;
+  std::string line;
+  bool header = true;
+  for (size_t pos = 0; pos < text.size();) {
+    const size_t eol = std::min(text.find('\n', pos), text.size());
+    line.assign(text.substr(pos, eol - pos));
+    pos = eol + 1;
+    if (line.empty()) continue;
+    if (header) {  // the wavelength's name, then one name per column
+      for (size_t a = line.find(','); a != std::string::npos;) {
+        const size_t b = line.find(',', a + 1);
+        d.names.push_back(line.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1));
+        a = b;
+      }
+      d.values.assign(d.names.size(), {});
+      header = false;
+      continue;
+    }
+    const char* p = line.c_str();
+    for (size_t k = 0; k <= d.names.size(); ++k) {
+      char* end = nullptr;
+      const double v = parse_double(p, &end);
+      if (end == p || *end != (k < d.names.size() ? ',' : '\0')) throw bad("a malformed row: " + line);
+      (k == 0 ? d.wavelengths : d.values[k - 1]).push_back(v);
+      p = end + 1;
+    }
+  }
+  if (d.names.empty() || d.wavelengths.empty()) throw bad("no columns or no rows");
+  return d;
+}
+
+}  // namespace
+
 const SpectralData& cmfs(Observer observer) {
   static std::once_flag once;
   static SpectralData table[2];
   std::call_once(once, [] {
-    table[0] = read_spectral_csv(builtin_file("cmf/cie1931_2deg_360-830_1nm.csv"), "cmf/cie1931_2deg_360-830_1nm.csv");
-    table[1] = read_spectral_csv(builtin_file("cmf/cie1964_10deg_360-830_1nm.csv"), "cmf/cie1964_10deg_360-830_1nm.csv");
+    table[0] = builtin_spectra("cmf/cie1931_2deg_360-830_1nm.csv");
+    table[1] = builtin_spectra("cmf/cie1964_10deg_360-830_1nm.csv");
   });
   return table[observer == Observer::CIE1931_2 ? 0 : 1];
 }
@@ -305,7 +353,7 @@ SpectralData illuminant_spd(std::string_view id_in) {
     std::lock_guard<std::mutex> lock(mutex);
     auto c = cache.find(id);
     if (c == cache.end()) {
-      SpectralData d = read_spectral_csv(builtin_file(it->second), it->second);
+      SpectralData d = builtin_spectra(it->second);
       d.names = {id};
       d.linear = true;
       c = cache.emplace(id, std::move(d)).first;
@@ -329,8 +377,7 @@ SpectralData illuminant_spd(std::string_view id_in) {
 SpectralData daylight_spd(double T) {
   if (!(T >= 4000 && T <= 25000))
     throw Error(ErrorCode::InvalidArgument, "daylight CCT " + std::to_string(T) + " K outside 4000..25000 K");
-  static const SpectralData basis =
-      read_spectral_csv(builtin_file("illuminants/daylight_S0_S1_S2_300-830_5nm.csv"), "daylight_S0_S1_S2");
+  static const SpectralData basis = builtin_spectra("illuminants/daylight_S0_S1_S2_300-830_5nm.csv");
   // CIE 15:2004 eq 3.3 (xD from T), eq 3.4 (yD), eq 3.5 (M1, M2).
   const double xD = T <= 7000 ? 0.244063 + 0.09911e3 / T + 2.9678e6 / (T * T) - 4.6070e9 / (T * T * T)
                               : 0.237040 + 0.24748e3 / T + 1.9018e6 / (T * T) - 2.0064e9 / (T * T * T);

@@ -16,6 +16,29 @@
 
 namespace tristim {
 
+namespace {
+
+// The q-quantile of v (finite values): linear interpolation between its order statistics
+// floor(q(n − 1)) and the next (numpy's default). `sorted`: v is in order already; otherwise v is
+// reordered (nth_element, O(n)).
+double quantile_of(std::vector<double>& v, double q, bool sorted) {
+  const size_t n = v.size();
+  const double pos = q * static_cast<double>(n - 1);
+  const size_t lo = static_cast<size_t>(std::floor(pos));
+  const auto at = v.begin() + static_cast<std::ptrdiff_t>(lo);
+  if (!sorted) std::nth_element(v.begin(), at, v.end());
+  const double next = lo + 1 >= n ? *at : sorted ? *(at + 1) : *std::min_element(at + 1, v.end());
+  return *at + (pos - static_cast<double>(lo)) * (next - *at);
+}
+
+}  // namespace
+
+double quantile(std::vector<double> values, double q) {
+  if (!(q >= 0 && q <= 1)) throw Error(ErrorCode::InvalidArgument, "quantile: q must lie in [0, 1]");
+  values.erase(std::remove_if(values.begin(), values.end(), [](double d) { return !std::isfinite(d); }), values.end());
+  return values.empty() ? std::nan("") : quantile_of(values, q, false);
+}
+
 Summary summarize(const std::vector<double>& values) {
   Summary s;
   std::vector<double> v;
@@ -28,16 +51,10 @@ Summary summarize(const std::vector<double>& values) {
   }
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
-  auto quantile = [&](double q) {
-    const double pos = q * static_cast<double>(n - 1);
-    const size_t lo = static_cast<size_t>(std::floor(pos));
-    const size_t hi = std::min(lo + 1, n - 1);
-    return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
-  };
   s.min = v.front();
   s.max = v.back();
-  s.median = quantile(0.5);
-  s.p95 = quantile(0.95);
+  s.median = quantile_of(v, 0.5, true);
+  s.p95 = quantile_of(v, 0.95, true);
   double sum = 0, sq = 0;
   for (double d : v) {
     sum += d;

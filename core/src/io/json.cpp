@@ -9,7 +9,7 @@
 
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 
 namespace tristim::json {
 

@@ -11,7 +11,7 @@
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 
 namespace tristim {
 
@@ -211,9 +211,11 @@ ColumnMap map_columns(const std::vector<std::string>& header, std::string_view s
   }
   m.id = m.id_candidates.empty() ? -1 : m.id_candidates.front();
   m.index = find_col(header, {"index", "#", "idx", "no", "number"});
-  m.XYZ[0] = find_col(header, {"xyz_x", "x", "cie_x"});
-  m.XYZ[1] = find_col(header, {"xyz_y", "y", "cie_y"});
-  m.XYZ[2] = find_col(header, {"xyz_z", "z", "cie_z"});
+  // X_ref, Y_ref, Z_ref: the reference columns of the engine's own per-patch CSV (patch_csv), so
+  // that file reads back as a reference.
+  m.XYZ[0] = find_col(header, {"xyz_x", "x", "cie_x", "x_ref"});
+  m.XYZ[1] = find_col(header, {"xyz_y", "y", "cie_y", "y_ref"});
+  m.XYZ[2] = find_col(header, {"xyz_z", "z", "cie_z", "z_ref"});
   m.Lab[0] = find_col(header, {"lab_l", "l*", "l", "cie_l"});
   m.Lab[1] = find_col(header, {"lab_a", "a*", "a", "cie_a"});
   m.RGB[0] = find_col(header, {"rgb_r", "r", "red"});

@@ -2,14 +2,14 @@
 // table row `Guarnera2018` (rules in tristim/linearisation/guarnera2018.hpp).
 #include "tristim/linearisation/guarnera2018.hpp"
 
-#include <nlopt.h>
-
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "tristim/error.hpp"
 #include "../detmath.hpp"
 #include "../citations.hpp"
+#include "../optimise/bounded.hpp"
 
 namespace tristim {
 
@@ -24,7 +24,6 @@ struct Problem {
   std::vector<double> inv_scale;  // 1/(Y + floor)
   double h_max = 1;               // k1 = x[0]·h_max
   bool fit_k1 = true;
-  int evaluations = 0;
 };
 
 InverseOecf curve_of(const Problem& p, const double* x) {
@@ -44,12 +43,6 @@ double cost(const Problem& p, const InverseOecf& c) {
     s += r * r;
   }
   return std::isfinite(s) ? s : 1e300;
-}
-
-double nlopt_cost(unsigned, const double* x, double*, void* data) {
-  auto* p = static_cast<Problem*>(data);
-  ++p->evaluations;
-  return cost(*p, curve_of(*p, x));
 }
 
 }  // namespace
@@ -133,30 +126,27 @@ OecfFit fit_inverse_oecf_Guarnera2018(const std::vector<OecfSample>& samples, co
     ub.push_back(o.k3_max);
     step.push_back(0.02);
     for (size_t i = 0; i < x.size(); ++i) x[i] = std::clamp(x[i], lb[i], ub[i]);
-    nlopt_opt opt = nlopt_create(NLOPT_LN_BOBYQA, static_cast<unsigned>(x.size()));
-    if (!opt) throw Error(ErrorCode::FitFailed, "NLopt could not create the optimiser");
-    nlopt_set_min_objective(opt, nlopt_cost, &p);
-    nlopt_set_lower_bounds(opt, lb.data());
-    nlopt_set_upper_bounds(opt, ub.data());
-    nlopt_set_initial_step(opt, step.data());
-    nlopt_set_xtol_rel(opt, o.xtol_rel);
-    nlopt_set_ftol_rel(opt, 1e-14);
-    nlopt_set_maxeval(opt, o.max_evaluations);
-    double f = 0;
-    const nlopt_result res = nlopt_optimize(opt, x.data(), &f);
-    nlopt_destroy(opt);
-    const InverseOecf found = curve_of(p, x.data());
-    if (res > 0 || res == NLOPT_ROUNDOFF_LIMITED) {
+    optimise::BoundedOptions bounded;  // BOBYQA
+    bounded.lower = std::move(lb);
+    bounded.upper = std::move(ub);
+    bounded.initial_step = std::move(step);
+    bounded.xtol_rel = o.xtol_rel;
+    bounded.ftol_rel = 1e-14;
+    bounded.max_evaluations = o.max_evaluations;
+    const optimise::BoundedMinimum m =
+        optimise::minimise_bounded([&p](const double* v) { return cost(p, curve_of(p, v)); }, x, bounded);
+    out.evaluations = m.evaluations;
+    const InverseOecf found = curve_of(p, m.x.data());
+    if (!m.failed) {
       if (cost(p, found) <= cost(p, best)) best = found;
     } else {
-      out.message = "NLopt stopped with code " + std::to_string(static_cast<int>(res)) + "; the linear start is kept";
+      out.message = m.message + "; the linear start is kept";
     }
-    if (res == NLOPT_MAXEVAL_REACHED) out.message = "the optimiser reached its evaluation limit";
+    if (m.hit_limit) out.message = "the optimiser reached its evaluation limit";
     if (std::fabs(best.k3 - o.k3_min) < 1e-9 || std::fabs(best.k3 - o.k3_max) < 1e-9)
       out.message += std::string(out.message.empty() ? "" : "; ") + "k3 ended on its bound";
   }
   out.curve = best;
-  out.evaluations = p.evaluations;
   double ss = 0, ss_tot = 0, y_mean = 0;
   for (const auto& s : samples) y_mean += s.Y;
   y_mean /= samples.size();

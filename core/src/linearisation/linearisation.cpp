@@ -37,6 +37,14 @@ const LinearisationMethod& linearisation_method(const std::string& id) {
   throw Error(ErrorCode::UnknownId, "unknown linearisation method '" + id + "'");
 }
 
+std::string linearisation_needs_text(const std::string& needs) {
+  if (needs.empty()) return "needs nothing but the camera RGB";
+  if (needs == "greys") return "fitted on the chart's grey patches (found automatically from the reference, or listed)";
+  if (needs == "reference") return "fitted against the reference XYZ of every patch";
+  if (needs == "reflectances") return "fitted on non-grey patches with known reflectances (a built-in chart's spectra)";
+  throw Error(ErrorCode::UnknownId, "unknown linearisation need '" + needs + "'");
+}
+
 Linearisation fit_linearisation(const MethodChoice& choice, const LinearisationData& data) {
   const LinearisationMethod& m = linearisation_method(choice.method);
   if (data.camera_RGB.rows() == 0) throw Error(ErrorCode::TooFewPatches, "linearisation: no patches");

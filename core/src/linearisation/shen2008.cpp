@@ -15,7 +15,7 @@
 #include "../citations.hpp"
 #include "tristim/data.hpp"
 #include "tristim/error.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 #include "tristim/io/patch_files.hpp"
 
 namespace tristim {

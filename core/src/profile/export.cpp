@@ -16,7 +16,7 @@
 #include <sstream>
 
 #include "tristim/error.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 #include "tristim/version.hpp"
 #include "../detmath.hpp"
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "tristim/characterisation/fit.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/surface/joint.hpp"

@@ -9,6 +9,7 @@
 #include "../sum4.hpp"
 #include "correction.hpp"
 #include "minimise.hpp"
+#include "tristim/characterisation/fit.hpp"
 #include "tristim/error.hpp"
 #include "tristim/surface/fit.hpp"
 #include "tristim/surface/surface.hpp"

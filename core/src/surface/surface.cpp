@@ -9,7 +9,7 @@
 #include "correction.hpp"
 #include "../citations.hpp"
 #include "tristim/error.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 #include "tristim/surface/saunderson.hpp"
 
 namespace tristim {
@@ -149,17 +149,17 @@ std::vector<SurfaceMethod> build_table() {
   const std::string rho_text = "offset ρ added to every reflectance factor (0 = none)";
   std::vector<SurfaceMethod> t;
   t.push_back({{"none", "None (reflectances as measured)", abed + "no correction (the uncorrected reference of Phase I and Table IV)", {}},
-               apply_rows, {}});
+               apply_rows, {}, "", {}});
   t.push_back({{"scaler", "Scaler (R' = μR)", abed + "Phase I 'scaler'",
                 {number_option("mu", "μ", 1, 0, 2, mu_text), spectral_option(), fit_option()}},
-               apply_rows, {"mu"}});
+               apply_rows, {"mu"}, "R' = μR", {}});
   t.push_back({{"offset", "Offset (R' = R + ρ)", abed + "Phase I 'offset'",
                 {number_option("rho", "ρ", 0, -0.5, 0.5, rho_text), spectral_option(), fit_option()}},
-               apply_rows, {"rho"}});
+               apply_rows, {"rho"}, "R' = R + ρ", {}});
   t.push_back({{"scaler-offset", "Scaler-offset (R' = μR + ρ)", abed + "eq (5), Appendix B",
                 {number_option("mu", "μ", 1, 0, 2, mu_text), number_option("rho", "ρ", 0, -0.5, 0.5, rho_text),
                  spectral_option(), fit_option()}},
-               apply_rows, {"mu", "rho"}});
+               apply_rows, {"mu", "rho"}, "R' = μR + ρ, eq (5)", {}});
   // Defaults: measurement and capture both 45°:0° (the identity). k1, k2 stop at 0.99: at 1 every
   // patch would read the same.
   const SaundersonGeometry g = saunderson_preset("45-0").geometry;
@@ -174,7 +174,9 @@ std::vector<SurfaceMethod> build_table() {
                  number_option("k2_capture", "k2' (capture)", g.k2, 0, 0.99, k2_text),
                  number_option("k_ins_capture", "k_ins' (capture)", g.k_ins, 0, 1, kins_text), spectral_option(),
                  fit_option()}},
-               apply_rows, {"k1", "k2", "k_ins", "k1_capture", "k2_capture", "k_ins_capture"}});
+               apply_rows, {"k1", "k2", "k_ins", "k1_capture", "k2_capture", "k_ins_capture"}, "eq (3) as eq (4), App. A",
+               {{"measurement", {{"k1", "k1"}, {"k2", "k2"}, {"k_ins", "k_ins"}}},
+                {"capture", {{"k1", "k1_capture"}, {"k2", "k2_capture"}, {"k_ins", "k_ins_capture"}}}}});
   return t;
 }
 

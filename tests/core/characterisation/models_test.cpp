@@ -1,5 +1,6 @@
 // Models: term expansions and matrices against colour-science's expectations, planted
 // solutions for every objective, degenerate and bad input.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -12,6 +13,7 @@
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/json.hpp"
+#include "tristim/characterisation/fit.hpp"
 #include "tristim/characterisation/models.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/colorimetry/spectra.hpp"
@@ -874,4 +876,25 @@ TEST_CASE("NLopt's other optimisers take the same steps natively and in wasm (pi
     CHECK(h.value == c.hash);
     if (std::string(c.algorithm) == "praxis") CHECK(coefficient_hash(fit(c.model, a, b, o).model).value == h.value);  // run to run
   }
+}
+
+TEST_CASE("catalog: every model names a family of the family table, listed in the table's order", "[models][catalog]") {
+  const auto& families = model_families();
+  std::vector<std::string> order;  // families in the order their first model appears
+  for (const ModelInfo& m : model_table()) {
+    INFO(m.id);
+    const auto f = std::find_if(families.begin(), families.end(), [&](const ModelFamily& x) { return x.id == m.family; });
+    REQUIRE(f != families.end());
+    if (std::find(order.begin(), order.end(), m.family) == order.end()) order.push_back(m.family);
+  }
+  REQUIRE(order.size() == families.size());  // every family has a model
+  for (size_t k = 0; k < families.size(); ++k) {
+    CHECK(families[k].id == order[k]);
+    CHECK(!families[k].label.empty());
+    CHECK(!families[k].about.empty());
+  }
+  CHECK(model_info("Guarnera2018-T2R").family == "Guarnera2018");
+  CHECK(model_info("Finlayson2015-3").family == "root-polynomial");
+  CHECK(model_info("Cheung2004-35").family == "polynomial");
+  CHECK(model_info("matrix-3x4").family == "matrix");
 }

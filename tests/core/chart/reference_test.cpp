@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "test_support.hpp"
+#include "tristim/chart/layout.hpp"
 #include "tristim/chart/reference.hpp"
 
 using namespace tristim;
@@ -127,5 +128,17 @@ TEST_CASE("display_matrix is the linear part of display_sRGB and maps any white 
     const Vec3 grey = 0.18 * white;
     const Vec3 lin = M * grey;
     CHECK((display_sRGB(grey, white) - XYZ_to_sRGB(sRGB_to_XYZ_matrix() * lin, true)).cwiseAbs().maxCoeff() < 1e-12);
+  }
+}
+
+TEST_CASE("catalog: a built-in chart's rows, columns and patch count are its layout's", "[chart][reference][layout][catalog]") {
+  for (const ChartInfo& c : list_charts()) {
+    INFO(c.id);
+    LayoutOptions o;
+    o.chart = c.id;
+    const ChartLayout L = chart_layout(o);
+    CHECK(c.rows == L.rows);
+    CHECK(c.columns == L.columns);
+    CHECK(c.patches == static_cast<int>(L.patches.size()));
   }
 }

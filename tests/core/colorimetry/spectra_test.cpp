@@ -340,3 +340,13 @@ TEST_CASE("reflectances_to_XYZ keeps interpolate_spectrum's errors and ignores s
     CHECK(e.code() == ErrorCode::NonMonotonic);
   }
 }
+
+TEST_CASE("catalog: the observers' ids are the ones parse_observer reads and observer_name writes", "[spectra][catalog]") {
+  const auto observers = list_observers();
+  REQUIRE(observers.size() == 2);
+  for (const ObserverInfo& o : observers) {
+    INFO(o.id);
+    CHECK(observer_name(parse_observer(o.id)) == o.id);
+    CHECK(o.name.find(o.id) != std::string::npos);
+  }
+}

@@ -178,3 +178,15 @@ TEST_CASE("least-squares leave-one-out in closed form equals N refits", "[evalua
   for (int i = 1; i < n; ++i) flat(i, 2) = 500;
   require_code([&] { leave_one_out_least_squares("matrix-3x4", flat, xyz); }, ErrorCode::IllConditioned);
 }
+
+TEST_CASE("quantile: Summary's rule for any q, non-finite values left out", "[evaluation]") {
+  const std::vector<double> v = {7, 1, NAN, 4, 10, 2, INFINITY, 3};
+  const Summary s = summarize(v);
+  CHECK(quantile(v, 0.5) == s.median);
+  CHECK(quantile(v, 0.95) == s.p95);
+  CHECK(quantile(v, 0) == 1);
+  CHECK(quantile(v, 1) == 10);
+  CHECK(quantile(v, 0.25) == Approx(2.25));  // between the 2nd (2) and 3rd (3) of 6: numpy's 2.25
+  CHECK(std::isnan(quantile({NAN}, 0.5)));
+  require_code([] { quantile({1, 2}, 1.5); }, ErrorCode::InvalidArgument);
+}

@@ -1,6 +1,8 @@
 #include <string>
 
 #include "test_support.hpp"
+#include "tristim/colorimetry/spectra.hpp"
+#include "tristim/data.hpp"
 #include "tristim/io/patch_files.hpp"
 
 using namespace tristim;
@@ -83,6 +85,27 @@ TEST_CASE("spectral CSV: first column wavelength, one column per patch", "[io]")
   CHECK(real.ids.size() == 24);
   CHECK(real.ids.front() == "A1");
   CHECK(real.ids.back() == "D6");
+}
+
+TEST_CASE("colorimetry reads its built-in tables to the doubles read_spectral_csv reads", "[io][colorimetry]") {
+  // colorimetry includes nothing of io, so it reads core/data's CIE tables itself (spectra.cpp).
+  auto same = [](const SpectralData& a, const std::string& file) {
+    INFO(file);
+    const SpectralData b = read_spectral_csv(builtin_file(file), file);
+    CHECK(a.wavelengths == b.wavelengths);
+    CHECK(a.values == b.values);
+  };
+  same(cmfs(Observer::CIE1931_2), "cmf/cie1931_2deg_360-830_1nm.csv");
+  same(cmfs(Observer::CIE1964_10), "cmf/cie1964_10deg_360-830_1nm.csv");
+  CHECK(cmfs(Observer::CIE1931_2).names == std::vector<std::string>{"xbar", "ybar", "zbar"});
+  int illuminants = 0;
+  for (const std::string& id : illuminant_ids())
+    for (const std::string& file : builtin_files())
+      if (file.rfind("illuminants/" + id + "_", 0) == 0) {
+        same(illuminant_spd(id), file);
+        ++illuminants;
+      }
+  CHECK(illuminants == static_cast<int>(illuminant_ids().size()));
 }
 
 TEST_CASE("illuminant CSV: the wavelength and exactly one non-negative value column", "[io]") {

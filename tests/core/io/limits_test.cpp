@@ -8,6 +8,7 @@
 #include <string>
 
 #include "test_support.hpp"
+#include "tristim/characterisation/fit.hpp"
 #include "tristim/characterisation/models.hpp"
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/io/json.hpp"

@@ -318,3 +318,12 @@ TEST_CASE("linearise_image: whole-number samples from a table — the same float
     }
   }
 }
+
+TEST_CASE("catalog: every row's need has its words for the pickers", "[linearisation][catalog]") {
+  for (const auto& m : linearisation_table()) {
+    INFO(m.info.id);
+    CHECK(!linearisation_needs_text(m.needs).empty());
+  }
+  CHECK(linearisation_needs_text("reference") == "fitted against the reference XYZ of every patch");
+  tristim::test::require_code([] { linearisation_needs_text("nothing"); }, ErrorCode::UnknownId);
+}

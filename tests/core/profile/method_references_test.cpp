@@ -13,6 +13,7 @@
 #endif
 
 #include "test_support.hpp"
+#include "tristim/capture/calibration.hpp"
 #include "tristim/characterisation/models.hpp"
 #include "tristim/characterisation/objectives.hpp"
 #include "tristim/linearisation/linearisation.hpp"
@@ -33,6 +34,7 @@ std::vector<Row> all_rows() {
   for (const auto& o : objective_table()) rows.push_back({"objectives", o.info.id, o.info.reference});
   for (const auto& l : linearisation_table()) rows.push_back({"linearisation", l.info.id, l.info.reference});
   for (const auto& s : surface_table()) rows.push_back({"surface", s.info.id, s.info.reference});
+  for (const auto& f : flat_field_methods()) rows.push_back({"flat field", f.id, f.reference});
   return rows;
 }
 

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "test_support.hpp"
+#include "tristim/io/patch_files.hpp"
 #include "tiff_reader.hpp"
 #include "tristim/error.hpp"
 #include "tristim/profile/export.hpp"
@@ -238,4 +239,13 @@ TEST_CASE("per-patch CSV lists every patch with its errors", "[profile]") {
   CHECK(csv.rfind("id,R,G,B,X_ref", 0) == 0);
   CHECK(csv.find("\"A,3\"") != std::string::npos);
   CHECK(csv.find("dE00_loo") != std::string::npos);
+}
+
+TEST_CASE("per-patch CSV reads back as a reference: its X_ref, Y_ref, Z_ref columns", "[profile][catalog]") {
+  const PatchMatrix rgb = rgb_grid(3, 1), xyz = rgb_grid(3, 2) * 50.0, est = rgb_grid(3, 3) * 50.0;
+  const PatchTable t = read_patch_file(patch_csv({"A01", "A2", "B1"}, rgb, xyz, est, whites::D50(), est), "p.csv");
+  REQUIRE(t.has_XYZ);
+  CHECK(t.labels == std::vector<std::string>{"A01", "A2", "B1"});
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c) CHECK(t.XYZ[i][c] == Approx(xyz(i, c)).epsilon(1e-9));  // the reference, not X_est
 }

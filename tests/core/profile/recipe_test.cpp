@@ -277,3 +277,11 @@ TEST_CASE("a profile fitted with a linearisation stage takes stored values every
   CHECK_FALSE(p.profile.has_linearisation);
   CHECK_FALSE(profile_from_json(profile_to_json(p.profile)).has_linearisation);  // (no top-level member)
 }
+
+TEST_CASE("catalog: an objective choice reads as the loss and optimiser it runs", "[recipe][catalog]") {
+  CHECK(objective_choice_label(parse_choice("ls")) == objective_method("ls").info.label);
+  CHECK(objective_choice_label(parse_choice("de2000")) == "CIEDE2000 mean (reweighted Levenberg-Marquardt)");
+  CHECK(objective_choice_label(parse_choice("de2000:rms=1")) == "CIEDE2000 RMS (Levenberg-Marquardt)");
+  CHECK(objective_choice_label(parse_choice("de2000:algorithm=bobyqa")) == "CIEDE2000 mean (NLopt bobyqa)");
+  tristim::test::require_code([] { objective_choice_label(parse_choice("de2000:algorithm=nope")); }, ErrorCode::InvalidArgument);
+}

@@ -1,7 +1,9 @@
 // The surface-correction table: rows, options, the `spectral` text, coded errors.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "test_support.hpp"
 #include "tristim/surface/saunderson.hpp"
@@ -92,4 +94,31 @@ TEST_CASE("bad coefficients and reflectances are coded", "[surface]") {
   negative.values[0][2] = -0.01;
   test::require_code([&] { correct_surface({"none", {}, {}}, high); }, ErrorCode::InvalidArgument);
   test::require_code([&] { correct_surface({"offset", {}, {}}, negative); }, ErrorCode::NegativeValue);
+}
+
+TEST_CASE("catalog: surface rows carry their equation, and Saunderson the options each geometry sets", "[surface][catalog]") {
+  for (const SurfaceMethod& m : surface_table()) {
+    INFO(m.info.id);
+    CHECK(m.equation.empty() == m.coefficients.empty());
+    for (const auto& [role, fields] : m.geometry) {
+      CHECK((role == "measurement" || role == "capture"));
+      CHECK(fields.size() == 3);
+      for (const auto& [field, option] : fields) {
+        CHECK((field == "k1" || field == "k2" || field == "k_ins"));
+        CHECK(std::find(m.coefficients.begin(), m.coefficients.end(), option) != m.coefficients.end());
+      }
+    }
+  }
+  // A preset in the capture role sets the capture coefficients: the correction is eq (3) with it.
+  const SurfaceMethod& s = surface_method("saunderson");
+  const SaundersonGeometry meas = saunderson_preset("d8-sci").geometry, cap = saunderson_preset("t3-sg-diffuse").geometry;
+  MethodChoice c{"saunderson", {}, {}};
+  const auto set = [&](const std::string& role, const SaundersonGeometry& g) {
+    const std::map<std::string, double> value = {{"k1", g.k1}, {"k2", g.k2}, {"k_ins", g.k_ins}};
+    for (const auto& [field, option] : s.geometry.at(role)) c.parameters[option] = value.at(field);
+  };
+  set("measurement", meas);
+  set("capture", cap);
+  const SpectralData out = correct_surface(c, two_patches());
+  CHECK(out.values[1][2] == Approx(saunderson_convert_Abed2013(0.88, meas, cap)).epsilon(1e-12));
 }

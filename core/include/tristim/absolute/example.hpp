@@ -49,12 +49,26 @@ struct AbsoluteExample {
   VirtualSensor sensor;
   std::string camera;
   std::vector<ExposureSettings> bracket;    ///< shortest first
+  std::vector<std::string> labels;          ///< the bracket's exposures as text ("1/250 s f/8 ISO 100")
   std::vector<RawImage> frames;             ///< the scene at each exposure of the bracket
   std::vector<RawImage> lens_cap;           ///< 4 lens-cap frames (middle exposure)
   RawImage flat;                            ///< equal-tristimulus light, ~450 cd/m², middle exposure
   std::vector<TrainingStimulus> stimuli;    ///< per patch (raw_RGB, falloff), unsaturated only
   std::vector<ExampleRegion> regions;       ///< the scene's cells with their X, Y, Z
   std::string white_id;                     ///< the ColorChecker's white patch (eq 16)
+  /// The files the frames stand for, as a recipe names them ("virtual-1.raw" …, "virtual-cap-1.raw"
+  /// …, "virtual-flat.raw"); tests write the frames under these names as DNGs.
+  std::vector<std::string> frame_names, lens_cap_names;
+  std::string flat_name;
+  std::string stimuli_csv;                  ///< `stimuli` as a stimuli CSV (stimuli_to_csv)
+  /// The test scene: every cell as a region row of the middle exposure's frame with its X, Y, Z
+  /// (sets by the 2 % rule: the ladder's cells are equal-tristimulus), as a stimuli CSV.
+  std::string test_csv;
+  /// How each frame was made: capture_virtual_mosaic(sensor, scene, exposure, seed) gives its
+  /// sensor values (a DNG of them decodes to the frame).
+  VirtualScene scene, lens_cap_scene, flat_scene;
+  std::vector<std::uint64_t> frame_seeds, lens_cap_seeds;
+  std::uint64_t flat_seed = 0;
 };
 
 /// Generates the example. Error(UnknownId) for a camera or illuminant that is not built in;

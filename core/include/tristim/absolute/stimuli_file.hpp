@@ -26,6 +26,10 @@ struct StimulusRow {
   int line = 0;            ///< line in the file, for messages
 };
 
+/// The equal-tristimulus rule of a row without a set: X and Z within 2 % of Y (section 3.1's
+/// luminance training asks for X = Y = Z; a calibrated projector reaches it to about that).
+bool equal_tristimulus(const Vec3& XYZ);
+
 /// Reads a stimuli CSV. Errors (naming `source` and the line): MissingColumn (no X, Y, Z; neither
 /// R, G, B nor file; a file row without x, y, w, h), NonNumeric/NonFinite cells, InvalidArgument
 /// (a set other than luminance/colour), MissingMetadata (a per-patch row without exposure_s and

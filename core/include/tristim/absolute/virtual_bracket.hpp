@@ -78,10 +78,13 @@ Vec3 virtual_XYZ(const VirtualSensor& sensor, const VirtualScene& scene, int k, 
 RawImage capture_virtual(const VirtualSensor& sensor, const VirtualScene& scene,
                          const ExposureSettings& exposure, std::uint64_t seed);
 
-/// The same frame as sensor values: a (2·width) × (2·height) RGGB mosaic in DN (clamped to
-/// 0..65535), e.g. for a DNG with black level 0 and white level `reported_saturation`; decoding
-/// it gives capture_virtual's image (same seed, same numbers).
+/// The same frame as sensor values: a (2·width) × (2·height) RGGB mosaic in DN plus `black`
+/// (clamped to 0..65535), e.g. for a DNG with black level `black` and white level
+/// `reported_saturation` + `black`; decoding it gives capture_virtual's image (same seed, same
+/// numbers) where no value was clamped — read noise takes dark values below 0 DN, which a black
+/// level of a few σ above 0 keeps (64 for the default sensor).
 std::vector<std::uint16_t> capture_virtual_mosaic(const VirtualSensor& sensor, const VirtualScene& scene,
-                                                  const ExposureSettings& exposure, std::uint64_t seed);
+                                                  const ExposureSettings& exposure, std::uint64_t seed,
+                                                  int black = 0);
 
 }  // namespace tristim

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "tristim/capture/raw.hpp"
+#include "tristim/methods.hpp"
 
 namespace tristim {
 
@@ -34,6 +35,11 @@ const char* dark_mode_id(DarkMode mode);
 /// so existing command lines, scripts and recipes keep working, never written).
 /// Error(InvalidArgument) naming the canonical ids otherwise.
 DarkMode dark_mode_from_id(std::string_view id);
+
+/// The two ways a flat-field frame corrects a capture, as a method table (the page's picker; the
+/// recipe records the choice as capture.flat_field or capture.falloff): "pixel" (make_flat_field,
+/// App. C step 2) and "radial" (fit_falloff_Guarnera2018, eq (7)). Neither has options.
+const std::vector<MethodInfo>& flat_field_methods();
 
 /// Average of N dark frames (same camera, same size), black-subtracted DN.
 struct DarkFrame {

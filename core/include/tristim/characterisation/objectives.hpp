@@ -1,11 +1,11 @@
 // The objectives table: how a model's coefficients are chosen. Each row's options are the
-// fields of PatternSearchOptions / DeltaE2000Options (models.hpp) with those structs' defaults,
+// fields of PatternSearchOptions / DeltaE2000Options (fit.hpp) with those structs' defaults,
 // so the page's forms, the CLI and the recipe all read one source.
 #pragma once
 #include <string>
 #include <vector>
 
-#include "tristim/characterisation/models.hpp"
+#include "tristim/characterisation/fit.hpp"
 #include "tristim/methods.hpp"
 
 namespace tristim {
@@ -25,5 +25,9 @@ const ObjectiveMethod& objective_method(const std::string& id);
 void apply_objective_choice(const MethodChoice& choice, FitOptions& options);
 /// The choice that reproduces options.objective with its psm / de2000 settings.
 MethodChoice objective_choice(const FitOptions& options);
+/// How a fit with `choice` reads in results: the row's label, and for CIEDE2000 (one row, two
+/// losses, several optimisers) the loss and the optimiser the choice runs, e.g. "CIEDE2000 mean
+/// (reweighted Levenberg-Marquardt)". Error(UnknownId) / Error(InvalidArgument) as complete_choice.
+std::string objective_choice_label(const MethodChoice& choice);
 
 }  // namespace tristim

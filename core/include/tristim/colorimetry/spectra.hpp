@@ -87,6 +87,11 @@ enum class Observer { CIE1931_2, CIE1964_10 };
 /// Error(UnknownId) otherwise.
 Observer parse_observer(std::string_view id);
 const char* observer_name(Observer observer);  // "1931" or "1964"
+/// The observers with a name for pickers: {"1931", "CIE 1931 2°"}, {"1964", "CIE 1964 10°"}.
+struct ObserverInfo {
+  std::string id, name;
+};
+std::vector<ObserverInfo> list_observers();
 
 /// The CIE colour-matching functions x̄ ȳ z̄ at 1 nm, 360-830 nm (columns "xbar","ybar","zbar").
 const SpectralData& cmfs(Observer observer);

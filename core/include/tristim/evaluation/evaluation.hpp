@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tristim/colorimetry/colorimetry.hpp"
-#include "tristim/characterisation/models.hpp"
+#include "tristim/characterisation/fit.hpp"
 
 namespace tristim {
 
@@ -18,6 +18,10 @@ struct Summary {
   double min = 0, median = 0, mean = 0, p95 = 0, max = 0, rms = 0, std = 0;
 };
 Summary summarize(const std::vector<double>& values);
+/// The q-quantile (0 <= q <= 1) of the finite values, by Summary's rule (linear interpolation
+/// between order statistics): the one percentile of the engine, which the page's colour-map
+/// ranges use too. NaN when no value is finite; Error(InvalidArgument) for q outside [0, 1].
+double quantile(std::vector<double> values, double q);
 
 /// Per-patch errors of an estimate against a reference (vectors of N).
 struct PatchErrors {

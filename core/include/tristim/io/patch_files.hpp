@@ -76,7 +76,8 @@ std::vector<std::string> patch_labels(const PatchTable& table, const std::vector
 /// Per-patch CSV: an id column (patch/id/sample_id/sample_name/sample_loc/name/sample; when there
 /// are several, the first whose values are not all plain numbers — i1Profiler's SampleID 1..N next
 /// to SAMPLE_NAME A1.., Argyll's SAMPLE_ID next to SAMPLE_LOC; otherwise the index column,
-/// otherwise row numbers), an optional index column, and any of X,Y,Z | XYZ_X.. ;
+/// otherwise row numbers), an optional index column, and any of X,Y,Z | XYZ_X.. | X_ref.. (the
+/// reference columns of the engine's per-patch CSV, patch_csv, which so reads back as a reference);
 /// L,a,b | L*,a*,b* | LAB_L.. ; R,G,B | RGB_R.. ; spectral columns named by wavelength
 /// ("380", "nm380", "SPECTRAL_380", "SPEC_380", "SPECTRAL_NM380"). Headers are case-insensitive
 /// (a lone "b" is Lab b* when L and a are present and RGB blue when R and G are).

@@ -95,6 +95,9 @@ struct LinearisationMethod {
 const std::vector<LinearisationMethod>& linearisation_table();
 /// A row by id; Error(UnknownId) naming the id otherwise.
 const LinearisationMethod& linearisation_method(const std::string& id);
+/// What a row's `needs` asks of the data, as one phrase for pickers ("fitted against the reference
+/// XYZ of every patch"); Error(UnknownId) for a value no row has.
+std::string linearisation_needs_text(const std::string& needs);
 /// Fits the chosen method (options checked and completed from the table).
 /// Errors: UnknownId, InvalidArgument (options), TooFewPatches, PatchMismatch (ids and rows
 /// differ), MissingColumn (a needed reference or reflectance is absent), NonFinite,

@@ -29,7 +29,7 @@
 
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/io/json.hpp"
-#include "tristim/characterisation/models.hpp"
+#include "tristim/characterisation/fit.hpp"
 #include "tristim/linearisation/linearisation.hpp"
 #include "tristim/profile/recipe.hpp"
 

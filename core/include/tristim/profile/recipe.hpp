@@ -31,7 +31,7 @@
 #include <string>
 #include <vector>
 
-#include "tristim/characterisation/models.hpp"
+#include "tristim/characterisation/fit.hpp"
 #include "tristim/chart/layout.hpp"
 #include "tristim/io/json.hpp"
 #include "tristim/methods.hpp"

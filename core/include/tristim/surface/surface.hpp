@@ -21,6 +21,7 @@
 // jointly with a 3×3 anchored to the chart's white patch, joint.hpp, starting from the given
 // values; correct_surface itself always applies the values as given).
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,14 @@ struct SurfaceMethod {
   SpectralData (*apply)(const SpectralData& reflectances, const MethodChoice& choice);
   /// Names of the row's coefficient options, in the order of eq (3)/(5) and of `spectral`.
   std::vector<std::string> coefficients;
+  /// The correction as the paper writes it ("R' = μR + ρ, eq (5)"); empty for `none`.
+  std::string equation;
+  /// For a row whose coefficients are Saunderson geometries (saunderson.hpp): per role
+  /// ("measurement", "capture", as SaundersonPreset::role names them) the option each field of a
+  /// SaundersonGeometry sets, e.g. capture: {k1: "k1_capture", k2: "k2_capture", k_ins:
+  /// "k_ins_capture"}; so a preset fills a choice without the caller knowing the option names.
+  /// Empty for the other rows.
+  std::map<std::string, std::map<std::string, std::string>> geometry;
 };
 
 /// Every surface correction, in a stable order (`none` first).

@@ -1,3 +1,4 @@
+// Below colorimetry and io alike (both read numbers with it; io includes colorimetry, never the reverse).
 // Decimal text -> double, the one number reader of the core (patch files, JSON, built-in tables,
 // method options). Same result and same end pointer as std::strtod in the "C" locale, bit for bit,
 // but without musl's long-double scanner for the common case: in wasm that scanner runs 128-bit
@@ -12,7 +13,7 @@ namespace tristim {
 /// mantissa m is at most 2^53 and whose decimal exponent e has |e| <= 22 are computed as m * 10^e
 /// or m / 10^-e: both operands are exact doubles, so the one IEEE operation rounds correctly
 /// (Clinger 1990, "How to read floating point numbers accurately", the fast path). Everything else
-/// goes to std::strtod. tests/core/io/number_test.cpp compares the two on generated strings.
+/// goes to std::strtod. tests/core/number_test.cpp compares the two on generated strings.
 double parse_double(const char* text, char** end) noexcept;
 
 namespace detail {

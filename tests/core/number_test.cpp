@@ -1,4 +1,4 @@
-// parse_double (io/number.hpp) against std::strtod: the same double bit for bit and the same end
+// parse_double (tristim/number.hpp) against std::strtod: the same double bit for bit and the same end
 // pointer, on hand-picked edge cases and on generated strings (random digits, decimal points,
 // exponents, signs, white space, trailing text, and %.Ng prints of random doubles as real files
 // hold them). Runs in both builds: natively against glibc's strtod, in wasm against musl's.
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "test_support.hpp"
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 
 using namespace tristim;
 

@@ -1,5 +1,5 @@
 // Decimal text -> double: Clinger's exact fast path, std::strtod for the rest (see number.hpp).
-#include "tristim/io/number.hpp"
+#include "tristim/number.hpp"
 
 #include <cstdint>
 #include <cstdlib>

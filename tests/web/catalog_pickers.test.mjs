@@ -1,0 +1,201 @@
+// The page owns no method knowledge (issue 43): every picker it shows — each <select>, the model and
+// objective checklists, and the options form of every method row — lists what the engine's tables
+// list, with the tables' ids and labels. The expected rows come from the wasm module loaded here in
+// node (tests/wasm/load.mjs), not from the page's copy of the catalog, so a picker whose list,
+// order, labels, option bounds or families drift from the engine fails. A <select> the registry
+// below does not know fails too: a new picker states where its choices come from.
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import { screenshot } from './harness.mjs';
+import { openPage, step } from './journey.mjs';
+import { loadTristim } from '../wasm/load.mjs';
+
+/// [{value, label}] of the engine's rows: `label(row)` the text the picker must show.
+const rows = (list, label = (r) => r.label ?? r.name) => list.map((r) => ({ value: String(r.id), label: label(r) }));
+
+/// Every <select> of the page outside an options form: its step, its field's label, its options.
+const selects = (page) => page.$$eval('select:not([data-option])', (els) => els.map((s) => ({
+  step: s.closest('section')?.dataset.step,
+  name: (s.labels?.[0]?.textContent ?? s.getAttribute('aria-label') ?? s.dataset.role ?? '').trim(),
+  options: [...s.options].map((o) => ({ value: o.value, label: o.textContent, title: o.title })),
+})));
+
+/// The controls of an options form (data-option) in `scope`, as the form built them.
+const formControls = (page, scope) => page.$$eval(`${scope} [data-option]`, (els) => els.map((el) => ({
+  name: el.dataset.option,
+  tag: el.tagName.toLowerCase(),
+  type: el.type,
+  label: (el.labels?.[0]?.textContent ?? '').trim(),
+  min: el.getAttribute('min'), max: el.getAttribute('max'), step: el.getAttribute('step'),
+  choices: el.tagName === 'SELECT' ? [...el.options].map((o) => [o.value, o.textContent]) : null,
+})));
+
+/// Each OptionSpec of `info` against the form's controls: one control per option, of its type,
+/// labelled with the option's label, bounded by its min/max (none when min == max), nothing else.
+function checkForm(where, info, controls, wrong) {
+  const want = info.options.map((o) => o.name);
+  const got = controls.map((c) => c.name);
+  if (JSON.stringify(got) !== JSON.stringify(want)) { wrong.push(`${where}: controls ${got.join(',')} for options ${want.join(',')}`); return; }
+  info.options.forEach((o, k) => {
+    const c = controls[k];
+    const say = (what) => wrong.push(`${where} option ${o.name}: ${what}`);
+    if (c.label !== o.label) say(`label '${c.label}', the table says '${o.label}'`);
+    if (o.type === 'boolean' && c.type !== 'checkbox') say(`a ${c.type} for a boolean`);
+    if (o.type === 'text' && c.type !== 'text') say(`a ${c.type} for a text`);
+    if (o.type === 'choice' && JSON.stringify(c.choices) !== JSON.stringify(o.choices.map((x) => [x, x]))) say(`choices ${JSON.stringify(c.choices)}, the table has ${o.choices}`);
+    if (o.type === 'number' || o.type === 'integer') {
+      if (c.type !== 'number') say(`a ${c.type} for a ${o.type}`);
+      const bounded = o.max > o.min;
+      if ((bounded ? String(o.min) : null) !== c.min || (bounded ? String(o.max) : null) !== c.max) say(`bounds [${c.min}, ${c.max}], the table's [${o.min}, ${o.max}]`);
+      if (c.step !== (o.type === 'integer' ? '1' : 'any')) say(`step ${c.step} for a ${o.type}`);
+    }
+  });
+}
+
+/// Picks `value` in the <select> labelled `name` on step `stepName` (as a user's change would).
+const choose = (page, stepName, name, value) => page.evaluate(([st, n, v]) => {
+  const s = [...document.querySelectorAll(`#step-${st} select`)].find((x) => x.labels?.[0]?.textContent.trim() === n);
+  s.value = v;
+  s.dispatchEvent(new Event('change'));
+}, [stepName, name, value]);
+
+test('every picker lists the engine catalog\'s ids and labels, and every options form its option table', async () => {
+  const T = await loadTristim();
+  const charts = T.listCharts(), cameras = T.listCameras(), models = T.listModels(), families = T.listModelFamilies();
+  const presets = T.listSurfacePresets();
+  // key: "<step>/<field label>" -> the options the picker must show, or {owned: why} for a picker
+  // whose choices are the page's own (presentation, or data of this session rather than a table).
+  const registry = {
+    'reference/Chart': rows(charts),
+    'reference/Illuminant': rows(T.listIlluminants()),
+    'reference/Observer': rows(T.listObservers()),
+    'surface/Surface correction': rows(T.listSurfaceCorrections()),
+    'surface/Camera sensitivities': rows(cameras),
+    'surface/Measurement geometry (the instrument that measured the reference): k1, k2, k_ins of eq (2)': { owned: 'custom, then the presets (checked below)' },
+    'surface/Capture geometry (how the camera sees the chart): k1′, k2′, k_ins′ of eq (1)': { owned: 'custom, then the presets (checked below)' },
+    'images/Flat-field correction': rows(T.listFlatFieldModes()),
+    // The layouts the engine has, named after the built-in charts; 'custom' is named by the page.
+    'images/Chart layout': T.listChartLayouts().map((id) => ({ value: id, label: charts.find((c) => c.id === id)?.name ?? null })),
+    'linearisation/Linearisation': rows(T.listLinearisations(), (r) => `${r.label} (${r.id})`),
+    'linearisation/Patch to plot': { owned: 'the patches of this session\'s chart' },
+    'apply/Apply to': { owned: 'where the image comes from (a UI choice)' },
+    'apply/Colour map for Y': { owned: 'display colour maps (d3)' },
+    'absolute/Colour map': { owned: 'display colour maps (d3)' },
+    'absolute/Sensitivities for A_R, A_G, A_B': { owned: 'none, this session\'s sets, then the built-in cameras (checked below)' },
+    'absolute/Patches': { owned: 'where the patches come from (a UI choice)' },
+    'absolute/Chart (known reflectances)': { owned: 'the built-in charts and a file (checked below)' },
+    'absolute/Illuminant of the photo': { owned: 'the built-in illuminants and a file (checked below)' },
+    'absolute/Show': { owned: 'the sets of this session' },
+    'absolute/Against the built-in camera': rows(cameras),
+    // The Absolute mode's own tables move into the engine with its recipe (issue 43, AbsoluteRecipe);
+    // until then these are the page's.
+    'absolute/Colour matrix': { owned: 'the Guarnera2018 family of the model table (checked below)' },
+    'absolute/Exposure fusion': { owned: 'fusion modes: not yet an engine table (issue 43)' },
+    'absolute/Example: light on the chart': { owned: 'the example\'s lights: not yet an engine table (issue 43)' },
+    'absolute/Example: colour training': { owned: 'the example\'s training sets: not yet an engine table (issue 43)' },
+    'absolute/White of the test figures': { owned: 'the eq 16 white or E: not yet an engine table (issue 43)' },
+  };
+  const b = await openPage();
+  try {
+    const { page } = b;
+    const wrong = [];
+    const found = await selects(page);
+    const seen = new Set();
+    for (const s of found) {
+      const key = `${s.step}/${s.name}`;
+      seen.add(key);
+      const want = registry[key];
+      if (!want) { wrong.push(`${key}: a picker the test does not know (options ${s.options.map((o) => o.value).join(', ')})`); continue; }
+      if (want.owned) continue;
+      const got = s.options.map(({ value, label }) => ({ value, label }));
+      const expected = want.map((o) => ({ value: o.value, label: o.label ?? got.find((g) => g.value === o.value)?.label }));
+      if (JSON.stringify(got) !== JSON.stringify(expected)) wrong.push(`${key}: shows ${JSON.stringify(got)}, the engine ${JSON.stringify(expected)}`);
+    }
+    for (const key of Object.keys(registry)) if (!seen.has(key)) wrong.push(`${key}: not on the page (the registry is stale)`);
+
+    // Pickers that add the page's own entries around an engine table: the table's part is exact.
+    const byKey = Object.fromEntries(found.map((s) => [`${s.step}/${s.name}`, s.options]));
+    const tail = (key, n) => JSON.stringify((byKey[key] ?? []).slice(-n).map(({ value, label }) => ({ value, label })));
+    const head = (key, n) => JSON.stringify((byKey[key] ?? []).slice(0, n).map(({ value, label }) => ({ value, label })));
+    if (tail('absolute/Sensitivities for A_R, A_G, A_B', cameras.length) !== JSON.stringify(rows(cameras))) wrong.push('absolute sensitivities: not the built-in cameras');
+    if (head('absolute/Chart (known reflectances)', charts.length) !== JSON.stringify(rows(charts))) wrong.push('absolute chart: not the built-in charts');
+    if (head('absolute/Illuminant of the photo', T.listIlluminants().length) !== JSON.stringify(rows(T.listIlluminants()))) wrong.push('absolute illuminant: not the built-in illuminants');
+    const guarnera = models.filter((m) => m.family === 'Guarnera2018');
+    if (JSON.stringify((byKey['absolute/Colour matrix'] ?? []).map((o) => o.label)) !== JSON.stringify(guarnera.map((m) => `${m.label} — ${m.reference}`))) wrong.push('absolute colour matrix: not the Guarnera2018 family');
+    // The flat-field modes cite their table row (the option's title).
+    for (const o of byKey['images/Flat-field correction'] ?? []) {
+      const m = T.listFlatFieldModes().find((x) => x.id === o.value);
+      if (o.title !== m?.reference) wrong.push(`flat-field ${o.value}: title '${o.title}', the table's reference '${m?.reference}'`);
+    }
+    // The surface presets: every preset of the table (by id, with its label), the page's '' = custom.
+    for (const role of ['Measurement geometry', 'Capture geometry']) {
+      const opts = found.find((s) => s.step === 'surface' && s.name.startsWith(role))?.options ?? [];
+      if (JSON.stringify(opts.map((o) => o.value).sort()) !== JSON.stringify(['', ...presets.map((p) => p.id)].sort())) wrong.push(`${role}: ${opts.map((o) => o.value)}`);
+      for (const p of presets) if (!opts.find((o) => o.value === p.id)?.label.startsWith(`${p.id} — ${p.label}`)) wrong.push(`${role} ${p.id}: label`);
+    }
+
+    // Step 3: the model checklist in the engine's families (their order, labels, advice), each
+    // family's models in the table's order with their labels and citations; the objectives.
+    await step(page, 'fit');
+    const groups = await page.$$eval('#step-fit .family', (els) => els.map((g) => ({
+      id: g.dataset.family, label: g.querySelector('h4')?.textContent, about: g.querySelector(':scope > small')?.textContent ?? '',
+      models: [...g.querySelectorAll('input[data-model]')].map((cb) => ({ id: cb.value, label: cb.labels[0].textContent, title: cb.closest('.check').title })),
+    })));
+    const wantGroups = families.map((f) => ({ id: f.id, label: f.label, about: f.about,
+      models: models.filter((m) => m.family === f.id).map((m) => ({ id: m.id, label: m.label, title: m.reference })) }));
+    groups.forEach((g, k) => {
+      if (JSON.stringify(g) !== JSON.stringify(wantGroups[k])) wrong.push(`model family ${k}: shows ${JSON.stringify(g).slice(0, 300)}, the engine ${JSON.stringify(wantGroups[k]).slice(0, 300)}`);
+    });
+    if (groups.length !== wantGroups.length) wrong.push(`${groups.length} model families shown, the engine has ${wantGroups.length}`);
+    const objectives = await page.$$eval('#step-fit input[data-objective]', (els) => els.map((cb) => ({ value: cb.value, label: cb.labels[0].textContent })));
+    if (JSON.stringify(objectives) !== JSON.stringify(rows(T.listObjectives()))) wrong.push(`objectives: shows ${JSON.stringify(objectives)}`);
+    for (const o of T.listObjectives()) {
+      if (!o.options.length) continue;
+      checkForm(`objective ${o.id}`, o, await formControls(page, `#step-fit details.objective-options[data-objective="${o.id}"]`), wrong);
+    }
+
+    await screenshot(page, 'catalog-pickers-fit');
+
+    // Step 2b and 1b: each row of the method table picked in turn, its options form checked.
+    await step(page, 'linearisation');
+    for (const r of T.listLinearisations()) {
+      await choose(page, 'linearisation', 'Linearisation', r.id);
+      checkForm(`linearisation ${r.id}`, r, await formControls(page, '#step-linearisation .linearisation-options'), wrong);
+    }
+    await choose(page, 'linearisation', 'Linearisation', 'identity');
+    await step(page, 'surface');
+    for (const r of T.listSurfaceCorrections()) {
+      await choose(page, 'surface', 'Surface correction', r.id);
+      checkForm(`surface ${r.id}`, r, await formControls(page, '#step-surface .surface-options'), wrong);
+      // The row's citation and equation, as the engine writes them.
+      const text = await page.$$eval('#step-surface p.hint', (ps) => ps.map((p) => p.textContent).join('\n'));
+      if (!text.includes(`${r.label} — ${r.reference}${r.equation ? ` (${r.equation})` : ''}.`)) wrong.push(`surface ${r.id}: no hint gives the row's label, reference and equation`);
+      // A row of Saunderson geometries shows the preset pickers; the others do not.
+      const presetsShown = await page.$eval('#step-surface .surface-presets', (el) => !el.hidden);
+      if (presetsShown !== Object.keys(r.geometry).length > 0) wrong.push(`surface ${r.id}: preset pickers ${presetsShown ? 'shown' : 'hidden'}`);
+    }
+    await screenshot(page, 'catalog-pickers-surface');
+    await choose(page, 'surface', 'Surface correction', 'none');
+
+    // Step 1: a built-in chart's swatches sit at their cells of the engine's layout.
+    await step(page, 'reference');
+    for (const c of charts) {
+      await choose(page, 'reference', 'Chart', c.id);
+      await page.waitForFunction(([name, n]) => document.querySelector('#step-reference .summary')?.textContent.includes(`built-in chart ${name},`)
+        && document.querySelectorAll('#step-reference .swatch').length === n, [c.name, c.patches], { timeout: 30000 });
+      const cells = await page.$$eval('#step-reference .swatch', (els) => els.map((e) => [e.dataset.id, e.style.gridRow, e.style.gridColumn]));
+      const layout = T.chartLayout({ chart: c.id });
+      const at = new Map(layout.patches.map((p) => [p.id, [String(p.row + 1), String(p.column + 1)]]));
+      const misplaced = cells.filter(([id, r, col]) => JSON.stringify([r.split(' ')[0], col.split(' ')[0]]) !== JSON.stringify(at.get(id)));
+      if (misplaced.length) wrong.push(`${c.id}: swatches off their layout cells: ${misplaced.slice(0, 3).join('; ')}`);
+      const columns = await page.$eval('#step-reference .swatches', (el) => el.style.gridTemplateColumns);
+      if (!columns.startsWith(`repeat(${layout.columns},`)) wrong.push(`${c.id}: ${columns}, the layout has ${layout.columns} columns`);
+    }
+    await choose(page, 'reference', 'Chart', 'passport');
+
+    assert.deepEqual(wrong, []);
+    assert.deepEqual(b.problems, []);
+  } finally {
+    await b.close();
+  }
+});
