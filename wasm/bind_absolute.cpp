@@ -117,6 +117,9 @@ EMSCRIPTEN_BINDINGS(tristim_absolute) {
   def<&absolute_recipe_to_json>("absoluteRecipeToJson");
   def<static_cast<AbsoluteRecipe (*)(const std::string&)>(&absolute_recipe_from_json)>("absoluteRecipeFromJson");
   def<&absolute_option_table>("listAbsoluteOptions");
+  // The exposure-fusion picker (the page's catalog: fusionModes).
+  { using S = FusionModeInfo; value_object<S>("FusionModeInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(about); }
+  def<&fusion_mode_table>("listFusionModes");
   def<&series_exposures>("checkAbsoluteSeries");
   def<&characterise_absolute>("fitAbsolute");
   emscripten::function("applyAbsolute", &apply);

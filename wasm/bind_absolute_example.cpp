@@ -23,4 +23,8 @@ EMSCRIPTEN_BINDINGS(tristim_absolute_example) {
   def<&read_absolute_stimuli>("readAbsoluteStimuli");
   def<&absolute_stimuli_to_csv>("absoluteStimuliToCsv");
   def<&make_absolute_example>("absoluteExample");
+  // The example's pickers (the page's catalog: exampleLights, exampleTrainings).
+  { using S = ExampleChoice; value_object<S>("ExampleChoice") FIELD(id) FIELD(label) FIELD(about) FIELD(transform); }
+  def<&example_light_table>("listExampleLights");
+  def<&example_training_table>("listExampleTrainings");
 }

@@ -23,7 +23,8 @@ const handlers = {
     charts: T.listCharts(), illuminants: T.listIlluminants(), observers: T.listObservers(), cameras: T.listCameras(),
     models: T.listModels(), modelFamilies: T.listModelFamilies(), objectives: T.listObjectives(),
     linearisations: T.listLinearisations(), surfaces: T.listSurfaceCorrections(), surfacePresets: T.listSurfacePresets(),
-    flatFieldModes: T.listFlatFieldModes(), absoluteOptions: T.listAbsoluteOptions(),
+    flatFieldModes: T.listFlatFieldModes(), absoluteOptions: T.listAbsoluteOptions(), fusionModes: T.listFusionModes(),
+    exampleLights: T.listExampleLights(), exampleTrainings: T.listExampleTrainings(),
     layouts: Object.fromEntries(T.listChartLayouts().map((id) => [id, id === 'custom' ? null : T.chartLayout({ chart: id })])),
   }),
   /// Test-only (tests/web/worker_restart.test.mjs): makes this worker die the two ways a real one

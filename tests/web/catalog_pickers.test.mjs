@@ -87,12 +87,10 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     'absolute/Illuminant of the photo': { owned: 'the built-in illuminants and a file (checked below)' },
     'absolute/Show': { owned: 'the sets of this session' },
     'absolute/Against the built-in camera': rows(cameras),
-    // The Absolute mode's own tables move into the engine with its recipe (issue 43, AbsoluteRecipe);
-    // until then these are the page's.
     'absolute/Colour matrix': { owned: 'the Guarnera2018 family of the model table (checked below)' },
-    'absolute/Exposure fusion': { owned: 'fusion modes: not yet an engine table (issue 43)' },
-    'absolute/Example: light on the chart': { owned: 'the example\'s lights: not yet an engine table (issue 43)' },
-    'absolute/Example: colour training': { owned: 'the example\'s training sets: not yet an engine table (issue 43)' },
+    'absolute/Exposure fusion': rows(T.listFusionModes()),
+    'absolute/Example: light on the chart': rows(T.listExampleLights()),
+    'absolute/Example: colour training': rows(T.listExampleTrainings()),
     'absolute/White of the test figures': { owned: 'the eq 16 white or E: not yet an engine table (issue 43)' },
   };
   const b = await openPage();
@@ -122,6 +120,10 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     if (head('absolute/Illuminant of the photo', T.listIlluminants().length) !== JSON.stringify(rows(T.listIlluminants()))) wrong.push('absolute illuminant: not the built-in illuminants');
     const guarnera = models.filter((m) => m.family === 'Guarnera2018');
     if (JSON.stringify((byKey['absolute/Colour matrix'] ?? []).map((o) => o.label)) !== JSON.stringify(guarnera.map((m) => `${m.label} — ${m.reference}`))) wrong.push('absolute colour matrix: not the Guarnera2018 family');
+    // A training row's transform is a Guarnera2018 matrix the picker offers.
+    for (const t of T.listExampleTrainings()) {
+      if (t.transform && !guarnera.some((m) => m.id === `Guarnera2018-${t.transform}`)) wrong.push(`example training ${t.id}: transform ${t.transform} is not a Guarnera2018 model`);
+    }
     // The flat-field modes cite their table row (the option's title).
     for (const o of byKey['images/Flat-field correction'] ?? []) {
       const m = T.listFlatFieldModes().find((x) => x.id === o.value);

@@ -89,21 +89,27 @@ export function mount(section, app) {
   const cameraSel = select(cameraOptions(), '');
   cameraSel.dataset.role = 'abs-camera';
   const ssf = mountSensitivities(app, { onChoice: (which, label) => { givenSets[which] = label; setOptions(cameraSel, cameraOptions(), `@${which}`); } });
-  // The colour matrix: the Guarnera2018-<transform> rows of the engine's model table.
-  const transforms = (app.catalog?.models ?? []).filter((m) => m.id.startsWith('Guarnera2018-'))
-    .map((m) => ({ value: m.id.slice('Guarnera2018-'.length), label: `${m.label} — ${m.reference}` }));
+  // The colour matrix: the Guarnera2018 family of the engine's model table; a row's id is
+  // Guarnera2018-<transform> and the recipe names the transform.
+  const transforms = (app.catalog?.models ?? []).filter((m) => m.family === 'Guarnera2018')
+    .map((m) => ({ value: m.id.slice(m.family.length + 1), label: `${m.label} — ${m.reference}` }));
   const transformSel = select(transforms, 'T1');
-  const fusionSel = select([{ value: 'weighted', label: 'weighted (every reliable exposure)' }, { value: 'recursive', label: 'Algorithm 1 (recursive selection)' }], 'weighted');
+  // The engine's tables (listFusionModes, listExampleLights, listExampleTrainings), default first.
+  const choices = (list) => list.map((r) => ({ value: r.id, label: r.label }));
+  const fusionModes = app.catalog?.fusionModes ?? [];
+  const fusionSel = select(choices(fusionModes), fusionModes[0]?.id);
   const exampleBtn = h('button', { type: 'button', 'data-role': 'abs-example' }, 'Example (virtual camera)');
-  // The example's scene light and colour training. Projected colours (the paper's) leave a
-  // metameric floor under A and F2 for this camera; reflective colours under the scene's light
-  // with T2R meet Table 4 (tests/core/absolute/example_test.cpp).
-  const exLightSel = select([{ value: 'D65', label: 'D65' }, { value: 'A', label: 'A' }, { value: 'F2', label: 'F2' }], 'D65');
+  // The example's scene light and colour training; a training row names the colour matrix that
+  // meets Table 4 with it (T2R for the reflective patches), which choosing it selects.
+  const exLights = app.catalog?.exampleLights ?? [], exTrainings = app.catalog?.exampleTrainings ?? [];
+  const exLightSel = select(choices(exLights), exLights[0]?.id);
   exLightSel.dataset.role = 'abs-example-light';
-  const exTrainingSel = select([{ value: 'projector', label: '24 projected ColorChecker colours (the paper\'s)' },
-    { value: 'reflective', label: 'reflective ColorChecker SG patches under the scene\'s light' }], 'projector');
+  const exTrainingSel = select(choices(exTrainings), exTrainings[0]?.id);
   exTrainingSel.dataset.role = 'abs-example-training';
-  exTrainingSel.addEventListener('change', () => { if (exTrainingSel.value === 'reflective' && transforms.some((t) => t.value === 'T2R')) transformSel.value = 'T2R'; });
+  exTrainingSel.addEventListener('change', () => {
+    const want = exTrainings.find((t) => t.id === exTrainingSel.value)?.transform;
+    if (want && transforms.some((t) => t.value === want)) transformSel.value = want;
+  });
   const fitBtn = h('button', { type: 'button', class: 'primary', 'data-role': 'abs-fit' }, 'Fit and measure the series');
   // Two grid columns for a field whose choices are long (the chosen text stays readable).
   const wide = (el) => { el.classList.add('abs-wide'); return el; };

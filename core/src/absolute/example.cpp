@@ -55,6 +55,21 @@ SpectralData sg_unlike_classic() {
   return keep;
 }
 
+std::vector<ExampleChoice> example_light_table() {
+  return {{"D65", "D65", "CIE daylight (the default)", ""},
+          {"A", "A", "tungsten: projected colours leave a metameric floor with this camera", ""},
+          {"F2", "F2", "cool-white fluorescent: projected colours leave a metameric floor with this camera", ""}};
+}
+
+// Projected colours (the paper's) leave a metameric floor under A and F2 for this camera;
+// reflective colours under the scene's light with T2R meet Table 4 (tests/core/absolute/example_test.cpp).
+std::vector<ExampleChoice> example_training_table() {
+  return {{"projector", "24 projected ColorChecker colours (the paper's)",
+           "the paper's training: three-primary projector light matched to the ColorChecker", ""},
+          {"reflective", "reflective ColorChecker SG patches under the scene's light",
+           "the SG patches unlike the Classic's, lit by the scene's light: meets Table 4 under A and F2 with T2R", "T2R"}};
+}
+
 AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
   if (o.cell < 8) throw Error(ErrorCode::InvalidArgument, "example: cells need at least 8 pixels");
   if (!(o.white_luminance > 0)) throw Error(ErrorCode::InvalidArgument, "example: the white luminance must be positive");

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numeric>
 
+#include "../citations.hpp"
 #include "../detmath.hpp"
 #include "../large_buffer.hpp"
 #include "../simd4.hpp"
@@ -20,6 +21,17 @@ FusionMode fusion_mode_from_id(const std::string& id) {
   if (id == "weighted" || id == "fusion") return FusionMode::Weighted;
   if (id == "recursive" || id == "algorithm1" || id == "select") return FusionMode::Recursive;
   throw Error(ErrorCode::UnknownId, "unknown exposure combination '" + id + "' (weighted, recursive)");
+}
+
+std::vector<FusionModeInfo> fusion_mode_table() {
+  const std::string guarnera = citation::kGuarnera2018;
+  return {
+      {fusion_mode_id(FusionMode::Weighted), "weighted (every reliable exposure)",
+       guarnera + ", section 3.1 (zones Z_u, Z_c, Z_o); weighting by reliability and t/N²",
+       "every unsaturated exposure contributes, weighted by the reliability of its zone and its exposure"},
+      {fusion_mode_id(FusionMode::Recursive), "Algorithm 1 (recursive selection)", guarnera + ", Algorithm 1",
+       "per pixel and channel, one exposure: from the middle one, the next longer in Z_u, the next shorter in Z_o"},
+  };
 }
 
 double reliability_Guarnera2018(Zone zone, double u, double w, double u_min) {

@@ -18,9 +18,31 @@
 #include "tristim/absolute/example.hpp"
 #include "tristim/absolute/profile.hpp"
 #include "tristim/absolute/stimuli_file.hpp"
+#include "tristim/characterisation/models.hpp"
+#include "tristim/colorimetry/spectra.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
 using namespace tristim;
+
+TEST_CASE("absolute: the example's light and training tables name what the example accepts", "[absolute]") {
+  const AbsoluteExampleOptions defaults;
+  const auto lights = example_light_table(), trainings = example_training_table();
+  REQUIRE_FALSE(lights.empty());
+  REQUIRE_FALSE(trainings.empty());
+  CHECK(lights[0].id == defaults.illuminant);  // the defaults first
+  CHECK(trainings[0].id == defaults.colour_training);
+  for (const auto& l : lights) {
+    INFO(l.id);
+    CHECK_NOTHROW(illuminant_spd(l.id));  // a built-in light
+    CHECK_FALSE(l.label.empty());
+  }
+  for (const auto& t : trainings) {
+    INFO(t.id);
+    CHECK((t.id == "projector" || t.id == "reflective"));  // the ids make_absolute_example reads
+    CHECK_FALSE(t.label.empty());
+    if (!t.transform.empty()) CHECK(model_info("Guarnera2018-" + t.transform).family == "Guarnera2018");
+  }
+}
 
 TEST_CASE("absolute: the stimuli CSV of the example reads back exactly, bad rows are coded", "[absolute]") {
   const AbsoluteExample ex = make_absolute_example();

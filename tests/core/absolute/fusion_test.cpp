@@ -44,6 +44,19 @@ TEST_CASE("absolute: the reliability weights of the zones", "[absolute]") {
   CHECK(n.zone(1, 500, true) == Zone::Saturated);  // flagged by the decoder
 }
 
+TEST_CASE("absolute: the fusion-mode table lists every mode by the id the recipe reads", "[absolute]") {
+  const auto table = fusion_mode_table();
+  REQUIRE(table.size() == 2);
+  CHECK(table[0].id == fusion_mode_id(FusionMode::Weighted));  // the default first
+  for (const auto& r : table) {
+    INFO(r.id);
+    CHECK(fusion_mode_id(fusion_mode_from_id(r.id)) == r.id);
+    CHECK_FALSE(r.label.empty());
+    CHECK(r.reference.rfind("Guarnera, Bianco & Schettini 2018", 0) == 0);
+    CHECK_FALSE(r.about.empty());
+  }
+}
+
 TEST_CASE("absolute: a pixel saturated in the long exposure takes a shorter one's value", "[absolute]") {
   const auto& b = test::bench();
   const VirtualScene scene = two_level_scene(40, 2000);  // 2000 cd/m² clips 1/60 s and longer

@@ -38,6 +38,20 @@ struct AbsoluteExampleOptions {
   std::uint64_t seed = 1;
 };
 
+/// One choice of the example's light or colour training as the page's pickers list it.
+struct ExampleChoice {
+  std::string id;     ///< AbsoluteExampleOptions::illuminant or ::colour_training
+  std::string label;  ///< the picker's text
+  std::string about;  ///< why it is offered
+  /// The colour matrix (Guarnera2018-<transform>) that meets Table 4 with this training; "" when
+  /// the chosen matrix is kept.
+  std::string transform;
+};
+/// The lights the example offers on the scene's chart (the paper's booth lights), D65 first.
+std::vector<ExampleChoice> example_light_table();
+/// The example's colour trainings, the paper's (projector) first.
+std::vector<ExampleChoice> example_training_table();
+
 /// One cell of the scene and its truth.
 struct ExampleRegion {
   std::string id;

@@ -43,6 +43,16 @@ enum class FusionMode { Weighted, Recursive };
 const char* fusion_mode_id(FusionMode mode);   ///< "weighted" | "recursive"
 FusionMode fusion_mode_from_id(const std::string& id);  ///< Error(UnknownId)
 
+/// One way to combine exposures as the page's picker lists it (the CLI's --fusion ids).
+struct FusionModeInfo {
+  std::string id;         ///< fusion_mode_id: "weighted" | "recursive"
+  std::string label;      ///< the picker's text
+  std::string reference;  ///< core/src/citations.hpp
+  std::string about;      ///< how it chooses (the header comment, in one line)
+};
+/// Every fusion mode, the default (weighted) first.
+std::vector<FusionModeInfo> fusion_mode_table();
+
 /// Most exposures one fusion takes (the contributor mask has 16 bits).
 constexpr int kMaxExposures = 16;
 
