@@ -21,6 +21,7 @@ function run(T, c, passport) {
       case 'patches': T.parsePatchFile(dec.decode(c.bytes), c.name); break;
       case 'profile': T.profileFromJson(dec.decode(c.bytes)); break;
       case 'recipe': T.recipeFromJson(dec.decode(c.bytes)); break;
+      case 'dcp': T.readDcp(c.bytes); break;  // the reader the export step's import uses
       case 'corners': T.sampleChart(passport, { chart: 'passport' }, c.corners); break;
       default: throw new Error(`${c.id}: unknown kind ${c.kind}`);
     }

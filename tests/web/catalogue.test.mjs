@@ -17,6 +17,7 @@ const INPUT = {
   patches: ['fit', '#step-fit input[type=file]'],
   profile: ['export', '#step-export input[type=file]'],
   recipe: ['export', '#step-export input[type=file]'],
+  dcp: ['export', '#step-export input[type=file]'],
 };
 const FIT = '#step-fit button.primary';
 const DETECT_AGAIN = '#step-images .detect-panel button:not(.primary)';

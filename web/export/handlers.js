@@ -1,5 +1,6 @@
-// Worker handlers of step 6: the engine's exports (ICC, .cube, per-patch CSV) and the evaluation
-// of a profile loaded back on the current chart data.
+// Worker handlers of step 6: the engine's exports (ICC, .cube, DCP, per-patch CSV), the engine's
+// DCP reader for a download read back, and the evaluation of a profile loaded back on the current
+// chart data.
 import { reply, displayOf } from '../lib/reply.js';
 
 export const handlers = {
@@ -12,4 +13,7 @@ export const handlers = {
   exportIcc: (T, { profile }) => reply({ bytes: T.exportIcc(profile) }),
   patchCsv: (T, { ids, rgb, xyz, estimated, white, loo }) => ({ result: { text: T.patchCsv(ids, rgb, xyz, estimated, white, loo) } }),
   exportCube: (T, { profile, size = 33 }) => ({ result: { text: T.exportCube(profile, size) } }),
+  // options: DcpOptions (camera_model, hue_sat_map …); the same bytes as `tristim export --dcp`.
+  exportDcp: (T, { profile, options }) => reply({ bytes: T.exportDcp(profile, options) }),
+  readDcp: (T, { bytes }) => reply(T.readDcp(bytes)),
 };

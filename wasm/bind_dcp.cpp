@@ -1,0 +1,35 @@
+// Declarations: DNG camera profiles (profile/dcp.hpp) for the page's Export step: a single-
+// illuminant DCP of one profile (the CLI's `tristim export --profile p.json --dcp x.dcp`), and the
+// engine's strict reader, whose result crosses as the JSON `tristim inspect x.dcp` prints.
+#include "tristim/profile/dcp.hpp"
+#include "types.hpp"
+
+using namespace tristim;
+using emscripten::val;
+using emscripten::value_object;
+using wasm::def;
+
+template <>
+struct tristim::wasm::Conv<Dcp> {  // the object dcp_json is (every tag, plus the white checks)
+  static val to(const Dcp& d) { return val::global("JSON").call<val>("parse", val(dcp_json(d).dump())); }
+  static Dcp from(const val&) { wasm::refuse("a DCP read back is an output"); }
+};
+
+namespace {
+
+/// The page writes one profile (single-illuminant); make_dcp's optional second profile is a
+/// pointer, which embind does not take, hence this name for the one-profile call.
+std::vector<std::uint8_t> export_dcp(const Profile& profile, const DcpOptions& options) {
+  return write_dcp(make_dcp(profile, options));
+}
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(tristim_dcp) {
+  { using S = DcpOptions; value_object<S>("DcpOptions") FIELD(camera_model) FIELD(profile_name) FIELD(copyright)
+      FIELD(embed_policy) FIELD(illuminant) FIELD(second_illuminant) FIELD(hue_sat_map) FIELD(rgb_scale)
+      FIELD(linear_tone_curve); }
+
+  def<&export_dcp>("exportDcp");
+  def<static_cast<Dcp (*)(const std::vector<std::uint8_t>&)>(&read_dcp)>("readDcp");
+}
