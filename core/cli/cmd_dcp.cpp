@@ -78,9 +78,12 @@ int run_export_dcp(const Args& args, std::ostream& out) {
   } else if (args.has("camera-model")) {
     o.camera_model = args.get("camera-model");
   } else {
-    throw Error(ErrorCode::InvalidArgument,
-                "a DCP names its camera (UniqueCameraModel) and the profile JSON stores none: give --camera-model \"<Make> "
-                "<Model>\" (e.g. \"Canon EOS 550D\") or --raw <a RAW file of the camera>");
+    // The profile JSON names no camera. The DCP is still a valid profile, chosen by hand as a
+    // custom input profile; only the automatic pick by camera name needs the real name.
+    o.camera_model = "tristim camera";
+    std::cerr << "tristim export: warning: the profile names no camera: UniqueCameraModel is \"tristim camera\"; give "
+                 "--camera-model \"<Make> <Model>\" (e.g. \"Canon EOS 550D\") or --raw <a RAW file of the camera> "
+                 "for a DCP that raw converters pick by themselves\n";
   }
   o.illuminant = args.get("illuminant", "");
   o.second_illuminant = args.get("second-illuminant", "");
