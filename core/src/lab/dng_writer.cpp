@@ -1,5 +1,5 @@
 // Minimal DNG writer: one IFD, one uncompressed 16-bit CFA strip, little-endian TIFF.
-#include "dng_writer.hpp"
+#include "tristim/lab/dng_writer.hpp"
 
 #include <algorithm>
 #include <cmath>
