@@ -1,0 +1,151 @@
+// CLI: `tristim compare` — every model x objective on the same patches, sorted by held-out error.
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "cli.hpp"
+#include "linearise_option.hpp"
+#include "patch_args.hpp"
+#include "tristim/characterisation/fit.hpp"
+#include "tristim/characterisation/models.hpp"
+#include "tristim/error.hpp"
+#include "tristim/evaluation/evaluation.hpp"
+#include "tristim/io/json.hpp"
+#include "tristim/profile/profile.hpp"
+
+namespace tristim::cli {
+namespace {
+const char* kCompareUsage =
+    "tristim compare --rgb patches.csv --xyz reference.csv [--objectives ls,psm,de2000]\n"
+    "                [--models id,id,...] [--white <patch>] [--lab-white ...] [--ref-white ...]\n"
+    "                [--test-rgb other.csv --test-xyz other_ref.csv] [--json] [--threads N]\n"
+    "                [--linearisation <id>[:options]|fitted.json [--reflectances spectra.csv|<chart>] [--full-scale 255]]\n"
+    "  Every model × objective on the same patches: training and leave-one-out CIEDE2000,\n"
+    "  sorted by the held-out mean. With --test-rgb/--test-xyz also the train-on-one /\n"
+    "  test-on-another table (Abed 2013 Table IV layout). The rows run on --threads threads\n"
+    "  (default 0: one per hardware thread, at most 16); the numbers do not depend on it.";
+
+json::Value compare_row_json(const CompareRow& r) {
+  json::Value o = json::Value::object();
+  o.set("model", r.model_id);
+  o.set("objective", objective_id(r.objective));
+  o.set("n_terms", r.n_terms);
+  o.set("ok", r.ok);
+  o.set("error_code", r.error_code);
+  o.set("status", r.ok ? fit_status_name(r.status) : "error");
+  o.set("message", r.message);
+  o.set("condition_number", r.condition_number);
+  o.set("seconds", r.seconds);
+  o.set("cpu_seconds", r.cpu_seconds);
+  o.set("train_dE00", summary_json(r.train_dE00));
+  o.set("train_dE_xyz", summary_json(r.train_dE_xyz));
+  o.set("has_loo", r.has_loo);
+  if (r.has_loo) {
+    o.set("loo_dE00", summary_json(r.loo_dE00));
+    o.set("loo_dE_xyz", summary_json(r.loo_dE_xyz));
+  }
+  return o;
+}
+
+int run_compare(const Args& args, std::ostream& out) {
+  args.allow_only({"rgb", "xyz", "objectives", "models", "white", "lab-white", "ref-white", "test-rgb",
+                   "test-xyz", "json", "objective", "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol",
+                   "de-ftol", "de-max-evaluations", "de-rms", "de-step", "linearisation", "reflectances", "full-scale",
+                   "threads"});
+  if (args.has("threads")) {
+    const double n = args.get_double("threads", 0);
+    if (!(n >= 0 && n <= 256 && n == static_cast<int>(n)))
+      throw Error(ErrorCode::InvalidArgument, "--threads must be a whole number from 0 (one per hardware thread) to 256, got '" +
+                                                  args.get("threads") + "'");
+    set_compare_threads(static_cast<int>(n));
+  }
+  const Vec3 ref_white = parse_white(args, "ref-white", whites::D50());
+  PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), ref_white);
+  const Linearisation lin = linearisation_option(args, "compare", d.ids, d.rgb, d.xyz, ref_white);  // linearise_option.hpp
+  int white_index = -1;
+  const FitOptions o = fit_options(args, d, white_index);
+  std::vector<Objective> objectives;
+  for (const auto& s : split_list(args.get("objectives", "ls,psm,de2000"))) objectives.push_back(objective_from_id(s));
+  std::vector<std::string> models;
+  if (args.has("models"))
+    for (const auto& s : split_list(args.get("models"))) models.push_back(model_info(s).id);
+  const auto rows = compare_models(d.rgb, d.xyz, o, models, objectives, white_index);
+  std::vector<TransferCell> transfer;
+  if (args.has("test-rgb") || args.has("test-xyz")) {
+    PatchData t = load_pairs(args.get("test-rgb"), args.get("test-xyz"), ref_white);
+    t.rgb = linearise(lin, t.rgb);
+    std::vector<std::string> ids = models;
+    if (ids.empty())
+      for (const auto& m : model_table())
+        if (m.duplicate_of.empty()) ids.push_back(m.id);
+    transfer = transfer_table({{args.get("rgb"), d.rgb, d.xyz}}, t.rgb, t.xyz, ids, objectives, o);
+  }
+  if (args.has("json")) {
+    json::Value j = json::Value::object();
+    j.set("patches", static_cast<int>(d.rgb.rows()));
+    json::Value a = json::Value::array();
+    for (const auto& r : rows) a.push(compare_row_json(r));
+    j.set("rows", a);
+    if (!transfer.empty()) {
+      json::Value tj = json::Value::array();
+      for (const auto& c : transfer) {
+        json::Value cj = json::Value::object();
+        cj.set("training_set", c.training_set);
+        cj.set("model", c.model_id);
+        cj.set("objective", objective_id(c.objective));
+        cj.set("ok", c.ok);
+        cj.set("error_code", c.error_code);
+        cj.set("dE_xyz", summary_json(c.dE_xyz));
+        cj.set("dE00", summary_json(c.dE00));
+        tj.push(cj);
+      }
+      j.set("transfer", tj);
+    }
+    out << j.dump(2) << "\n";
+    return 0;
+  }
+  out << "# " << d.rgb.rows() << " patches; CIEDE2000 relative to white " << fmt(o.white[0], 4) << ","
+      << fmt(o.white[1], 4) << "," << fmt(o.white[2], 4) << "; sorted by leave-one-out mean\n";
+  out << std::left << std::setw(18) << "model" << std::setw(8) << "obj" << std::right << std::setw(6) << "terms"
+      << std::setw(10) << "train" << std::setw(10) << "train" << std::setw(10) << "LOO" << std::setw(10) << "LOO"
+      << std::setw(10) << "LOO" << std::setw(11) << "cond" << "  status\n";
+  out << std::left << std::setw(18) << "" << std::setw(8) << "" << std::right << std::setw(6) << "" << std::setw(10)
+      << "mean" << std::setw(10) << "max" << std::setw(10) << "mean" << std::setw(10) << "p95" << std::setw(10) << "max"
+      << std::setw(11) << "" << "\n";
+  for (const auto& r : rows) {
+    out << std::left << std::setw(18) << r.model_id << std::setw(8) << objective_id(r.objective) << std::right
+        << std::setw(6) << r.n_terms;
+    if (!r.ok) {
+      out << "  refused: " << r.error_code << " (" << r.message << ")\n";
+      continue;
+    }
+    std::ostringstream cond;
+    cond << std::setprecision(2) << std::scientific << r.condition_number;
+    out << std::setw(10) << fmt(r.train_dE00.mean) << std::setw(10) << fmt(r.train_dE00.max) << std::setw(10)
+        << (r.has_loo ? fmt(r.loo_dE00.mean) : "-") << std::setw(10) << (r.has_loo ? fmt(r.loo_dE00.p95) : "-")
+        << std::setw(10) << (r.has_loo ? fmt(r.loo_dE00.max) : "-") << std::setw(11) << cond.str() << "  "
+        << fit_status_name(r.status) << "\n";
+  }
+  if (!transfer.empty()) {
+    out << "\n# train on " << args.get("rgb") << ", test on " << args.get("test-rgb")
+        << " (Abed 2013 Table IV layout): mean / max\n";
+    out << std::left << std::setw(18) << "model" << std::setw(8) << "obj" << std::right << std::setw(12) << "dE_xyz mean"
+        << std::setw(12) << "dE_xyz max" << std::setw(10) << "dE00 mean" << std::setw(10) << "dE00 max" << "\n";
+    for (const auto& c : transfer) {
+      out << std::left << std::setw(18) << c.model_id << std::setw(8) << objective_id(c.objective) << std::right;
+      if (!c.ok) {
+        out << "  refused: " << c.error_code << "\n";
+        continue;
+      }
+      out << std::setw(12) << fmt(c.dE_xyz.mean, 4) << std::setw(12) << fmt(c.dE_xyz.max, 4) << std::setw(10)
+          << fmt(c.dE00.mean) << std::setw(10) << fmt(c.dE00.max) << "\n";
+    }
+  }
+  return 0;
+}
+
+const CommandRegistration reg_cmp({"compare", "every model x objective, sorted by held-out error", kCompareUsage, run_compare,
+                                   fit_methods_help});
+
+}  // namespace
+}  // namespace tristim::cli
