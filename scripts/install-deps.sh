@@ -11,7 +11,7 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 PKGS="build-essential cmake pkg-config dpkg-dev libeigen3-dev catch2 emscripten
 chromium liblcms2-dev liblcms2-utils argyll python3-opencv
 python3-numpy ca-certificates opencolorio-tools parallel libtiff-dev libpng-dev libjpeg-dev zlib1g-dev
-clang rawtran-doc rawtherapee libimage-exiftool-perl"  # rawtherapee + libimage-exiftool-perl: the DCP export is rendered by rawtherapee-cli and listed by exiftool (tests/CMakeLists.txt); rawtran-doc: a Canon 30D CR2 the RAW tests decode (tests/data/SOURCES.md); clang + libFuzzer for scripts/fuzz.sh (also pulled in by emscripten)
+clang rawtran-doc rawtherapee libimage-exiftool-perl libraw-bin"  # libraw-bin: dcraw_emu opens the lab's rendered DNGs (tests/core/lab); rawtherapee + libimage-exiftool-perl: the DCP export is rendered by rawtherapee-cli and listed by exiftool (tests/CMakeLists.txt); rawtran-doc: a Canon 30D CR2 the RAW tests decode (tests/data/SOURCES.md); clang + libFuzzer for scripts/fuzz.sh (also pulled in by emscripten)
 
 missing=""
 for p in $PKGS; do

@@ -1,0 +1,89 @@
+// tristim — the colorimetry lab's chart photographs: a colour chart's measured reflectances seen
+// by a camera's measured spectral sensitivities under an illuminant (the virtual camera,
+// simulate/virtual_camera.hpp), drawn head-on or at given corners into a Bayer sensor raster and
+// written as a real DNG (lab/dng_writer.hpp) that LibRaw, dcraw_emu and the normal journey open.
+//
+// Per measurement pixel (one 2×2 CFA block; coordinates as chart/layout.hpp: the image spans
+// [0, width] × [0, height]) and channel c, in DN above the black level:
+//   u_c  = e · s · ρ_c                       ρ_c: virtual-camera response of the surface under the
+//                                            pixel (patch, chart board ρ = 0.03, background ρ = 0.2),
+//                                            white diffuser's G = 1; s = saturation (DN);
+//                                            e = exposure (white's G as a fraction of s)
+//   v_c  = u_c · f(r) + φ · e · s · w_c      fall-off f(r) = 1 − a·r² (r = 1 at the image corners:
+//                                            the quadratic term of Guarnera et al. 2018 eq 7);
+//                                            veiling flare φ, w = the white diffuser's response
+//   DN   = clip(round(v_c + n), 0, s),  n ~ N(0, g·v_c + σ_r²)   shot (gain g) and read noise σ_r
+// Edges are 3×3 supersampled; every sensor pixel of a block gets its own noise draw.
+// The surface option (surface/surface.hpp) turns the instrument's reflectances into what the
+// camera sees in the capture geometry (Abed et al. 2013): the camera sees R', the reference is R.
+//
+// The truth: per patch the camera RGB `rgb` that sampling the central part of the patch recovers
+// exactly when noise and fall-off are off (round(u + φ·e·s·w), clipped), the unquantised value,
+// and the reference XYZ of the instrument's reflectance (CIE 1931, Y_white = 100).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tristim/colorimetry/spectra.hpp"
+#include "tristim/io/json.hpp"
+#include "tristim/lab/dng_writer.hpp"
+#include "tristim/methods.hpp"
+
+namespace tristim {
+
+struct LabRenderOptions {
+  std::string camera = "Canon_EOS_5D_Mark_II";  ///< one of the 52 (camera_names()), or a label
+                                                ///< for `sensitivities`
+  SpectralData sensitivities;       ///< R, G, B curves to use instead of the built-in camera (empty: built-in)
+  std::string chart = "cc24";       ///< "cc24", "passport" or "sg140"
+  std::string illuminant = "D65";   ///< id (illuminant_spd) or a label for `illuminant_spd`
+  SpectralData illuminant_spd;      ///< the SPD to use (empty: illuminant_spd(illuminant))
+  MethodChoice surface{"none", {}, {}};  ///< surface correction applied to the reflectances
+  int width = 900, height = 600;    ///< measurement image; the sensor has 2·width × 2·height pixels
+  std::array<double, 8> corners{};  ///< patch grid corners, A1's first, clockwise; all 0: centred
+  double exposure = 0.5;            ///< e: the white diffuser's G as a fraction of saturation, (0, 4]
+  double falloff = 0;               ///< a: light lost at the image corners, [0, 0.9]
+  double flare = 0;                 ///< φ: veiling flare as a fraction of the white, [0, 1]
+  double shot_gain = 0;             ///< g: shot-noise variance per DN (0: no shot noise)
+  double read_noise = 0;            ///< σ_r: read noise, DN
+  std::uint64_t seed = 1;           ///< noise seed (the same file in every build)
+  int bits = 14;                    ///< sensor bit depth, 10..16
+  int black = 512;                  ///< black level, DN
+  std::string cfa = "RGGB";         ///< 2×2 pattern
+};
+
+struct LabPatchTruth {
+  std::string id;
+  std::array<double, 3> rgb{};      ///< DN above black as sampling recovers it (see header)
+  std::array<double, 3> linear{};   ///< the same before rounding and clipping
+  std::array<double, 3> XYZ{};      ///< reference: instrument reflectance, CIE 1931 2°, Y_white = 100
+};
+
+struct LabRender {
+  LabRenderOptions options;         ///< as given, corners filled in
+  int width = 0, height = 0;        ///< measurement image
+  std::vector<std::uint16_t> sensor;  ///< 2·width × 2·height CFA values including the black level
+  std::array<double, 8> corners{};
+  double saturation = 0;            ///< s: clip level above black, DN
+  std::array<double, 3> white{};    ///< DN of the white diffuser (e·s·w)
+  std::vector<LabPatchTruth> patches;  ///< in the layout's order
+  DngWriteOptions dng;              ///< the DNG's tags (colour matrix fitted on the chart under D65)
+};
+
+/// Renders the chart. Errors: UnknownId (camera, chart, illuminant, surface method),
+/// InvalidArgument naming the option out of range, CornersOutside / CornersCrossed for corners.
+LabRender render_lab_chart(const LabRenderOptions& options);
+
+/// The rendering as a DNG file (bytes).
+std::vector<std::uint8_t> lab_render_dng(const LabRender& render);
+
+/// The truth as JSON: camera, chart, illuminant, sizes, corners, saturation, white, and per patch
+/// {id, rgb, linear, XYZ}.
+json::Value lab_render_json(const LabRender& render);
+
+/// Chart ids lab rendering draws ("cc24", "passport", "sg140").
+std::vector<std::string> lab_chart_ids();
+
+}  // namespace tristim

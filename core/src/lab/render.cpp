@@ -1,0 +1,267 @@
+// The colorimetry lab's chart photographs (rules in tristim/lab/render.hpp).
+#include "tristim/lab/render.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "tristim/chart/layout.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/error.hpp"
+#include "tristim/io/patch_files.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+#include "tristim/surface/surface.hpp"
+
+namespace tristim {
+
+namespace {
+
+constexpr double kBoard = 0.03;       // the chart's black board, flat reflectance
+constexpr double kBackground = 0.2;   // the scene around the chart, flat reflectance
+constexpr double kSgGap = 0.197;      // the printed SG's gap / patch (ArgyllCMS ColorCheckerSG.cht)
+
+void check_range(double v, double lo, double hi, const char* what) {
+  if (!(v >= lo && v <= hi))
+    throw Error(ErrorCode::InvalidArgument, std::string(what) + " must be in [" + json::number_text(lo) + ", " +
+                                                json::number_text(hi) + "], got " + json::number_text(v));
+}
+
+// The flat-reflectance response: ρ·w (the virtual camera is linear in the reflectance).
+std::array<double, 3> scaled(const std::array<double, 3>& w, double k) { return {k * w[0], k * w[1], k * w[2]}; }
+
+// Corners of a head-on grid filling 70 % of the frame's width (or 70 % of its height).
+std::array<double, 8> centred_corners(const ChartLayout& layout, int width, int height) {
+  const double pw = layout.patches[0].u1 - layout.patches[0].u0, ph = layout.patches[0].v1 - layout.patches[0].v0;
+  const double aspect = ph / pw;  // grid width / height for square patches
+  double gw = 0.7 * width, gh = gw / aspect;
+  if (gh > 0.7 * height) {
+    gh = 0.7 * height;
+    gw = gh * aspect;
+  }
+  const double x0 = std::round((width - gw) / 2), y0 = std::round((height - gh) / 2);
+  gw = std::round(gw);
+  gh = std::round(gh);
+  return {x0, y0, x0 + gw, y0, x0 + gw, y0 + gh, x0, y0 + gh};
+}
+
+// DNG ColorMatrix1 (XYZ -> camera, CalibrationIlluminant1 = D65): least squares over the chart's
+// patches under D65, scaled so that D65's white maps to a camera neutral whose largest value is 1
+// (DNG 1.6 ch. 6).
+std::array<double, 9> colour_matrix_D65(const SpectralData& ssf, const SpectralData& reflectances) {
+  const SpectralData d65 = illuminant_spd("D65");
+  const std::vector<Vec3> rgb = simulate_camera_RGB(ssf, reflectances, d65);
+  const std::vector<Vec3> xyz = reflectances_to_XYZ(reflectances, d65);
+  Eigen::MatrixXd X(xyz.size(), 3), C(rgb.size(), 3);
+  for (size_t i = 0; i < xyz.size(); ++i) {
+    X.row(static_cast<Eigen::Index>(i)) = xyz[i].transpose() / 100.0;
+    C.row(static_cast<Eigen::Index>(i)) = rgb[i].transpose();
+  }
+  const Eigen::Matrix3d Mt = X.colPivHouseholderQr().solve(C);  // C ≈ X·Mᵀ
+  const Eigen::Matrix3d M = Mt.transpose();
+  const Eigen::Vector3d neutral = M * (illuminant_white_XYZ(d65) / 100.0);
+  const double k = 1.0 / neutral.maxCoeff();
+  std::array<double, 9> out{};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out[static_cast<size_t>(3 * r + c)] = k * M(r, c);
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> lab_chart_ids() { return {"cc24", "passport", "sg140"}; }
+
+LabRender render_lab_chart(const LabRenderOptions& o) {
+  const auto ids = lab_chart_ids();
+  if (std::find(ids.begin(), ids.end(), o.chart) == ids.end())
+    throw Error(ErrorCode::UnknownId, "lab render: unknown chart '" + o.chart + "' (cc24, passport or sg140)");
+  if (o.width < 64 || o.height < 64 || o.width > 4000 || o.height > 4000)
+    throw Error(ErrorCode::InvalidArgument, "lab render: --size must be 64..4000 pixels per side (the sensor is twice that)");
+  check_range(o.exposure, 1e-6, 4, "exposure");
+  check_range(o.falloff, 0, 0.9, "falloff");
+  check_range(o.flare, 0, 1, "flare");
+  check_range(o.shot_gain, 0, 1000, "shot noise gain");
+  check_range(o.read_noise, 0, 10000, "read noise");
+  check_range(o.bits, 10, 16, "bits");
+  check_range(o.black, 0, (1 << o.bits) / 2, "black level");
+  if (o.cfa.size() != 4 || std::count(o.cfa.begin(), o.cfa.end(), 'G') != 2 || o.cfa.find('R') == std::string::npos ||
+      o.cfa.find('B') == std::string::npos)
+    throw Error(ErrorCode::InvalidArgument, "lab render: CFA must be a 2x2 Bayer pattern (RGGB, BGGR, GRBG, GBRG), got '" + o.cfa + "'");
+
+  const SpectralData ssf = o.sensitivities.values.empty() ? camera_ssf(o.camera) : o.sensitivities;
+  const SpectralData illum = o.illuminant_spd.values.empty() ? illuminant_spd(o.illuminant) : o.illuminant_spd;
+  SpectralData refl = chart_reflectances(o.chart == "sg140" ? "sg140" : "cc24");
+  for (auto& n : refl.names) n = normalise_patch_id(n);
+  const SpectralData seen = o.surface.method == "none" ? refl : correct_surface(o.surface, refl);
+  const std::vector<Vec3> response = simulate_camera_RGB(ssf, seen, illum);  // white's G = 1
+  SpectralData flat = refl;
+  flat.names = {"white"};
+  flat.values = {std::vector<double>(refl.wavelengths.size(), 1.0)};
+  const Vec3 w = simulate_camera_RGB(ssf, flat, illum)[0];
+  const std::vector<Vec3> xyz = reflectances_to_XYZ(refl, illum);
+
+  LayoutOptions lo;
+  lo.chart = o.chart;
+  if (o.chart == "sg140") lo.gap = kSgGap;
+  const ChartLayout layout = chart_layout(lo);
+
+  LabRender out;
+  out.options = o;
+  out.width = o.width;
+  out.height = o.height;
+  out.saturation = static_cast<double>((1 << o.bits) - 1 - o.black);
+  const double s = out.saturation, e = o.exposure;
+  for (int c = 0; c < 3; ++c) out.white[static_cast<size_t>(c)] = e * s * w[c];
+  const std::array<double, 3> flare = scaled(out.white, o.flare);
+
+  bool given = false;
+  for (double v : o.corners) given = given || v != 0;
+  out.corners = given ? o.corners : centred_corners(layout, o.width, o.height);
+  check_corners(out.corners, o.width, o.height);
+  out.options.corners = out.corners;
+
+  // Per patch: its response in DN (u = e·s·ρ) and the truth.
+  std::vector<std::array<double, 3>> patch_dn;
+  for (const auto& cell : layout.patches) {
+    const auto it = std::find(refl.names.begin(), refl.names.end(), normalise_patch_id(cell.id));
+    if (it == refl.names.end()) throw Error(ErrorCode::Internal, "lab render: no reflectance for patch " + cell.id);
+    const size_t k = static_cast<size_t>(it - refl.names.begin());
+    LabPatchTruth t;
+    t.id = cell.id;
+    std::array<double, 3> u{};
+    for (int c = 0; c < 3; ++c) {
+      const size_t ci = static_cast<size_t>(c);
+      u[ci] = e * s * response[k][c];
+      t.linear[ci] = u[ci] * 1.0 + flare[ci];  // the pixel formula with f(r) = 1
+      t.rgb[ci] = std::min(std::max(std::round(t.linear[ci]), -static_cast<double>(o.black)), s);
+      t.XYZ[ci] = xyz[k][c];
+    }
+    patch_dn.push_back(u);
+    out.patches.push_back(t);
+  }
+
+  // Chart coordinates of a point of the image.
+  const auto h9 = homography_unit_square(out.corners);
+  Eigen::Matrix3d H;
+  H << h9[0], h9[1], h9[2], h9[3], h9[4], h9[5], h9[6], h9[7], h9[8];
+  const Eigen::Matrix3d Hi = H.inverse();
+  const PatchCell& p0 = layout.patches[0];
+  const double pw = p0.u1 - p0.u0, ph = p0.v1 - p0.v0, margin = 0.4;
+  const std::array<double, 3> board = scaled(out.white, kBoard), background = scaled(out.white, kBackground);
+  // Which surface a point of the chart plane shows: -2 background, -1 board, else a patch index.
+  auto surface_at = [&](double x, double y) -> int {
+    const Eigen::Vector3d q = Hi * Eigen::Vector3d(x, y, 1);
+    const double u = q.x() / q.z(), v = q.y() / q.z();
+    if (u < -margin * pw || u > 1 + margin * pw || v < -margin * ph || v > 1 + margin * ph) return -2;
+    if (u < 0 || u >= 1 || v < 0 || v >= 1) return -1;
+    const int col = std::min(layout.columns - 1, static_cast<int>(u / (pw * (1 + layout.gap))));
+    const int row = std::min(layout.rows - 1, static_cast<int>(v / (ph * (1 + layout.gap))));
+    const size_t k = static_cast<size_t>(row) * layout.columns + col;
+    const PatchCell& cell = layout.patches[k];
+    return u >= cell.u0 && u < cell.u1 && v >= cell.v0 && v < cell.v1 ? static_cast<int>(k) : -1;
+  };
+  auto dn_of = [&](int k) -> const std::array<double, 3>& {
+    return k >= 0 ? patch_dn[static_cast<size_t>(k)] : k == -1 ? board : background;
+  };
+
+  // Noise-free linear image (before flare), 3×3 supersampled where a pixel straddles an edge.
+  const size_t n_pix = static_cast<size_t>(o.width) * o.height;
+  std::vector<double> img(n_pix * 3);
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      int k[9];
+      bool same = true;
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) {
+          k[3 * j + i] = surface_at(x + (i + 0.5) / 3, y + (j + 0.5) / 3);
+          same = same && k[3 * j + i] == k[0];
+        }
+      double* px = &img[(static_cast<size_t>(y) * o.width + x) * 3];
+      for (int c = 0; c < 3; ++c) {
+        if (same) {
+          px[c] = dn_of(k[0])[static_cast<size_t>(c)];
+        } else {
+          double sum = 0;
+          for (int i = 0; i < 9; ++i) sum += dn_of(k[i])[static_cast<size_t>(c)];
+          px[c] = sum / 9;
+        }
+      }
+    }
+
+  // Sensor: fall-off, flare, noise, rounding, clipping; one value per CFA site.
+  const int sw = 2 * o.width, sh = 2 * o.height;
+  out.sensor.resize(static_cast<size_t>(sw) * sh);
+  const double cx = o.width / 2.0, cy = o.height / 2.0, r2max = cx * cx + cy * cy;
+  const bool noisy = o.shot_gain > 0 || o.read_noise > 0;
+  GaussianNoise noise(o.seed);
+  const std::string rgb = "RGB";
+  int channel[4];
+  for (int i = 0; i < 4; ++i) channel[i] = static_cast<int>(rgb.find(o.cfa[static_cast<size_t>(i)]));
+  for (int y = 0; y < sh; ++y)
+    for (int x = 0; x < sw; ++x) {
+      const int bx = x / 2, by = y / 2, c = channel[2 * (y % 2) + (x % 2)];
+      const double dx = bx + 0.5 - cx, dy = by + 0.5 - cy;
+      const double f = o.falloff > 0 ? 1 - o.falloff * (dx * dx + dy * dy) / r2max : 1.0;
+      double v = img[(static_cast<size_t>(by) * o.width + bx) * 3 + static_cast<size_t>(c)] * f + flare[static_cast<size_t>(c)];
+      if (noisy) v += std::sqrt(std::max(0.0, o.shot_gain * v) + o.read_noise * o.read_noise) * noise.next();
+      v = std::min(std::max(std::round(v), -static_cast<double>(o.black)), s);
+      out.sensor[static_cast<size_t>(y) * sw + x] = static_cast<std::uint16_t>(v + o.black);
+    }
+
+  out.dng.make = "tristim lab";
+  out.dng.model = o.camera;
+  out.dng.cfa = o.cfa;
+  out.dng.black = static_cast<std::uint16_t>(o.black);
+  out.dng.white = static_cast<std::uint16_t>((1 << o.bits) - 1);
+  out.dng.color_matrix = colour_matrix_D65(ssf, refl);
+  out.dng.as_shot_neutral = {w[0] / w[1], 1.0, w[2] / w[1]};
+  out.dng.exposure_s = 1.0 / 125;
+  out.dng.f_number = 8;
+  out.dng.iso = 100;
+  return out;
+}
+
+std::vector<std::uint8_t> lab_render_dng(const LabRender& r) {
+  return write_dng(r.sensor, 2 * r.width, 2 * r.height, r.dng);
+}
+
+json::Value lab_render_json(const LabRender& r) {
+  const LabRenderOptions& o = r.options;
+  auto arr = [](const double* v, size_t n) { return json::Value(std::vector<double>(v, v + n)); };
+  json::Value j = json::Value::object();
+  j.set("camera", o.camera);
+  j.set("chart", o.chart);
+  j.set("illuminant", o.illuminant);
+  j.set("surface", surface_choice_text(o.surface.method == "none" ? surface_choice("none", {}) : o.surface));
+  j.set("width", r.width);
+  j.set("height", r.height);
+  j.set("sensor_width", 2 * r.width);
+  j.set("sensor_height", 2 * r.height);
+  j.set("cfa", o.cfa);
+  j.set("black", o.black);
+  j.set("white_level", (1 << o.bits) - 1);
+  j.set("saturation", r.saturation);
+  j.set("exposure", o.exposure);
+  j.set("falloff", o.falloff);
+  j.set("flare", o.flare);
+  json::Value noise = json::Value::object();
+  noise.set("shot_gain", o.shot_gain);
+  noise.set("read_noise", o.read_noise);
+  noise.set("seed", static_cast<double>(o.seed));
+  j.set("noise", noise);
+  j.set("corners", arr(r.corners.data(), 8));
+  j.set("white", arr(r.white.data(), 3));
+  j.set("color_matrix", arr(r.dng.color_matrix.data(), 9));
+  json::Value patches = json::Value::array();
+  for (const auto& p : r.patches) {
+    json::Value q = json::Value::object();
+    q.set("id", p.id);
+    q.set("rgb", arr(p.rgb.data(), 3));
+    q.set("linear", arr(p.linear.data(), 3));
+    q.set("XYZ", arr(p.XYZ.data(), 3));
+    patches.push(q);
+  }
+  j.set("patches", patches);
+  return j;
+}
+
+}  // namespace tristim
