@@ -8,8 +8,10 @@
 #include "tristim/absolute/fusion.hpp"
 #include "tristim/absolute/stimuli_file.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/limits.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
+#include "exposure_fields.hpp"
 
 namespace tristim {
 
@@ -32,78 +34,69 @@ std::string set_of(const std::string& set, const Vec3& XYZ, const std::string& w
   throw Error(ErrorCode::InvalidArgument, where + ": set is luminance or colour, not '" + set + "'");
 }
 
-// ---- strict reading: object members checked against the known ones, types by the accessors ----
-
-const json::Value& object_at(const json::Value& parent, const std::string& key, const std::string& path,
-                             std::initializer_list<const char*> known) {
-  const json::Value& v = parent.at(key);
-  if (!v.is_object()) throw Error(ErrorCode::RecipeInvalid, "absolute recipe: '" + path + "' must be an object");
-  json::reject_unknown(v, known, "absolute recipe: '" + path + "'", ErrorCode::RecipeInvalid);
-  return v;
-}
-
-std::vector<double> fixed_numbers(const json::Value& o, const std::string& key, const std::string& path, size_t n) {
-  const auto v = o.at(key).as_numbers(path + "." + key);
-  if (v.size() != n)
-    throw Error(ErrorCode::RecipeInvalid, "absolute recipe: '" + path + "." + key + "' must have " + std::to_string(n) + " numbers");
-  return v;
-}
-
-Vec3 vec3_at(const json::Value& o, const std::string& key, const std::string& path) {
-  const auto v = fixed_numbers(o, key, path, 3);
-  return Vec3(v[0], v[1], v[2]);
-}
-
-std::vector<std::string> strings_at(const json::Value& o, const std::string& key, const std::string& path) {
-  std::vector<std::string> out;
-  for (const auto& e : o.at(key).as_array(path + "." + key)) out.push_back(e.as_string(path + "." + key + " element"));
-  return out;
-}
-
-json::Value vec3_json(const Vec3& v) { return json::Value(std::vector<double>{v[0], v[1], v[2]}); }
-
-json::Value strings_json(const std::vector<std::string>& v) {
-  json::Value a = json::Value::array();
-  for (const auto& s : v) a.push(s);
-  return a;
-}
-
-json::Value stimulus_json(const AbsoluteStimulus& s) {
-  json::Value o = json::Value::object();
-  o.set("id", s.id);
-  o.set("set", s.set);
-  o.set("exposure", json::Value(std::vector<double>{s.exposure.exposure_s, s.exposure.f_number, s.exposure.iso}));
-  o.set("file", s.file);
-  o.set("region", json::Value(std::vector<double>{double(s.x), double(s.y), double(s.w), double(s.h)}));
-  o.set("RGB", vec3_json(s.RGB));
-  o.set("falloff", s.falloff);
-  o.set("XYZ", vec3_json(s.XYZ));
-  return o;
-}
-
-AbsoluteStimulus stimulus_from(const json::Value& o, const std::string& path) {
-  if (!o.is_object()) throw Error(ErrorCode::RecipeInvalid, "absolute recipe: '" + path + "' must be an object");
-  json::reject_unknown(o, {"id", "set", "exposure", "file", "region", "RGB", "falloff", "XYZ"}, "absolute recipe: '" + path + "'",
-                       ErrorCode::RecipeInvalid);
-  AbsoluteStimulus s;
-  s.id = o.at("id").as_string(path + ".id");
-  s.set = o.at("set").as_string(path + ".set");
-  const auto e = fixed_numbers(o, "exposure", path, 3);
-  s.exposure = {e[0], e[1], e[2]};
-  s.file = o.at("file").as_string(path + ".file");
-  const auto& r = o.at("region").as_array(path + ".region");
-  if (r.size() != 4) throw Error(ErrorCode::RecipeInvalid, "absolute recipe: '" + path + ".region' must have 4 numbers");
-  s.x = r[0].as_int(path + ".region", -limits::kMaxJsonInt, limits::kMaxJsonInt);
-  s.y = r[1].as_int(path + ".region", -limits::kMaxJsonInt, limits::kMaxJsonInt);
-  s.w = r[2].as_int(path + ".region", 0, limits::kMaxJsonInt);
-  s.h = r[3].as_int(path + ".region", 0, limits::kMaxJsonInt);
-  s.RGB = vec3_at(o, "RGB", path);
-  s.falloff = o.at("falloff").as_number(path + ".falloff");
-  s.XYZ = vec3_at(o, "XYZ", path);
-  return s;
-}
+const fields::Context kAbsoluteRecipe{ErrorCode::RecipeInvalid, "absolute recipe: "};
 
 }  // namespace
+
+// ---- the field lists: the JSON writer and the strict reader come from these ------------------
+
+namespace fields {
+
+static json::Value region_json(const AbsoluteStimulus& s) {
+  return json::Value(std::vector<double>{double(s.x), double(s.y), double(s.w), double(s.h)});
+}
+static void read_region(const json::Value& v, AbsoluteStimulus& s, const Context& c, const std::string& path) {
+  if (!v.is_array() || v.size() != 4) c.refuse("'" + path + "' must have 4 numbers");
+  const auto& r = v.as_array();
+  try {
+    s.x = r[0].as_int(path, -limits::kMaxJsonInt, limits::kMaxJsonInt);
+    s.y = r[1].as_int(path, -limits::kMaxJsonInt, limits::kMaxJsonInt);
+    s.w = r[2].as_int(path, 0, limits::kMaxJsonInt);
+    s.h = r[3].as_int(path, 0, limits::kMaxJsonInt);
+  } catch (const Error& e) {
+    c.refuse(e.what());
+  }
+}
+TRISTIM_FIELDS(AbsoluteStimulus, member<&AbsoluteStimulus::id>("id"), member<&AbsoluteStimulus::set>("set"),
+               member<&AbsoluteStimulus::exposure>("exposure"), member<&AbsoluteStimulus::file>("file"),
+               Field<AbsoluteStimulus>{"region", region_json, read_region}, member<&AbsoluteStimulus::RGB>("RGB"),
+               member<&AbsoluteStimulus::falloff>("falloff"), member<&AbsoluteStimulus::XYZ>("XYZ"));
+
+// The given curves are kept as SpectralData; the JSON has them by channel (R, G, B), one value per
+// wavelength. Written always (empty unless "given"), read when present (completion keeps them
+// only for "given").
+static json::Value wavelengths_json(const AbsoluteSensitivities& a) { return json::Value(a.ssf.wavelengths); }
+static void read_wavelengths(const json::Value& v, AbsoluteSensitivities& a, const Context& c, const std::string& path) {
+  read(v, a.ssf.wavelengths, c, path);
+}
+template <size_t C>
+json::Value channel_json(const AbsoluteSensitivities& a) {
+  return json::Value(C < a.ssf.size() ? a.ssf.values[C] : std::vector<double>{});
+}
+template <size_t C>
+void read_channel(const json::Value& v, AbsoluteSensitivities& a, const Context& c, const std::string& path) {
+  a.ssf.names = {"R", "G", "B"};
+  a.ssf.values.resize(3);
+  read(v, a.ssf.values[C], c, path);
+}
+TRISTIM_FIELDS(AbsoluteSensitivities, member<&AbsoluteSensitivities::choice>("choice"),
+               member<&AbsoluteSensitivities::camera>("camera"), member<&AbsoluteSensitivities::source>("source"),
+               Field<AbsoluteSensitivities>{"wavelengths", wavelengths_json, read_wavelengths, nullptr, false},
+               Field<AbsoluteSensitivities>{"R", channel_json<0>, read_channel<0>, nullptr, false},
+               Field<AbsoluteSensitivities>{"G", channel_json<1>, read_channel<1>, nullptr, false},
+               Field<AbsoluteSensitivities>{"B", channel_json<2>, read_channel<2>, nullptr, false});
+
+TRISTIM_FIELDS(AbsoluteInputs, member<&AbsoluteInputs::stimuli>("stimuli"), member<&AbsoluteInputs::bracket>("bracket"),
+               member<&AbsoluteInputs::lens_cap>("lens_cap"), member<&AbsoluteInputs::flat>("flat"),
+               member<&AbsoluteInputs::sensitivities>("sensitivities"));
+
+TRISTIM_FIELDS(AbsoluteOptions, member<&AbsoluteOptions::transform>("transform"), member<&AbsoluteOptions::fusion>("fusion"),
+               member<&AbsoluteOptions::w>("w"), member<&AbsoluteOptions::noise_floor>("noise_floor"),
+               member<&AbsoluteOptions::saturation>("saturation"));
+
+TRISTIM_FIELDS(AbsoluteRecipe, member<&AbsoluteRecipe::inputs>("inputs"), member<&AbsoluteRecipe::options>("options"));
+
+}  // namespace fields
 
 // ---- rows --------------------------------------------------------------------------------
 
@@ -218,29 +211,7 @@ json::Value absolute_recipe_json(const AbsoluteRecipe& in) {
   json::Value o = json::Value::object();
   o.set("format", "tristim-absolute-recipe");
   o.set("version", r.version);
-  json::Value inputs = json::Value::object();
-  json::Value rows = json::Value::array();
-  for (const auto& s : r.inputs.stimuli) rows.push(stimulus_json(s));
-  inputs.set("stimuli", rows);
-  inputs.set("bracket", strings_json(r.inputs.bracket));
-  inputs.set("lens_cap", strings_json(r.inputs.lens_cap));
-  inputs.set("flat", r.inputs.flat);
-  const AbsoluteSensitivities& a = r.inputs.sensitivities;
-  json::Value sens = json::Value::object();
-  sens.set("choice", a.choice);
-  sens.set("camera", a.camera);
-  sens.set("source", a.source);
-  sens.set("wavelengths", json::Value(a.ssf.wavelengths));
-  for (size_t c = 0; c < 3; ++c) sens.set(std::string(1, "RGB"[c]), json::Value(c < a.ssf.size() ? a.ssf.values[c] : std::vector<double>{}));
-  inputs.set("sensitivities", sens);
-  o.set("inputs", inputs);
-  json::Value opt = json::Value::object();
-  opt.set("transform", r.options.transform);
-  opt.set("fusion", r.options.fusion);
-  opt.set("w", r.options.w);
-  opt.set("noise_floor", r.options.noise_floor);
-  opt.set("saturation", r.options.saturation);
-  o.set("options", opt);
+  fields::write_members(r, o);
   return o;
 }
 
@@ -258,42 +229,13 @@ AbsoluteRecipe absolute_recipe_from_json(const json::Value& o) {
                                               " is not supported (this tristim reads version " +
                                               std::to_string(kAbsoluteRecipeVersion) + ")");
   AbsoluteRecipe r;
-  try {
-    json::reject_unknown(o, {"format", "version", "inputs", "options"}, "absolute recipe", ErrorCode::RecipeInvalid);
-    const json::Value& in = object_at(o, "inputs", "inputs", {"stimuli", "bracket", "lens_cap", "flat", "sensitivities"});
-    const auto& rows = in.at("stimuli").as_array("inputs.stimuli");
-    for (size_t i = 0; i < rows.size(); ++i)
-      r.inputs.stimuli.push_back(stimulus_from(rows[i], "inputs.stimuli[" + std::to_string(i) + "]"));
-    r.inputs.bracket = strings_at(in, "bracket", "inputs");
-    r.inputs.lens_cap = strings_at(in, "lens_cap", "inputs");
-    r.inputs.flat = in.at("flat").as_string("inputs.flat");
-    const json::Value& sens =
-        object_at(in, "sensitivities", "inputs.sensitivities", {"choice", "camera", "source", "wavelengths", "R", "G", "B"});
-    AbsoluteSensitivities& a = r.inputs.sensitivities;
-    a.choice = sens.at("choice").as_string("inputs.sensitivities.choice");
-    a.camera = sens.at("camera").as_string("inputs.sensitivities.camera");
-    a.source = sens.at("source").as_string("inputs.sensitivities.source");
-    if (a.choice == "given") {
-      a.ssf.wavelengths = sens.at("wavelengths").as_numbers("inputs.sensitivities.wavelengths");
-      for (const char* c : {"R", "G", "B"}) {
-        a.ssf.names.push_back(c);
-        a.ssf.values.push_back(sens.at(c).as_numbers(std::string("inputs.sensitivities.") + c));
-        if (a.ssf.values.back().size() != a.ssf.wavelengths.size())
-          throw Error(ErrorCode::RecipeInvalid, std::string("absolute recipe: inputs.sensitivities.") + c +
-                                                    " must have one value per wavelength");
-      }
-    }
-    const json::Value& opt = object_at(o, "options", "options", {"transform", "fusion", "w", "noise_floor", "saturation"});
-    r.options.transform = opt.at("transform").as_string("options.transform");
-    r.options.fusion = opt.at("fusion").as_string("options.fusion");
-    r.options.w = opt.at("w").as_number("options.w");
-    r.options.noise_floor = opt.at("noise_floor").as_number("options.noise_floor");
-    r.options.saturation = opt.at("saturation").as_number("options.saturation");
-  } catch (const Error& e) {
-    // The JSON accessors name the field with ProfileInvalid: a recipe says RecipeInvalid.
-    if (e.code() != ErrorCode::ProfileInvalid) throw;
-    throw Error(ErrorCode::RecipeInvalid, std::string("absolute recipe: ") + e.what());
-  }
+  fields::read_members(o, r, kAbsoluteRecipe, "", {"format", "version"});
+  const SpectralData& ssf = r.inputs.sensitivities.ssf;
+  if (r.inputs.sensitivities.choice == "given")
+    for (size_t c = 0; c < 3; ++c)
+      if (c >= ssf.size() || ssf.values[c].size() != ssf.wavelengths.size())
+        throw Error(ErrorCode::RecipeInvalid, std::string("absolute recipe: inputs.sensitivities.") + "RGB"[c] +
+                                                  " must have one value per wavelength");
   return complete_absolute_recipe(r);
 }
 
