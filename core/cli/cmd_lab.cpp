@@ -5,6 +5,7 @@
 #include "cli.hpp"
 #include "tristim/error.hpp"
 #include "tristim/lab/render.hpp"
+#include "tristim/lab/smi.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
 namespace tristim::cli {
@@ -74,16 +75,42 @@ int run_render(const Args& args, std::ostream& out) {
   return 0;
 }
 
+int run_smi(const Args& args, std::ostream& out) {
+  args.allow_only({"camera", "illuminant", "sensitivities", "json"});
+  const SpectralData illuminant = illuminant_arg(args.get("illuminant", "D65"));
+  std::vector<CameraQuality> rows;
+  if (args.has("sensitivities")) {
+    const std::string path = args.get("sensitivities");
+    rows.push_back(camera_quality(read_ssf_csv(read_file(path), path), illuminant, args.get("camera", path)));
+  } else if (args.has("camera")) {
+    for (const auto& name : args.all("camera")) rows.push_back(camera_quality(camera_ssf(name), illuminant, name));
+  } else {
+    rows = camera_quality_ranking(illuminant);
+  }
+  if (args.has("json")) {
+    json::Value a = json::Value::array();
+    for (const auto& q : rows) a.push(camera_quality_json(q));
+    out << a.dump(1) << "\n";
+  } else {
+    out << "camera,smi,mu_factor,mean_dE\n";
+    for (const auto& q : rows)
+      out << q.camera << ',' << json::number_text(q.smi) << ',' << json::number_text(q.mu_factor) << ','
+          << json::number_text(q.mean_dE) << "\n";
+  }
+  return 0;
+}
+
 int run_lab(const Args& args, std::ostream& out) {
   const std::string sub = args.positional.empty() ? "" : args.positional[0];
   if (args.positional.size() > 1)
     throw Error(ErrorCode::InvalidArgument, "unexpected argument '" + args.positional[1] + "'");
   if (sub == "render") return run_render(args, out);
-  throw Error(ErrorCode::InvalidArgument, "tristim lab needs a subcommand: render (got '" + sub + "')");
+  if (sub == "smi") return run_smi(args, out);
+  throw Error(ErrorCode::InvalidArgument, "tristim lab needs a subcommand: render or smi (got '" + sub + "')");
 }
 
 CommandRegistration reg_lab(
-    {"lab", "the colorimetry lab: render a chart photograph as a DNG",
+    {"lab", "the colorimetry lab: render a chart photograph as a DNG; camera quality (SMI, mu-factor)",
      "tristim lab render --camera \"<one of the 52>\" --chart cc24|sg140|passport --illuminant D65 --out chart.dng\n"
      "                   [--sensitivities ssf.csv] [--exposure 0.5] [--noise shot,read] [--seed 1]\n"
      "                   [--surface <method>:<name>=<value>,...] [--falloff 0] [--flare 0]\n"
@@ -96,7 +123,13 @@ CommandRegistration reg_lab(
      "  diffuser's G as a fraction of saturation; --noise shot,read: variance g*DN + read^2 per sensor pixel;\n"
      "  --falloff a: 1 - a*r^2 light fall-off (r = 1 at the corners); --flare f: veiling flare, a fraction of\n"
      "  the white. Prints the truth as JSON: corners, white, DNG colour matrix, and per patch the camera RGB\n"
-     "  `rgb` (DN above black) that sampling recovers exactly with noise and fall-off off, and the XYZ.",
+     "  `rgb` (DN above black) that sampling recovers exactly with noise and fall-off off, and the XYZ.\n"
+     "tristim lab smi [--camera \"<name>\"]... [--illuminant D65] [--sensitivities ssf.csv] [--json]\n"
+     "  Camera quality as a colorimeter: the ISO 17321-1 sensitivity metamerism index (SMI = 100 - 5.5 x mean\n"
+     "  dE*ab of ColorChecker patches 1-18, ISO 17321-1/Ohta reflectances, CIE 1931, after the white-preserving\n"
+     "  3x3 that minimises that mean) and the Vora-Trussell (1993) mu-factor (1 = the Luther condition).\n"
+     "  Without --camera or --sensitivities: the 52 built-in cameras, best SMI first. CSV\n"
+     "  camera,smi,mu_factor,mean_dE, or with --json an array of {\"camera\",\"smi\",\"mu_factor\",\"mean_dE\"}.",
      run_lab});
 
 }  // namespace
