@@ -14,6 +14,9 @@
 //                                layout, and a Classic or SG of 3-6 %; both must be reported)
 //                  [--dump]     (every candidate's corners and confidence per scene, one line each:
 //                                to compare two builds of the detector exactly, e.g. with diff)
+//                  [--kinds all|k1,k2,…]  (issue 48's failure kinds instead, --count scenes each,
+//                                default 20, 1200 × 800 × --scale: found, orientation, corner error,
+//                                false positives and found after one click, per kind; chart_scene.hpp)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -148,10 +151,12 @@ int main(int argc, char** argv) {
   bool verbose = false;
   int only = -1;
   double scale = 1;
-  bool pairs = false, dumping = false;
+  bool pairs = false, dumping = false, count_given = false;
+  std::string kinds;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--count" && i + 1 < argc) count = std::atoi(argv[++i]);
+    if (a == "--count" && i + 1 < argc) count = std::atoi(argv[++i]), count_given = true;
+    else if (a == "--kinds" && i + 1 < argc) kinds = argv[++i];
     else if (a == "--seed" && i + 1 < argc) seed = std::strtoull(argv[++i], nullptr, 10);
     else if (a == "--source" && i + 1 < argc) source_dir = argv[++i];
     else if (a == "--write" && i + 1 < argc) write_dir = argv[++i];
@@ -161,7 +166,7 @@ int main(int argc, char** argv) {
     else if (a == "--pairs") pairs = true;
     else if (a == "--dump") dumping = true;
     else {
-      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--source CHECKOUT] [--write DIR] [--verbose] [--only i] [--scale k] [--pairs] [--dump]\n");
+      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--source CHECKOUT] [--write DIR] [--verbose] [--only i] [--scale k] [--pairs] [--dump] [--kinds all|k1,k2,...]\n");
       return 2;
     }
   }
@@ -179,6 +184,19 @@ int main(int argc, char** argv) {
   std::vector<const RawImage*> photo_ptrs;
   for (const auto& p : photos) photo_ptrs.push_back(&p);
   if (pairs) return run_pairs(count, seed, scale, photo_ptrs, verbose, dumping);
+  if (!kinds.empty()) {
+    std::vector<std::string> list;
+    for (size_t at = 0; kinds != "all" && at <= kinds.size();) {
+      const size_t comma = std::min(kinds.find(',', at), kinds.size());
+      list.push_back(kinds.substr(at, comma - at));
+      at = comma + 1;
+    }
+    const int width = static_cast<int>(std::lround(1200 * scale));
+    std::printf("tristim chart detection, issue 48's failure kinds: %d scenes each, %dx%d (seed %llu)\n",
+                count_given ? count : 20, width, width * 2 / 3, static_cast<unsigned long long>(seed));
+    print_failure_kinds(run_failure_kinds(list, count_given ? count : 20, seed, width, photo_ptrs, verbose));
+    return 0;
+  }
   FILE* truth = nullptr;
   if (!write_dir.empty()) {
     truth = std::fopen((write_dir + "/truth.csv").c_str(), "w");

@@ -4,10 +4,13 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
+#include "tristim/chart/detect.hpp"
 #include "tristim/chart/layout.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
@@ -74,6 +77,45 @@ void gaussian_blur(std::vector<float>& img, int w, int h, double sigma) {
         for (int i = -r; i <= r; ++i) s += k[i + r] * tmp[(size_t(std::min(h - 1, std::max(0, y + i))) * w + x) * 3 + c];
         img[(size_t(y) * w + x) * 3 + c] = s;
       }
+}
+
+// A phone's processing of the scene: white balance on the true white (at 90 %), the sRGB
+// curve, noise reduction (a 5×5 box mean where the local contrast is low, so edges stay), an
+// unsharp mask (σ 1.2 px, amount 0.8), 8 bits; stored as a decoded JPEG's values (0..255). No
+// JPEG blocks: the set has no encoder of its own.
+void make_phone_like(ChartScene& s) {
+  RawImage& o = s.image;
+  const int W = o.width, Hh = o.height;
+  std::vector<float> e(o.rgb.size());
+  for (size_t i = 0; i < e.size(); ++i) {
+    const double v = std::min(1.0, std::max(0.0, 0.9 * o.rgb[i] / s.white[i % 3]));
+    e[i] = static_cast<float>(255 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055));
+  }
+  std::vector<float> nr = e;
+  for (int y = 2; y < Hh - 2; ++y)
+    for (int x = 2; x < W - 2; ++x)
+      for (int c = 0; c < 3; ++c) {
+        double sum = 0, lo = 1e9, hi = -1e9;
+        for (int j = -2; j <= 2; ++j)
+          for (int i = -2; i <= 2; ++i) {
+            const double v = e[(size_t(y + j) * W + x + i) * 3 + c];
+            sum += v, lo = std::min(lo, v), hi = std::max(hi, v);
+          }
+        if (hi - lo < 24) nr[(size_t(y) * W + x) * 3 + c] = static_cast<float>(sum / 25);
+      }
+  std::vector<float> blurred = nr;
+  gaussian_blur(blurred, W, Hh, 1.2);
+  o.meta.encoding = "stored";
+  o.meta.layout = "rgb";
+  o.meta.bits = 8;
+  o.meta.white_level = 255;
+  o.meta.saturation = {255, 255, 255};
+  for (size_t i = 0; i < e.size(); ++i) {
+    const double v = std::lround(std::min(255.0, std::max(0.0, nr[i] + 0.8 * (nr[i] - blurred[i]))));
+    o.rgb[i] = static_cast<float>(v);
+    if (v >= 255) o.saturated[i / 3] |= static_cast<std::uint8_t>(1u << (i % 3));
+  }
+  for (double& w : s.white) w = 255;
 }
 
 }  // namespace
@@ -213,6 +255,20 @@ ChartScene render_chart_scene(const SceneSpec& spec, const std::vector<const Raw
     }
     return true;
   };
+  // A grid-like object beside the chart, in its plane: 4 × 5 tiles of SG colours on a dark
+  // board, half a grid's width to the right of the chart (distracts the lattice search).
+  const double ox0 = 1 + mu + 0.35, ox1 = ox0 + 0.8;
+  std::vector<size_t> tiles(spec.grid_object ? 20 : 0);  // no draw otherwise: other scenes stay as they were
+  for (auto& t : tiles) t = size_t(rng.integer(static_cast<int>(others.size())));
+  auto object = [&](double u, double v, Vec3& c) -> bool {
+    if (!spec.grid_object || u < ox0 || u > ox1 || v < -0.05 || v > 1.05) return false;
+    c = frame;
+    const double a = (u - ox0) / (ox1 - ox0) * 5, b = (v + 0.05) / 1.1 * 4;
+    if (std::fmod(a, 1.0) > 0.12 && std::fmod(b, 1.0) > 0.12)
+      c = others[tiles[size_t(std::min(3, int(b))) * 5 + size_t(std::min(4, int(a)))]];
+    return true;
+  };
+  const double reach_u = spec.grid_object ? ox1 : 1 + mu, reach_v0 = spec.grid_object ? std::min(top, -0.05) : top;
 
   // Background, one value per pixel.
   std::vector<float> img(size_t(W) * Hh * 3);
@@ -269,13 +325,13 @@ ChartScene render_chart_scene(const SceneSpec& spec, const std::vector<const Raw
   for (int y = 0; y < Hh; ++y)
     for (int x = 0; x < W; ++x) {
       const Point q = apply(Hi, x + 0.5, y + 0.5);
-      if (q.x() < -mu - 0.1 || q.x() > 1 + mu + 0.1 || q.y() < top - 0.1 || q.y() > 1 + mv + 0.1) continue;
+      if (q.x() < -mu - 0.1 || q.x() > reach_u + 0.1 || q.y() < reach_v0 - 0.1 || q.y() > 1 + mv + 0.1) continue;
       Vec3 sum = Vec3::Zero();
       for (int j = 0; j < 3; ++j)
         for (int i = 0; i < 3; ++i) {
           const Point s = apply(Hi, x + (i + 0.5) / 3, y + (j + 0.5) / 3);
           Vec3 c;
-          if (!board(s.x(), s.y(), c))
+          if (!board(s.x(), s.y(), c) && !object(s.x(), s.y(), c))
             for (int ch = 0; ch < 3; ++ch) c[ch] = img[(size_t(y) * W + x) * 3 + ch];
           sum += c;
         }
@@ -292,6 +348,19 @@ ChartScene render_chart_scene(const SceneSpec& spec, const std::vector<const Raw
       for (int x = std::max(0, int(c.x()) - r); x < std::min(W, int(c.x()) + r); ++x) {
         const double e = spec.glare_strength * std::exp(-0.5 * ((x + 0.5 - c.x()) * (x + 0.5 - c.x()) + (y + 0.5 - c.y()) * (y + 0.5 - c.y())) / (s * s));
         for (int ch = 0; ch < 3; ++ch) img[(size_t(y) * W + x) * 3 + ch] += static_cast<float>(e * white[ch]);
+      }
+  }
+  // A cast shadow: the light beyond a line through the chart (random direction, within a quarter
+  // of the grid of its centre) drops by `shadow`, over a soft edge of about a patch.
+  if (spec.shadow > 0) {
+    const double dir = rng.uniform(0, 2 * kPi);
+    const Point through = apply(H, 0.5 + rng.uniform(-0.25, 0.25), 0.5 + rng.uniform(-0.25, 0.25));
+    const double soft = std::max(1.0, 0.7 * patch_px);
+    for (int y = 0; y < Hh; ++y)
+      for (int x = 0; x < W; ++x) {
+        const double d = (x + 0.5 - through.x()) * std::cos(dir) + (y + 0.5 - through.y()) * std::sin(dir);
+        const double f = 1 - spec.shadow / (1 + std::exp(-d / (0.25 * soft)));
+        for (int ch = 0; ch < 3; ++ch) img[(size_t(y) * W + x) * 3 + ch] *= static_cast<float>(f);
       }
   }
   // Uneven light: vignetting and a linear gradient.
@@ -326,6 +395,7 @@ ChartScene render_chart_scene(const SceneSpec& spec, const std::vector<const Raw
     }
     o.rgb[i] = static_cast<float>(v);
   }
+  if (spec.phone) make_phone_like(out);
   return out;
 }
 
@@ -450,6 +520,152 @@ DetectionScore score_detection(const ChartScene& scene, const std::array<double,
   s.located = best < 0.25 * s.pitch;
   s.oriented = s.located && best_shift == 0;
   return s;
+}
+
+const std::vector<std::string>& failure_kinds() {
+  static const std::vector<std::string> kinds = {"tilted-glare", "tilted-shadow", "tilted-grid", "small",
+                                                 "passport-open", "cut", "perspective", "phone-jpeg", "sg", "no-chart"};
+  return kinds;
+}
+
+SceneSpec failure_kind_spec(const std::string& kind, int index, std::uint64_t seed, int width, int height, bool photos) {
+  const char* charts[3] = {"cc24", "passport", "sg140"};
+  std::string chart = charts[index % 3];
+  if (kind == "passport-open") chart = "passport";
+  if (kind == "sg") chart = "sg140";
+  std::uint64_t h = seed * 1000003 + static_cast<std::uint64_t>(index);
+  for (char c : kind) h = h * 131 + static_cast<unsigned char>(c);
+  SceneSpec s = random_scene_spec(chart, h, width, height, photos);
+  SceneRandom rng(h ^ 0x6A09E667F3BCC909ull);
+  if (kind.rfind("tilted-", 0) == 0) {
+    s.area_fraction = rng.uniform(0.30, 0.40);
+    s.tilt_deg = rng.uniform(25, 33);
+    s.focal = rng.uniform(2, 4);
+    s.glare_patches = 0;
+    if (kind == "tilted-glare") s.glare_patches = 2 + rng.integer(2), s.glare_strength = rng.uniform(1, 2);
+    if (kind == "tilted-shadow") s.shadow = rng.uniform(0.5, 0.75);
+    if (kind == "tilted-grid") {
+      s.grid_object = true;
+      s.area_fraction = rng.uniform(0.2, 0.3);  // room for the object beside
+      s.cx = rng.uniform(0.3, 0.4);
+    }
+  } else if (kind == "small") {
+    s.area_fraction = rng.uniform(0.02, 0.035);
+    s.tilt_deg = rng.uniform(0, 30);
+  } else if (kind == "passport-open") {
+    s.area_fraction = rng.uniform(0.08, 0.2);
+    s.tilt_deg = rng.uniform(0, 30);
+  } else if (kind == "cut") {
+    s.area_fraction = rng.uniform(0.2, 0.35);
+    s.tilt_deg = rng.uniform(0, 20);
+    s.allow_cut = true;
+    const double edge = rng.uniform(0.8, 0.88);
+    switch (rng.integer(4)) {
+      case 0: s.cx = edge; break;
+      case 1: s.cx = 1 - edge; break;
+      case 2: s.cy = edge; break;
+      default: s.cy = 1 - edge; break;
+    }
+  } else if (kind == "perspective") {
+    s.area_fraction = rng.uniform(0.15, 0.4);
+    s.tilt_deg = rng.uniform(35, 50);
+    s.focal = rng.uniform(1.2, 1.6);
+  } else if (kind == "phone-jpeg") {
+    s.phone = true;
+    s.area_fraction = rng.uniform(0.08, 0.4);
+  } else if (kind == "no-chart") {
+    s.area_fraction = 1e-4;  // a chart of a few pixels: nothing to find
+  } else if (kind != "sg") {
+    throw Error(ErrorCode::UnknownId, "unknown failure kind '" + kind + "'");
+  }
+  return s;
+}
+
+namespace {
+
+double percentile_of(std::vector<double> v, double p) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
+}
+
+}  // namespace
+
+std::vector<KindFigures> run_failure_kinds(const std::vector<std::string>& kinds, int count, std::uint64_t seed,
+                                           int width, const std::vector<const RawImage*>& photos, bool verbose) {
+  std::vector<KindFigures> out;
+  for (const std::string& kind : kinds.empty() ? failure_kinds() : kinds) {
+    KindFigures f;
+    f.kind = kind;
+    for (int i = 0; i < count; ++i) {
+      const SceneSpec spec = failure_kind_spec(kind, i, seed, width, width * 2 / 3, !photos.empty());
+      const ChartScene scene = render_chart_scene(spec, photos);
+      DetectOptions options;
+      options.charts = {spec.chart};
+      auto run = [&](const DetectOptions& o, std::string* why) {
+        try {
+          return detect_charts(scene.image, o);
+        } catch (const Error& e) {
+          if (e.code() != ErrorCode::ChartNotFound) throw;
+          if (why) *why = e.what();
+          return std::vector<ChartCandidate>{};
+        }
+      };
+      std::string why;
+      const auto t0 = std::chrono::steady_clock::now();
+      const std::vector<ChartCandidate> found = run(options, &why);
+      f.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      ++f.n;
+      const bool none = kind == "no-chart";
+      DetectionScore best;
+      for (const auto& c : found) {
+        const DetectionScore sc = score_detection(scene, &c.corners, c.confidence);
+        if (none || !sc.located) ++f.false_positives;
+        if (!none && sc.located && (!best.located || (sc.oriented && !best.oriented))) best = sc;
+      }
+      f.found += best.oriented;
+      f.wrong_orientation += best.located && !best.oriented;
+      if (best.oriented) f.errors.push_back(best.corner_error);
+      if (!none && !best.oriented && why.empty()) why = found.empty() ? "?" : "a candidate away from the chart";
+      bool clicked = best.oriented;
+      if (!none && !best.oriented) {
+        f.why.push_back(why);
+        // One click near the chart: its centre moved by up to a quarter of the grid's size.
+        SceneRandom rng(seed * 31 + static_cast<std::uint64_t>(i) + 7);
+        double cx = 0, cy = 0;
+        for (int k = 0; k < 4; ++k) cx += scene.corners[2 * k] / 4, cy += scene.corners[2 * k + 1] / 4;
+        const double size = std::sqrt(scene.area_fraction * spec.width * spec.height);
+        cx = std::min(spec.width - 1.0, std::max(0.0, cx + rng.uniform(-0.25, 0.25) * size));
+        cy = std::min(spec.height - 1.0, std::max(0.0, cy + rng.uniform(-0.25, 0.25) * size));
+        DetectOptions helped = options;
+        helped.seed = {cx, cy};
+        for (const auto& c : run(helped, nullptr)) clicked = clicked || score_detection(scene, &c.corners, 0).oriented;
+      }
+      f.found_with_click += clicked;
+      if (verbose)
+        std::printf("  %-13s %3d %-8s area %5.1f%% tilt %4.1f: %s%s%s\n", kind.c_str(), i, spec.chart.c_str(),
+                    100 * scene.area_fraction, spec.tilt_deg,
+                    none ? (found.empty() ? "none (right)" : "FALSE POSITIVE") : best.oriented ? "found" : best.located ? "WRONG-ORIENTATION" : "MISS",
+                    !none && !best.oriented ? (clicked ? ", found after a click" : ", missed after a click too") : "",
+                    !none && !best.oriented ? (": " + why).c_str() : "");
+    }
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+void print_failure_kinds(const std::vector<KindFigures>& figures) {
+  std::printf("%-14s %4s %8s %7s %6s %10s %8s %11s %9s\n", "kind", "n", "found", "wrong-o", "false+", "median px",
+              "p95 px", "with click", "median ms");
+  for (const auto& f : figures)
+    std::printf("%-14s %4d %7.1f%% %7d %6d %10.3f %8.3f %10.1f%% %9.1f\n", f.kind.c_str(), f.n,
+                f.kind == "no-chart" ? NAN : 100.0 * f.found / std::max(1, f.n), f.wrong_orientation, f.false_positives,
+                percentile_of(f.errors, 0.5), percentile_of(f.errors, 0.95),
+                f.kind == "no-chart" ? NAN : 100.0 * f.found_with_click / std::max(1, f.n), percentile_of(f.ms, 0.5));
+  for (const auto& f : figures)
+    std::printf("KIND %s n=%d found=%d wrong_orientation=%d false_positives=%d found_with_click=%d median_px=%.4f\n",
+                f.kind.c_str(), f.n, f.found, f.wrong_orientation, f.false_positives, f.found_with_click,
+                percentile_of(f.errors, 0.5));
 }
 
 }  // namespace tristim

@@ -39,6 +39,10 @@ struct SceneSpec {
   double gradient = 0.1;          ///< linear light gradient across the image (fraction)
   int glare_patches = 0;          ///< patches with a specular highlight
   double glare_strength = 1;      ///< highlight peak in units of the white patch
+  double shadow = 0;              ///< a cast shadow across the chart: light lost in it (0..1), soft edge
+  bool grid_object = false;       ///< a grid-like object beside the chart (4×5 tiles of other colours, same plane)
+  bool phone = false;             ///< phone-like output: white balanced, sRGB-encoded, noise-reduced,
+                                  ///< sharpened, 8-bit (stored values 0..255, as a decoded JPEG)
   bool photo_background = false;  ///< background from `photos` (else synthetic)
   bool allow_cut = false;         ///< do not shrink the chart into the frame
   std::uint64_t seed = 1;         ///< texture, shapes, glare positions and noise
@@ -99,6 +103,39 @@ TwoChartScene render_two_chart_scene(const SceneSpec& large, const SceneSpec& sm
 TwoChartScene random_two_chart_scene(const std::string& large_chart, const std::string& small_chart,
                                      std::uint64_t seed, int width, int height,
                                      const std::vector<const RawImage*>& photos = {});
+
+/// The kinds of scene detection is known to find hard (issue 48), one id each: "tilted-glare",
+/// "tilted-shadow", "tilted-grid" (large charts, 30-40 % of the frame, tilted 25-33° out of
+/// plane, with a strong glare spot, a cast shadow or a grid-like object beside them), "small"
+/// (2-3.5 % of the frame), "passport-open" (both sides of a Passport), "cut" (the chart runs
+/// off the frame), "perspective" (tilted 35-50° seen from close), "phone-jpeg" (phone-like
+/// 8-bit sRGB, sharpened, noise-reduced), "sg" (ColorChecker Digital SG, as random_scene_spec)
+/// and "no-chart" (nothing to find: any candidate is a false positive).
+const std::vector<std::string>& failure_kinds();
+/// Scene `index` of a kind: random_scene_spec's draw from `seed`, then the kind's own ranges;
+/// the chart cycles through cc24, passport and sg140 where the kind allows.
+SceneSpec failure_kind_spec(const std::string& kind, int index, std::uint64_t seed, int width, int height, bool photos);
+
+/// Figures of one kind: automatic detection, and detection helped by one click (DetectOptions::
+/// seed at a point within a quarter of the grid's size of its centre) on the scenes it missed.
+struct KindFigures {
+  std::string kind;
+  int n = 0;
+  int found = 0;              ///< at the right place in the right orientation (DetectionScore::oriented)
+  int wrong_orientation = 0;  ///< at the right place, wrong orientation
+  int false_positives = 0;    ///< confident candidates away from the chart (every one for no-chart)
+  int found_with_click = 0;   ///< found, or found after the click
+  std::vector<double> errors; ///< corner error of the found ones, px
+  std::vector<double> ms;     ///< time of the automatic detection
+  std::vector<std::string> why;  ///< the detector's reason per miss
+};
+/// Renders and detects `count` scenes of each kind (`kinds` empty: all) at width × 2/3 width.
+/// `verbose`: one line per scene on stdout.
+std::vector<KindFigures> run_failure_kinds(const std::vector<std::string>& kinds, int count, std::uint64_t seed,
+                                           int width, const std::vector<const RawImage*>& photos, bool verbose);
+/// The table of run_failure_kinds: kind, n, found, wrong orientation, false positives, corner
+/// error median/p95, found with a click, median ms; then a "KIND <id> <found> ..." line per kind.
+void print_failure_kinds(const std::vector<KindFigures>& figures);
 
 /// Portable uniform [0, 1) from mt19937_64 (53 bits).
 class SceneRandom {

@@ -6,10 +6,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
+#include <iterator>
 
 #include "../detmath.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
+#include "tristim/linearisation/linearisation.hpp"
 
 namespace tristim {
 
@@ -93,6 +95,20 @@ double symmetric_alternatives(const std::vector<Vec3>& rgb, const std::vector<Ve
   return best;
 }
 
+// "4×6": the rows × columns a lattice spans, fewer first.
+std::string grid_size(const GridGroup& g) {
+  const int a = g.p_max - g.p_min + 1, b = g.q_max - g.q_min + 1;
+  return std::to_string(std::min(a, b)) + "×" + std::to_string(std::max(a, b));
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream o;
+  o.setf(std::ios::fixed);
+  o.precision(digits);
+  o << v;
+  return o.str();
+}
+
 Point centre_of(const std::array<double, 8>& k) {
   return Point((k[0] + k[2] + k[4] + k[6]) / 4, (k[1] + k[3] + k[5] + k[7]) / 4);
 }
@@ -118,7 +134,11 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
   progress("orient", 0.4);
 
   std::vector<ChartCandidate> found;
+  // Why nothing was found, said once: about the largest grid (groups come largest first).
   std::string reasons;
+  auto note = [&](const std::string& why) {
+    if (reasons.empty()) reasons = why;
+  };
   for (size_t gi = 0; gi < groups.size(); ++gi) {
     const GridGroup& group = groups[gi];
     // A candidate per layout; the group keeps the best.
@@ -127,7 +147,11 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
     progress("orient", 0.4 + 0.55 * gi / groups.size());
     for (const Target& t : wanted) {
       const std::vector<Placement> placements = place_layout(work, group, t.grid, t.reference);
-      if (placements.empty()) continue;
+      if (placements.empty()) {
+        note("a grid of " + grid_size(group) + " found but it fits no " + t.id + " layout (" +
+             std::to_string(t.grid.rows) + "×" + std::to_string(t.grid.columns) + ")");
+        continue;
+      }
       const Placement& p = placements.front();
       if (std::getenv("TRISTIM_DETECT_DEBUG")) {
         std::fprintf(stderr, "GROUP %zu cells %zu p %d..%d q %d..%d layout %s\n", gi, group.cells.size(), group.p_min,
@@ -154,12 +178,15 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
       }
       if (!chosen->inside) {
         if (static_cast<int>(group.cells.size()) * 2 >= N)
-          reasons = "a grid of " + std::to_string(group.cells.size()) + " patches fits the " + t.id +
-                    " layout only partly inside the image: the chart may be cut off by the frame";
+          note("a grid of " + grid_size(group) + " fits the " + t.id +
+               " layout only partly inside the image: the chart may be cut off by the frame");
+        else
+          note("a grid of " + grid_size(group) + " found but its colours do not fit the " + t.id +
+               " chart (its best placement runs off the image)");
         continue;
       }
       if (chosen->mirrored) {
-        reasons = "a " + t.id + " grid matches its colours only mirrored";
+        note("a grid of " + grid_size(group) + " matches the " + t.id + " colours only mirrored");
         continue;
       }
       double runner_up = 1e9;
@@ -216,7 +243,7 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
           for (const auto& ps : s.patches) c.patches.push_back({ps.id, 0.0});
         }
       } catch (const Error& e) {
-        reasons = std::string("a ") + t.id + " grid was found but its corners are unusable: " + e.what();
+        note("a grid of " + grid_size(group) + " was found but its " + t.id + " corners are unusable: " + e.what());
         continue;
       }
       // Confidence: the colours agree (median residual) and no other orientation of the chart
@@ -240,6 +267,9 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
       const double dx = corners[2] - corners[0], dy = corners[3] - corners[1];
       c.angle = std::fmod(detmath::atan2(dy, dx) * 180 / kPi + 360.0, 360.0);
       c.orientation = static_cast<int>(std::lround(c.angle / 90.0)) % 4 * 90;
+      if (c.confidence < options.min_confidence)
+        note("a grid of " + grid_size(group) + " found but its colours do not fit the " + t.id + " chart (residual " +
+             fixed(c.residual, 3) + ", confidence " + fixed(c.confidence, 2) + ")");
       if (!have || c.confidence > best.confidence) {
         best = c;
         have = true;
@@ -252,29 +282,29 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
   // One candidate per chart: drop any whose centre lies inside a better one.
   std::vector<ChartCandidate> out;
   for (const auto& c : found) {
-    if (c.confidence < options.min_confidence) {
-      if (reasons.empty())
-        reasons = "the best grid (" + c.chart + ", confidence " + std::to_string(c.confidence).substr(0, 4) +
-                  ") does not match the chart's colours well enough";
-      continue;
-    }
+    if (c.confidence < options.min_confidence) continue;
     bool dup = false;
     for (const auto& o : out) dup = dup || contains(o.corners, centre_of(c.corners)) || contains(c.corners, centre_of(o.corners));
     if (!dup && static_cast<int>(out.size()) < options.max_candidates) out.push_back(c);
   }
-  if (out.empty())
-    throw Error(ErrorCode::ChartNotFound,
-                "no chart found (" + std::to_string(quads.size()) + " patch-like regions, " +
-                    std::to_string(groups.size()) + " grids)" + (reasons.empty() ? "" : ": " + reasons));
+  if (out.empty()) {
+    if (reasons.empty())
+      reasons = regions.count == 0 ? "no flat regions: the image may be blurred, noisy or out of focus at this scale"
+                : quads.empty()    ? "no flat region is shaped like a patch (" + std::to_string(regions.count) + " flat regions)"
+                                   : "the largest flat regions form no grid";
+    throw Error(ErrorCode::ChartNotFound, reasons + " (" + std::to_string(quads.size()) + " patch-like regions, " +
+                                              std::to_string(groups.size()) + " grids)");
+  }
   return out;
 }
 
 }  // namespace
 
-std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOptions& options) {
-  const std::vector<Target> wanted = targets(options);
-  if (image.width < 1 || image.height < 1 || image.rgb.size() != size_t(image.width) * image.height * 3)
-    throw Error(ErrorCode::InvalidArgument, "chart detection needs a non-empty RGB image");
+namespace {
+
+// Both passes over the whole of `image`.
+std::vector<ChartCandidate> detect_image(const RawImage& image, const std::vector<Target>& wanted,
+                                         const DetectOptions& options) {
   // The pass at `working_side` first: it finds every chart from a few % of the frame up, so
   // several charts give several candidates. When it finds none and a coarser working image
   // (longer side <= kCoarseSide) is smaller, a pass on that: a large chart whose patches show
@@ -301,6 +331,135 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
                              [](const ChartCandidate& c) { return c.coverage < 0.5 || c.confidence < 0.9; }),
               out.end());
     if (out.empty()) throw;  // the finer pass's reason
+  }
+  return out;
+}
+
+// A copy of the pixels [x0, x1) × [y0, y1) of `image`.
+RawImage crop(const RawImage& image, int x0, int y0, int x1, int y1) {
+  RawImage out;
+  out.meta = image.meta;
+  out.width = x1 - x0;
+  out.height = y1 - y0;
+  out.rgb.resize(size_t(out.width) * out.height * 3);
+  out.saturated.assign(size_t(out.width) * out.height, 0);
+  const bool sat = image.saturated.size() == size_t(image.width) * image.height;
+  for (int y = y0; y < y1; ++y) {
+    const size_t from = size_t(y) * image.width + x0, to = size_t(y - y0) * out.width;
+    std::copy_n(image.rgb.begin() + from * 3, size_t(out.width) * 3, out.rgb.begin() + to * 3);
+    if (sat) std::copy_n(image.saturated.begin() + from, out.width, out.saturated.begin() + to);
+  }
+  return out;
+}
+
+// Detection within the window [x0, x1) × [y0, y1) (clamped to the image): a crop, so a chart
+// that is small in the frame is searched at a finer working scale; corners come back in the
+// image's coordinates. `from`..`to`: this window's share of the progress.
+std::vector<ChartCandidate> detect_window(const RawImage& image, const std::vector<Target>& wanted,
+                                          const DetectOptions& options, double x0, double y0, double x1, double y1,
+                                          double from, double to) {
+  const int ix0 = std::max(0, static_cast<int>(std::floor(x0))), iy0 = std::max(0, static_cast<int>(std::floor(y0)));
+  const int ix1 = std::min(image.width, static_cast<int>(std::ceil(x1)));
+  const int iy1 = std::min(image.height, static_cast<int>(std::ceil(y1)));
+  if (ix1 - ix0 < 16 || iy1 - iy0 < 16)
+    throw Error(ErrorCode::InvalidArgument, "box: the region searched lies outside the image or is under 16 px across");
+  DetectOptions o = options;
+  if (options.progress)
+    o.progress = [&](const std::string& stage, double f) { options.progress(stage, from + (to - from) * f); };
+  if (ix0 == 0 && iy0 == 0 && ix1 == image.width && iy1 == image.height) return detect_image(image, wanted, o);
+  std::vector<ChartCandidate> out = detect_image(crop(image, ix0, iy0, ix1, iy1), wanted, o);
+  for (auto& c : out)
+    for (int k = 0; k < 4; ++k) c.corners[2 * k] += ix0, c.corners[2 * k + 1] += iy0;
+  return out;
+}
+
+// Whether `p` lies within the candidate's grid enlarged by `grow` about its centre.
+bool near_candidate(const ChartCandidate& c, const Point& p, double grow) {
+  const Point m = centre_of(c.corners);
+  std::array<double, 8> k;
+  for (int i = 0; i < 4; ++i) {
+    k[2 * i] = m.x() + grow * (c.corners[2 * i] - m.x());
+    k[2 * i + 1] = m.y() + grow * (c.corners[2 * i + 1] - m.y());
+  }
+  return contains(k, p);
+}
+
+std::vector<double> checked(const std::vector<double>& v, size_t n, const char* name) {
+  if (v.size() != n)
+    throw Error(ErrorCode::InvalidArgument, std::string(name) + ": expected " + std::to_string(n) + " numbers, got " +
+                                                std::to_string(v.size()));
+  for (double x : v)
+    if (!std::isfinite(x)) throw Error(ErrorCode::InvalidArgument, std::string(name) + ": a number is not finite");
+  return v;
+}
+
+// Detection helped by a point on or near the chart: windows centred on the seed, growing from an
+// eighth of the image's longer side to the whole image; the first that finds a chart covering
+// the seed (its grid enlarged by half) wins. Small windows see a small chart at full resolution;
+// a window that cuts a large chart finds nothing and the next one holds it.
+std::vector<ChartCandidate> detect_near(const RawImage& image, const std::vector<Target>& wanted,
+                                        const DetectOptions& options, const Point& seed) {
+  if (seed.x() < 0 || seed.y() < 0 || seed.x() >= image.width || seed.y() >= image.height)
+    throw Error(ErrorCode::InvalidArgument, "seed: (" + fixed(seed.x(), 1) + ", " + fixed(seed.y(), 1) +
+                                                ") lies outside the " + std::to_string(image.width) + "×" +
+                                                std::to_string(image.height) + " image");
+  const double side = std::max(image.width, image.height);
+  const double halves[] = {side / 8, side / 5, side / 3, side / 2, side};
+  std::string why;
+  for (size_t i = 0; i < std::size(halves); ++i) {
+    const double h = halves[i];
+    std::vector<ChartCandidate> out;
+    try {
+      out = detect_window(image, wanted, options, seed.x() - h, seed.y() - h, seed.x() + h, seed.y() + h,
+                          double(i) / std::size(halves), double(i + 1) / std::size(halves));
+    } catch (const Error& e) {
+      if (e.code() != ErrorCode::ChartNotFound) throw;
+      why = e.what();
+    }
+    out.erase(std::remove_if(out.begin(), out.end(), [&](const ChartCandidate& c) { return !near_candidate(c, seed, 1.5); }),
+              out.end());
+    if (!out.empty()) return out;
+    if (why.empty()) why = "the charts found lie away from it";
+  }
+  throw Error(ErrorCode::ChartNotFound, "no chart near the seed (" + fixed(seed.x(), 0) + ", " + fixed(seed.y(), 0) +
+                                            "): " + why);
+}
+
+}  // namespace
+
+std::vector<ChartCandidate> detect_charts(const RawImage& stored_or_linear, const DetectOptions& options) {
+  const std::vector<Target> wanted = targets(options);
+  if (stored_or_linear.width < 1 || stored_or_linear.height < 1 ||
+      stored_or_linear.rgb.size() != size_t(stored_or_linear.width) * stored_or_linear.height * 3)
+    throw Error(ErrorCode::InvalidArgument, "chart detection needs a non-empty RGB image");
+  // A stored image (a phone's JPEG, a converter's TIFF or PNG) holds sRGB-encoded values; the
+  // 3×3 fit against the reference wants linear light, so they are decoded with the sRGB curve
+  // (IEC 61966-2-1) first — in a copy. The corners do not depend on it.
+  RawImage decoded;
+  if (stored_or_linear.meta.encoding == "stored" && stored_or_linear.meta.white_level > 0) {
+    decoded = stored_or_linear;
+    const double full = stored_or_linear.meta.white_level;
+    std::vector<float> table(256);
+    for (int v = 0; v < 256; ++v) table[size_t(v)] = static_cast<float>(full * sRGB_decode(v / full));
+    for (float& v : decoded.rgb) {
+      const double x = std::min(full, std::max(0.0, double(v)));
+      v = full == 255 && x == std::floor(x) ? table[size_t(x)] : static_cast<float>(full * sRGB_decode(x / full));
+    }
+  }
+  const RawImage& image = decoded.rgb.empty() ? stored_or_linear : decoded;
+  std::vector<ChartCandidate> out;
+  if (!options.seed.empty()) {
+    if (!options.box.empty()) throw Error(ErrorCode::InvalidArgument, "seed and box: give one of them");
+    const std::vector<double> s = checked(options.seed, 2, "seed");
+    out = detect_near(image, wanted, options, Point(s[0], s[1]));
+  } else if (!options.box.empty()) {
+    const std::vector<double> b = checked(options.box, 4, "box");
+    const double x0 = std::min(b[0], b[2]), x1 = std::max(b[0], b[2]), y0 = std::min(b[1], b[3]), y1 = std::max(b[1], b[3]);
+    // A rough box: enlarged by a tenth of its size on each side, so a chart it cuts is still whole.
+    const double mx = 0.1 * (x1 - x0), my = 0.1 * (y1 - y0);
+    out = detect_window(image, wanted, options, x0 - mx, y0 - my, x1 + mx, y1 + my, 0.0, 1.0);
+  } else {
+    out = detect_image(image, wanted, options);
   }
   if (options.progress) options.progress("done", 1.0);
   return out;

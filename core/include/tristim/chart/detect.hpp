@@ -55,6 +55,15 @@ struct DetectOptions {
   /// that finds no chart in a larger image, a coarse pass at a longer side of <= 1000 px follows
   /// (it keeps only confident candidates whose lattice holds half of the layout).
   int working_side = 1600;
+  /// Help from the user (image pixel coordinates; at most one of the two):
+  /// seed {x, y}, a point on or near the chart: detection runs in square windows centred on it,
+  /// growing from 1/4 of the image's longer side to the whole image, and keeps the first chart
+  /// found whose grid, enlarged by half about its centre, covers the seed (a small chart is then
+  /// searched at full resolution);
+  /// box {x0, y0, x1, y1}, a rough box around the chart: detection runs within it, enlarged by a
+  /// tenth of its size on each side.
+  std::vector<double> seed;
+  std::vector<double> box;
   /// Candidates below this confidence are dropped.
   double min_confidence = 0.5;
   int max_candidates = 8;
@@ -91,9 +100,12 @@ struct ChartCandidate {
 };
 
 /// Finds charts. Best candidate first; several charts give several candidates.
-/// Errors: ChartNotFound (nothing above min_confidence; the message says why, e.g. a grid that
-/// runs off the image border), UnknownId (unknown chart id), InvalidArgument (empty image, bad
-/// custom geometry or a custom reference of the wrong length).
+/// Errors: ChartNotFound (nothing above min_confidence; the message says why, about the largest
+/// grid seen: "no flat region is shaped like a patch", "the largest flat regions form no grid",
+/// "a grid of 4×6 found but its colours do not fit the cc24 chart (…)", a grid that runs off the
+/// image border, …, then the counts of patch-like regions and grids), UnknownId (unknown chart
+/// id), InvalidArgument (empty image, bad custom geometry or a custom reference of the wrong
+/// length, a seed outside the image, a box holding no 16×16 px of it, both a seed and a box).
 std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOptions& options = {});
 
 /// Candidates as JSON `{"candidates": [{"chart", "corners": [[x,y]×4], "confidence",
