@@ -67,11 +67,9 @@ int run_render(const Args& args, std::ostream& out) {
     throw Error(ErrorCode::InvalidArgument, "--out must name a .dng file, got '" + path + "'");
   if (args.has("oecf") && args.get("oecf") != "linear")
     throw Error(ErrorCode::InvalidArgument, "a DNG holds linear sensor data: --oecf must be 'linear' (or absent) with --out .dng");
-  const LabRender r = render_lab_chart(o);
-  write_bytes(path, lab_render_dng(r));
-  json::Value j = lab_render_json(r);
-  j.set("out", path);
-  out << j.dump(1) << "\n";
+  const LabRenderFiles r = lab_render_files(o);
+  write_bytes(path, r.dng);
+  out << r.truth << "\n";
   return 0;
 }
 

@@ -68,6 +68,11 @@ std::array<double, 9> colour_matrix_D65(const SpectralData& ssf, const SpectralD
 
 }  // namespace
 
+LabRenderFiles lab_render_files(const LabRenderOptions& options) {
+  const LabRender r = render_lab_chart(options);
+  return {lab_render_dng(r), lab_render_json(r).dump(1)};
+}
+
 std::vector<std::string> lab_chart_ids() { return {"cc24", "passport", "sg140"}; }
 
 LabRender render_lab_chart(const LabRenderOptions& o) {

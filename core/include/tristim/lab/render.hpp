@@ -83,6 +83,14 @@ std::vector<std::uint8_t> lab_render_dng(const LabRender& render);
 /// {id, rgb, linear, XYZ}.
 json::Value lab_render_json(const LabRender& render);
 
+/// What `tristim lab render` writes and prints, and what the page's Lab mode receives: the DNG's
+/// bytes and the truth as JSON text (lab_render_json, pretty-printed).
+struct LabRenderFiles {
+  std::vector<std::uint8_t> dng;
+  std::string truth;
+};
+LabRenderFiles lab_render_files(const LabRenderOptions& options);
+
 /// Chart ids lab rendering draws ("cc24", "passport", "sg140").
 std::vector<std::string> lab_chart_ids();
 
