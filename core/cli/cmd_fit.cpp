@@ -4,6 +4,7 @@
 
 #include "cli.hpp"
 #include "patch_args.hpp"
+#include "share_cli.hpp"
 #include "tristim/capture/image.hpp"
 #include "tristim/capture/raw.hpp"
 #include "tristim/chart/light_trap.hpp"
@@ -12,6 +13,7 @@
 #include "tristim/io/patch_files.hpp"
 #include "tristim/profile/characterise.hpp"
 #include "tristim/profile/export.hpp"
+#include "tristim/surface/surface.hpp"
 
 namespace tristim::cli {
 namespace {
@@ -23,8 +25,10 @@ const char* kFitUsage =
     "            [--psm-max-iterations N] [--psm-threshold T] [--de-rms] [--de-algorithm auto|lm|irls|bobyqa|sbplx]\n"
     "            [--de-xtol X] [--de-ftol F] [--de-max-evaluations N] [--de-step S]\n"
     "            [--linearisation <id>[:name=value,...]]   (the recipe's linearisation stage: tristim linearise --list)\n"
+    "            [--surface <method>:<name>=<value>,...]   (the recipe's surface stage: tristim surface methods)\n"
     "tristim fit --recipe recipe.json (--rgb patches.csv | --raw chart.dng) [--xyz reference.csv]\n"
     "            [--out profile.json] [--csv patches_out.csv] [--recipe-out recipe.json]\n"
+    "tristim fit --project p.tristim [--out profile.json]   (a project file: tristim share --project, the page's export)\n"
     "  Fits camera RGB -> XYZ and prints (or writes) the profile JSON with training and\n"
     "  leave-one-out metrics; the profile embeds the recipe it was made with.\n"
     "  --white preserves that patch exactly. Reference tables may be XYZ (Y = 100 for the perfect\n"
@@ -34,15 +38,22 @@ const char* kFitUsage =
     "  With --recipe every setting comes from the recipe (a profile's \"recipe\" or one the page\n"
     "  saved): --raw samples the chart with the recipe's layout and corners; without --xyz the\n"
     "  reference is the recipe's built-in chart under its illuminant and observer (after its surface\n"
-    "  stage). The same recipe and inputs give the same coefficients as the page.";
+    "  stage). The same recipe and inputs give the same coefficients as the page.\n"
+    "  --surface corrects the reference reflectances for the capture geometry (Abed 2013 eqs 1-5): --xyz\n"
+    "  is then a file with spectra (integrated under D50, 1931 observer) or a built-in chart id.\n"
+    "  --model corrected-3x3 (Abed 2013 eqs 6-13, App. C eqs 26-28) needs --white <patch>, the white\n"
+    "  reference: the 3x4 without its offset, scaled by mu from that white; mu is printed and written\n"
+    "  to the profile as \"corrected_3x3\": {\"mu\": ...}.";
 
-/// A recipe from the flags of the classic form (every stage but characterisation at its default).
-Recipe recipe_from_flags(const Args& args, const PatchData& d, const std::string& xyz_bytes) {
+/// A recipe from the flags of the classic form (every stage but characterisation and surface at its
+/// default). `chart`: the built-in chart --xyz names ("" for a file).
+Recipe recipe_from_flags(const Args& args, const PatchData& d, const std::string& chart) {
   int white_index = -1;
   const FitOptions o = fit_options(args, d, white_index);
   Recipe r;
-  r.reference.chart = "file";
-  r.reference.data_digest = bytes_digest(xyz_bytes);
+  r.reference.chart = chart.empty() ? "file" : chart;
+  if (chart.empty()) r.reference.data_digest = bytes_digest(read_file(args.get("xyz")));
+  if (args.has("surface")) r.surface = parse_choice(args.get("surface"));
   r.characterisation.model = args.get("model");
   r.characterisation.objective = objective_choice(o);
   r.characterisation.white_patch = white_index >= 0 ? d.ids[white_index] : "";
@@ -65,6 +76,41 @@ PatchData pair_with_reference(const PatchTable& rgb, const ReferenceChart& ref, 
   d.rgb = to_matrix(pairs.measured);
   d.xyz = to_matrix(pairs.reference);
   return d;
+}
+
+/// The built-in chart id `value` names, or "" when it is not one (a file).
+std::string builtin_chart(const std::string& value) {
+  if (file_exists(value)) return "";
+  for (const auto& c : list_charts())
+    if (c.id == value) return c.id;
+  return "";
+}
+
+/// The classic form's patches: --rgb paired with --xyz, a file (XYZ, Lab or spectra) or a built-in
+/// chart id. A surface stage other than none corrects reflectances (Abed 2013 eqs 1-5), so it needs
+/// spectra: a built-in chart (recipe_reference) or a file with spectra; both are integrated under
+/// D50 and the 1931 observer (the recipe's reference defaults). `fit --recipe` with --rgb and an --xyz
+/// file goes the same way, so its surface stage is applied again.
+PatchData classic_pairs(const Args& args, const std::string& chart, const MethodChoice& surface) {
+  const std::string rgb_path = args.get("rgb"), xyz_path = args.get("xyz");
+  if (chart.empty() && surface.method == "none")
+    return load_pairs(rgb_path, xyz_path, parse_white(args, "ref-white", whites::D50()));
+  const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
+  if (!rgb.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
+  Recipe r;
+  r.surface = surface;
+  if (!chart.empty()) {
+    r.reference.chart = chart;
+    return pair_with_reference(rgb, recipe_reference(r), rgb_path);
+  }
+  PatchTable t = read_patch_file(read_file(xyz_path), xyz_path);
+  if (!t.has_spectra)
+    throw Error(ErrorCode::MissingColumn, "--surface " + surface.method + " corrects reflectances, but '" + xyz_path +
+                                              "' has no spectra (give a spectral file or a built-in chart id as --xyz)");
+  t.spectra = correct_surface(surface, t.spectra);
+  t.has_XYZ = t.has_Lab = false;
+  return pair_with_reference(rgb, reference_from_table(t, illuminant_spd(r.reference.illuminant),
+                                                       parse_observer(r.reference.observer)), rgb_path);
 }
 
 /// The training set of a recipe; a TIFF/PNG/JPEG given with --raw also sets the recipe's capture
@@ -107,7 +153,7 @@ TrainingSet training_from_recipe(const Args& args, Recipe& recipe) {
   }
   const std::string rgb_path = args.get("rgb");
   if (args.has("xyz")) {
-    const PatchData d = load_pairs(rgb_path, args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
+    const PatchData d = classic_pairs(args, "", recipe.surface);
     return training_set(recipe, d.labels, d.rgb, d.xyz);  // the labels: the keys are their normalised forms
   }
   const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
@@ -117,6 +163,7 @@ TrainingSet training_from_recipe(const Args& args, Recipe& recipe) {
 }
 
 int run_fit(const Args& args, std::ostream& out) {
+  if (args.has("project")) return run_fit_project(args, out);  // a .tristim project (cmd_share.cpp)
   TrainingSet training;
   Recipe recipe;
   if (args.has("recipe")) {
@@ -126,15 +173,24 @@ int run_fit(const Args& args, std::ostream& out) {
   } else {
     args.allow_only({"rgb", "xyz", "model", "objective", "white", "lab-white", "ref-white", "out", "csv",
                      "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol", "de-ftol",
-                     "de-max-evaluations", "de-rms", "de-step", "no-loo", "recipe-out", "linearisation"});
-    const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
-    recipe = recipe_from_flags(args, d, read_file(args.get("xyz")));
+                     "de-max-evaluations", "de-rms", "de-step", "no-loo", "recipe-out", "linearisation", "surface"});
+    const std::string chart = builtin_chart(args.get("xyz"));
+    const PatchData d = classic_pairs(args, chart, parse_choice(args.get("surface", "none")));
+    recipe = recipe_from_flags(args, d, chart);
     training = training_set(recipe, d.labels, d.rgb, d.xyz);
   }
   for (const auto& e : training.excluded) std::cerr << "tristim fit: left out " << e << "\n";
   const Characterisation c = characterise(recipe, training);
   const ModelEvaluation& ev = c.evaluation;
-  const std::string text = profile_to_json(c.profile);
+  std::string text = profile_to_json(c.profile);
+  if (c.recipe.characterisation.model == kCorrected3x3) {  // μ of Abed 2013 eq (27), beside the profile
+    json::Value p = json::parse(text), k = json::Value::object();
+    k.set("mu", ev.fit.mu);
+    k.set("white_patch", c.recipe.characterisation.white_patch);
+    p.set("corrected_3x3", k);
+    text = p.dump(2) + "\n";
+    std::cerr << "tristim fit: corrected 3x3, white scaling mu = " << fmt(ev.fit.mu, 6) << " (Abed 2013 eq 27)\n";
+  }
   if (args.has("recipe-out")) {
     const std::string r = recipe_to_json(c.recipe);
     write_bytes(args.get("recipe-out"), r.data(), r.size());

@@ -208,6 +208,7 @@ FitResult fit_info(const ModelInfo& info, const PatchMatrix& rgb, const PatchMat
 
 FitResult fit(const std::string& model_id, const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ,
               const FitOptions& options) {
+  if (model_id == kCorrected3x3) return fit_corrected_3x3(camera_RGB, reference_XYZ, options);  // not an objective's fit
   return fit_detail::fit_info(model_info(model_id), camera_RGB, reference_XYZ, options);
 }
 

@@ -12,6 +12,8 @@ namespace tristim {
 PatchMatrix leave_one_out_least_squares(const std::string& model_id, const PatchMatrix& rgb, const PatchMatrix& xyz,
                                         const FitOptions& options, int white_patch_index) {
   const ModelInfo& info = model_info(model_id);
+  if (info.id == kCorrected3x3)
+    throw Error(ErrorCode::InvalidArgument, "leave-one-out: '" + info.id + "' has no closed form (refit each fold: leave_one_out)");
   FitOptions o = options;
   o.objective = Objective::LeastSquares;
   const fit_detail::Problem pr = fit_detail::make_problem(info, rgb, xyz, o);

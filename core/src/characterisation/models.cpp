@@ -187,6 +187,10 @@ std::vector<ModelInfo> build_table() {
                            cat({kR_G_B, {kOne}}), false, "matrix-3x4"));
   add("Guarnera2018", make("Guarnera2018-T2R", "Guarnera T2R (second-order root-polynomial)",
                            guarnera + ", eq (15)", kGuarneraT2R, true, "Finlayson2015-2"));
+  // Last, so the rows above keep their places; the span of matrix-3x3, fitted differently
+  // (fit_corrected_3x3: the 3×4 of eq 26 without its offset, scaled by μ of eq 27).
+  add("matrix", make(kCorrected3x3, "Corrected 3×3 (3×4 without offset, scaled by μ from the white)",
+                     abed + ", eqs (6)-(13), (26)-(28)", kR_G_B, false, "matrix-3x3"));
   return t;
 }
 

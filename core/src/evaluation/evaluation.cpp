@@ -120,7 +120,11 @@ PatchMatrix leave_one_out(const std::string& model_id, const PatchMatrix& rgb, c
   validate_patches(rgb, xyz);
   const Eigen::Index n = rgb.rows();
   if (n < 2) throw Error(ErrorCode::TooFewPatches, "leave-one-out needs at least 2 patches");
-  if (options.objective == Objective::LeastSquares)
+  // The corrected 3×3 is not a least-squares fit of its own terms (μ comes from the white): no
+  // PRESS identity, so it refits each fold; every fold keeps the white reference, which App. C
+  // measures apart from the chart (the PTFE), so μ is always defined.
+  const bool corrected = model_id == kCorrected3x3;
+  if (options.objective == Objective::LeastSquares && !corrected)
     return leave_one_out_least_squares(model_id, rgb, xyz, options, white_patch_index);
   // Other objectives refit once per patch (N fits of N - 1 patches, work ~ N^2): capped.
   if (static_cast<std::size_t>(n) > limits::kMaxLeaveOneOutPatches)

@@ -98,6 +98,8 @@ struct FitResult {
   bool white_preserved = false;
   PatchMatrix fitted;             ///< N × 3 predictions on the training patches
   PatchMatrix residuals;          ///< fitted − reference
+  /// "corrected-3x3" only (fit_corrected_3x3): the white scaling μ of Abed 2013 eq (27); 0 otherwise.
+  double mu = 0;
 };
 
 /// Checks a training pair: same N (PatchMismatch), finite (NonFinite), XYZ ≥ 0
@@ -128,6 +130,16 @@ FitResult fit_matrix_3x3(const PatchMatrix& camera_RGB, const PatchMatrix& refer
 /// Affine 3×4 matrix, XYZ = M·[R,G,B,1] (Abed 2013 eq 6, pseudo-inverse eq 26; Guarnera To eq 14).
 FitResult fit_matrix_3x4(const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ,
                          const FitOptions& options = {});
+/// Abed, Berns & Masaoka 2013 "corrected 3×3" (eqs 6-13; Appendix C steps 4-7, eqs 26-28) as the
+/// model "corrected-3x3": the least-squares 3×4 of eq (26), its offset column dropped (M'), scaled by
+/// μ = (M'·RGB_w)⁺·XYZ_w (eq 27) so that the white reference maps to its XYZ in the least-squares
+/// sense; XYZ = μ·M'·RGB (eq 28). The white reference is options.white_RGB / white_XYZ (the PTFE of
+/// the paper, or the chart's white patch with its reference XYZ); it sets μ and is not preserved
+/// exactly (preserve_white is not needed and not honoured). Closed form: objective ls only.
+/// Errors: InvalidArgument (another objective, no white reference), the 3×4's (TooFewPatches
+/// below 4 patches, IllConditioned), IllPosed (M'·RGB_w = 0).
+FitResult fit_corrected_3x3(const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ,
+                            const FitOptions& options);
 /// Shen et al. 2008 10-term second-order polynomial, eqs (23)-(25).
 FitResult fit_Shen2008(const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ,
                        const FitOptions& options = {});

@@ -53,6 +53,9 @@ struct ModelFamily {
   std::string about;  ///< one sentence of advice on choosing among them (citations stay on the models)
 };
 
+/// The id of Abed 2013's corrected 3×3 (fit.hpp, fit_corrected_3x3): the span of matrix-3x3, fitted in
+/// closed form from the 3×4 and a white reference, not by an objective.
+constexpr const char* kCorrected3x3 = "corrected-3x3";
 /// Every model, in a stable order.
 const std::vector<ModelInfo>& model_table();
 /// Every family, in the order its first model appears in model_table().
