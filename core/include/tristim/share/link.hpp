@@ -1,0 +1,190 @@
+// Reproducible profile links (format version 1, docs/link-format.md): everything needed to
+// recompute a profile — the recipe, the per-patch camera RGB, the reference (a built-in chart by
+// id, or inline XYZ), the tristim version, the SHA-256 of each source image and the expected
+// results with their digest — as a compact text that fits in a URL fragment:
+//
+//   content = payload JSON (relative: the recipe as an RFC 7386 merge patch against a pinned
+//             default recipe, the patches' ids only) NUL camera RGB [and inline XYZ] as
+//             little-endian doubles — a relative payload; an absolute one is its JSON alone
+//   payload = "1." base64url(deflate-raw(content)) "." base64url(SHA-256(content)[0..11])
+//   link    = <page address> "#tristim=" payload
+//
+// The trailing check catches a changed or truncated payload before anything is read from it;
+// deflate-raw is RFC 1951 (zlib's raw mode natively and in wasm; the page uses the module, never
+// CompressionStream, so both sides run the same code). Reading never inflates more than
+// kMaxLinkInflatedBytes (a decompression bomb is refused while it inflates). The check and the
+// digest identify data, they do not authenticate it: anyone can make a link.
+//
+// Opening a link (reproduce) recomputes the profile from the data in it and compares the
+// expected results — coefficients to 10 significant digits, metrics to 6 — with the new ones:
+// equal digests → "reproduced", else "differs" with both results line by line.
+//
+// A project file (.tristim) holds the same payload with the source images themselves
+// (project_to_bytes / project_from_bytes, below).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tristim/absolute/characterise.hpp"
+#include "tristim/absolute/recipe.hpp"
+#include "tristim/capture/raw.hpp"
+#include "tristim/chart/layout.hpp"
+#include "tristim/io/json.hpp"
+#include "tristim/profile/characterise.hpp"
+#include "tristim/profile/recipe.hpp"
+
+namespace tristim {
+
+constexpr int kLinkVersion = 1;
+/// Refused beyond this many characters of link or payload text (LimitExceeded).
+constexpr std::size_t kMaxLinkChars = 1u << 20;
+/// Inflation stops with LimitExceeded when the payload JSON would exceed this (a bomb).
+constexpr std::size_t kMaxLinkInflatedBytes = 1u << 20;
+/// Links longer than this are not offered: the page offers a project file instead (some mail
+/// and chat programs cut longer URLs; browsers accept far more).
+constexpr std::size_t kLinkLengthLimit = 16000;
+
+/// A source image the profile was sampled from (not in the link: its identity only).
+struct ShareSource {
+  std::string name;    ///< file name as the user gave it
+  std::string sha256;  ///< 64 lower-case hex digits
+};
+
+/// The expected results of a profile as text lines "name value …" (docs/link-format.md).
+struct ShareResults {
+  std::string text;    ///< one line per result, "\n"-terminated
+  std::string digest;  ///< "sha256:" + SHA-256(text), hex
+};
+
+struct SharePayload {
+  int version = kLinkVersion;
+  std::string tristim_version;
+  std::string kind = "relative";          ///< "relative" (Recipe) | "absolute" (AbsoluteRecipe)
+  Recipe recipe;                          ///< kind "relative"
+  AbsoluteRecipe absolute;                ///< kind "absolute": its stimuli rows carry the data
+  std::vector<std::string> labels;        ///< relative: training patches as the user's data spell them
+  PatchMatrix camera_RGB;                 ///< relative: N × 3, as sampled (before linearisation)
+  PatchMatrix reference_XYZ;              ///< relative, reference "file" only: N × 3 (else 0 × 3)
+  std::vector<ShareSource> sources;
+  ShareResults expected;
+};
+
+/// Results of a relative profile: model, objective, status, the coefficients (and a fitted
+/// linearisation stage's parameters) to 10 significant digits, the training and leave-one-out
+/// CIEDE2000 summaries and mean ΔE*ab, ΔE94 to 6 significant digits.
+ShareResults share_results(const Profile& profile);
+/// Results of an absolute profile: transform, the colour matrix and the eq (8) curves to 10
+/// significant digits, the training figures' ΔE94, ΔE00 and relative Y error to 6.
+ShareResults share_results(const AbsoluteProfile& profile);
+
+/// The payload of a relative characterisation and the training set it was fitted on.
+SharePayload share_payload(const Characterisation& characterisation, const TrainingSet& training,
+                           const std::vector<ShareSource>& sources = {});
+/// The payload of an absolute characterisation. Error(InvalidArgument) when its recipe names
+/// frames (bracket, lens cap, flat, region rows): those are not in a link (use a project file).
+SharePayload share_payload(const AbsoluteCharacterisation& characterisation);
+
+/// The payload as one JSON document (the recipe whole, patch values inline): what a project file
+/// holds and what reproduce_share reports; a link carries it in the compact form above.
+json::Value share_payload_json(const SharePayload& payload);
+/// Strict reader (ParseError naming the field; ProfileVersion for another version; the recipe
+/// readers' codes for the recipe).
+SharePayload share_payload_from_json(const json::Value& value);
+
+/// "1.<data>.<check>" (see the header comment).
+std::string encode_share_payload(const SharePayload& payload);
+/// Reads a link (its "#tristim=" fragment), or a bare payload. Errors: LimitExceeded (text
+/// longer than kMaxLinkChars, or inflating beyond kMaxLinkInflatedBytes), ProfileVersion (a
+/// payload of another format version), ParseError (not a payload, bad base64url, a truncated or
+/// corrupt deflate stream, a check that does not match, malformed JSON or fields).
+SharePayload decode_share_payload(std::string_view text);
+/// base + "#tristim=" + payload (base's own fragment, if any, replaced).
+std::string share_link(const std::string& base, const std::string& payload);
+
+/// The training set a relative payload carries (reference XYZ from the built-in chart by id, or
+/// inline). Error(PatchMismatch) when a patch is not in the recipe's chart.
+TrainingSet share_training(const SharePayload& payload);
+
+/// Fits `recipe` on a chart sample paired with `reference` (training_set) and returns the encoded
+/// payload: the page's Share button.
+std::string share_sample_payload(const Recipe& recipe, const ChartSample& sample, const ReferenceChart& reference,
+                                 const std::vector<ShareSource>& sources);
+
+/// The training set of `recipe` sampled from a chart image as `tristim fit --recipe --raw` samples
+/// it: the recipe's layout, corners and area, its light trap measured again; a stored (TIFF/PNG/
+/// JPEG) image sets capture.saturation when the recipe has none. `reference`: null for the recipe's
+/// built-in chart. Error(InvalidArgument) when the recipe has no corners.
+TrainingSet sample_training(Recipe& recipe, const RawImage& image, const ReferenceChart* reference = nullptr);
+
+struct ShareDifference {
+  std::string name, expected, actual;  ///< a results line's name and both values ("" absent)
+};
+
+struct Reproduction {
+  std::string verdict;               ///< "reproduced" | "differs"
+  std::string kind;
+  std::string expected_version, actual_version;  ///< tristim versions: the link's, this one
+  ShareResults expected, actual;
+  std::vector<ShareDifference> differences;
+  std::string profile;               ///< the recomputed profile JSON
+  std::string payload;               ///< the payload read, as JSON text (share_payload_json)
+  bool resampled = false;            ///< the patches were sampled again from the source image
+};
+
+/// Recomputes the profile from the payload and compares its results with the expected ones.
+Reproduction reproduce_share(const SharePayload& payload);
+/// reproduce_share(decode_share_payload(text)).
+Reproduction reproduce_link(const std::string& text);
+/// reproduce_share with the source image at hand: its SHA-256 must be one of the payload's sources
+/// (Error(PatchMismatch) otherwise); it is decoded and sampled again (sample_training), so the
+/// sampling is reproduced too. Relative payloads only (InvalidArgument otherwise).
+Reproduction reproduce_share_image(const SharePayload& payload, const std::vector<std::uint8_t>& image_bytes);
+Reproduction reproduce_link_image(const std::string& text, const std::vector<std::uint8_t>& image_bytes);
+json::Value reproduction_json(const Reproduction& reproduction);
+
+// ---- base64url and deflate-raw (RFC 4648 section 5, RFC 1951) ----------------------------------
+
+std::string base64url_encode(std::string_view bytes);
+/// Error(ParseError) naming the offset of a character outside the alphabet (padding '=' accepted
+/// at the end only) or an impossible length.
+std::string base64url_decode(std::string_view text, const std::string& what);
+/// Raw deflate at level 9.
+std::string deflate_raw(std::string_view bytes);
+/// Error(LimitExceeded) as soon as the output would exceed `max_bytes`; Error(ParseError) for a
+/// corrupt or truncated stream, or bytes after its end.
+std::string inflate_raw(std::string_view bytes, std::size_t max_bytes, const std::string& what);
+
+// ---- project files (.tristim) --------------------------------------------------------------------
+//
+//   "TRISTIM-PROJECT 1\n" <decimal byte length of the header>\n <header JSON> <image bytes…>
+//   header: {"format": "tristim-project", "version": 1, "payload": <share payload JSON>,
+//            "images": [{"name", "sha256", "offset", "size"}], "session": {…}}
+// offsets count from the first byte after the header; every image's SHA-256 is checked on reading.
+
+struct ProjectImage {
+  std::string name;
+  std::string bytes;
+};
+
+struct Project {
+  SharePayload payload;
+  std::vector<ProjectImage> images;  ///< optional: the source images themselves
+  json::Value session = json::Value::object();  ///< the page's own state (opaque here)
+};
+
+constexpr std::size_t kMaxProjectBytes = 1024u << 20;  ///< 1 GiB
+
+std::string project_to_bytes(const Project& project);
+/// Errors: ParseError (not a project file, a malformed header, an image outside the file or whose
+/// SHA-256 differs), ProfileVersion, LimitExceeded (beyond kMaxProjectBytes), the payload's codes.
+Project project_from_bytes(std::string_view bytes);
+/// Whether `bytes` start like a project file.
+bool is_project_file(std::string_view bytes);
+/// A project recomputed: from its source image when it holds one the payload names and the recipe
+/// has chart corners (reproduce_share_image: the sampling too), else from its patch data.
+Reproduction reproduce_project(const Project& project);
+
+}  // namespace tristim

@@ -1,0 +1,832 @@
+// Share links and project files: see tristim/share/link.hpp and docs/link-format.md.
+#include "tristim/share/link.hpp"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+
+#include "tristim/absolute/profile.hpp"
+#include "tristim/capture/image.hpp"
+#include "tristim/chart/light_trap.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/error.hpp"
+#include "tristim/io/patch_files.hpp"
+#include "tristim/profile/profile.hpp"
+#include "tristim/share/sha256.hpp"
+#include "tristim/version.hpp"
+
+namespace tristim {
+namespace {
+
+constexpr const char* kFragmentKey = "tristim=";
+constexpr std::size_t kCheckBytes = 12;  ///< leading bytes of SHA-256(payload JSON) after the last '.'
+constexpr int kCoefficientDigits = 10, kMetricDigits = 6;
+
+/// The recipe a v1 link's "recipe" is an RFC 7386 merge patch against: the default recipe as
+/// tristim 0.1.0 completes it, pinned here (and in docs/link-format.md) so that a later change of
+/// a default never changes what an old link means.
+constexpr const char* kBaseRecipeV1 =
+    R"({"format":"tristim-recipe","version":1,"reference":{"chart":"cc24","data_digest":"","illuminant":"D50",)"
+    R"("observer":"1931"},"capture":{"dark_frames":0,"dark_mode":"per_pixel","flat_field":false,"falloff":false,)"
+    R"("saturation":0,"noise_floor":0},"sampling":{"layout":{"chart":"cc24","rows":0,"columns":0,"margins":[0,0,0,0],)"
+    R"("gap":-1},"corners":[0,0,0,0,0,0,0,0],"area":0.5,"exclude":[],"exclude_flagged":false},"linearisation":)"
+    R"({"method":"identity","parameters":{},"settings":{}},"surface":{"method":"none","parameters":{},"settings":{}},)"
+    R"("characterisation":{"model":"matrix-3x3","objective":{"method":"ls","parameters":{},"settings":{}},)"
+    R"("white_patch":"","lab_white":[96.4212,100,82.5188]},"evaluation":{"leave_one_out":true,"held_out_digest":""}})";
+
+bool same(const json::Value& a, const json::Value& b) { return a.dump() == b.dump(); }
+
+/// The RFC 7386 merge patch that turns `base` into `target`.
+json::Value merge_diff(const json::Value& base, const json::Value& target) {
+  if (!base.is_object() || !target.is_object()) return target;
+  json::Value patch = json::Value::object();
+  for (const auto& [k, v] : target.members()) {
+    const json::Value* b = base.find(k);
+    if (b && same(*b, v)) continue;
+    patch.set(k, b && b->is_object() && v.is_object() ? merge_diff(*b, v) : v);
+  }
+  for (const auto& [k, v] : base.members())
+    if (!target.find(k)) patch.set(k, nullptr);
+  return patch;
+}
+
+/// RFC 7386 MergePatch(target, patch).
+json::Value merge_apply(const json::Value& target, const json::Value& patch) {
+  if (!patch.is_object()) return patch;
+  json::Value out = json::Value::object();
+  if (target.is_object())
+    for (const auto& [k, v] : target.members()) {
+      const json::Value* p = patch.find(k);
+      if (!p) out.set(k, v);
+      else if (!p->is_null()) out.set(k, merge_apply(v, *p));
+    }
+  for (const auto& [k, v] : patch.members())
+    if (!(target.is_object() && target.find(k)) && !v.is_null()) out.set(k, merge_apply(json::Value(), v));
+  return out;
+}
+
+/// Patch values after the JSON: IEEE-754 doubles, little-endian.
+void put_f64(std::string& out, double v) {
+  std::uint64_t u;
+  std::memcpy(&u, &v, 8);
+  for (int i = 0; i < 8; ++i) out += static_cast<char>((u >> (8 * i)) & 0xff);
+}
+double get_f64(std::string_view in, std::size_t at) {
+  std::uint64_t u = 0;
+  for (int i = 0; i < 8; ++i) u |= std::uint64_t(static_cast<std::uint8_t>(in[at + i])) << (8 * i);
+  double v;
+  std::memcpy(&v, &u, 8);
+  return v;
+}
+
+[[noreturn]] void bad(const std::string& message) { throw Error(ErrorCode::ParseError, "share payload: " + message); }
+
+// ---- results as text lines -------------------------------------------------------------------
+
+/// A value's text: numbers to `digits` significant digits (printf %.*g, correctly rounded in both
+/// builds), strings as they are, arrays and objects as their values in order, space-separated.
+void append_values(std::string& out, const json::Value& v, int digits) {
+  switch (v.type()) {
+    case json::Value::Type::Number: {
+      const double d = v.as_number();
+      char buf[40];
+      if (!std::isfinite(d)) std::snprintf(buf, sizeof buf, "null");
+      else std::snprintf(buf, sizeof buf, "%.*g", digits, d);
+      out += (out.empty() || out.back() == ' ') ? "" : " ";
+      out += buf;
+      break;
+    }
+    case json::Value::Type::String: out += (out.empty() ? "" : " ") + v.as_string(); break;
+    case json::Value::Type::Bool: out += std::string(out.empty() ? "" : " ") + (v.as_bool() ? "true" : "false"); break;
+    case json::Value::Type::Null: out += std::string(out.empty() ? "" : " ") + "null"; break;
+    case json::Value::Type::Array:
+      for (const auto& e : v.as_array()) append_values(out, e, digits);
+      break;
+    case json::Value::Type::Object:
+      for (const auto& [k, e] : v.members()) append_values(out, e, digits);
+      break;
+  }
+}
+
+const json::Value* at_path(const json::Value& root, const std::string& path) {
+  const json::Value* v = &root;
+  std::size_t start = 0;
+  while (v && start <= path.size()) {
+    const std::size_t dot = path.find('.', start);
+    const std::string key = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    v = v->is_object() ? v->find(key) : nullptr;
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return v;
+}
+
+struct ResultsWriter {
+  const json::Value& root;
+  std::string text;
+  /// One line "name values" for the value at `path` (skipped when absent or null).
+  /// keys: only these members of an object, in this order.
+  void line(const std::string& name, const std::string& path, int digits, std::initializer_list<const char*> keys = {}) {
+    const json::Value* v = at_path(root, path);
+    if (!v || v->is_null()) return;
+    std::string values;
+    if (keys.size() == 0) append_values(values, *v, digits);
+    for (const char* k : keys)
+      if (const json::Value* e = v->is_object() ? v->find(k) : nullptr) append_values(values, *e, digits);
+    text += name + " " + values + "\n";
+  }
+  ShareResults done() const { return {text, "sha256:" + sha256_hex(text)}; }
+};
+
+std::vector<std::pair<std::string, std::string>> result_lines(const std::string& text) {
+  std::vector<std::pair<std::string, std::string>> out;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string line = text.substr(start, end - start);
+    const std::size_t sp = line.find(' ');
+    out.emplace_back(line.substr(0, sp), sp == std::string::npos ? "" : line.substr(sp + 1));
+    start = end + 1;
+  }
+  return out;
+}
+
+// ---- JSON fields -------------------------------------------------------------------------------
+
+const json::Value& field(const json::Value& o, const char* key, const std::string& where) {
+  const json::Value* v = o.find(key);
+  if (!v) bad(where + ": missing field '" + key + "'");
+  return *v;
+}
+
+const std::string& text_field(const json::Value& o, const char* key, const std::string& where) {
+  const json::Value& v = field(o, key, where);
+  if (!v.is_string()) bad(where + "." + key + " must be a string");
+  return v.as_string();
+}
+
+PatchMatrix rows_of(const json::Value& v, const std::string& where, std::size_t n) {
+  if (!v.is_array()) bad(where + " must be an array of numbers");
+  std::vector<double> d;
+  for (std::size_t i = 0; i < v.as_array().size(); ++i) {
+    const json::Value& e = v.as_array()[i];
+    if (!e.is_number() || !std::isfinite(e.as_number())) bad(where + "[" + std::to_string(i) + "] must be a finite number");
+    d.push_back(e.as_number());
+  }
+  if (d.size() != 3 * n) bad(where + " must hold 3 numbers per patch (" + std::to_string(3 * n) + "), got " + std::to_string(d.size()));
+  PatchMatrix m(static_cast<Eigen::Index>(n), 3);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) m(static_cast<Eigen::Index>(i), c) = d[3 * i + c];
+  return m;
+}
+
+std::vector<double> flat(const PatchMatrix& m) {
+  std::vector<double> d;
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (int c = 0; c < 3; ++c) d.push_back(m(i, c));
+  return d;
+}
+
+std::string version_error(const std::string& got) {
+  return "link format version " + got + "; this tristim (" + std::string(kVersion) + ") reads version " +
+         std::to_string(kLinkVersion);
+}
+
+struct ZStream {
+  z_stream s{};
+  bool inflating;
+  explicit ZStream(bool inflate_mode) : inflating(inflate_mode) {
+    const int rc = inflating ? inflateInit2(&s, -15) : deflateInit2(&s, 9, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY);
+    if (rc != Z_OK) throw Error(ErrorCode::Internal, "zlib could not start");
+  }
+  ~ZStream() { inflating ? inflateEnd(&s) : deflateEnd(&s); }
+};
+
+}  // namespace
+
+// ---- results -------------------------------------------------------------------------------------
+
+ShareResults share_results(const Profile& profile) {
+  const json::Value p = json::parse(profile_to_json(profile));
+  ResultsWriter w{p, {}};
+  w.line("model", "model.id", kCoefficientDigits);
+  w.line("objective", "objective", kCoefficientDigits);
+  w.line("status", "fit.status", kCoefficientDigits);
+  w.line("coefficients", "model.coefficients", kCoefficientDigits);
+  w.line("linearisation", "linearisation", kCoefficientDigits);
+  for (const char* set : {"training", "loo"}) {
+    const std::string s = set;
+    w.line(s + ".dE00", "metrics." + s + ".dE00", kMetricDigits, {"mean", "median", "p95", "max"});
+    w.line(s + ".dE76.mean", "metrics." + s + ".dE76.mean", kMetricDigits);
+    w.line(s + ".dE94.mean", "metrics." + s + ".dE94.mean", kMetricDigits);
+  }
+  return w.done();
+}
+
+ShareResults share_results(const AbsoluteProfile& profile) {
+  const json::Value p = absolute_profile_json(profile);
+  ResultsWriter w{p, {}};
+  w.line("transform", "colour.transform", kCoefficientDigits);
+  w.line("status", "colour.status", kCoefficientDigits);
+  w.line("coefficients", "colour.coefficients", kCoefficientDigits);
+  w.line("k", "linearisation.k", kCoefficientDigits);
+  w.line("noise_floor", "normalisation.noise_floor", kCoefficientDigits);
+  w.line("saturation", "normalisation.saturation", kCoefficientDigits);
+  w.line("areas", "normalisation.areas", kCoefficientDigits);
+  w.line("training.dE94", "training.figures.metrics.dE94", kMetricDigits, {"mean", "median", "p95", "max"});
+  w.line("training.dE00", "training.figures.metrics.dE00", kMetricDigits, {"mean", "median", "p95", "max"});
+  w.line("training.relative_Y_error", "training.figures.relative_Y_error", kMetricDigits);
+  return w.done();
+}
+
+// ---- payloads ------------------------------------------------------------------------------------
+
+SharePayload share_payload(const Characterisation& c, const TrainingSet& training, const std::vector<ShareSource>& sources) {
+  SharePayload p;
+  p.tristim_version = kVersion;
+  p.kind = "relative";
+  p.recipe = c.recipe;
+  p.labels = training.labels;
+  p.camera_RGB = training.camera_RGB;
+  if (c.recipe.reference.chart == "file") p.reference_XYZ = training.reference_XYZ;
+  p.sources = sources;
+  p.expected = share_results(c.profile);
+  return p;
+}
+
+SharePayload share_payload(const AbsoluteCharacterisation& c) {
+  const AbsoluteInputs& in = c.recipe.inputs;
+  if (!in.bracket.empty() || !in.lens_cap.empty() || !in.flat.empty())
+    throw Error(ErrorCode::InvalidArgument,
+                "the absolute recipe names RAW frames (bracket, lens cap or flat), which a link does not carry: "
+                "share a project file");
+  for (const auto& row : in.stimuli)
+    if (row.region())
+      throw Error(ErrorCode::InvalidArgument, stimulus_where(row) + " is a region of '" + row.file +
+                                                  "', which a link does not carry: share a project file");
+  SharePayload p;
+  p.tristim_version = kVersion;
+  p.kind = "absolute";
+  p.absolute = c.recipe;
+  p.expected = share_results(c.profile);
+  return p;
+}
+
+json::Value share_payload_json(const SharePayload& p) {
+  json::Value o = json::Value::object();
+  o.set("format", "tristim-link");
+  o.set("version", p.version);
+  o.set("tristim_version", p.tristim_version);
+  o.set("kind", p.kind);
+  if (p.kind == "absolute") {
+    o.set("recipe", absolute_recipe_json(p.absolute));
+  } else {
+    o.set("recipe", recipe_json(p.recipe));
+    json::Value patches = json::Value::object();
+    json::Value ids = json::Value::array();
+    for (const auto& id : p.labels) ids.push(id);
+    patches.set("ids", ids);
+    patches.set("RGB", json::Value(flat(p.camera_RGB)));
+    if (p.reference_XYZ.rows() > 0) patches.set("XYZ", json::Value(flat(p.reference_XYZ)));
+    o.set("patches", patches);
+  }
+  json::Value sources = json::Value::array();
+  for (const auto& s : p.sources) {
+    json::Value e = json::Value::object();
+    e.set("name", s.name);
+    e.set("sha256", s.sha256);
+    sources.push(e);
+  }
+  o.set("sources", sources);
+  json::Value expected = json::Value::object();
+  expected.set("digest", p.expected.digest);
+  expected.set("results", p.expected.text);
+  o.set("expected", expected);
+  return o;
+}
+
+SharePayload share_payload_from_json(const json::Value& o) {
+  if (!o.is_object()) bad("must be a JSON object");
+  json::reject_unknown(o, {"format", "version", "tristim_version", "kind", "recipe", "patches", "sources", "expected"},
+                       "share payload", ErrorCode::ParseError);
+  if (text_field(o, "format", "payload") != "tristim-link") bad("\"format\" must be \"tristim-link\"");
+  const json::Value& ver = field(o, "version", "payload");
+  if (!ver.is_number()) bad("\"version\" must be a number");
+  if (ver.as_number() != kLinkVersion) throw Error(ErrorCode::ProfileVersion, version_error(json::number_text(ver.as_number())));
+  SharePayload p;
+  p.tristim_version = text_field(o, "tristim_version", "payload");
+  p.kind = text_field(o, "kind", "payload");
+  if (p.kind == "relative") {
+    p.recipe = recipe_from_json(field(o, "recipe", "payload"));
+    const json::Value& patches = field(o, "patches", "payload");
+    if (!patches.is_object()) bad("patches must be an object");
+    json::reject_unknown(patches, {"ids", "RGB", "XYZ"}, "share payload patches", ErrorCode::ParseError);
+    const json::Value& ids = field(patches, "ids", "patches");
+    if (!ids.is_array() || ids.as_array().empty()) bad("patches.ids must be a non-empty array of strings");
+    for (const auto& id : ids.as_array()) {
+      if (!id.is_string()) bad("patches.ids must be strings");
+      p.labels.push_back(id.as_string());
+    }
+    p.camera_RGB = rows_of(field(patches, "RGB", "patches"), "patches.RGB", p.labels.size());
+    const bool builtin = p.recipe.reference.chart != "file";
+    if (const json::Value* xyz = patches.find("XYZ")) {
+      if (builtin) bad("patches.XYZ is only for a recipe whose reference is a file (this one names chart '" +
+                       p.recipe.reference.chart + "')");
+      p.reference_XYZ = rows_of(*xyz, "patches.XYZ", p.labels.size());
+    } else if (!builtin) {
+      bad("patches.XYZ missing: the recipe's reference is a file, so the link must carry it");
+    }
+  } else if (p.kind == "absolute") {
+    if (o.find("patches")) bad("an absolute payload has no \"patches\" (its recipe's stimuli carry the data)");
+    p.absolute = absolute_recipe_from_json(field(o, "recipe", "payload"));
+  } else {
+    bad("\"kind\" must be \"relative\" or \"absolute\", got '" + p.kind + "'");
+  }
+  const json::Value& sources = field(o, "sources", "payload");
+  if (!sources.is_array()) bad("sources must be an array");
+  for (const auto& s : sources.as_array()) {
+    if (!s.is_object()) bad("sources must hold objects");
+    json::reject_unknown(s, {"name", "sha256"}, "share payload source", ErrorCode::ParseError);
+    ShareSource src{text_field(s, "name", "source"), text_field(s, "sha256", "source")};
+    if (src.sha256.size() != 64 || src.sha256.find_first_not_of("0123456789abcdef") != std::string::npos)
+      bad("source '" + src.name + "': sha256 must be 64 lower-case hex digits");
+    p.sources.push_back(src);
+  }
+  const json::Value& expected = field(o, "expected", "payload");
+  if (!expected.is_object()) bad("expected must be an object");
+  json::reject_unknown(expected, {"digest", "results"}, "share payload expected", ErrorCode::ParseError);
+  p.expected.digest = text_field(expected, "digest", "expected");
+  p.expected.text = text_field(expected, "results", "expected");
+  if (p.expected.digest != "sha256:" + sha256_hex(p.expected.text))
+    bad("expected.digest is not the SHA-256 of expected.results");
+  return p;
+}
+
+namespace {
+
+/// A link's content: the payload JSON with a relative recipe as a merge patch against
+/// kBaseRecipeV1 and the patches' numbers moved out of it, then (relative payloads) a NUL byte and
+/// the camera RGB (and an inline reference's XYZ) as little-endian doubles, patch by patch.
+std::string link_content(const SharePayload& p) {
+  const json::Value full = share_payload_json(p);
+  if (p.kind != "relative") return full.dump();
+  json::Value o = json::Value::object();
+  std::string values;
+  for (const auto& [k, v] : full.members()) {
+    if (k == "recipe") {
+      o.set(k, merge_diff(json::parse(kBaseRecipeV1), v));
+    } else if (k == "patches") {
+      json::Value ids = json::Value::object();
+      ids.set("ids", v.at("ids"));
+      o.set(k, ids);
+      for (const char* m : {"RGB", "XYZ"})
+        if (const json::Value* a = v.find(m))
+          for (const auto& e : a->as_array()) put_f64(values, e.as_number());
+    } else {
+      o.set(k, v);
+    }
+  }
+  std::string text = o.dump();
+  text += '\0';
+  return text + values;
+}
+
+/// The payload JSON (share_payload_from_json's form) of a link's content.
+json::Value link_json(const std::string& content) {
+  const std::size_t nul = content.find('\0');
+  json::Value o;
+  try {
+    o = json::parse(content.substr(0, nul));
+  } catch (const Error& e) {
+    if (e.code() == ErrorCode::LimitExceeded) throw;
+    bad(std::string("not JSON: ") + e.what());
+  }
+  const std::string_view values = nul == std::string::npos ? std::string_view() : std::string_view(content).substr(nul + 1);
+  const json::Value* kind = o.is_object() ? o.find("kind") : nullptr;
+  if (!kind || !kind->is_string() || kind->as_string() != "relative") {
+    if (nul != std::string::npos) bad("only a relative payload has patch values after its JSON");
+    return o;
+  }
+  json::Value out = json::Value::object();
+  for (const auto& [k, v] : o.members()) {
+    if (k == "recipe") {
+      if (!v.is_object()) bad("recipe must be an object (a merge patch)");
+      out.set(k, merge_apply(json::parse(kBaseRecipeV1), v));
+    } else if (k != "patches") {
+      out.set(k, v);
+    }
+  }
+  const json::Value* patches = o.find("patches");
+  if (!patches || !patches->is_object()) bad("missing field 'patches'");
+  json::reject_unknown(*patches, {"ids"}, "share payload patches", ErrorCode::ParseError);
+  const json::Value& ids = field(*patches, "ids", "patches");
+  if (!ids.is_array()) bad("patches.ids must be an array");
+  const std::size_t n = ids.as_array().size();
+  const json::Value* recipe = out.find("recipe");
+  const json::Value* chart = recipe ? at_path(*recipe, "reference.chart") : nullptr;
+  const bool inline_XYZ = chart && chart->is_string() && chart->as_string() == "file";
+  const std::size_t count = 3 * n * (inline_XYZ ? 2 : 1);
+  if (nul == std::string::npos || values.size() != 8 * count)
+    bad("the patch values hold " + std::to_string(values.size()) + " bytes, not " + std::to_string(8 * count) +
+        " (3 doubles per patch" + (inline_XYZ ? " for RGB and for XYZ)" : ")"));
+  json::Value p = json::Value::object();
+  p.set("ids", ids);
+  for (int part = 0; part < (inline_XYZ ? 2 : 1); ++part) {
+    json::Value a = json::Value::array();
+    for (std::size_t i = 0; i < 3 * n; ++i) a.push(get_f64(values, 8 * (part * 3 * n + i)));
+    p.set(part == 0 ? "RGB" : "XYZ", a);
+  }
+  out.set("patches", p);
+  return out;
+}
+
+}  // namespace
+
+std::string encode_share_payload(const SharePayload& payload) {
+  const std::string text = link_content(payload);
+  Sha256 h;
+  h.update(text);
+  const auto check = h.digest();
+  return std::to_string(kLinkVersion) + "." + base64url_encode(deflate_raw(text)) + "." +
+         base64url_encode(std::string_view(reinterpret_cast<const char*>(check.data()), kCheckBytes));
+}
+
+SharePayload decode_share_payload(std::string_view text) {
+  if (text.size() > kMaxLinkChars)
+    throw Error(ErrorCode::LimitExceeded, "share link of " + std::to_string(text.size()) + " characters (limit " +
+                                              std::to_string(kMaxLinkChars) + ")");
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  const std::size_t hash = text.find('#');
+  if (hash != std::string_view::npos) {  // a link: its fragment's tristim= parameter
+    std::string_view fragment = text.substr(hash + 1);
+    std::size_t at = 0;
+    for (;;) {
+      if (fragment.substr(at, std::char_traits<char>::length(kFragmentKey)) == kFragmentKey) break;
+      at = fragment.find('&', at);
+      if (at == std::string_view::npos) bad("the link has no '#tristim=' fragment");
+      ++at;
+    }
+    fragment = fragment.substr(at + std::char_traits<char>::length(kFragmentKey));
+    text = fragment.substr(0, fragment.find('&'));
+  }
+  if (text.empty()) bad("empty");
+  const std::size_t dot1 = text.find('.');
+  const std::string_view version = text.substr(0, dot1);
+  if (version.empty() || version.size() > 9 || version.find_first_not_of("0123456789") != std::string_view::npos)
+    bad("does not start with a format version (\"1.\"): not a tristim link");
+  if (version != std::to_string(kLinkVersion)) throw Error(ErrorCode::ProfileVersion, version_error(std::string(version)));
+  if (dot1 == std::string_view::npos) bad("truncated after its version");
+  const std::size_t dot2 = text.find('.', dot1 + 1);
+  if (dot2 == std::string_view::npos) bad("truncated: no check after the data");
+  const std::string data = base64url_decode(text.substr(dot1 + 1, dot2 - dot1 - 1), "share payload data");
+  const std::string check = base64url_decode(text.substr(dot2 + 1), "share payload check");
+  if (check.size() != kCheckBytes) bad("the check has " + std::to_string(check.size()) + " bytes, not " + std::to_string(kCheckBytes) + " (truncated?)");
+  const std::string json_text = inflate_raw(data, kMaxLinkInflatedBytes, "share payload");
+  Sha256 h;
+  h.update(json_text);
+  const auto sum = h.digest();
+  if (!std::equal(check.begin(), check.end(), sum.begin(), [](char a, std::uint8_t b) { return static_cast<std::uint8_t>(a) == b; }))
+    bad("the check does not match the content: the link was changed or cut");
+  return share_payload_from_json(link_json(json_text));
+}
+
+std::string share_link(const std::string& base, const std::string& payload) {
+  return base.substr(0, base.find('#')) + "#" + kFragmentKey + payload;
+}
+
+TrainingSet share_training(const SharePayload& p) {
+  if (p.kind != "relative") throw Error(ErrorCode::InvalidArgument, "an absolute payload has no relative training set");
+  if (p.recipe.reference.chart == "file") return training_set(p.recipe, p.labels, p.camera_RGB, p.reference_XYZ);
+  const ReferenceChart ref = recipe_reference(p.recipe);
+  std::map<std::string, std::size_t> row;
+  for (std::size_t i = 0; i < ref.ids.size(); ++i) row[ref.ids[i]] = i;
+  PatchMatrix XYZ(static_cast<Eigen::Index>(p.labels.size()), 3);
+  for (std::size_t i = 0; i < p.labels.size(); ++i) {
+    const auto it = row.find(normalise_patch_id(p.labels[i]));
+    if (it == row.end())
+      throw Error(ErrorCode::PatchMismatch, "share payload: patch '" + p.labels[i] + "' is not in the recipe's chart '" +
+                                                p.recipe.reference.chart + "'");
+    XYZ.row(static_cast<Eigen::Index>(i)) = ref.XYZ[it->second].transpose();
+  }
+  return training_set(p.recipe, p.labels, p.camera_RGB, XYZ);
+}
+
+std::string share_sample_payload(const Recipe& recipe, const ChartSample& sample, const ReferenceChart& reference,
+                                 const std::vector<ShareSource>& sources) {
+  const TrainingSet training = training_set(recipe, sample, reference);
+  return encode_share_payload(share_payload(characterise(recipe, training), training, sources));
+}
+
+TrainingSet sample_training(Recipe& recipe, const RawImage& image, const ReferenceChart* reference) {
+  const std::array<double, 8>& corners = recipe.sampling.corners;
+  if (std::all_of(corners.begin(), corners.end(), [](double v) { return v == 0; }))
+    throw Error(ErrorCode::InvalidArgument, "the recipe has no chart corners to sample the image with");
+  if (image.meta.encoding == "stored" && recipe.capture.saturation == 0) recipe.capture.saturation = image.meta.white_level;
+  SampleOptions so;
+  so.area = recipe.sampling.area;
+  FrameCalibration cal;
+  if (recipe.capture.has_light_trap())  // Abed 2013 App. C step 1: measured again on this image
+    cal = with_light_trap(cal, measure_light_trap(image, recipe.capture.light_trap, so));
+  const ChartSample sample = sample_chart(image, recipe.sampling.layout, corners, so, &cal);
+  return training_set(recipe, sample, reference ? *reference : recipe_reference(recipe));
+}
+
+Reproduction reproduce_link(const std::string& text) { return reproduce_share(decode_share_payload(text)); }
+
+Reproduction reproduce_share_image(const SharePayload& p, const std::vector<std::uint8_t>& bytes) {
+  if (p.kind != "relative") throw Error(ErrorCode::InvalidArgument, "an absolute link is reproduced from its stimuli rows, not an image");
+  const std::string sum = sha256_hex(bytes.data(), bytes.size());
+  const auto src = std::find_if(p.sources.begin(), p.sources.end(), [&](const ShareSource& s) { return s.sha256 == sum; });
+  if (src == p.sources.end())
+    throw Error(ErrorCode::PatchMismatch, "this image (SHA-256 " + sum.substr(0, 16) + "…) is not the link's source" +
+                                              (p.sources.empty() ? std::string(" (the link names none)")
+                                                                 : " ('" + p.sources.front().name + "', " + p.sources.front().sha256.substr(0, 16) + "…)"));
+  const RawImage image = decode_any(bytes.data(), bytes.size());
+  Recipe recipe = p.recipe;
+  TrainingSet training;
+  if (recipe.reference.chart == "file") {  // the inline reference, as a chart to pair the sample with
+    ReferenceChart ref;
+    ref.chart_id = "file";
+    for (std::size_t i = 0; i < p.labels.size(); ++i) {
+      ref.ids.push_back(normalise_patch_id(p.labels[i]));
+      ref.labels.push_back(p.labels[i]);
+      ref.XYZ.push_back(p.reference_XYZ.row(static_cast<Eigen::Index>(i)).transpose());
+    }
+    training = sample_training(recipe, image, &ref);
+  } else {
+    training = sample_training(recipe, image);
+  }
+  SharePayload resampled = p;
+  resampled.labels = training.labels;
+  resampled.camera_RGB = training.camera_RGB;
+  if (recipe.reference.chart == "file") resampled.reference_XYZ = training.reference_XYZ;
+  Reproduction r = reproduce_share(resampled);
+  r.payload = share_payload_json(p).dump();
+  r.resampled = true;
+  return r;
+}
+
+Reproduction reproduce_link_image(const std::string& text, const std::vector<std::uint8_t>& image_bytes) {
+  return reproduce_share_image(decode_share_payload(text), image_bytes);
+}
+
+Reproduction reproduce_share(const SharePayload& p) {
+  Reproduction r;
+  r.payload = share_payload_json(p).dump();
+  r.kind = p.kind;
+  r.expected_version = p.tristim_version;
+  r.actual_version = kVersion;
+  r.expected = p.expected;
+  if (p.kind == "absolute") {
+    const AbsoluteCharacterisation c = characterise_absolute(p.absolute, AbsoluteFrames{});
+    r.actual = share_results(c.profile);
+    r.profile = absolute_profile_to_json(c.profile);
+  } else {
+    const Characterisation c = characterise(p.recipe, share_training(p));
+    r.actual = share_results(c.profile);
+    r.profile = profile_to_json(c.profile);
+  }
+  r.verdict = r.actual.digest == r.expected.digest ? "reproduced" : "differs";
+  const auto e = result_lines(r.expected.text), a = result_lines(r.actual.text);
+  std::map<std::string, std::string> am(a.begin(), a.end()), em(e.begin(), e.end());
+  for (const auto& [name, value] : e) {
+    const auto it = am.find(name);
+    const std::string actual = it == am.end() ? "" : it->second;
+    if (actual != value) r.differences.push_back({name, value, actual});
+  }
+  for (const auto& [name, value] : a)
+    if (!em.count(name)) r.differences.push_back({name, "", value});
+  return r;
+}
+
+json::Value reproduction_json(const Reproduction& r) {
+  auto results = [](const ShareResults& s) {
+    json::Value o = json::Value::object(), values = json::Value::object();
+    o.set("digest", s.digest);
+    for (const auto& [name, value] : result_lines(s.text)) values.set(name, value);
+    o.set("results", values);
+    return o;
+  };
+  json::Value o = json::Value::object();
+  o.set("verdict", r.verdict);
+  o.set("kind", r.kind);
+  json::Value versions = json::Value::object();
+  versions.set("link", r.expected_version);
+  versions.set("this", r.actual_version);
+  o.set("tristim_version", versions);
+  o.set("expected", results(r.expected));
+  o.set("actual", results(r.actual));
+  json::Value diffs = json::Value::array();
+  for (const auto& d : r.differences) {
+    json::Value e = json::Value::object();
+    e.set("name", d.name);
+    e.set("expected", d.expected);
+    e.set("actual", d.actual);
+    diffs.push(e);
+  }
+  o.set("differences", diffs);
+  o.set("resampled", r.resampled);
+  return o;
+}
+
+// ---- base64url and deflate-raw -------------------------------------------------------------------
+
+std::string base64url_encode(std::string_view bytes) {
+  static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 3 <= bytes.size(); i += 3) {
+    const std::uint32_t v = std::uint32_t(std::uint8_t(bytes[i])) << 16 | std::uint32_t(std::uint8_t(bytes[i + 1])) << 8 |
+                            std::uint8_t(bytes[i + 2]);
+    out += abc[v >> 18]; out += abc[(v >> 12) & 63]; out += abc[(v >> 6) & 63]; out += abc[v & 63];
+  }
+  if (i + 1 == bytes.size()) {
+    const std::uint32_t v = std::uint32_t(std::uint8_t(bytes[i])) << 16;
+    out += abc[v >> 18]; out += abc[(v >> 12) & 63];
+  } else if (i + 2 == bytes.size()) {
+    const std::uint32_t v = std::uint32_t(std::uint8_t(bytes[i])) << 16 | std::uint32_t(std::uint8_t(bytes[i + 1])) << 8;
+    out += abc[v >> 18]; out += abc[(v >> 12) & 63]; out += abc[(v >> 6) & 63];
+  }
+  return out;
+}
+
+std::string base64url_decode(std::string_view text, const std::string& what) {
+  while (!text.empty() && text.back() == '=') text.remove_suffix(1);
+  if (text.size() % 4 == 1) throw Error(ErrorCode::ParseError, what + ": base64url of impossible length " + std::to_string(text.size()));
+  std::string out;
+  out.reserve(text.size() * 3 / 4);
+  std::uint32_t acc = 0;
+  int bits = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    int v;
+    if (c >= 'A' && c <= 'Z') v = c - 'A';
+    else if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
+    else if (c >= '0' && c <= '9') v = c - '0' + 52;
+    else if (c == '-') v = 62;
+    else if (c == '_') v = 63;
+    else throw Error(ErrorCode::ParseError, what + ": character " + std::to_string(i) + " is not base64url");
+    acc = (acc << 6) | std::uint32_t(v);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out += static_cast<char>((acc >> bits) & 0xff);
+    }
+  }
+  return out;
+}
+
+std::string deflate_raw(std::string_view bytes) {
+  if (bytes.size() > (1u << 30)) throw Error(ErrorCode::LimitExceeded, "deflate input beyond 1 GiB");
+  ZStream z(false);
+  std::string out(deflateBound(&z.s, static_cast<uLong>(bytes.size())), '\0');
+  z.s.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+  z.s.avail_in = static_cast<uInt>(bytes.size());
+  z.s.next_out = reinterpret_cast<Bytef*>(&out[0]);
+  z.s.avail_out = static_cast<uInt>(out.size());
+  if (deflate(&z.s, Z_FINISH) != Z_STREAM_END) throw Error(ErrorCode::Internal, "deflate did not finish");
+  out.resize(z.s.total_out);
+  return out;
+}
+
+std::string inflate_raw(std::string_view bytes, std::size_t max_bytes, const std::string& what) {
+  if (bytes.size() > (1u << 30)) throw Error(ErrorCode::LimitExceeded, what + ": compressed data beyond 1 GiB");
+  ZStream z(true);
+  z.s.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+  z.s.avail_in = static_cast<uInt>(bytes.size());
+  std::string out;
+  char buf[16384];
+  for (;;) {
+    z.s.next_out = reinterpret_cast<Bytef*>(buf);
+    z.s.avail_out = sizeof buf;
+    const int rc = inflate(&z.s, Z_NO_FLUSH);
+    const std::size_t got = sizeof buf - z.s.avail_out;
+    if (out.size() + got > max_bytes)  // checked per 16 KiB while inflating: a bomb stops here
+      throw Error(ErrorCode::LimitExceeded, what + ": inflates beyond " + std::to_string(max_bytes) + " bytes");
+    out.append(buf, got);
+    if (rc == Z_STREAM_END) break;
+    if (rc == Z_OK) continue;
+    if (rc == Z_BUF_ERROR && z.s.avail_in == 0) throw Error(ErrorCode::ParseError, what + ": the compressed data is truncated");
+    if (rc == Z_BUF_ERROR) continue;
+    throw Error(ErrorCode::ParseError, what + ": corrupt compressed data at byte " + std::to_string(z.s.total_in) +
+                                           (z.s.msg ? std::string(" (") + z.s.msg + ")" : std::string()));
+  }
+  if (z.s.avail_in != 0) throw Error(ErrorCode::ParseError, what + ": " + std::to_string(z.s.avail_in) + " bytes after the compressed data");
+  return out;
+}
+
+// ---- project files ---------------------------------------------------------------------------------
+
+namespace {
+constexpr std::string_view kProjectMagic = "TRISTIM-PROJECT 1\n";
+constexpr std::string_view kProjectPrefix = "TRISTIM-PROJECT ";
+[[noreturn]] void bad_project(const std::string& message) { throw Error(ErrorCode::ParseError, "project file: " + message); }
+}  // namespace
+
+bool is_project_file(std::string_view bytes) { return bytes.substr(0, kProjectPrefix.size()) == kProjectPrefix; }
+
+std::string project_to_bytes(const Project& project) {
+  json::Value header = json::Value::object();
+  header.set("format", "tristim-project");
+  header.set("version", kLinkVersion);
+  header.set("payload", share_payload_json(project.payload));
+  json::Value images = json::Value::array();
+  std::size_t offset = 0;
+  for (const auto& im : project.images) {
+    json::Value e = json::Value::object();
+    e.set("name", im.name);
+    e.set("sha256", sha256_hex(im.bytes));
+    e.set("offset", static_cast<double>(offset));
+    e.set("size", static_cast<double>(im.bytes.size()));
+    offset += im.bytes.size();
+    images.push(e);
+  }
+  header.set("images", images);
+  header.set("session", project.session.is_object() ? project.session : json::Value::object());
+  const std::string text = header.dump();
+  std::string out(kProjectMagic);
+  out += std::to_string(text.size()) + "\n" + text;
+  if (out.size() + offset > kMaxProjectBytes) throw Error(ErrorCode::LimitExceeded, "project file beyond 1 GiB");
+  for (const auto& im : project.images) out += im.bytes;
+  return out;
+}
+
+Project project_from_bytes(std::string_view bytes) {
+  if (bytes.size() > kMaxProjectBytes)
+    throw Error(ErrorCode::LimitExceeded, "project file of " + std::to_string(bytes.size()) + " bytes (limit 1 GiB)");
+  if (!is_project_file(bytes)) bad_project("does not start with \"TRISTIM-PROJECT\"");
+  if (bytes.substr(0, kProjectMagic.size()) != kProjectMagic) {
+    const std::string_view v = bytes.substr(kProjectPrefix.size(), bytes.find('\n') - kProjectPrefix.size());
+    throw Error(ErrorCode::ProfileVersion, "project file " + version_error(std::string(v.substr(0, 16))));
+  }
+  std::size_t at = kProjectMagic.size();
+  const std::size_t nl = bytes.find('\n', at);
+  if (nl == std::string_view::npos || nl == at || nl - at > 10) bad_project("no header length");
+  std::size_t length = 0;
+  for (std::size_t i = at; i < nl; ++i) {
+    if (bytes[i] < '0' || bytes[i] > '9') bad_project("header length is not a number");
+    length = length * 10 + std::size_t(bytes[i] - '0');
+  }
+  at = nl + 1;
+  if (length > bytes.size() - at) bad_project("truncated header (" + std::to_string(length) + " bytes announced)");
+  json::Value header;
+  try {
+    header = json::parse(std::string(bytes.substr(at, length)));
+  } catch (const Error& e) {
+    if (e.code() == ErrorCode::LimitExceeded) throw;
+    bad_project(std::string("header is not JSON: ") + e.what());
+  }
+  if (!header.is_object()) bad_project("header must be a JSON object");
+  json::reject_unknown(header, {"format", "version", "payload", "images", "session"}, "project file", ErrorCode::ParseError);
+  if (text_field(header, "format", "project") != "tristim-project") bad_project("\"format\" must be \"tristim-project\"");
+  const json::Value& ver = field(header, "version", "project");
+  if (!ver.is_number() || ver.as_number() != kLinkVersion)
+    throw Error(ErrorCode::ProfileVersion, "project file " + version_error(ver.is_number() ? json::number_text(ver.as_number()) : "?"));
+  Project p;
+  p.payload = share_payload_from_json(field(header, "payload", "project"));
+  const std::string_view blob = bytes.substr(at + length);
+  const json::Value& images = field(header, "images", "project");
+  if (!images.is_array()) bad_project("images must be an array");
+  for (const auto& e : images.as_array()) {
+    if (!e.is_object()) bad_project("images must hold objects");
+    json::reject_unknown(e, {"name", "sha256", "offset", "size"}, "project image", ErrorCode::ParseError);
+    ProjectImage im;
+    im.name = text_field(e, "name", "image");
+    const double off = field(e, "offset", "image").is_number() ? field(e, "offset", "image").as_number() : -1;
+    const double size = field(e, "size", "image").is_number() ? field(e, "size", "image").as_number() : -1;
+    if (!(off >= 0) || !(size >= 0) || off != std::floor(off) || size != std::floor(size) || off > double(blob.size()) ||
+        size > double(blob.size()) - off)
+      bad_project("image '" + im.name + "' lies outside the file (truncated?)");
+    im.bytes = std::string(blob.substr(static_cast<std::size_t>(off), static_cast<std::size_t>(size)));
+    if (sha256_hex(im.bytes) != text_field(e, "sha256", "image"))
+      bad_project("image '" + im.name + "': SHA-256 differs from the header's (damaged file)");
+    p.images.push_back(std::move(im));
+  }
+  const json::Value& session = field(header, "session", "project");
+  if (!session.is_object()) bad_project("session must be an object");
+  p.session = session;
+  return p;
+}
+
+Reproduction reproduce_project(const Project& project) {
+  const SharePayload& p = project.payload;
+  const auto& c = p.recipe.sampling.corners;
+  const bool has_corners = std::any_of(c.begin(), c.end(), [](double v) { return v != 0; });
+  if (p.kind == "relative" && has_corners)
+    for (const auto& im : project.images) {
+      const std::string sum = sha256_hex(im.bytes);
+      for (const auto& s : p.sources)
+        if (s.sha256 == sum)
+          return reproduce_share_image(p, std::vector<std::uint8_t>(im.bytes.begin(), im.bytes.end()));
+    }
+  return reproduce_share(p);
+}
+
+}  // namespace tristim

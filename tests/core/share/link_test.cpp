@@ -1,0 +1,210 @@
+// Share links and project files (share/link.hpp): SHA-256 against FIPS 180-2's examples, base64url
+// and deflate-raw round trips, a planted fit that reproduces from its link, and every planted
+// damage (a changed byte, a cut, a bomb, a future version) refused with its code.
+#include <Eigen/LU>
+#include <random>
+
+#include "test_support.hpp"
+#include "tristim/profile/characterise.hpp"
+#include "tristim/share/link.hpp"
+#include "tristim/share/sha256.hpp"
+
+using namespace tristim;
+using tristim::test::require_code;
+
+namespace {
+
+/// A cc24 recipe and camera RGB planted from a known 3×3 (XYZ = M·RGB): the fit must recover M.
+struct Planted {
+  Recipe recipe;
+  TrainingSet training;
+  Eigen::Matrix3d M;
+};
+
+Planted planted(const std::string& model = "matrix-3x3", const std::string& objective = "ls") {
+  Planted p;
+  p.recipe.reference.chart = "cc24";
+  p.recipe.sampling.layout.chart = "cc24";
+  p.recipe.characterisation.model = model;
+  p.recipe.characterisation.objective = MethodChoice{objective, {}, {}};
+  p.recipe = complete_recipe(p.recipe);
+  const ReferenceChart ref = recipe_reference(p.recipe);
+  p.M << 0.61, 0.25, 0.09, 0.30, 0.62, 0.08, 0.02, 0.11, 0.83;
+  PatchMatrix XYZ(ref.XYZ.size(), 3), RGB(ref.XYZ.size(), 3);
+  for (size_t i = 0; i < ref.XYZ.size(); ++i) {
+    XYZ.row(i) = ref.XYZ[i].transpose();
+    RGB.row(i) = (p.M.inverse() * ref.XYZ[i]).transpose() * 40.0;  // DN-like scale
+  }
+  p.training = training_set(p.recipe, ref.labels, RGB, XYZ);
+  return p;
+}
+
+std::string payload_of(const Planted& p) {
+  const Characterisation c = characterise(p.recipe, p.training);
+  return encode_share_payload(share_payload(c, p.training, {{"chart.dng", sha256_hex("raw bytes")}}));
+}
+
+}  // namespace
+
+TEST_CASE("SHA-256 gives FIPS 180-2's example digests", "[share]") {
+  CHECK(sha256_hex("abc") == "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  CHECK(sha256_hex("") == "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  CHECK(sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq") ==
+        "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+  Sha256 h;  // one million 'a', fed unevenly: the incremental path
+  const std::string chunk(997, 'a');
+  std::size_t left = 1000000;
+  while (left > 0) {
+    const std::size_t n = std::min(left, chunk.size());
+    h.update(chunk.data(), n);
+    left -= n;
+  }
+  std::string hex;
+  for (auto b : h.digest()) {
+    char buf[3];
+    std::snprintf(buf, sizeof buf, "%02x", b);
+    hex += buf;
+  }
+  CHECK(hex == "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+}
+
+TEST_CASE("base64url and deflate-raw round-trip every length", "[share]") {
+  std::mt19937 rng(7);
+  for (std::size_t n = 0; n < 300; n += 7) {
+    std::string bytes(n, '\0');
+    for (auto& b : bytes) b = static_cast<char>(rng() & 0xff);
+    const std::string b64 = base64url_encode(bytes);
+    CHECK(b64.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_") == std::string::npos);
+    CHECK(base64url_decode(b64, "t") == bytes);
+    CHECK(inflate_raw(deflate_raw(bytes), n, "t") == bytes);
+  }
+  CHECK(base64url_encode("abc") == "YWJj");  // RFC 4648 section 10: BASE64("foob") = "Zm9vYg=="
+  CHECK(base64url_encode("foob") == "Zm9vYg");
+  CHECK(base64url_decode("Zm9vYg==", "t") == "foob");
+  require_code([] { base64url_decode("Zm9v+g", "t"); }, ErrorCode::ParseError);
+  require_code([] { base64url_decode("Zm9vY", "t"); }, ErrorCode::ParseError);
+  const std::string big(100000, ' ');
+  require_code([&] { inflate_raw(deflate_raw(big), 65536, "t"); }, ErrorCode::LimitExceeded);
+  const std::string d = deflate_raw("hello hello hello");
+  require_code([&] { inflate_raw(d.substr(0, d.size() - 2), 1000, "t"); }, ErrorCode::ParseError);
+  require_code([&] { inflate_raw(d + "x", 1000, "t"); }, ErrorCode::ParseError);
+}
+
+TEST_CASE("a planted fit reproduces from its link and recovers the planted matrix", "[share]") {
+  const Planted p = planted();
+  const std::string payload = payload_of(p);
+  const std::string link = share_link("http://127.0.0.1:8080/index.html#old", payload);
+  CHECK(link == "http://127.0.0.1:8080/index.html#tristim=" + payload);
+  for (const std::string& text : {payload, link, "  " + link + "\n", "http://x/#a=1&tristim=" + payload + "&b=2"}) {
+    const SharePayload back = decode_share_payload(text);
+    CHECK(back.kind == "relative");
+    CHECK(back.labels == p.training.labels);
+    CHECK(back.camera_RGB == p.training.camera_RGB);  // bit for bit
+    CHECK(back.reference_XYZ.rows() == 0);            // built-in chart: by id
+    REQUIRE(back.sources.size() == 1);
+    CHECK(back.sources[0].sha256 == sha256_hex("raw bytes"));
+    const Reproduction r = reproduce_share(back);
+    CHECK(r.verdict == "reproduced");
+    CHECK(r.differences.empty());
+    CHECK(r.actual.digest == back.expected.digest);
+  }
+  // The coefficients line holds the planted M (to the 10 digits the results keep).
+  const SharePayload back = decode_share_payload(payload);
+  const auto at = back.expected.text.find("coefficients ");
+  REQUIRE(at != std::string::npos);
+  std::istringstream in(back.expected.text.substr(at + 13));
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      double v = 0;
+      in >> v;
+      CHECK(v == Approx(p.M(r, c) / 40).margin(1e-9));  // RGB was planted × 40
+    }
+  CHECK(payload.size() < 2000);
+}
+
+TEST_CASE("a link whose data give other numbers differs, with both results", "[share]") {
+  const Planted p = planted();
+  const Characterisation c = characterise(p.recipe, p.training);
+  SharePayload s = share_payload(c, p.training);
+  s.camera_RGB(3, 1) *= 1.01;  // as another sampling would
+  const Reproduction r = reproduce_share(decode_share_payload(encode_share_payload(s)));
+  CHECK(r.verdict == "differs");
+  REQUIRE(!r.differences.empty());
+  CHECK(r.differences[0].name == "coefficients");
+  CHECK(r.differences[0].expected != r.differences[0].actual);
+  const json::Value j = reproduction_json(r);
+  CHECK(j.at("verdict").as_string() == "differs");
+  CHECK(j.at("expected").at("digest").as_string() != j.at("actual").at("digest").as_string());
+}
+
+TEST_CASE("an inline reference travels in the link", "[share]") {
+  Planted p = planted("Finlayson2015-2", "psm");
+  p.recipe.reference.chart = "file";
+  p.recipe.reference.data_digest = bytes_digest("user reference");
+  const Characterisation c = characterise(p.recipe, p.training);
+  const SharePayload back = decode_share_payload(encode_share_payload(share_payload(c, p.training)));
+  CHECK(back.reference_XYZ == p.training.reference_XYZ);
+  CHECK(reproduce_share(back).verdict == "reproduced");
+}
+
+TEST_CASE("damaged links are refused with their codes", "[share]") {
+  const std::string payload = payload_of(planted());
+  const std::size_t dot1 = payload.find('.'), dot2 = payload.rfind('.');
+  SECTION("a changed character") {
+    for (std::size_t at : {dot1 + 5, dot1 + (dot2 - dot1) / 2, dot2 - 2, dot2 + 3}) {
+      std::string t = payload;
+      t[at] = t[at] == 'A' ? 'B' : 'A';
+      require_code([&] { decode_share_payload(t); }, ErrorCode::ParseError);
+    }
+  }
+  SECTION("cut anywhere") {
+    for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(2), dot1 + 40, dot2 - 1, dot2 + 1, payload.size() - 1})
+      require_code([&] { decode_share_payload(payload.substr(0, n)); }, ErrorCode::ParseError);
+  }
+  SECTION("a decompression bomb stops at the cap") {
+    const std::string bomb(64u << 20, '[');
+    const std::string t = "1." + base64url_encode(deflate_raw(bomb)) + ".AAAAAAAAAAAAAAAA";
+    require_code([&] { decode_share_payload(t); }, ErrorCode::LimitExceeded);
+  }
+  SECTION("a future version, outside and inside") {
+    require_code([&] { decode_share_payload("2" + payload.substr(1)); }, ErrorCode::ProfileVersion);
+    std::string text = inflate_raw(base64url_decode(payload.substr(dot1 + 1, dot2 - dot1 - 1), "t"), 1u << 20, "t");
+    const auto at = text.find("\"version\":1");
+    REQUIRE(at != std::string::npos);
+    text.replace(at, 11, "\"version\":2");
+    Sha256 h;
+    h.update(text);
+    const auto sum = h.digest();
+    const std::string t = "1." + base64url_encode(deflate_raw(text)) + "." +
+                          base64url_encode(std::string(reinterpret_cast<const char*>(sum.data()), 12));
+    require_code([&] { decode_share_payload(t); }, ErrorCode::ProfileVersion);
+  }
+  SECTION("not a link") {
+    require_code([] { decode_share_payload("http://example.org/#foo=1"); }, ErrorCode::ParseError);
+    require_code([] { decode_share_payload("hello"); }, ErrorCode::ParseError);
+    require_code([] { decode_share_payload(std::string(kMaxLinkChars + 1, 'A')); }, ErrorCode::LimitExceeded);
+  }
+}
+
+TEST_CASE("project files round-trip with their images and refuse damage", "[share]") {
+  const Planted p = planted();
+  Project project;
+  project.payload = share_payload(characterise(p.recipe, p.training), p.training);
+  project.images = {{"chart.dng", std::string("\0\1\2raw", 6)}, {"flat.dng", "flat bytes"}};
+  project.session.set("step", "fit");
+  const std::string bytes = project_to_bytes(project);
+  CHECK(is_project_file(bytes));
+  const Project back = project_from_bytes(bytes);
+  REQUIRE(back.images.size() == 2);
+  CHECK(back.images[0].bytes == project.images[0].bytes);
+  CHECK(back.images[1].name == "flat.dng");
+  CHECK(back.session.at("step").as_string() == "fit");
+  CHECK(reproduce_share(back.payload).verdict == "reproduced");
+  std::string damaged = bytes;
+  damaged[damaged.size() - 3] ^= 1;  // an image byte
+  require_code([&] { project_from_bytes(damaged); }, ErrorCode::ParseError);
+  require_code([&] { project_from_bytes(bytes.substr(0, bytes.size() - 1)); }, ErrorCode::ParseError);
+  require_code([&] { project_from_bytes(bytes.substr(0, 40)); }, ErrorCode::ParseError);
+  require_code([&] { project_from_bytes("TRISTIM-PROJECT 2\n0\n"); }, ErrorCode::ProfileVersion);
+  require_code([&] { project_from_bytes("PK\3\4"); }, ErrorCode::ParseError);
+}
