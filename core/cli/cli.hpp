@@ -11,6 +11,8 @@ struct RawImage;
 struct SpectralData;
 struct LayoutOptions;
 struct MethodInfo;
+struct FrameCalibration;
+struct SampleOptions;
 }
 
 namespace tristim::cli {
@@ -70,6 +72,11 @@ std::vector<std::string> reflectance_labels(const std::string& value, const std:
 
 /// Decodes a RAW file (cmd_raw.cpp); errors name the path.
 RawImage load_raw(const std::string& path);
+
+/// --dark (repeatable), --dark-mode, --flat, --flat-mode, --white-reflectance and --light-trap
+/// x1,y1,…,x4,y4 (measured on `image` with `options`' sampled area) as a frame calibration
+/// (cmd_raw.cpp): the options `sample` and `apply` share.
+FrameCalibration frame_calibration(const Args& args, const RawImage& image, const SampleOptions& options);
 
 /// --chart, --rows, --columns, --margins l,t,r,b as chart layout options (cmd_raw.cpp).
 LayoutOptions layout_options(const Args& args);

@@ -6,8 +6,10 @@
 #include "cli.hpp"
 #include "linearise_option.hpp"
 #include "patch_args.hpp"
+#include "tristim/capture/calibration.hpp"
 #include "tristim/capture/image.hpp"
 #include "tristim/capture/raw.hpp"
+#include "tristim/chart/layout.hpp"
 #include "tristim/error.hpp"
 #include "tristim/profile/export.hpp"
 #include "tristim/profile/profile.hpp"
@@ -16,20 +18,30 @@ namespace tristim::cli {
 namespace {
 const char* kApplyUsage =
     "tristim apply <profile.json> <image> --out xyz.tiff|xyz.pfm [--linearisation gamma|sRGB|fitted.json [--full-scale 255]]\n"
+    "              [--dark f ...] [--dark-mode per_pixel|per_channel] [--flat f] [--flat-mode pixel|radial]\n"
+    "              [--white-reflectance r | r,g,b] [--light-trap x1,y1,x2,y2,x3,y3,x4,y4]\n"
     "  Applies the profile to a camera-RGB image and writes 32-bit float XYZ (TIFF,\n"
     "  uncompressed, or PFM). Input: a RAW file (decoded like the chart: linear, black subtracted,\n"
     "  no white balance), a TIFF/PNG/JPEG (values as stored) or a colour PFM of camera RGB. A\n"
     "  profile fitted with a linearisation stage (fit --linearisation) linearises the stored values\n"
-    "  itself; --linearisation is for profiles without one (e.g. a RAW profile on a gamma image).";
+    "  itself; --linearisation is for profiles without one (e.g. a RAW profile on a gamma image).\n"
+    "  Abed 2013 App. C step 8: this image's own dark frames, flat field and light trap (the flare of\n"
+    "  this scene, measured in the image) calibrate it before the profile, as `sample` does for the chart\n"
+    "  (same options, same code).";
 
 int run_apply(const Args& args, std::ostream&) {
-  args.allow_only({"out", "linearisation", "full-scale"});
+  args.allow_only({"out", "linearisation", "full-scale", "dark", "dark-mode", "flat", "flat-mode", "white-reflectance",
+                   "light-trap"});
+  const bool calibrate = args.has("dark") || args.has("flat") || args.has("light-trap");
   if (args.positional.size() != 2)
     throw Error(ErrorCode::InvalidArgument, "usage: tristim apply <profile.json> <image> --out xyz.tiff|pfm");
   const Profile p = profile_from_json(read_file(args.positional[0]));
   const std::string in_path = args.positional[1];
   Image3f rgb;
   if (ext_of(in_path) == "pfm") {
+    if (calibrate)
+      throw Error(ErrorCode::InvalidArgument, "--dark, --flat and --light-trap calibrate a RAW or image file, not the PFM '" +
+                                                  in_path + "'");
     rgb = read_pfm(read_file(in_path));
   } else {
     // A RAW file: LibRaw's linear camera RGB (black subtracted, no white balance, half size for
@@ -42,6 +54,7 @@ int run_apply(const Args& args, std::ostream&) {
     } catch (const Error& e) {
       throw Error(e.code(), "'" + in_path + "': " + e.what());
     }
+    if (calibrate) raw = apply_calibration(raw, frame_calibration(args, raw, SampleOptions{}));  // App. C steps 1-2, 8
     rgb.width = raw.width;
     rgb.height = raw.height;
     rgb.pixels = std::move(raw.rgb);

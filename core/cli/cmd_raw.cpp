@@ -59,47 +59,10 @@ LayoutOptions layout_options(const Args& args) {
   return layout;
 }
 
-namespace {
-
-int run_inspect(const Args& args, std::ostream& out) {
-  args.allow_only({});
-  if (args.positional.size() != 1)
-    throw Error(ErrorCode::InvalidArgument, "inspect takes exactly one RAW, TIFF, PNG or JPEG file (or a DCP)");
-  if (inspect_dcp(args.positional[0], out)) return 0;  // a DNG camera profile (cmd_dcp.cpp)
-  const RawImage img = load_raw(args.positional[0]);
-  std::string json = metadata_to_json(img.meta);
-  json.pop_back();  // add the hash of the linear data to the object
-  out << json << ",\"linear_hash\":\"" << hash_hex(linear_data_hash(img)) << "\"}\n";
-  return 0;
-}
-
-int run_sample(const Args& args, std::ostream& out) {
-  args.allow_only({"chart", "corners", "dark", "dark-mode", "flat", "flat-mode", "white-reflectance",
-                   "area", "rows", "columns", "margins", "light-trap"});
-  if (args.positional.size() != 1)
-    throw Error(ErrorCode::InvalidArgument, "sample takes exactly one RAW, TIFF, PNG or JPEG file");
-  const LayoutOptions layout = layout_options(args);
-  std::array<double, 8> corners;
-  if (args.has("corners")) {
-    const auto c = numbers(args.get("corners"), "corners");
-    if (c.size() != 8) throw Error(ErrorCode::InvalidArgument, "--corners needs 8 numbers: x1,y1,...,x4,y4");
-    std::copy(c.begin(), c.end(), corners.begin());
-  }
-  SampleOptions options;
-  options.area = args.get_double("area", 0.5);
-
-  const RawImage image = load_raw(args.positional[0]);
-  if (!args.has("corners")) {  // detect the chart (issue 12) and say so
-    DetectOptions detect;
-    detect.charts = {layout.chart};
-    detect.custom = layout;
-    const ChartCandidate best = detect_charts(image, detect).front();
-    corners = best.corners;
-    std::cerr << "tristim sample: no --corners given, using the detected " << best.chart << " (confidence "
-              << best.confidence << ", orientation " << best.orientation << "): --corners ";
-    for (int i = 0; i < 8; ++i) std::cerr << (i ? "," : "") << std::lround(corners[i] * 100) / 100.0;
-    std::cerr << "\n";
-  }
+/// --dark (repeatable), --dark-mode, --flat, --flat-mode, --white-reflectance and --light-trap as
+/// the frame calibration of `image` (Abed 2013 App. C steps 1-2; Guarnera 2018 eq 7): what `sample`
+/// and `apply` take (cli.hpp).
+FrameCalibration frame_calibration(const Args& args, const RawImage& image, const SampleOptions& options) {
   FrameCalibration cal;
   try {
     cal.dark_mode = dark_mode_from_id(args.get("dark-mode", dark_mode_id(DarkMode::PerPixel)));
@@ -143,6 +106,51 @@ int run_sample(const Args& args, std::ostream& out) {
               << " DN over " << trap.n << " pixels, subtracted before sampling\n";
     cal = with_light_trap(cal, trap);
   }
+  return cal;
+}
+
+namespace {
+
+int run_inspect(const Args& args, std::ostream& out) {
+  args.allow_only({});
+  if (args.positional.size() != 1)
+    throw Error(ErrorCode::InvalidArgument, "inspect takes exactly one RAW, TIFF, PNG or JPEG file (or a DCP)");
+  if (inspect_dcp(args.positional[0], out)) return 0;  // a DNG camera profile (cmd_dcp.cpp)
+  const RawImage img = load_raw(args.positional[0]);
+  std::string json = metadata_to_json(img.meta);
+  json.pop_back();  // add the hash of the linear data to the object
+  out << json << ",\"linear_hash\":\"" << hash_hex(linear_data_hash(img)) << "\"}\n";
+  return 0;
+}
+
+int run_sample(const Args& args, std::ostream& out) {
+  args.allow_only({"chart", "corners", "dark", "dark-mode", "flat", "flat-mode", "white-reflectance",
+                   "area", "rows", "columns", "margins", "light-trap"});
+  if (args.positional.size() != 1)
+    throw Error(ErrorCode::InvalidArgument, "sample takes exactly one RAW, TIFF, PNG or JPEG file");
+  const LayoutOptions layout = layout_options(args);
+  std::array<double, 8> corners;
+  if (args.has("corners")) {
+    const auto c = numbers(args.get("corners"), "corners");
+    if (c.size() != 8) throw Error(ErrorCode::InvalidArgument, "--corners needs 8 numbers: x1,y1,...,x4,y4");
+    std::copy(c.begin(), c.end(), corners.begin());
+  }
+  SampleOptions options;
+  options.area = args.get_double("area", 0.5);
+
+  const RawImage image = load_raw(args.positional[0]);
+  if (!args.has("corners")) {  // detect the chart (issue 12) and say so
+    DetectOptions detect;
+    detect.charts = {layout.chart};
+    detect.custom = layout;
+    const ChartCandidate best = detect_charts(image, detect).front();
+    corners = best.corners;
+    std::cerr << "tristim sample: no --corners given, using the detected " << best.chart << " (confidence "
+              << best.confidence << ", orientation " << best.orientation << "): --corners ";
+    for (int i = 0; i < 8; ++i) std::cerr << (i ? "," : "") << std::lround(corners[i] * 100) / 100.0;
+    std::cerr << "\n";
+  }
+  const FrameCalibration cal = frame_calibration(args, image, options);
   const ChartSample s = sample_chart(image, layout, corners, options, &cal);
   out << chart_sample_to_csv(s);
   return 0;
