@@ -6,6 +6,7 @@
 #include "tristim/io/limits.hpp"
 #include "tristim/profile/profile.hpp"
 #include "tristim/version.hpp"
+#include "fields.hpp"
 
 namespace tristim {
 
@@ -46,79 +47,24 @@ FitStatus status_named(const std::string& s) {
 
 }  // namespace
 
-json::Value falloff_fit_json(const FalloffFit& f) {
-  json::Value fo = json::Value::object();
-  fo.set("p1", f.p1);
-  fo.set("p2", f.p2);
-  fo.set("p3", f.p3);
-  fo.set("centre_x", f.centre_x);
-  fo.set("centre_y", f.centre_y);
-  fo.set("r_scale", f.r_scale);
-  fo.set("width", f.width);
-  fo.set("height", f.height);
-  fo.set("bins", f.bins);
-  fo.set("rms_residual", f.rms_residual);
-  fo.set("max_residual", f.max_residual);
-  return fo;
-}
+json::Value falloff_fit_json(const FalloffFit& f) { return fields::write(f); }
 
-json::Value absolute_metrics_json(const AbsoluteMetrics& m) {
-  json::Value o = json::Value::object();
-  o.set("metrics", metrics_json(m.metrics));
-  o.set("relative_Y_error", m.relative_Y_error);
-  o.set("median_absolute_error", triple({m.median_absolute_error[0], m.median_absolute_error[1], m.median_absolute_error[2]}));
-  o.set("white", triple({m.white[0], m.white[1], m.white[2]}));
-  return o;
-}
+json::Value absolute_metrics_json(const AbsoluteMetrics& m) { return fields::write(m); }
+
+// null is how the writer spells a non-finite figure (e.g. the mean ΔE of no stimuli)
+static const fields::Context kFigures{ErrorCode::ProfileInvalid, "", true};
 
 AbsoluteMetrics absolute_metrics_from_json(const json::Value& o, const std::string& where) {
-  // null is how the writer spells a non-finite figure (e.g. the mean ΔE of no stimuli)
-  auto number = [&](const json::Value& v, const std::string& what) {
-    return v.is_null() ? std::nan("") : v.as_number(where + "." + what);
-  };
-  auto vec3 = [&](const json::Value& v, const std::string& what) {
-    const auto& a = v.as_array(where + "." + what);
-    if (a.size() != 3) throw Error(ErrorCode::ProfileInvalid, where + "." + what + " must have 3 numbers");
-    return Vec3(number(a[0], what), number(a[1], what), number(a[2], what));
-  };
-  auto summary = [&](const json::Value& m, const std::string& key) {
-    const json::Value& s = m.at(key);
-    const std::string w = "metrics." + key;
-    return Summary{number(s.at("min"), w), number(s.at("median"), w), number(s.at("mean"), w), number(s.at("p95"), w),
-                   number(s.at("max"), w), number(s.at("rms"), w), number(s.at("std"), w)};
-  };
   AbsoluteMetrics a;
-  const json::Value& m = o.at("metrics");
-  a.metrics.dE76 = summary(m, "dE76");
-  a.metrics.dE94 = summary(m, "dE94");
-  a.metrics.dE00 = summary(m, "dE00");
-  a.metrics.dE_xyz = summary(m, "dE_xyz");
-  a.metrics.abs_rel_Y = summary(m, "abs_rel_Y");
-  a.metrics.NRMSE = vec3(m.at("NRMSE"), "metrics.NRMSE");
-  a.relative_Y_error = number(o.at("relative_Y_error"), "relative_Y_error");
-  a.median_absolute_error = vec3(o.at("median_absolute_error"), "median_absolute_error");
-  a.white = vec3(o.at("white"), "white");
+  fields::read(o, a, kFigures, where);
   return a;
 }
 
-json::Value absolute_training_json(const AbsoluteTraining& t) {
-  json::Value o = json::Value::object();
-  o.set("luminance_stimuli", t.luminance_stimuli);
-  o.set("colour_stimuli", t.colour_stimuli);
-  o.set("saturated_stimuli", t.saturated_stimuli);
-  o.set("evaluated", t.evaluated);
-  o.set("figures", absolute_metrics_json(t.figures));
-  return o;
-}
+json::Value absolute_training_json(const AbsoluteTraining& t) { return fields::write(t); }
 
 AbsoluteTraining absolute_training_from_json(const json::Value& o, const std::string& where) {
-  auto count = [&](const char* key) { return o.at(key).as_int(where + "." + key, 0, limits::kMaxJsonInt); };
   AbsoluteTraining t;
-  t.luminance_stimuli = count("luminance_stimuli");
-  t.colour_stimuli = count("colour_stimuli");
-  t.saturated_stimuli = count("saturated_stimuli");
-  t.evaluated = count("evaluated");
-  t.figures = absolute_metrics_from_json(o.at("figures"), where + ".figures");
+  fields::read(o, t, kFigures, where);
   return t;
 }
 
@@ -260,17 +206,7 @@ AbsoluteProfile absolute_profile_from_json(const std::string& text) {
     const json::Value& fo = no.at("falloff");
     if (!fo.is_null()) {
       FalloffFit f;
-      f.p1 = fo.at("p1").as_number("falloff.p1");
-      f.p2 = fo.at("p2").as_number("falloff.p2");
-      f.p3 = fo.at("p3").as_number("falloff.p3");
-      f.centre_x = fo.at("centre_x").as_number("falloff.centre_x");
-      f.centre_y = fo.at("centre_y").as_number("falloff.centre_y");
-      f.r_scale = fo.at("r_scale").as_number("falloff.r_scale");
-      f.width = fo.at("width").as_int("falloff.width", 0, limits::kMaxJsonInt);
-      f.height = fo.at("height").as_int("falloff.height", 0, limits::kMaxJsonInt);
-      f.bins = fo.at("bins").as_int("falloff.bins", 0, limits::kMaxJsonInt);
-      f.rms_residual = fo.at("rms_residual").as_number("falloff.rms_residual");
-      f.max_residual = fo.at("max_residual").as_number("falloff.max_residual");
+      fields::read(fo, f, kFigures, "falloff");
       if (!(f.r_scale > 0)) throw Error(ErrorCode::ProfileInvalid, "falloff.r_scale must be positive");
       n.falloff = f;
     }

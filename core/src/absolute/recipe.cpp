@@ -11,7 +11,7 @@
 #include "tristim/io/fields.hpp"
 #include "tristim/io/limits.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
-#include "exposure_fields.hpp"
+#include "fields.hpp"
 
 namespace tristim {
 

@@ -5,154 +5,83 @@
 #include <cmath>
 #include <cstdio>
 
+#include "tristim/profile/fields.hpp"
 #include "tristim/profile/profile.hpp"
+#include "fields.hpp"
 
 namespace tristim {
 
+// ---- the field lists: the report's JSON comes from these ------------------------------------
+
+namespace fields {
+
+TRISTIM_FIELDS(AbsoluteChannelFit, member<&AbsoluteChannelFit::k1>("k1"), member<&AbsoluteChannelFit::k2>("k2"),
+               member<&AbsoluteChannelFit::k3>("k3"), member<&AbsoluteChannelFit::samples>("samples"),
+               member<&AbsoluteChannelFit::rms_relative>("rms_relative"),
+               member<&AbsoluteChannelFit::max_relative>("max_relative"),
+               member<&AbsoluteChannelFit::r_squared>("r_squared"), member<&AbsoluteChannelFit::message>("message"));
+
+TRISTIM_FIELDS(AbsoluteExposureCheck, member<&AbsoluteExposureCheck::exposure>("exposure"),
+               member<&AbsoluteExposureCheck::label>("label"), member<&AbsoluteExposureCheck::factor>("factor"),
+               member<&AbsoluteExposureCheck::parallel>("parallel"), member<&AbsoluteExposureCheck::samples>("samples"),
+               member<&AbsoluteExposureCheck::scale_ratio>("scale_ratio"),
+               member<&AbsoluteExposureCheck::slope_difference>("slope_difference"),
+               member<&AbsoluteExposureCheck::rms_relative>("rms_relative"));
+
+using Fit = AbsoluteFitSummary;
+TRISTIM_FIELDS(Fit, member<&Fit::make>("make"), member<&Fit::model>("model"), member<&Fit::width>("width"),
+               member<&Fit::height>("height"), member<&Fit::channels>("channels"),
+               member<&Fit::iso_reference>("iso_reference"), member<&Fit::reciprocity_ok>("reciprocity_ok"),
+               member<&Fit::reciprocity_message>("reciprocity_message"), member<&Fit::exposures>("exposures"),
+               member<&Fit::noise_floor>("noise_floor"), member<&Fit::noise_sigma>("noise_sigma"),
+               member<&Fit::saturation>("saturation"), member<&Fit::saturation_reported>("saturation_reported"),
+               member<&Fit::saturation_fraction>("saturation_fraction"),
+               member<&Fit::saturation_measured>("saturation_measured"), member<&Fit::areas>("areas"),
+               member<&Fit::areas_source>("areas_source"), member_or_null<&Fit::has_falloff, &Fit::falloff>("falloff"),
+               member<&Fit::w>("w"), member<&Fit::transform>("transform"), member<&Fit::colour_status>("colour_status"),
+               member<&Fit::colour_message>("colour_message"), member<&Fit::colour_matrix>("colour_matrix"),
+               member<&Fit::colour_stimuli>("colour_stimuli"), member<&Fit::colour_objective>("colour_objective"),
+               member<&Fit::fusion>("fusion"));
+
+// A region row names its frame, region, pixels and source; a per-patch row says whether it was saturated.
+static bool region_row(const AbsoluteTestRow& r) { return !r.file.empty(); }
+static bool patch_row(const AbsoluteTestRow& r) { return r.file.empty(); }
+static json::Value region_json(const AbsoluteTestRow& r) {
+  return json::Value(std::vector<double>{double(r.x), double(r.y), double(r.w), double(r.h)});
+}
+using Row = AbsoluteTestRow;
+TRISTIM_FIELDS(Row, member<&Row::id>("id"), member<&Row::set>("set"), with_shown(member<&Row::file>("file"), region_row),
+               with_shown(Field<Row>{"region", region_json, nullptr}, region_row),
+               with_shown(member<&Row::pixels>("pixels"), region_row), with_shown(member<&Row::source>("source"), region_row),
+               with_shown(member<&Row::source_label>("source_label"), region_row),
+               with_shown(member<&Row::saturated>("saturated"), patch_row), member<&Row::estimated>("estimated"),
+               member<&Row::reference>("reference"), member<&Row::relative_Y_error>("relative_Y_error"));
+
+TRISTIM_FIELDS(AbsoluteFigures, member<&AbsoluteFigures::group>("group"), member<&AbsoluteFigures::label>("label"),
+               member<&AbsoluteFigures::count>("count"),
+               member<&AbsoluteFigures::metrics>("metrics"));
+
+using Test = AbsoluteTestReport;
+TRISTIM_FIELDS(Test, member<&Test::white_rule>("white_rule"), member<&Test::white_id>("white_id"),
+               member<&Test::max_luminance>("max_luminance"), member<&Test::white>("white"),
+               member<&Test::figures>("figures"), member<&Test::points>("points"), member<&Test::regions>("regions"));
+
+using Maps = AbsoluteMapsSummary;
+TRISTIM_FIELDS(Maps, member<&Maps::width>("width"), member<&Maps::height>("height"), member<&Maps::mode>("mode"),
+               member<&Maps::exposures>("exposures"), member<&Maps::labels>("labels"), member<&Maps::names>("names"),
+               member<&Maps::dominant_pixels>("dominant_pixels"), member<&Maps::saturated_pixels>("saturated_pixels"),
+               member<&Maps::unreliable_pixels>("unreliable_pixels"), member<&Maps::finite_pixels>("finite_pixels"),
+               member<&Maps::Y>("Y"), member<&Maps::Y_p01>("Y_p01"), member<&Maps::Y_p99>("Y_p99"));
+
+using Report = AbsoluteReport;
+TRISTIM_FIELDS(Report, member<&Report::fit>("fit"),
+               member_or_null<&Report::has_training, &Report::training>("training"),
+               member_or_null<&Report::has_test, &Report::test>("test"),
+               member_or_null<&Report::has_maps, &Report::maps>("maps"));
+
+}  // namespace fields
+
 namespace {
-
-json::Value triple(double a, double b, double c) { return json::Value(std::vector<double>{a, b, c}); }
-json::Value triple(const Vec3& v) { return triple(v[0], v[1], v[2]); }
-json::Value triple(const std::array<double, 3>& v) { return triple(v[0], v[1], v[2]); }
-json::Value triple(const std::array<int, 3>& v) { return triple(v[0], v[1], v[2]); }
-
-json::Value strings(const std::vector<std::string>& v) {
-  json::Value a = json::Value::array();
-  for (const auto& s : v) a.push(s);
-  return a;
-}
-
-json::Value exposure_json(const ExposureSettings& e) {
-  return json::Value(std::vector<double>{e.exposure_s, e.f_number, e.iso});
-}
-
-json::Value fit_json(const AbsoluteFitSummary& f) {
-  json::Value o = json::Value::object();
-  o.set("make", f.make);
-  o.set("model", f.model);
-  o.set("width", f.width);
-  o.set("height", f.height);
-  json::Value ch = json::Value::array();
-  for (const auto& c : f.channels) {
-    json::Value x = json::Value::object();
-    x.set("k1", c.k1);
-    x.set("k2", c.k2);
-    x.set("k3", c.k3);
-    x.set("samples", c.samples);
-    x.set("rms_relative", c.rms_relative);
-    x.set("max_relative", c.max_relative);
-    x.set("r_squared", c.r_squared);
-    x.set("message", c.message);
-    ch.push(x);
-  }
-  o.set("channels", ch);
-  o.set("iso_reference", f.iso_reference);
-  o.set("reciprocity_ok", f.reciprocity_ok);
-  o.set("reciprocity_message", f.reciprocity_message);
-  json::Value ex = json::Value::array();
-  for (const auto& e : f.exposures) {
-    json::Value x = json::Value::object();
-    x.set("exposure", exposure_json(e.exposure));
-    x.set("label", e.label);
-    x.set("factor", e.factor);
-    x.set("parallel", e.parallel);
-    x.set("samples", triple(e.samples));
-    x.set("scale_ratio", triple(e.scale_ratio));
-    x.set("slope_difference", triple(e.slope_difference));
-    x.set("rms_relative", triple(e.rms_relative));
-    ex.push(x);
-  }
-  o.set("exposures", ex);
-  o.set("noise_floor", triple(f.noise_floor));
-  o.set("noise_sigma", triple(f.noise_sigma));
-  o.set("saturation", triple(f.saturation));
-  o.set("saturation_reported", triple(f.saturation_reported));
-  o.set("saturation_fraction", triple(f.saturation_fraction));
-  json::Value measured = json::Value::array();
-  for (bool b : f.saturation_measured) measured.push(b);
-  o.set("saturation_measured", measured);
-  o.set("areas", triple(f.areas));
-  o.set("areas_source", f.areas_source);
-  o.set("falloff", f.has_falloff ? falloff_fit_json(f.falloff) : json::Value());
-  o.set("w", f.w);
-  o.set("transform", f.transform);
-  o.set("colour_status", f.colour_status);
-  o.set("colour_message", f.colour_message);
-  json::Value m = json::Value::array();
-  for (Eigen::Index r = 0; r < f.colour_matrix.rows(); ++r) {
-    std::vector<double> row(f.colour_matrix.cols());
-    for (Eigen::Index c = 0; c < f.colour_matrix.cols(); ++c) row[c] = f.colour_matrix(r, c);
-    m.push(json::Value(row));
-  }
-  o.set("colour_matrix", m);
-  o.set("colour_stimuli", f.colour_stimuli);
-  o.set("colour_objective", f.colour_objective);
-  o.set("fusion", f.fusion);
-  return o;
-}
-
-json::Value row_json(const AbsoluteTestRow& r) {
-  json::Value o = json::Value::object();
-  o.set("id", r.id);
-  o.set("set", r.set);
-  if (!r.file.empty()) {
-    o.set("file", r.file);
-    o.set("region", json::Value(std::vector<double>{double(r.x), double(r.y), double(r.w), double(r.h)}));
-    o.set("pixels", r.pixels);
-    o.set("source", r.source);
-    o.set("source_label", r.source_label);
-  } else {
-    o.set("saturated", r.saturated);
-  }
-  o.set("estimated", triple(r.estimated));
-  o.set("reference", triple(r.reference));
-  o.set("relative_Y_error", r.relative_Y_error);
-  return o;
-}
-
-json::Value test_json(const AbsoluteTestReport& t) {
-  json::Value o = json::Value::object();
-  o.set("white_rule", t.white_rule);
-  o.set("white_id", t.white_id);
-  o.set("max_luminance", t.max_luminance);
-  o.set("white", triple(t.white));
-  json::Value figures = json::Value::array();
-  for (const auto& f : t.figures) {
-    json::Value x = json::Value::object();
-    x.set("group", f.group);
-    x.set("label", f.label);
-    x.set("count", f.count);
-    x.set("metrics", absolute_metrics_json(f.metrics));
-    figures.push(x);
-  }
-  o.set("figures", figures);
-  json::Value points = json::Value::array(), regions = json::Value::array();
-  for (const auto& r : t.points) points.push(row_json(r));
-  for (const auto& r : t.regions) regions.push(row_json(r));
-  o.set("points", points);
-  o.set("regions", regions);
-  return o;
-}
-
-json::Value maps_json(const AbsoluteMapsSummary& s) {
-  json::Value o = json::Value::object();
-  o.set("width", s.width);
-  o.set("height", s.height);
-  o.set("mode", s.mode);
-  json::Value ex = json::Value::array();
-  for (const auto& e : s.exposures) ex.push(exposure_json(e));
-  o.set("exposures", ex);
-  o.set("labels", strings(s.labels));
-  o.set("names", strings(s.names));
-  o.set("dominant_pixels", json::Value(s.dominant_pixels));
-  o.set("saturated_pixels", s.saturated_pixels);
-  o.set("unreliable_pixels", s.unreliable_pixels);
-  o.set("finite_pixels", s.finite_pixels);
-  o.set("Y", summary_json(s.Y));
-  o.set("Y_p01", s.Y_p01);
-  o.set("Y_p99", s.Y_p99);
-  return o;
-}
 
 // ---- text -------------------------------------------------------------------------------------
 
@@ -221,10 +150,7 @@ json::Value absolute_report_json(const AbsoluteReport& r) {
   json::Value o = json::Value::object();
   o.set("format", "tristim-absolute-report");
   o.set("reference", "Guarnera, Bianco & Schettini 2018, section 4.1 (white: eq 16)");
-  o.set("fit", fit_json(r.fit));
-  o.set("training", r.has_training ? absolute_training_json(r.training) : json::Value());
-  o.set("test", r.has_test ? test_json(r.test) : json::Value());
-  o.set("maps", r.has_maps ? maps_json(r.maps) : json::Value());
+  fields::write_members(r, o);
   return o;
 }
 

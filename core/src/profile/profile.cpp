@@ -8,6 +8,7 @@
 
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
+#include "tristim/profile/fields.hpp"
 #include "tristim/version.hpp"
 
 namespace tristim {
@@ -36,8 +37,6 @@ struct Fnv1a64 {
     bytes(le, 8);
   }
 };
-
-json::Value vec3(const Vec3& v) { return json::Value(std::vector<double>{v[0], v[1], v[2]}); }
 
 Vec3 read_vec3(const json::Value& v, const std::string& what) {
   const auto a = v.as_numbers(what);
@@ -83,41 +82,14 @@ std::string bytes_digest(const std::string& bytes) {
   return f.text();
 }
 
-json::Value summary_json(const Summary& s) {
-  json::Value o = json::Value::object();
-  o.set("min", s.min);
-  o.set("median", s.median);
-  o.set("mean", s.mean);
-  o.set("p95", s.p95);
-  o.set("max", s.max);
-  o.set("rms", s.rms);
-  o.set("std", s.std);
-  return o;
-}
+json::Value summary_json(const Summary& s) { return fields::write(s); }
 
 json::Value metrics_json(const Metrics& m, const std::vector<std::string>& ids, bool per_patch) {
-  json::Value o = json::Value::object();
-  o.set("dE76", summary_json(m.dE76));
-  o.set("dE94", summary_json(m.dE94));
-  o.set("dE00", summary_json(m.dE00));
-  o.set("dE_xyz", summary_json(m.dE_xyz));
-  o.set("abs_rel_Y", summary_json(m.abs_rel_Y));
-  o.set("NRMSE", vec3(m.NRMSE));
+  json::Value o = fields::write(m);
   if (per_patch) {
     json::Value p = json::Value::object();
-    if (!ids.empty()) {
-      json::Value a = json::Value::array();
-      for (const auto& id : ids) a.push(id);
-      p.set("ids", a);
-    }
-    p.set("dE76", m.patches.dE76);
-    p.set("dE94", m.patches.dE94);
-    p.set("dE00", m.patches.dE00);
-    p.set("dL", m.patches.dL);
-    p.set("dC", m.patches.dC);
-    p.set("dH", m.patches.dH);
-    p.set("dE_xyz", m.patches.dE_xyz);
-    p.set("rel_Y", m.patches.rel_Y);
+    if (!ids.empty()) p.set("ids", fields::write(ids));
+    fields::write_members(m.patches, p);
     o.set("patches", p);
   }
   return o;
@@ -160,28 +132,20 @@ std::string profile_to_json(const Profile& p) {
   json::Value model = json::Value::object();
   model.set("id", p.model.id);
   model.set("n_terms", info.n_terms);
-  json::Value terms = json::Value::array();
-  for (const auto& t : info.term_names) terms.push(t);
-  model.set("terms", terms);
-  json::Value coef = json::Value::array();
-  for (Eigen::Index c = 0; c < p.model.coefficients.rows(); ++c) {
-    std::vector<double> row(p.model.coefficients.cols());
-    for (Eigen::Index j = 0; j < p.model.coefficients.cols(); ++j) row[j] = p.model.coefficients(c, j);
-    coef.push(json::Value(row));
-  }
-  model.set("coefficients", coef);
+  model.set("terms", fields::write(info.term_names));
+  model.set("coefficients", fields::write(p.model.coefficients));
   o.set("model", model);
   o.set("objective", objective_id(p.objective));
   json::Value col = json::Value::object();
-  col.set("white", vec3(p.white));
+  col.set("white", fields::write(p.white));
   col.set("illuminant", p.illuminant);
   col.set("observer", p.observer);
   o.set("colorimetry", col);
   json::Value wp = json::Value::object();
   wp.set("enabled", p.white_preserved);
   wp.set("patch", p.white_patch);
-  wp.set("RGB", vec3(p.white_RGB));
-  wp.set("XYZ", vec3(p.white_XYZ));
+  wp.set("RGB", fields::write(p.white_RGB));
+  wp.set("XYZ", fields::write(p.white_XYZ));
   o.set("white_preservation", wp);
   json::Value tr = json::Value::object();
   tr.set("patches", p.training_patches);

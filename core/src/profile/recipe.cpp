@@ -8,7 +8,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/error.hpp"
-#include "tristim/io/fields.hpp"
+#include "tristim/profile/fields.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/linearisation/linearisation.hpp"
 #include "tristim/surface/surface.hpp"
@@ -26,20 +26,6 @@ const fields::Context kRecipe{ErrorCode::RecipeInvalid, "recipe: "};
 // ---- the field lists: the JSON writer and the strict reader come from these ------------------
 
 namespace fields {
-
-/// A method's options: numbers, and booleans read as 1 / 0.
-static json::Value parameters_json(const MethodChoice& c) { return write(c.parameters); }
-static void read_parameters(const json::Value& v, MethodChoice& c, const Context& ctx, const std::string& path) {
-  if (!v.is_object()) ctx.refuse("'" + path + "' must be an object");
-  for (const auto& [name, x] : v.members()) {
-    if (x.is_bool()) c.parameters[name] = x.as_bool() ? 1 : 0;
-    else Codec<double>::read(x, c.parameters[name], ctx, join(path, name));
-  }
-}
-
-TRISTIM_FIELDS(MethodChoice, member<&MethodChoice::method>("method"),
-               Field<MethodChoice>{"parameters", parameters_json, read_parameters, nullptr, false},
-               member<&MethodChoice::settings>("settings", false));
 
 TRISTIM_FIELDS(ReferenceStage, member<&ReferenceStage::chart>("chart"), member<&ReferenceStage::data_digest>("data_digest"),
                member<&ReferenceStage::illuminant>("illuminant"), member<&ReferenceStage::observer>("observer"));

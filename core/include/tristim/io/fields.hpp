@@ -38,6 +38,7 @@ namespace tristim::fields {
 struct Context {
   ErrorCode code = ErrorCode::ProfileInvalid;
   const char* prefix = "";
+  bool null_is_nan = false;  ///< a null number reads as NaN (how the writer spells a non-finite figure)
   [[noreturn]] void refuse(const std::string& what) const { throw Error(code, prefix + what); }
 };
 
@@ -89,6 +90,10 @@ template <>
 struct Codec<double> {
   static json::Value write(double d) { return d; }
   static void read(const json::Value& v, double& out, const Context& c, const std::string& p) {
+    if (v.is_null() && c.null_is_nan) {
+      out = std::nan("");
+      return;
+    }
     if (!v.is_number() || !std::isfinite(v.as_number())) c.refuse("'" + p + "' must be a finite number");
     out = v.as_number();
   }
@@ -215,6 +220,16 @@ void write_members(const S& s, json::Value& o) {
   for (const auto& f : Schema<S>::fields())
     if (!f.shown || f.shown(s)) o.set(f.name, f.write(s));
 }
+/// Some of the listed members of `s`, in the order `names` gives (a short form of a struct).
+template <class S>
+json::Value write_picked(const S& s, std::initializer_list<const char*> names) {
+  json::Value o = json::Value::object();
+  for (const char* n : names)
+    for (const auto& f : Schema<S>::fields())
+      if (std::string(f.name) == n) o.set(n, f.write(s));
+  return o;
+}
+
 /// The listed members of `o` into `s`: unknown members (other than `also_known`) and missing
 /// required ones refused, naming "path.name".
 template <class S>
