@@ -12,7 +12,7 @@
 #include "tristim/capture/raw.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
-#include "tristim/io/json.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/number.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/linearisation/spectral.hpp"
@@ -309,15 +309,7 @@ json::Value evaluation_json(const SpectralEvaluation& e, const PatchTable& table
   s.set("dE00_std", e.dE00_summary.std);
   s.set("dE00_max", e.dE00_summary.max);
   o.set("summary", s);
-  json::Value p = json::Value::array();
-  for (size_t i = 0; i < e.ids.size(); ++i) {
-    json::Value r = json::Value::object();
-    r.set("patch", labels[i]);
-    r.set("spectral_rms", e.rms[i]);
-    r.set("dE00", e.dE00[i]);
-    p.push(r);
-  }
-  o.set("patches", p);
+  o.set("patches", fields::rows({{"patch", labels}, {"spectral_rms", e.rms}, {"dE00", e.dE00}}));
   return o;
 }
 

@@ -11,6 +11,7 @@
 #include "tristim/io/json.hpp"
 #include "tristim/number.hpp"
 #include "tristim/io/patch_files.hpp"
+#include "tristim/profile/fields.hpp"
 #include "tristim/surface/fit.hpp"
 #include "tristim/surface/geometry_table.hpp"
 #include "tristim/surface/joint.hpp"
@@ -60,26 +61,8 @@ void parse_range(const std::string& text, double& lo, double& hi) {
   throw Error(ErrorCode::InvalidArgument, "--range expects start-end in nm, e.g. 400-700, got '" + text + "'");
 }
 
-json::Value summary_json(const Summary& s) {
-  json::Value o = json::Value::object();
-  o.set("mean", s.mean);
-  o.set("median", s.median);
-  o.set("p95", s.p95);
-  o.set("max", s.max);
-  o.set("rms", s.rms);
-  return o;
-}
-
-json::Value choice_json(const MethodChoice& c) {
-  json::Value o = json::Value::object();
-  o.set("method", c.method);
-  json::Value p = json::Value::object(), s = json::Value::object();
-  for (const auto& [k, v] : c.parameters) p.set(k, v);
-  for (const auto& [k, v] : c.settings) s.set(k, v);
-  o.set("parameters", p);
-  o.set("settings", s);
-  return o;
-}
+/// The short form of an error summary this command prints.
+json::Value summary_json(const Summary& s) { return fields::write_picked(s, {"mean", "median", "p95", "max", "rms"}); }
 
 // Start values: --start choice text, else the method with the Saunderson geometries of
 // --measurement / --capture presets (defaults d8-sci -> 45-0).
@@ -120,11 +103,9 @@ int run_fit(const Args& args, std::ostream& out) {
   if (args.has("json")) {
     json::Value j = json::Value::object();
     j.set("method", r.choice.method);
-    j.set("choice", choice_json(r.choice));
+    j.set("choice", fields::write(r.choice));
     j.set("surface", surface_choice_text(r.choice));
-    json::Value free = json::Value::array();
-    for (const auto& f : r.free) free.push(f);
-    j.set("free", free);
+    j.set("free", fields::write(r.free));
     j.set("range_nm", json::Value(std::vector<double>{lo, hi}));
     j.set("wavelengths", json::Value(r.wavelengths));
     j.set("illuminant", illuminant);
@@ -140,17 +121,8 @@ int run_fit(const Args& args, std::ostream& out) {
     de.set("before", summary_json(r.summary_dE00_before));
     de.set("after", summary_json(r.summary_dE00_after));
     j.set("dE00", de);
-    json::Value patches = json::Value::array();
-    for (size_t i = 0; i < r.ids.size(); ++i) {
-      json::Value p = json::Value::object();
-      p.set("patch", ids[i]);
-      p.set("rms_before", r.rms_before[i]);
-      p.set("rms_after", r.rms_after[i]);
-      p.set("dE00_before", r.dE00_before[i]);
-      p.set("dE00_after", r.dE00_after[i]);
-      patches.push(p);
-    }
-    j.set("patches", patches);
+    j.set("patches", fields::rows({{"patch", ids}, {"rms_before", r.rms_before}, {"rms_after", r.rms_after},
+                                   {"dE00_before", r.dE00_before}, {"dE00_after", r.dE00_after}}));
     out << j.dump(2) << "\n";
     return 0;
   }
@@ -225,7 +197,7 @@ int run_joint(const Args& args, std::ostream& out) {
   const JointFitResult r = fit_surface_joint_Abed2013(start_choice(args), camera_RGB, paired, o);
   if (args.has("json")) {
     json::Value j = json::Value::object();
-    j.set("choice", choice_json(r.choice));
+    j.set("choice", fields::write(r.choice));
     j.set("surface", surface_choice_text(r.choice));
     std::vector<double> m;
     for (int a = 0; a < 3; ++a)

@@ -146,7 +146,11 @@ struct Codec<std::vector<T>> {
 // std::vector<bool> has no element references: its own codec.
 template <>
 struct Codec<std::vector<bool>> {
-  static json::Value write(const std::vector<bool>& v) { return write_elements(v); }
+  static json::Value write(const std::vector<bool>& v) {
+    json::Value a = json::Value::array();
+    for (bool b : v) a.push(b);
+    return a;
+  }
   static void read(const json::Value& v, std::vector<bool>& out, const Context& c, const std::string& p) {
     if (!v.is_array()) c.refuse("'" + p + "' must be an array");
     out.clear();
@@ -211,6 +215,31 @@ struct Codec<std::map<std::string, V>> {
     for (const auto& [k, x] : v.members()) Codec<V>::read(x, out[k], c, join(p, k));
   }
 };
+
+// ---- tables -------------------------------------------------------------------------------
+
+/// One column of a table written as rows: a name and its values (texts or numbers), one per row.
+struct Column {
+  const char* name;
+  const std::vector<std::string>* texts = nullptr;
+  const std::vector<double>* numbers = nullptr;
+  Column(const char* n, const std::vector<std::string>& v) : name(n), texts(&v) {}
+  Column(const char* n, const std::vector<double>& v) : name(n), numbers(&v) {}
+  size_t size() const { return texts ? texts->size() : numbers->size(); }
+  json::Value at(size_t i) const { return texts ? json::Value((*texts)[i]) : json::Value((*numbers)[i]); }
+};
+/// Parallel columns as an array of objects, one per row ({"patch": "A1", "rms": 0.1}, ...); the
+/// first column sets the number of rows.
+inline json::Value rows(std::initializer_list<Column> columns) {
+  json::Value a = json::Value::array();
+  const size_t n = columns.size() ? columns.begin()->size() : 0;
+  for (size_t i = 0; i < n; ++i) {
+    json::Value o = json::Value::object();
+    for (const Column& c : columns) o.set(c.name, c.at(i));
+    a.push(o);
+  }
+  return a;
+}
 
 // ---- declared structs -----------------------------------------------------------------------
 
