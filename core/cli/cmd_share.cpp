@@ -6,6 +6,8 @@
 #include "patch_args.hpp"
 #include "share_cli.hpp"
 #include "tristim/capture/image.hpp"
+#include "tristim/absolute/characterise.hpp"
+#include "tristim/absolute/profile.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/profile/characterise.hpp"
@@ -20,12 +22,14 @@ namespace {
 const char* kShareUsage =
     "tristim share --profile p.json (--raw chart.dng | --rgb patches.csv) [--xyz reference.csv]\n"
     "              [--base URL] [--payload] [--project out.tristim]\n"
+    "tristim share --profile absolute-profile.json [--base URL] [--payload]\n"
     "  Prints a link that recomputes the profile: its recipe, the per-patch camera RGB, the reference\n"
     "  (a built-in chart by id, or --xyz inline), the SHA-256 of the RAW and a digest of the expected\n"
     "  results, compressed into the URL fragment (nothing is uploaded). --raw / --rgb / --xyz: the\n"
     "  inputs the profile was fitted on (`tristim fit --recipe`'s); they are fitted again and must give\n"
     "  the profile's results. --base: the page's address (default http://127.0.0.1:8080/); --payload:\n"
     "  the payload alone. --project also writes a project file holding the payload and the RAW.\n"
+    "  An absolute profile (tristim absolute fit) whose stimuli are per-patch rows needs no inputs.\n"
     "  Format: docs/link-format.md.";
 
 const char* kReproduceUsage =
@@ -78,10 +82,37 @@ TrainingSet share_inputs(const Args& args, Recipe& recipe, std::vector<ShareSour
   return share_training(tables);
 }
 
+/// The link of an absolute profile: its recipe's per-patch stimuli fitted again, the results checked.
+std::string share_absolute(const std::string& profile_path, const std::string& text) {
+  const AbsoluteProfile profile = absolute_profile_from_json(text);
+  if (!profile.has_recipe) throw Error(ErrorCode::ProfileInvalid, profile_path + " has no recipe (made before recipes existed): fit it again");
+  const SharePayload payload = share_payload(characterise_absolute(profile.recipe, AbsoluteFrames{}));
+  const ShareResults given = share_results(profile);
+  if (payload.expected.digest != given.digest)
+    throw Error(ErrorCode::PatchMismatch, "the recipe of " + profile_path + " does not give its results again (another tristim "
+                                          "version?): expected\n" + given.text + "got\n" + payload.expected.text);
+  return encode_share_payload(payload);
+}
+
+void print_link(const Args& args, const std::string& payload, std::ostream& out) {
+  const std::string link = share_link(args.get("base", kDefaultBase), payload);
+  if (link.size() > kLinkLengthLimit)
+    std::cerr << "tristim share: the link has " << link.size() << " characters (more than " << kLinkLengthLimit
+              << "): some programs cut such links; --project writes a project file instead\n";
+  out << (args.has("payload") ? payload : link) << "\n";
+}
+
 int run_share(const Args& args, std::ostream& out) {
   args.allow_only({"profile", "raw", "rgb", "xyz", "ref-white", "base", "payload", "project"});
   const std::string profile_path = args.get("profile");
-  const Profile profile = profile_from_json(read_file(profile_path));
+  const std::string profile_text = read_file(profile_path);
+  if (profile_text.find("\"tristim-absolute-profile\"") != std::string::npos) {  // per-patch stimuli: no inputs
+    for (const char* k : {"raw", "rgb", "xyz", "project"})
+      if (args.has(k)) throw Error(ErrorCode::InvalidArgument, std::string("--") + k + " is for a relative profile: an absolute profile's recipe holds its stimuli");
+    print_link(args, share_absolute(profile_path, profile_text), out);
+    return 0;
+  }
+  const Profile profile = profile_from_json(profile_text);
   if (!profile.has_recipe)
     throw Error(ErrorCode::ProfileInvalid, profile_path + " has no recipe (made before recipes existed): fit it again");
   Recipe recipe = profile.recipe;
@@ -98,15 +129,11 @@ int run_share(const Args& args, std::ostream& out) {
   if (args.has("project")) {
     Project project;
     project.payload = payload;
-    if (!raw_bytes.empty()) project.images.push_back({sources.front().name, raw_bytes});
+    if (!raw_bytes.empty()) project.images.push_back({sources.front().name, {raw_bytes.begin(), raw_bytes.end()}});
     const std::string bytes = project_to_bytes(project);
     write_bytes(args.get("project"), bytes.data(), bytes.size());
   }
-  const std::string link = share_link(args.get("base", kDefaultBase), text);
-  if (link.size() > kLinkLengthLimit)
-    std::cerr << "tristim share: the link has " << link.size() << " characters (more than " << kLinkLengthLimit
-              << "): some programs cut such links; --project writes a project file instead\n";
-  out << (args.has("payload") ? text : link) << "\n";
+  print_link(args, text, out);
   return 0;
 }
 

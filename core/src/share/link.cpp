@@ -523,6 +523,10 @@ std::string share_sample_payload(const Recipe& recipe, const ChartSample& sample
   return encode_share_payload(share_payload(characterise(recipe, training), training, sources));
 }
 
+std::string share_absolute_payload(const AbsoluteRecipe& recipe) {
+  return encode_share_payload(share_payload(characterise_absolute(recipe, AbsoluteFrames{})));
+}
+
 TrainingSet sample_training(Recipe& recipe, const RawImage& image, const ReferenceChart* reference) {
   const std::array<double, 8>& corners = recipe.sampling.corners;
   if (std::all_of(corners.begin(), corners.end(), [](double v) { return v == 0; }))
@@ -537,10 +541,20 @@ TrainingSet sample_training(Recipe& recipe, const RawImage& image, const Referen
   return training_set(recipe, sample, reference ? *reference : recipe_reference(recipe));
 }
 
+bool can_resample(const SharePayload& p) {
+  const auto& c = p.recipe.sampling.corners;
+  const CaptureStage& cap = p.recipe.capture;
+  return p.kind == "relative" && std::any_of(c.begin(), c.end(), [](double v) { return v != 0; }) && cap.dark_frames == 0 &&
+         !cap.flat_field && !cap.falloff;
+}
+
 Reproduction reproduce_link(const std::string& text) { return reproduce_share(decode_share_payload(text)); }
 
 Reproduction reproduce_share_image(const SharePayload& p, const std::vector<std::uint8_t>& bytes) {
   if (p.kind != "relative") throw Error(ErrorCode::InvalidArgument, "an absolute link is reproduced from its stimuli rows, not an image");
+  if (!can_resample(p))
+    throw Error(ErrorCode::InvalidArgument, "the recipe applied dark frames or a flat field, which a link does not carry: "
+                                            "its patches cannot be sampled again from the image alone");
   const std::string sum = sha256_hex(bytes.data(), bytes.size());
   const auto src = std::find_if(p.sources.begin(), p.sources.end(), [&](const ShareSource& s) { return s.sha256 == sum; });
   if (src == p.sources.end())
@@ -742,7 +756,7 @@ std::string project_to_bytes(const Project& project) {
   for (const auto& im : project.images) {
     json::Value e = json::Value::object();
     e.set("name", im.name);
-    e.set("sha256", sha256_hex(im.bytes));
+    e.set("sha256", sha256_hex(im.bytes.data(), im.bytes.size()));
     e.set("offset", static_cast<double>(offset));
     e.set("size", static_cast<double>(im.bytes.size()));
     offset += im.bytes.size();
@@ -754,7 +768,7 @@ std::string project_to_bytes(const Project& project) {
   std::string out(kProjectMagic);
   out += std::to_string(text.size()) + "\n" + text;
   if (out.size() + offset > kMaxProjectBytes) throw Error(ErrorCode::LimitExceeded, "project file beyond 1 GiB");
-  for (const auto& im : project.images) out += im.bytes;
+  for (const auto& im : project.images) out.append(im.bytes.begin(), im.bytes.end());
   return out;
 }
 
@@ -804,8 +818,9 @@ Project project_from_bytes(std::string_view bytes) {
     if (!(off >= 0) || !(size >= 0) || off != std::floor(off) || size != std::floor(size) || off > double(blob.size()) ||
         size > double(blob.size()) - off)
       bad_project("image '" + im.name + "' lies outside the file (truncated?)");
-    im.bytes = std::string(blob.substr(static_cast<std::size_t>(off), static_cast<std::size_t>(size)));
-    if (sha256_hex(im.bytes) != text_field(e, "sha256", "image"))
+    const std::string_view part = blob.substr(static_cast<std::size_t>(off), static_cast<std::size_t>(size));
+    im.bytes.assign(part.begin(), part.end());
+    if (sha256_hex(part) != text_field(e, "sha256", "image"))
       bad_project("image '" + im.name + "': SHA-256 differs from the header's (damaged file)");
     p.images.push_back(std::move(im));
   }
@@ -817,16 +832,31 @@ Project project_from_bytes(std::string_view bytes) {
 
 Reproduction reproduce_project(const Project& project) {
   const SharePayload& p = project.payload;
-  const auto& c = p.recipe.sampling.corners;
-  const bool has_corners = std::any_of(c.begin(), c.end(), [](double v) { return v != 0; });
-  if (p.kind == "relative" && has_corners)
+  if (can_resample(p))
     for (const auto& im : project.images) {
-      const std::string sum = sha256_hex(im.bytes);
+      const std::string sum = sha256_hex(im.bytes.data(), im.bytes.size());
       for (const auto& s : p.sources)
-        if (s.sha256 == sum)
-          return reproduce_share_image(p, std::vector<std::uint8_t>(im.bytes.begin(), im.bytes.end()));
+        if (s.sha256 == sum) return reproduce_share_image(p, im.bytes);
     }
   return reproduce_share(p);
+}
+
+std::vector<std::uint8_t> project_file(const std::string& payload, const std::vector<ProjectImage>& images,
+                                       const std::string& session_json) {
+  Project project;
+  project.payload = decode_share_payload(payload);
+  project.images = images;
+  if (!session_json.empty()) {
+    project.session = json::parse(session_json);
+    if (!project.session.is_object()) throw Error(ErrorCode::InvalidArgument, "a project's session must be a JSON object");
+  }
+  const std::string bytes = project_to_bytes(project);
+  return std::vector<std::uint8_t>(bytes.begin(), bytes.end());
+}
+
+ProjectContents open_project(const std::vector<std::uint8_t>& bytes) {
+  const Project p = project_from_bytes(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  return {encode_share_payload(p.payload), p.images, p.session.dump()};
 }
 
 }  // namespace tristim

@@ -81,5 +81,6 @@ std::string sha256_hex(const void* data, std::size_t size) {
 }
 
 std::string sha256_hex(std::string_view bytes) { return sha256_hex(bytes.data(), bytes.size()); }
+std::string sha256_hex(const std::vector<std::uint8_t>& bytes) { return sha256_hex(bytes.data(), bytes.size()); }
 
 }  // namespace tristim

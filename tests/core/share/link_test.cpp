@@ -5,6 +5,7 @@
 #include <random>
 
 #include "test_support.hpp"
+#include "tristim/absolute/example.hpp"
 #include "tristim/profile/characterise.hpp"
 #include "tristim/share/link.hpp"
 #include "tristim/share/sha256.hpp"
@@ -190,7 +191,7 @@ TEST_CASE("project files round-trip with their images and refuse damage", "[shar
   const Planted p = planted();
   Project project;
   project.payload = share_payload(characterise(p.recipe, p.training), p.training);
-  project.images = {{"chart.dng", std::string("\0\1\2raw", 6)}, {"flat.dng", "flat bytes"}};
+  project.images = {{"chart.dng", {0, 1, 2, 'r', 'a', 'w'}}, {"flat.dng", {'f', 'l', 'a', 't'}}};
   project.session.set("step", "fit");
   const std::string bytes = project_to_bytes(project);
   CHECK(is_project_file(bytes));
@@ -207,4 +208,24 @@ TEST_CASE("project files round-trip with their images and refuse damage", "[shar
   require_code([&] { project_from_bytes(bytes.substr(0, 40)); }, ErrorCode::ParseError);
   require_code([&] { project_from_bytes("TRISTIM-PROJECT 2\n0\n"); }, ErrorCode::ProfileVersion);
   require_code([&] { project_from_bytes("PK\3\4"); }, ErrorCode::ParseError);
+}
+
+TEST_CASE("an absolute recipe of per-patch stimuli reproduces from its link", "[share][absolute]") {
+  const AbsoluteExample ex = make_absolute_example();
+  AbsoluteRecipe recipe;
+  recipe.inputs.stimuli = read_absolute_stimuli(ex.stimuli_csv, "example stimuli");
+  recipe.options.saturation = ex.sensor.saturation;
+  recipe.options.noise_floor = ex.sensor.noise_floor;
+  const std::string payload = share_absolute_payload(recipe);
+  const SharePayload back = decode_share_payload(payload);
+  CHECK(back.kind == "absolute");
+  CHECK(back.absolute.inputs.stimuli.size() == recipe.inputs.stimuli.size());
+  const Reproduction r = reproduce_share(back);
+  CHECK(r.verdict == "reproduced");
+  CHECK(r.expected.text.find("coefficients ") != std::string::npos);
+  // A recipe naming frames cannot travel in a link.
+  AbsoluteRecipe framed = recipe;
+  framed.inputs.lens_cap = {"cap.dng"};
+  require_code([&] { share_payload(AbsoluteCharacterisation{complete_absolute_recipe(framed), {}, {}, {}, {}}); },
+               ErrorCode::InvalidArgument);
 }

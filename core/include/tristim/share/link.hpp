@@ -46,6 +46,7 @@ constexpr std::size_t kMaxLinkInflatedBytes = 1u << 20;
 /// Links longer than this are not offered: the page offers a project file instead (some mail
 /// and chat programs cut longer URLs; browsers accept far more).
 constexpr std::size_t kLinkLengthLimit = 16000;
+inline std::size_t share_link_limit() { return kLinkLengthLimit; }
 
 /// A source image the profile was sampled from (not in the link: its identity only).
 struct ShareSource {
@@ -113,6 +114,10 @@ TrainingSet share_training(const SharePayload& payload);
 std::string share_sample_payload(const Recipe& recipe, const ChartSample& sample, const ReferenceChart& reference,
                                  const std::vector<ShareSource>& sources);
 
+/// Fits an absolute recipe whose stimuli are per-patch rows (no frames) and returns the encoded
+/// payload (share_payload's errors for a recipe that names frames).
+std::string share_absolute_payload(const AbsoluteRecipe& recipe);
+
 /// The training set of `recipe` sampled from a chart image as `tristim fit --recipe --raw` samples
 /// it: the recipe's layout, corners and area, its light trap measured again; a stored (TIFF/PNG/
 /// JPEG) image sets capture.saturation when the recipe has none. `reference`: null for the recipe's
@@ -136,11 +141,14 @@ struct Reproduction {
 
 /// Recomputes the profile from the payload and compares its results with the expected ones.
 Reproduction reproduce_share(const SharePayload& payload);
+/// Whether a payload's patches can be sampled again from its source image alone: a relative
+/// recipe with chart corners and no dark frames or flat field (those frames are not in a link).
+bool can_resample(const SharePayload& payload);
 /// reproduce_share(decode_share_payload(text)).
 Reproduction reproduce_link(const std::string& text);
 /// reproduce_share with the source image at hand: its SHA-256 must be one of the payload's sources
 /// (Error(PatchMismatch) otherwise); it is decoded and sampled again (sample_training), so the
-/// sampling is reproduced too. Relative payloads only (InvalidArgument otherwise).
+/// sampling is reproduced too. InvalidArgument unless can_resample(payload).
 Reproduction reproduce_share_image(const SharePayload& payload, const std::vector<std::uint8_t>& image_bytes);
 Reproduction reproduce_link_image(const std::string& text, const std::vector<std::uint8_t>& image_bytes);
 json::Value reproduction_json(const Reproduction& reproduction);
@@ -166,7 +174,7 @@ std::string inflate_raw(std::string_view bytes, std::size_t max_bytes, const std
 
 struct ProjectImage {
   std::string name;
-  std::string bytes;
+  std::vector<std::uint8_t> bytes;
 };
 
 struct Project {
@@ -183,8 +191,22 @@ std::string project_to_bytes(const Project& project);
 Project project_from_bytes(std::string_view bytes);
 /// Whether `bytes` start like a project file.
 bool is_project_file(std::string_view bytes);
-/// A project recomputed: from its source image when it holds one the payload names and the recipe
-/// has chart corners (reproduce_share_image: the sampling too), else from its patch data.
+/// The page's export: a project of an encoded payload (encode_share_payload), the session's
+/// images and the page's own state as JSON text (kept as it is).
+std::vector<std::uint8_t> project_file(const std::string& payload, const std::vector<ProjectImage>& images,
+                                       const std::string& session_json);
+
+/// A project file opened (the page's import): its payload encoded as a link's, its images, its
+/// session as JSON text.
+struct ProjectContents {
+  std::string payload;
+  std::vector<ProjectImage> images;
+  std::string session;
+};
+ProjectContents open_project(const std::vector<std::uint8_t>& bytes);
+
+/// A project recomputed: from its source image when it holds one the payload names and
+/// can_resample (reproduce_share_image: the sampling too), else from its patch data.
 Reproduction reproduce_project(const Project& project);
 
 }  // namespace tristim

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace tristim {
 
@@ -32,5 +33,6 @@ class Sha256 {
 /// The 64 lower-case hex digits of SHA-256(bytes).
 std::string sha256_hex(std::string_view bytes);
 std::string sha256_hex(const void* data, std::size_t size);
+std::string sha256_hex(const std::vector<std::uint8_t>& bytes);
 
 }  // namespace tristim
