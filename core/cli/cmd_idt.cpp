@@ -1,0 +1,138 @@
+// CLI: `tristim idt` — an ACES Input Transform (profile/idt.hpp) written as CLF (profile/clf.hpp).
+#include <iostream>
+#include <string>
+
+#include "cli.hpp"
+#include "patch_args.hpp"
+#include "tristim/colorimetry/spectra.hpp"
+#include "tristim/error.hpp"
+#include "tristim/profile/clf.hpp"
+#include "tristim/profile/idt.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+
+namespace tristim::cli {
+
+namespace {
+
+// A file's name without its folders: the recipe in the CLF names inputs, never machine paths.
+std::string base_name(const std::string& path) {
+  const std::size_t s = path.find_last_of("/\\");
+  return s == std::string::npos ? path : path.substr(s + 1);
+}
+
+int exactly_one(const Args& args, std::initializer_list<const char*> keys, const std::string& what) {
+  int n = 0;
+  for (const char* k : keys) n += args.has(k) ? 1 : 0;
+  if (n != 1) throw Error(ErrorCode::InvalidArgument, "tristim idt needs exactly one " + what);
+  return n;
+}
+
+int run_idt(const Args& args, std::ostream& out) {
+  args.allow_only({"camera", "sensitivities", "rgb", "reference", "illuminant", "illuminant-file", "training", "reflectances",
+                   "adaptation", "out", "json", "matrix"});
+  const bool chart = args.has("rgb") || args.has("reference");
+  if (chart && !(args.has("rgb") && args.has("reference")))
+    throw Error(ErrorCode::InvalidArgument, "--rgb and --reference go together (a chart's camera RGB and its reference)");
+  if (chart && (args.has("camera") || args.has("sensitivities")))
+    throw Error(ErrorCode::InvalidArgument, "give the camera as --camera, --sensitivities or --rgb/--reference, one of them");
+  if (!chart) exactly_one(args, {"camera", "sensitivities"}, "camera: --camera \"<name>\", --sensitivities ssf.csv or --rgb/--reference");
+  exactly_one(args, {"illuminant", "illuminant-file"}, "illuminant: --illuminant D55 or --illuminant-file spd.csv");
+  if (args.has("training") && args.has("reflectances"))
+    throw Error(ErrorCode::InvalidArgument, "give --training 190 or --reflectances r.csv, not both");
+  if (chart && (args.has("training") || args.has("reflectances")))
+    throw Error(ErrorCode::InvalidArgument, "--training/--reflectances are for sensitivities; a chart trains on its own patches");
+  if (args.has("training") && args.get("training") != "190")
+    throw Error(ErrorCode::UnknownId, "--training takes 190 (rawtoaces v1's 190 spectra), not '" + args.get("training") + "'");
+
+  IdtOptions o;
+  if (args.has("adaptation")) o.adaptation = idt_adaptation(args.get("adaptation"));
+  IdtRecipe recipe;
+  SpectralData illuminant;
+  if (args.has("illuminant")) {
+    const std::string id = args.get("illuminant");
+    illuminant = illuminant_spd(id);
+    recipe.emplace_back("Illuminant", id);
+  } else {
+    const std::string path = args.get("illuminant-file");
+    illuminant = illuminant_arg(path);
+    recipe.emplace_back("IlluminantFile", base_name(path));
+  }
+
+  IdtResult r;
+  if (chart) {
+    const Vec3 white = illuminant_white_XYZ(illuminant);
+    const PatchData d = load_pairs(args.get("rgb"), args.get("reference"), white);
+    std::vector<Vec3> rgb, xyz;
+    for (int i = 0; i < d.rgb.rows(); ++i) {
+      rgb.push_back(d.rgb.row(i).transpose());
+      xyz.push_back(d.xyz.row(i).transpose());
+    }
+    recipe.insert(recipe.begin(), {{"CameraRGB", base_name(args.get("rgb"))}, {"Reference", base_name(args.get("reference"))}});
+    r = idt_from_patches(rgb, xyz, white, o);
+  } else {
+    SpectralData ssf;
+    if (args.has("camera")) {
+      ssf = camera_ssf(args.get("camera"));
+      recipe.insert(recipe.begin(), {"Camera", args.get("camera")});
+    } else {
+      const std::string path = args.get("sensitivities");
+      ssf = read_ssf_csv(read_file(path), path);
+      recipe.insert(recipe.begin(), {"Sensitivities", base_name(path)});
+    }
+    SpectralData training;
+    if (args.has("reflectances")) {
+      training = reflectances_arg(args.get("reflectances"));
+      recipe.emplace_back("Training", base_name(args.get("reflectances")));
+    } else {
+      training = idt_training_190();
+      recipe.emplace_back("Training", "190 (rawtoaces v1)");
+    }
+    r = idt_from_sensitivities(ssf, illuminant, training, o);
+  }
+  recipe.emplace_back("Adaptation", r.adaptation);
+
+  const std::string path = args.get("out");
+  const std::string clf = write_clf(idt_clf(r, recipe));
+  write_bytes(path, clf.data(), clf.size());
+  if (args.has("matrix")) {
+    const std::string m = idt_matrix_text(r);
+    write_bytes(args.get("matrix"), m.data(), m.size());
+  }
+  if (args.has("json")) {
+    out << idt_json(r, recipe).dump(2) << "\n";
+    return 0;
+  }
+  const ClfDocument back = read_clf(clf);
+  out << "tristim idt: " << path << " (" << clf.size() << " bytes), CLF: camera-native linear RGB -> ACES2065-1\n";
+  out << "  white balance (R G B): " << fmt(r.white_balance[0], 6) << " " << fmt(r.white_balance[1], 6) << " "
+      << fmt(r.white_balance[2], 6) << "   exposure " << fmt(r.exposure, 6) << "   adaptation " << r.adaptation << "\n";
+  out << "  B (white-balanced RGB -> ACES2065-1, rows sum to 1):\n";
+  for (int i = 0; i < 3; ++i)
+    out << "    " << fmt(r.matrix(i, 0), 6) << " " << fmt(r.matrix(i, 1), 6) << " " << fmt(r.matrix(i, 2), 6) << "\n";
+  out << "  fit on " << r.patches << " samples: dE76 mean " << fmt(r.mean_delta_E76) << " max " << fmt(r.max_delta_E76)
+      << ", dE00 mean " << fmt(r.mean_delta_E00) << " max " << fmt(r.max_delta_E00) << " (" << r.iterations << " iterations)\n";
+  const Vec3 w = apply_clf(back, Vec3(1 / (r.white_balance[0] * r.exposure), 1 / r.exposure, 1 / (r.white_balance[2] * r.exposure)));
+  out << "  read back: the camera white maps to ACES " << fmt(w[0], 6) << " " << fmt(w[1], 6) << " " << fmt(w[2], 6) << "\n";
+  if (r.status != "ok") out << "  warning: " << r.message << "\n";
+  return 0;
+}
+
+CommandRegistration reg_idt({"idt", "ACES Input Transform (rawtoaces v1 method) as CLF",
+                             "tristim idt (--camera \"<one of the 52>\" | --sensitivities ssf.csv | --rgb patches.csv --reference ref.csv)\n"
+                             "            (--illuminant D55 | --illuminant-file spd.csv) [--training 190 | --reflectances r.csv]\n"
+                             "            [--adaptation CAT02|Bradford] --out idt.clf [--matrix idt.txt] [--json]\n"
+                             "The AMPAS/rawtoaces v1 IDT: white-balanced camera RGB -> ACES2065-1 by a 3x3 whose rows sum to\n"
+                             "one, minimising the sum of squared CIE 1976 dE*ab (against the ACES white) over the training\n"
+                             "set, with the reference XYZ adapted to the ACES white by CAT02 (default) or Bradford.\n"
+                             "From sensitivities (--camera: `tristim list --what cameras`; --sensitivities: wavelength,R,G,B)\n"
+                             "the training set is rawtoaces' 190 spectra (--training 190, the default) or --reflectances (a\n"
+                             "chart id or a spectral CSV). From a chart: --rgb its linear camera RGB (black subtracted) and\n"
+                             "--reference its XYZ or Lab under the illuminant; the white balance comes from its most neutral\n"
+                             "bright patch. --out writes the CLF (Info: the recipe; Matrix: exposure * B * diag(white\n"
+                             "balance), camera-native RGB in); --matrix also writes the plain 3x3; --json prints \"matrix\" (B),\n"
+                             "\"white_balance\" (G = 1) and the fit's errors.",
+                             run_idt});
+
+}  // namespace
+
+}  // namespace tristim::cli
