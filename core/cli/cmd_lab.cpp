@@ -62,12 +62,12 @@ int run_render(const Args& args, std::ostream& out) {
   o.bits = static_cast<int>(args.get_double("bits", o.bits));
   o.black = static_cast<int>(args.get_double("black", o.black));
   o.cfa = args.get("cfa", o.cfa);
+  o.oecf = args.get("oecf", o.oecf);
   const std::string path = args.get("out");
-  if (!ends_with(path, ".dng") && !ends_with(path, ".DNG"))
-    throw Error(ErrorCode::InvalidArgument, "--out must name a .dng file, got '" + path + "'");
-  if (args.has("oecf") && args.get("oecf") != "linear")
-    throw Error(ErrorCode::InvalidArgument, "a DNG holds linear sensor data: --oecf must be 'linear' (or absent) with --out .dng");
-  const LabRenderFiles r = lab_render_files(o);
+  const bool dng = ends_with(path, ".dng") || ends_with(path, ".DNG");
+  if (!dng && !ends_with(path, ".tiff") && !ends_with(path, ".tif"))
+    throw Error(ErrorCode::InvalidArgument, "--out must name a .dng or .tiff file, got '" + path + "'");
+  const LabRenderFiles r = lab_render_files(o, dng ? "dng" : "tiff");
   write_bytes(path, r.dng);
   out << r.truth << "\n";
   return 0;
@@ -113,6 +113,7 @@ CommandRegistration reg_lab(
      "                   [--sensitivities ssf.csv] [--exposure 0.5] [--noise shot,read] [--seed 1]\n"
      "                   [--surface <method>:<name>=<value>,...] [--falloff 0] [--flare 0]\n"
      "                   [--corners x1,y1,...,x4,y4] [--size 900x600] [--bits 14] [--black 512] [--cfa RGGB]\n"
+     "tristim lab render ... --oecf gamma=2.2|sRGB|linear --out chart.tiff\n"
      "  A chart photograph from measured spectra: the chart's reflectances (corrected for the capture geometry\n"
      "  by --surface, Abed 2013) under the illuminant (an id such as D65, A, F2, D5000, or an SPD CSV) through\n"
      "  the camera's sensitivities (`tristim list` names the 52; --sensitivities a CSV of your own), drawn\n"
@@ -122,6 +123,9 @@ CommandRegistration reg_lab(
      "  --falloff a: 1 - a*r^2 light fall-off (r = 1 at the corners); --flare f: veiling flare, a fraction of\n"
      "  the white. Prints the truth as JSON: corners, white, DNG colour matrix, and per patch the camera RGB\n"
      "  `rgb` (DN above black) that sampling recovers exactly with noise and fall-off off, and the XYZ.\n"
+     "  --out .tiff: an RGB image (one pixel per 2x2 sensor block, no CFA) encoded by --oecf (x = DN/saturation;\n"
+     "  gamma=g stores x^(1/g)) in 16 bits; the truth adds `stored` per patch (what sampling the TIFF recovers).\n"
+     "  (JPEG output is not offered: the core's only libjpeg user is the JPEG reader.)\n"
      "tristim lab smi [--camera \"<name>\"]... [--illuminant D65] [--sensitivities ssf.csv] [--json]\n"
      "  Camera quality as a colorimeter: the ISO 17321-1 sensitivity metamerism index (SMI = 100 - 5.5 x mean\n"
      "  dE*ab of ColorChecker patches 1-18, ISO 17321-1/Ohta reflectances, CIE 1931, after the white-preserving\n"

@@ -73,6 +73,47 @@ Entry exact_rational(std::uint16_t tag, double v) {
   return e;
 }
 
+// Header, one IFD and its out-of-line payloads; the positions of the StripOffsets (273) and
+// ExifIFD (34665) values are returned for patching.
+void assemble(const std::vector<Entry>& e, std::vector<std::uint8_t>& out, size_t* strip_field, size_t* exif_field) {
+  for (int b : {0x49, 0x49, 42, 0}) out.push_back(static_cast<std::uint8_t>(b));
+  put32(out, 8);
+  const size_t ifd_size = 2 + e.size() * 12 + 4;
+  const size_t extra = 8 + ifd_size;  // where out-of-line payloads go
+  std::vector<std::uint8_t> payload;
+  put16(out, static_cast<std::uint16_t>(e.size()));
+  for (const auto& x : e) {
+    put16(out, x.tag);
+    put16(out, x.type);
+    put32(out, x.count);
+    if (x.tag == 273) *strip_field = out.size();
+    if (x.tag == 34665) *exif_field = out.size();
+    if (x.data.size() <= 4) {
+      std::vector<std::uint8_t> inl = x.data;
+      inl.resize(4, 0);
+      out.insert(out.end(), inl.begin(), inl.end());
+    } else {
+      put32(out, static_cast<std::uint32_t>(extra + payload.size()));
+      payload.insert(payload.end(), x.data.begin(), x.data.end());
+      if (payload.size() % 2) payload.push_back(0);
+    }
+  }
+  put32(out, 0);  // no next IFD
+  out.insert(out.end(), payload.begin(), payload.end());
+}
+
+// 16-bit samples after the header, little-endian, at a 16-byte boundary; patches StripOffsets.
+void append_strip(std::vector<std::uint8_t>& out, size_t strip_field, const std::vector<std::uint16_t>& values) {
+  while (out.size() % 16) out.push_back(0);
+  set32(out, strip_field, static_cast<std::uint32_t>(out.size()));
+  const size_t base = out.size();
+  out.resize(base + values.size() * 2);
+  for (size_t i = 0; i < values.size(); ++i) {
+    out[base + 2 * i] = static_cast<std::uint8_t>(values[i]);
+    out[base + 2 * i + 1] = static_cast<std::uint8_t>(values[i] >> 8);
+  }
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> write_dng(const std::vector<std::uint16_t>& values, int width, int height,
@@ -134,31 +175,8 @@ std::vector<std::uint8_t> write_dng(const std::vector<std::uint16_t>& values, in
 
   std::vector<std::uint8_t> out;
   out.reserve(values.size() * 2 + 4096);
-  for (int b : {0x49, 0x49, 42, 0}) out.push_back(static_cast<std::uint8_t>(b));
-  put32(out, 8);
-  const size_t ifd_size = 2 + e.size() * 12 + 4;
-  size_t extra = 8 + ifd_size;  // where out-of-line payloads go
-  std::vector<std::uint8_t> payload;
-  put16(out, static_cast<std::uint16_t>(e.size()));
   size_t strip_offset_field = 0, exif_offset_field = 0;
-  for (const auto& x : e) {
-    put16(out, x.tag);
-    put16(out, x.type);
-    put32(out, x.count);
-    if (x.tag == 273) strip_offset_field = out.size();
-    if (x.tag == 34665) exif_offset_field = out.size();
-    if (x.data.size() <= 4) {
-      std::vector<std::uint8_t> inl = x.data;
-      inl.resize(4, 0);
-      out.insert(out.end(), inl.begin(), inl.end());
-    } else {
-      put32(out, static_cast<std::uint32_t>(extra + payload.size()));
-      payload.insert(payload.end(), x.data.begin(), x.data.end());
-      if (payload.size() % 2) payload.push_back(0);
-    }
-  }
-  put32(out, 0);  // no next IFD
-  out.insert(out.end(), payload.begin(), payload.end());
+  assemble(e, out, &strip_offset_field, &exif_offset_field);
   if (o.iso > 0) {  // the EXIF IFD: one entry, ISOSpeedRatings
     set32(out, exif_offset_field, static_cast<std::uint32_t>(out.size()));
     put16(out, 1);
@@ -169,14 +187,21 @@ std::vector<std::uint8_t> write_dng(const std::vector<std::uint16_t>& values, in
     put16(out, 0);
     put32(out, 0);
   }
-  while (out.size() % 16) out.push_back(0);
-  set32(out, strip_offset_field, static_cast<std::uint32_t>(out.size()));
-  const size_t base = out.size();
-  out.resize(base + values.size() * 2);
-  for (size_t i = 0; i < values.size(); ++i) {
-    out[base + 2 * i] = static_cast<std::uint8_t>(values[i]);
-    out[base + 2 * i + 1] = static_cast<std::uint8_t>(values[i] >> 8);
-  }
+  append_strip(out, strip_offset_field, values);
+  return out;
+}
+
+std::vector<std::uint8_t> write_tiff_rgb16(const std::vector<std::uint16_t>& rgb, int width, int height) {
+  if (width < 1 || height < 1 || static_cast<size_t>(width) * height * 3 != rgb.size())
+    throw Error(ErrorCode::InvalidArgument, "write_tiff_rgb16: width*height*3 must equal the number of values");
+  const std::uint32_t w = static_cast<std::uint32_t>(width), h = static_cast<std::uint32_t>(height);
+  std::vector<Entry> e{longs(256, {w}), longs(257, {h}), shorts(258, {16, 16, 16}), shorts(259, {1}), shorts(262, {2}),
+                       longs(273, {0}), shorts(274, {1}), shorts(277, {3}), longs(278, {h}),
+                       longs(279, {static_cast<std::uint32_t>(rgb.size() * 2)}), shorts(284, {1})};
+  std::vector<std::uint8_t> out;
+  size_t strip = 0, unused = 0;
+  assemble(e, out, &strip, &unused);
+  append_strip(out, strip, rgb);
   return out;
 }
 

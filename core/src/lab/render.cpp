@@ -4,9 +4,11 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "tristim/chart/layout.hpp"
 #include "tristim/chart/reference.hpp"
+#include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -66,14 +68,59 @@ std::array<double, 9> colour_matrix_D65(const SpectralData& ssf, const SpectralD
   return out;
 }
 
+// One channel of measurement pixel (x, y) as stored, DN above black: the scene through fall-off,
+// flare and (with `noise`) shot + read noise, rounded and clipped to [−black, saturation].
+double pixel_dn(const LabRender& r, int x, int y, int c, GaussianNoise* noise) {
+  const LabRenderOptions& o = r.options;
+  const double cx = o.width / 2.0, cy = o.height / 2.0, r2max = cx * cx + cy * cy;
+  const double dx = x + 0.5 - cx, dy = y + 0.5 - cy;
+  const double f = o.falloff > 0 ? 1 - o.falloff * (dx * dx + dy * dy) / r2max : 1.0;
+  const size_t ci = static_cast<size_t>(c);
+  double v = r.scene[(static_cast<size_t>(y) * o.width + x) * 3 + ci] * f + o.flare * r.white[ci];
+  if (noise) v += std::sqrt(std::max(0.0, o.shot_gain * v) + o.read_noise * o.read_noise) * noise->next();
+  return std::min(std::max(std::round(v), -static_cast<double>(o.black)), r.saturation);
+}
+
 }  // namespace
 
-LabRenderFiles lab_render_files(const LabRenderOptions& options) {
+LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::string& format) {
+  if (format != "dng" && format != "tiff")
+    throw Error(ErrorCode::InvalidArgument, "lab render writes dng or tiff, not '" + format + "'");
+  if (format == "dng" && options.oecf != "linear")
+    throw Error(ErrorCode::InvalidArgument, "a DNG holds linear sensor data: the OECF must be 'linear' (write a .tiff for '" + options.oecf + "')");
   const LabRender r = render_lab_chart(options);
+  if (format == "tiff") return {lab_render_tiff(r), lab_render_json(r, 65535).dump(1)};
   return {lab_render_dng(r), lab_render_json(r).dump(1)};
 }
 
 std::vector<std::string> lab_chart_ids() { return {"cc24", "passport", "sg140"}; }
+
+double lab_encode(const LabRenderOptions& o, double dn, double saturation) {
+  const double x = std::min(std::max(dn / saturation, 0.0), 1.0);
+  if (o.oecf == "linear") return x;
+  if (o.oecf == "sRGB" || o.oecf == "srgb") return sRGB_encode(x);
+  if (o.oecf.compare(0, 6, "gamma=") == 0) {
+    char* end = nullptr;
+    const std::string g = o.oecf.substr(6);
+    const double gamma = std::strtod(g.c_str(), &end);
+    if (!g.empty() && *end == '\0' && gamma >= 0.2 && gamma <= 5) return std::pow(x, 1.0 / gamma);
+  }
+  throw Error(ErrorCode::InvalidArgument, "oecf must be linear, sRGB or gamma=<0.2..5>, got '" + o.oecf + "'");
+}
+
+std::vector<std::uint8_t> lab_render_tiff(const LabRender& r) {
+  const LabRenderOptions& o = r.options;
+  lab_encode(o, 0, 1);  // an unknown OECF fails before any work
+  const bool noisy = o.shot_gain > 0 || o.read_noise > 0;
+  GaussianNoise noise(o.seed);
+  std::vector<std::uint16_t> rgb(static_cast<size_t>(r.width) * r.height * 3);
+  for (int y = 0; y < r.height; ++y)
+    for (int x = 0; x < r.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        rgb[(static_cast<size_t>(y) * r.width + x) * 3 + static_cast<size_t>(c)] = static_cast<std::uint16_t>(
+            std::lround(65535.0 * lab_encode(o, pixel_dn(r, x, y, c, noisy ? &noise : nullptr), r.saturation)));
+  return write_tiff_rgb16(rgb, r.width, r.height);
+}
 
 LabRender render_lab_chart(const LabRenderOptions& o) {
   const auto ids = lab_chart_ids();
@@ -192,10 +239,10 @@ LabRender render_lab_chart(const LabRenderOptions& o) {
       }
     }
 
+  out.scene = img;
   // Sensor: fall-off, flare, noise, rounding, clipping; one value per CFA site.
   const int sw = 2 * o.width, sh = 2 * o.height;
   out.sensor.resize(static_cast<size_t>(sw) * sh);
-  const double cx = o.width / 2.0, cy = o.height / 2.0, r2max = cx * cx + cy * cy;
   const bool noisy = o.shot_gain > 0 || o.read_noise > 0;
   GaussianNoise noise(o.seed);
   const std::string rgb = "RGB";
@@ -204,11 +251,7 @@ LabRender render_lab_chart(const LabRenderOptions& o) {
   for (int y = 0; y < sh; ++y)
     for (int x = 0; x < sw; ++x) {
       const int bx = x / 2, by = y / 2, c = channel[2 * (y % 2) + (x % 2)];
-      const double dx = bx + 0.5 - cx, dy = by + 0.5 - cy;
-      const double f = o.falloff > 0 ? 1 - o.falloff * (dx * dx + dy * dy) / r2max : 1.0;
-      double v = img[(static_cast<size_t>(by) * o.width + bx) * 3 + static_cast<size_t>(c)] * f + flare[static_cast<size_t>(c)];
-      if (noisy) v += std::sqrt(std::max(0.0, o.shot_gain * v) + o.read_noise * o.read_noise) * noise.next();
-      v = std::min(std::max(std::round(v), -static_cast<double>(o.black)), s);
+      const double v = pixel_dn(out, bx, by, c, noisy ? &noise : nullptr);
       out.sensor[static_cast<size_t>(y) * sw + x] = static_cast<std::uint16_t>(v + o.black);
     }
 
@@ -229,7 +272,7 @@ std::vector<std::uint8_t> lab_render_dng(const LabRender& r) {
   return write_dng(r.sensor, 2 * r.width, 2 * r.height, r.dng);
 }
 
-json::Value lab_render_json(const LabRender& r) {
+json::Value lab_render_json(const LabRender& r, double full_scale) {
   const LabRenderOptions& o = r.options;
   auto arr = [](const double* v, size_t n) { return json::Value(std::vector<double>(v, v + n)); };
   json::Value j = json::Value::object();
@@ -253,6 +296,10 @@ json::Value lab_render_json(const LabRender& r) {
   noise.set("read_noise", o.read_noise);
   noise.set("seed", static_cast<double>(o.seed));
   j.set("noise", noise);
+  if (full_scale > 0) {
+    j.set("oecf", o.oecf);
+    j.set("full_scale", full_scale);
+  }
   j.set("corners", arr(r.corners.data(), 8));
   j.set("white", arr(r.white.data(), 3));
   j.set("color_matrix", arr(r.dng.color_matrix.data(), 9));
@@ -263,6 +310,11 @@ json::Value lab_render_json(const LabRender& r) {
     q.set("rgb", arr(p.rgb.data(), 3));
     q.set("linear", arr(p.linear.data(), 3));
     q.set("XYZ", arr(p.XYZ.data(), 3));
+    if (full_scale > 0) {
+      std::array<double, 3> stored{};
+      for (size_t c = 0; c < 3; ++c) stored[c] = std::round(full_scale * lab_encode(o, p.rgb[c], r.saturation));
+      q.set("stored", arr(stored.data(), 3));
+    }
     patches.push(q);
   }
   j.set("patches", patches);

@@ -6,6 +6,7 @@
 
 #include "shell.hpp"
 #include "test_support.hpp"
+#include "tristim/capture/image.hpp"
 #include "tristim/capture/raw.hpp"
 #include "tristim/chart/detect.hpp"
 #include "tristim/chart/layout.hpp"
@@ -213,3 +214,33 @@ TEST_CASE("lab render: the CLI's DNG opens in dcraw_emu and tristim detect + sam
   std::system(("rm -rf '" + std::string(tmpl) + "'").c_str());
 }
 #endif
+
+TEST_CASE("lab render: a TIFF through a gamma OECF holds the encoded truth, sampled back exactly", "[lab]") {
+  LabRenderOptions o;
+  o.camera = "Canon_EOS_5D_Mark_III";
+  o.oecf = "gamma=2.2";
+  o.flare = 0.02;
+  const LabRender r = render_lab_chart(o);
+  const auto bytes = lab_render_tiff(r);
+  const RawImage img = decode_tiff(bytes.data(), bytes.size());
+  REQUIRE(img.width == r.width);
+  CHECK(img.meta.encoding == "stored");
+  LayoutOptions lo;
+  lo.chart = "cc24";
+  const ChartSample s = sample_chart(img, lo, r.corners);
+  const json::Value truth = lab_render_json(r, 65535);
+  const auto& patches = truth.at("patches").as_array();
+  for (size_t i = 0; i < s.patches.size(); ++i) {
+    const auto stored = patches[i].at("stored").as_numbers();
+    for (size_t c = 0; c < 3; ++c) {
+      INFO(s.patches[i].id << " channel " << c);
+      CHECK(s.patches[i].mean[c] == stored[c]);
+      // Planted: stored = 65535 · (rgb / saturation)^(1/2.2), to the rounding.
+      CHECK(std::abs(stored[c] - 65535 * std::pow(r.patches[i].rgb[c] / r.saturation, 1 / 2.2)) <= 0.5);
+    }
+  }
+  o.oecf = "gamma=banana";
+  test::require_code([&] { lab_render_files(o, "tiff"); }, ErrorCode::InvalidArgument);
+  o.oecf = "gamma=2.2";
+  test::require_code([&] { lab_render_files(o, "dng"); }, ErrorCode::InvalidArgument);
+}

@@ -33,4 +33,8 @@ struct DngWriteOptions {
 std::vector<std::uint8_t> write_dng(const std::vector<std::uint16_t>& cfa_values, int width,
                                     int height, const DngWriteOptions& options = {});
 
+/// A little-endian baseline TIFF, RGB, 16 bits per sample, one uncompressed strip of width×height
+/// interleaved R, G, B values (row-major). Throws Error(InvalidArgument) if sizes do not match.
+std::vector<std::uint8_t> write_tiff_rgb16(const std::vector<std::uint16_t>& rgb, int width, int height);
+
 }  // namespace tristim

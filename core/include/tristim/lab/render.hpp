@@ -52,6 +52,9 @@ struct LabRenderOptions {
   int bits = 14;                    ///< sensor bit depth, 10..16
   int black = 512;                  ///< black level, DN
   std::string cfa = "RGGB";         ///< 2×2 pattern
+  /// The encoding of an RGB image (lab_render_tiff; a DNG is always linear): "linear",
+  /// "gamma=<γ>" (stored = x^(1/γ)) or "sRGB" (IEC 61966-2-1), x = DN / saturation in [0, 1].
+  std::string oecf = "linear";
 };
 
 struct LabPatchTruth {
@@ -70,6 +73,7 @@ struct LabRender {
   std::array<double, 3> white{};    ///< DN of the white diffuser (e·s·w)
   std::vector<LabPatchTruth> patches;  ///< in the layout's order
   DngWriteOptions dng;              ///< the DNG's tags (colour matrix fitted on the chart under D65)
+  std::vector<double> scene;        ///< width × height × 3: u per pixel (before fall-off, flare, noise)
 };
 
 /// Renders the chart. Errors: UnknownId (camera, chart, illuminant, surface method),
@@ -79,17 +83,27 @@ LabRender render_lab_chart(const LabRenderOptions& options);
 /// The rendering as a DNG file (bytes).
 std::vector<std::uint8_t> lab_render_dng(const LabRender& render);
 
+/// The rendering as an RGB image, one pixel per measurement pixel (no CFA), through the OECF
+/// (options.oecf) and quantised to 16 bits: a baseline TIFF. Fall-off, flare and noise as in the
+/// DNG (one noise draw per pixel and channel).
+std::vector<std::uint8_t> lab_render_tiff(const LabRender& render);
+
+/// Encoded value of a DN through options.oecf, in [0, 1]. Error(InvalidArgument) for an unknown OECF.
+double lab_encode(const LabRenderOptions& options, double dn, double saturation);
+
 /// The truth as JSON: camera, chart, illuminant, sizes, corners, saturation, white, and per patch
-/// {id, rgb, linear, XYZ}.
-json::Value lab_render_json(const LabRender& render);
+/// {id, rgb, linear, XYZ}; with `full_scale` > 0 (an image through the OECF) also the OECF and
+/// per patch `stored`: round(full_scale · encode(rgb)), what sampling the image recovers (noise off).
+json::Value lab_render_json(const LabRender& render, double full_scale = 0);
 
 /// What `tristim lab render` writes and prints, and what the page's Lab mode receives: the DNG's
 /// bytes and the truth as JSON text (lab_render_json, pretty-printed).
 struct LabRenderFiles {
-  std::vector<std::uint8_t> dng;
+  std::vector<std::uint8_t> dng;    ///< the file's bytes (DNG or TIFF)
   std::string truth;
 };
-LabRenderFiles lab_render_files(const LabRenderOptions& options);
+/// format: "dng" (options.oecf must be "linear") or "tiff".
+LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::string& format = "dng");
 
 /// Chart ids lab rendering draws ("cc24", "passport", "sg140").
 std::vector<std::string> lab_chart_ids();
