@@ -44,21 +44,18 @@ int run_idt(const Args& args, std::ostream& out) {
   if (args.has("training") && args.get("training") != "190")
     throw Error(ErrorCode::UnknownId, "--training takes 190 (rawtoaces v1's 190 spectra), not '" + args.get("training") + "'");
 
-  IdtOptions o;
-  if (args.has("adaptation")) o.adaptation = idt_adaptation(args.get("adaptation"));
-  IdtRecipe recipe;
+  const std::string adaptation = args.get("adaptation", "CAT02");
+  std::pair<std::string, std::string> illuminant_entry;
   SpectralData illuminant;
   if (args.has("illuminant")) {
-    const std::string id = args.get("illuminant");
-    illuminant = illuminant_spd(id);
-    recipe.emplace_back("Illuminant", id);
+    illuminant_entry = {"Illuminant", args.get("illuminant")};
+    illuminant = illuminant_spd(args.get("illuminant"));
   } else {
-    const std::string path = args.get("illuminant-file");
-    illuminant = illuminant_arg(path);
-    recipe.emplace_back("IlluminantFile", base_name(path));
+    illuminant_entry = {"IlluminantFile", base_name(args.get("illuminant-file"))};
+    illuminant = illuminant_arg(args.get("illuminant-file"));
   }
 
-  IdtResult r;
+  IdtFiles files;
   if (chart) {
     const Vec3 white = illuminant_white_XYZ(illuminant);
     const PatchData d = load_pairs(args.get("rgb"), args.get("reference"), white);
@@ -67,41 +64,33 @@ int run_idt(const Args& args, std::ostream& out) {
       rgb.push_back(d.rgb.row(i).transpose());
       xyz.push_back(d.xyz.row(i).transpose());
     }
-    recipe.insert(recipe.begin(), {{"CameraRGB", base_name(args.get("rgb"))}, {"Reference", base_name(args.get("reference"))}});
-    r = idt_from_patches(rgb, xyz, white, o);
+    files = idt_chart_files(rgb, xyz, white, adaptation, base_name(args.get("rgb")), base_name(args.get("reference")),
+                            illuminant_entry);
+  } else if (args.has("camera") && args.has("illuminant") && !args.has("reflectances")) {
+    files = idt_camera_files(args.get("camera"), args.get("illuminant"), adaptation);  // what the page calls
   } else {
-    SpectralData ssf;
-    if (args.has("camera")) {
-      ssf = camera_ssf(args.get("camera"));
-      recipe.insert(recipe.begin(), {"Camera", args.get("camera")});
-    } else {
-      const std::string path = args.get("sensitivities");
-      ssf = read_ssf_csv(read_file(path), path);
-      recipe.insert(recipe.begin(), {"Sensitivities", base_name(path)});
-    }
-    SpectralData training;
-    if (args.has("reflectances")) {
-      training = reflectances_arg(args.get("reflectances"));
-      recipe.emplace_back("Training", base_name(args.get("reflectances")));
-    } else {
-      training = idt_training_190();
-      recipe.emplace_back("Training", "190 (rawtoaces v1)");
-    }
-    r = idt_from_sensitivities(ssf, illuminant, training, o);
+    IdtOptions o;
+    o.adaptation = idt_adaptation(adaptation);
+    const bool built_in = args.has("camera");
+    const SpectralData ssf = built_in ? camera_ssf(args.get("camera"))
+                                      : read_ssf_csv(read_file(args.get("sensitivities")), args.get("sensitivities"));
+    const SpectralData training = args.has("reflectances") ? reflectances_arg(args.get("reflectances")) : idt_training_190();
+    files = idt_files(idt_from_sensitivities(ssf, illuminant, training, o),
+                      idt_recipe(built_in ? std::pair<std::string, std::string>{"Camera", args.get("camera")}
+                                          : std::pair<std::string, std::string>{"Sensitivities", base_name(args.get("sensitivities"))},
+                                 illuminant_entry,
+                                 args.has("reflectances") ? base_name(args.get("reflectances")) : kIdtTraining190, o.adaptation));
   }
-  recipe.emplace_back("Adaptation", r.adaptation);
+  const IdtResult& r = files.result;
 
   const std::string path = args.get("out");
-  const std::string clf = write_clf(idt_clf(r, recipe));
-  write_bytes(path, clf.data(), clf.size());
-  if (args.has("matrix")) {
-    const std::string m = idt_matrix_text(r);
-    write_bytes(args.get("matrix"), m.data(), m.size());
-  }
+  write_bytes(path, files.clf.data(), files.clf.size());
+  if (args.has("matrix")) write_bytes(args.get("matrix"), files.matrix.data(), files.matrix.size());
   if (args.has("json")) {
-    out << idt_json(r, recipe).dump(2) << "\n";
+    out << files.json;
     return 0;
   }
+  const std::string& clf = files.clf;
   const ClfDocument back = read_clf(clf);
   out << "tristim idt: " << path << " (" << clf.size() << " bytes), CLF: camera-native linear RGB -> ACES2065-1\n";
   out << "  white balance (R G B): " << fmt(r.white_balance[0], 6) << " " << fmt(r.white_balance[1], 6) << " "

@@ -11,6 +11,7 @@
 
 #include "tristim/error.hpp"
 #include "tristim/profile/clf.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
 #include "tristim/version.hpp"
 
 namespace tristim {
@@ -405,6 +406,36 @@ json::Value clf_json(const ClfDocument& c) {
   const Vec3 w = apply_clf(c, Vec3::Ones());
   o.set("aces_of_camera_1_1_1", std::vector<double>{w[0], w[1], w[2]});
   return o;
+}
+
+IdtFiles idt_files(const IdtResult& r, const IdtRecipe& recipe) {
+  return {write_clf(idt_clf(r, recipe)), idt_matrix_text(r), idt_json(r, recipe).dump(2) + "\n", r};
+}
+
+IdtRecipe idt_recipe(const std::pair<std::string, std::string>& source, const std::pair<std::string, std::string>& illuminant,
+                     const std::string& training, ChromaticAdaptation adaptation) {
+  IdtRecipe r = {source, illuminant};
+  if (!training.empty()) r.emplace_back("Training", training);
+  r.emplace_back("Adaptation", idt_adaptation_name(adaptation));
+  return r;
+}
+
+IdtFiles idt_camera_files(const std::string& camera, const std::string& illuminant, const std::string& adaptation) {
+  IdtOptions o;
+  o.adaptation = idt_adaptation(adaptation);
+  const IdtResult r = idt_from_sensitivities(camera_ssf(camera), illuminant_spd(illuminant), idt_training_190(), o);
+  return idt_files(r, idt_recipe({"Camera", camera}, {"Illuminant", illuminant}, kIdtTraining190, o.adaptation));
+}
+
+IdtFiles idt_chart_files(const std::vector<Vec3>& rgb, const std::vector<Vec3>& xyz, const Vec3& white,
+                         const std::string& adaptation, const std::string& rgb_name, const std::string& reference_name,
+                         const std::pair<std::string, std::string>& illuminant) {
+  IdtOptions o;
+  o.adaptation = idt_adaptation(adaptation);
+  const IdtResult r = idt_from_patches(rgb, xyz, white, o);
+  IdtRecipe recipe = idt_recipe({"CameraRGB", rgb_name}, illuminant, "", o.adaptation);
+  recipe.insert(recipe.begin() + 1, {"Reference", reference_name});
+  return idt_files(r, recipe);
 }
 
 }  // namespace tristim

@@ -46,6 +46,8 @@ Vec3 apply_clf(const ClfDocument& clf, const Vec3& rgb);
 /// The recipe of an IDT as it is written in the CLF's Info and the JSON, in order: e.g.
 /// {"Camera", "Canon EOS 5D Mark II"}, {"Illuminant", "D55"}, {"Training", "190 (rawtoaces v1)"}.
 using IdtRecipe = std::vector<std::pair<std::string, std::string>>;
+/// The Training entry of the built-in set.
+inline constexpr const char* kIdtTraining190 = "190 (rawtoaces v1)";
 
 /// The CLF of an IDT: Info = tristim's version, the method, the recipe, the white balance,
 /// exposure and the fit's errors; Matrix = result.camera_matrix().
@@ -57,6 +59,27 @@ std::string idt_matrix_text(const IdtResult& result);
 ///  "camera_matrix", "exposure", "adaptation", "recipe", "errors": {ΔE76/ΔE00 mean, max, per
 ///  sample}, "status", "message", "iterations"}.
 json::Value idt_json(const IdtResult& result, const IdtRecipe& recipe);
+/// What `tristim idt` writes and the page downloads: the CLF, the plain 3×3 and the JSON text
+/// (idt_json, 2-space indent).
+struct IdtFiles {
+  std::string clf, matrix, json;
+  IdtResult result;
+};
+IdtFiles idt_files(const IdtResult& result, const IdtRecipe& recipe);
+/// The recipe in the order the CLI and the page write it: the source (e.g. {"Camera", name}), the
+/// illuminant (e.g. {"Illuminant", "D55"}), the training set ("" for a chart: none) and the adaptation.
+IdtRecipe idt_recipe(const std::pair<std::string, std::string>& source, const std::pair<std::string, std::string>& illuminant,
+                     const std::string& training, ChromaticAdaptation adaptation);
+/// The IDT of a built-in camera (camera_ssf) under a built-in illuminant (illuminant_spd) with the
+/// 190 training spectra: `tristim idt --camera <name> --illuminant <id> [--adaptation a]`.
+IdtFiles idt_camera_files(const std::string& camera, const std::string& illuminant, const std::string& adaptation);
+/// The IDT of a chart (idt_from_patches) named by its camera-RGB and reference inputs and its
+/// illuminant entry ({"Illuminant", id} or {"IlluminantFile", name}):
+/// `tristim idt --rgb <rgb_name> --reference <reference_name> --illuminant <id>`.
+IdtFiles idt_chart_files(const std::vector<Vec3>& camera_RGB, const std::vector<Vec3>& reference_XYZ,
+                         const Vec3& illuminant_white_XYZ, const std::string& adaptation, const std::string& rgb_name,
+                         const std::string& reference_name, const std::pair<std::string, std::string>& illuminant);
+
 /// A CLF read back as JSON for a summary: descriptors, info, lut1d size, matrix, the ACES of
 /// camera (1, 1, 1).
 json::Value clf_json(const ClfDocument& clf);
