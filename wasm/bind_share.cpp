@@ -1,0 +1,32 @@
+// Declarations: share links and project files (tristim/share/link.hpp). The page's Share button
+// (shareSample -> the payload text, shareLink -> the link; shareAbsolute for an absolute recipe of
+// per-patch rows), opening a link (reproduceLink ->
+// Reproduction; with the source image at hand reproduceLinkImage samples it again), project files
+// (projectFile -> Uint8Array, openProject), and the SHA-256 of bytes.
+#include "tristim/share/link.hpp"
+#include "tristim/share/sha256.hpp"
+#include "types.hpp"
+
+using namespace tristim;
+using emscripten::value_object;
+using wasm::def;
+
+EMSCRIPTEN_BINDINGS(tristim_share) {
+  { using S = ShareSource; value_object<S>("ShareSource") FIELD(name) FIELD(sha256); }
+  { using S = ShareResults; value_object<S>("ShareResults") FIELD(text) FIELD(digest); }
+  { using S = ShareDifference; value_object<S>("ShareDifference") FIELD(name) FIELD(expected) FIELD(actual); }
+  { using S = Reproduction; value_object<S>("Reproduction") FIELD(verdict) FIELD(kind) FIELD(expected_version)
+      FIELD(actual_version) FIELD(expected) FIELD(actual) FIELD(differences) FIELD(profile) FIELD(payload) FIELD(resampled); }
+  { using S = ProjectImage; value_object<S>("ProjectImage") FIELD(name) FIELD(bytes); }
+  { using S = ProjectContents; value_object<S>("ProjectContents") FIELD(payload) FIELD(images) FIELD(session); }
+
+  def<&share_sample_payload>("shareSample");
+  def<&share_absolute_payload>("shareAbsolute");
+  def<&share_link>("shareLink");
+  def<&share_link_limit>("shareLinkLimit");
+  def<&reproduce_link>("reproduceLink");
+  def<&reproduce_link_image>("reproduceLinkImage");
+  def<&project_file>("projectFile");
+  def<&open_project>("openProject");
+  def<static_cast<std::string (*)(const std::vector<std::uint8_t>&)>(&sha256_hex)>("sha256");
+}
