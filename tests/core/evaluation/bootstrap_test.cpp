@@ -1,0 +1,121 @@
+// Bootstrap intervals (evaluation/bootstrap.hpp): coverage of a planted truth on simulated charts,
+// determinism by seed, pixel statistics, cancellation and refusals.
+#include <cmath>
+#include <cstdio>
+
+#include <Eigen/LU>
+
+#include "bootstrap_sim.hpp"
+#include "test_support.hpp"
+#include "tristim/characterisation/fit.hpp"
+#include "tristim/error.hpp"
+#include "tristim/evaluation/bootstrap.hpp"
+#include "tristim/evaluation/evaluation.hpp"
+
+using namespace tristim;
+using tristim::test::require_code;
+
+using test::Simulation;
+using test::planted_matrix;
+using test::simulate_chart;
+
+// The full check (1,000 simulated charts × 1,000 resamples) runs in tests/bench/bench_bootstrap.cpp
+// and prints its coverage; here a smaller version: 300 charts × 200 resamples, 9 coefficients each (2,700 intervals:
+// the binomial standard error is 0.4 %; the full run gives 0.943).
+TEST_CASE("bootstrap: 95 % intervals of a 3x3 least-squares fit cover the planted coefficients", "[evaluation][bootstrap]") {
+  Simulation sim{12345};
+  const Mat3 M = planted_matrix();
+  int covered = 0, total = 0;
+  for (int run = 0; run < 300; ++run) {
+    PatchMatrix rgb, xyz;
+    simulate_chart(sim, rgb, xyz, 1.0);
+    BootstrapOptions b;
+    b.resamples = 200;
+    b.seed = static_cast<uint64_t>(run + 1);
+    const BootstrapResult r = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b);
+    for (int c = 0; c < 3; ++c)
+      for (int t = 0; t < 3; ++t) {
+        covered += r.coefficients_lo(c, t) <= M(c, t) && M(c, t) <= r.coefficients_hi(c, t);
+        ++total;
+      }
+  }
+  const double rate = static_cast<double>(covered) / total;
+  std::printf("bootstrap coverage (300 charts x 200 resamples, 9 coefficients): %.4f\n", rate);
+  CHECK(rate > 0.92);
+  CHECK(rate < 0.97);
+}
+
+TEST_CASE("bootstrap: same seed, same intervals; intervals bracket the fit; covariance and ellipses", "[evaluation][bootstrap]") {
+  Simulation sim{7};
+  PatchMatrix rgb, xyz;
+  simulate_chart(sim, rgb, xyz, 0.5);
+  BootstrapOptions b;
+  b.resamples = 200;
+  const ModelEvaluation ev = evaluate_model("matrix-3x3", rgb, xyz);
+  b.loo_dE00 = ev.loo.patches.dE00;
+  const BootstrapResult a = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b), c = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b);
+  CHECK(a.resamples == 200);
+  CHECK(a.failed == 0);
+  CHECK((a.coefficients_lo - c.coefficients_lo).cwiseAbs().maxCoeff() == 0);
+  CHECK(a.loo_dE00_mean.lo == c.loo_dE00_mean.lo);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      CHECK(a.coefficients_lo(i, j) < ev.fit.model.coefficients(i, j));
+      CHECK(ev.fit.model.coefficients(i, j) < a.coefficients_hi(i, j));
+    }
+  REQUIRE(a.has_loo);
+  CHECK(a.loo_dE00_mean.lo < ev.loo.dE00.mean);
+  CHECK(ev.loo.dE00.mean < a.loo_dE00_mean.hi);
+  CHECK(a.train_dE00_mean.lo < a.train_dE00_mean.hi);
+  CHECK(a.covariance.rows() == 9);
+  CHECK((a.covariance - a.covariance.transpose()).cwiseAbs().maxCoeff() < 1e-15);
+  CHECK(a.covariance.diagonal().minCoeff() > 0);
+  REQUIRE(a.predicted_XYZ_covariance.size() == 24);
+  CHECK(a.predicted_XYZ_covariance[0].determinant() > 0);
+  b.seed = 2;
+  const BootstrapResult d = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b);
+  CHECK((a.coefficients_lo - d.coefficients_lo).cwiseAbs().maxCoeff() > 0);
+}
+
+TEST_CASE("bootstrap: pixel statistics widen the intervals of a noiseless chart", "[evaluation][bootstrap]") {
+  Simulation sim{3};
+  PatchMatrix rgb, xyz;
+  simulate_chart(sim, rgb, xyz, 0.0);  // XYZ = M·RGB exactly: resampling patches alone leaves no spread
+  BootstrapOptions b;
+  b.resamples = 100;
+  const BootstrapResult patches = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b);
+  CHECK((patches.coefficients_hi - patches.coefficients_lo).cwiseAbs().maxCoeff() < 1e-12);
+  b.pixel_std = PatchMatrix::Constant(24, 3, 4.0);
+  b.pixel_count.assign(24, 400);
+  const BootstrapResult pixels = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b);
+  CHECK(pixels.pixels);
+  CHECK((pixels.coefficients_hi - pixels.coefficients_lo).minCoeff() > 1e-4);
+}
+
+TEST_CASE("bootstrap: progress, cancellation and refusals", "[evaluation][bootstrap]") {
+  Simulation sim{5};
+  PatchMatrix rgb, xyz;
+  simulate_chart(sim, rgb, xyz, 1.0);
+  BootstrapOptions b;
+  b.resamples = 100;
+  int calls = 0;
+  b.progress = [&](int done, int total) {
+    ++calls;
+    CHECK(total == 100);
+    return done < 40;
+  };
+  const BootstrapResult r = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b);
+  CHECK(r.cancelled);
+  CHECK(r.resamples == 40);
+  CHECK(calls == 20);
+  b.progress = nullptr;
+  b.resamples = 0;
+  require_code([&] { bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b); }, ErrorCode::InvalidArgument);
+  b.resamples = 10;
+  b.level = 1;
+  require_code([&] { bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b); }, ErrorCode::InvalidArgument);
+  b.level = 0.9;
+  b.pixel_std = PatchMatrix::Constant(23, 3, 1.0);
+  b.pixel_count.assign(23, 10);
+  require_code([&] { bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b); }, ErrorCode::InvalidArgument);
+}
