@@ -15,7 +15,7 @@ const engine = new Engine({ boot });
 const storedSession = store.all().catch((e) => { console.warn(`session storage unavailable: ${e.message}`); return {}; });
 
 // The features, in journey order: web/<feature>/view.js, each mounted into <section id="step-<feature>">.
-const STEPS = ['reference', 'surface', 'images', 'linearisation', 'fit', 'results', 'apply', 'export', 'absolute'];
+const STEPS = ['reference', 'surface', 'images', 'linearisation', 'fit', 'results', 'apply', 'export', 'absolute', 'share'];
 const FEATURES = Promise.all(STEPS.map((s) => import(`./${s}/view.js`)))
   .then((mods) => Object.fromEntries(STEPS.map((s, i) => [s, mods[i]])));
 FEATURES.catch(() => {});   // a failed load is reported by start()
@@ -109,6 +109,7 @@ async function start() {
   if (fresh) await app.save('settings', { ...app.session.settings });   // the session now exists
   const hash = location.hash.slice(1);
   app.goto(STEPS.includes(hash) ? hash : (app.session.step ?? (fresh ? 'results' : 'reference')));
+  app.views.share.openFromHash();   // a shared link (#tristim=…): recomputed, the session untouched
 
   // Restore (or, on a first visit, load the example): the chart's sampling does not wait for the
   // reference's plots (both are needed before the fit).

@@ -13,8 +13,9 @@ import * as fit from './fit/handlers.js';
 import * as apply from './apply/handlers.js';
 import * as exporter from './export/handlers.js';
 import * as absolute from './absolute/handlers.js';
+import * as share from './share/handlers.js';
 
-const FEATURES = [reference, surface, images, detect, linearisation, fit, apply, exporter, absolute];
+const FEATURES = [reference, surface, images, detect, linearisation, fit, apply, exporter, absolute, share];
 
 const handlers = {
   hello: (T) => ({ result: { version: T.version() } }),

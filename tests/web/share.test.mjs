@@ -1,0 +1,96 @@
+// Share links in the page (issue 44): Share makes a link to the selected profile; a fresh browser
+// opening it recomputes the profile in the worker and shows "reproduced" with the same numbers;
+// the source RAW dropped on it is checked by SHA-256 and sampled again; a tampered, truncated,
+// bomb or future-version link shows its coded error where it was opened, and the session (results,
+// selection, storage) is untouched.
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import zlib from 'node:zlib';
+import { openBrowser, screenshot } from './harness.mjs';
+import { openPage, step, waitReady, errorFor, upload, fileBuffer, DNG } from './journey.mjs';
+
+const VERDICT = '#share-verdict-title[data-verdict]';
+/// The session's state a link must not change: the selected result, the results, what is stored.
+const sessionState = (page) => page.evaluate(async () => ({
+  selected: window.tristim.session.selected,
+  results: (window.tristim.session.results ?? []).map((r) => r.key),
+  stored: Object.keys(await window.tristim.store.all()).sort(),
+  corners: Array.from(window.tristim.session.corners ?? []),
+}));
+const row = (page, name) => page.evaluate((n) => [...document.querySelectorAll(`#share-verdict tr[data-name="${n}"] td`)].map((td) => td.textContent), name);
+
+test('a link made in the page reproduces in a fresh browser; damaged links give coded errors, the session untouched', async () => {
+  const maker = await openPage();
+  let link, made;
+  try {
+    const { page } = maker;
+    await step(page, 'share');
+    await page.click('#share-make');
+    await page.waitForFunction(() => document.getElementById('share-link').value.includes('#tristim='), null, { timeout: 60000 });
+    link = await page.inputValue('#share-link');
+    assert.ok(link.startsWith(maker.origin + '/'), link.slice(0, 60));
+    assert.ok(link.length < 4000, `${link.length} characters`);
+    made = await page.evaluate(() => {
+      const s = window.tristim.session, r = s.results.find((x) => x.key === s.selected) ?? s.results[0];
+      return { model: r.recipe.characterisation.model, dE00: r.fit.evaluation.training.dE00.mean };
+    });
+    await screenshot(page, 'share-make');
+    assert.deepEqual(maker.problems, []);
+  } finally { await maker.close(); }
+
+  // A fresh browser (its own storage) opens the link.
+  const b = await openBrowser();
+  try {
+    const { page } = b;
+    const theirs = link.replace(/^http:\/\/127\.0\.0\.1:\d+/, b.origin);
+    await page.goto(theirs);
+    await waitReady(page, 120000);
+    await page.waitForSelector(VERDICT, { timeout: 120000 });
+    assert.equal(await page.getAttribute(VERDICT, 'data-verdict'), 'reproduced');
+    assert.equal((await row(page, 'model'))[0], made.model);
+    const [linkDe, hereDe] = await row(page, 'training.dE00');
+    assert.equal(linkDe, hereDe);
+    assert.equal(Number(linkDe.split(' ')[0]), Number(made.dE00.toPrecision(6)), 'the maker\'s training mean ΔE00');
+    await screenshot(page, 'share-open');
+
+    // The source RAW dropped on the opened link: its SHA-256 matches, its patches are sampled again.
+    await upload(page, '#share-image', 'passport.dng', fileBuffer(DNG));
+    await page.waitForFunction(() => /sampled again/.test(document.getElementById('share-verdict-title')?.textContent ?? ''), null, { timeout: 60000 });
+    assert.equal(await page.getAttribute(VERDICT, 'data-verdict'), 'reproduced');
+    // Another file is not the link's source.
+    await upload(page, '#share-image', 'other.dng', Buffer.concat([fileBuffer(DNG), Buffer.from([0])]));
+    assert.equal((await errorFor(page, '#share-image', 'other.dng')).code, 'PATCH_MISMATCH');
+
+    // Damaged links, pasted into the Open box: each its code; the session does not change.
+    const before = await sessionState(page);
+    const payload = theirs.split('#tristim=')[1];
+    const mid = payload.indexOf('.') + 50;
+    const cases = [
+      ['tampered', theirs.slice(0, theirs.indexOf('#tristim=') + 9) + payload.slice(0, mid) + (payload[mid] === 'A' ? 'B' : 'A') + payload.slice(mid + 1), 'PARSE_ERROR'],
+      ['truncated', theirs.slice(0, theirs.length - 25), 'PARSE_ERROR'],
+      ['bomb', `1.${zlib.deflateRawSync(Buffer.alloc(32 << 20, '[')).toString('base64url')}.AAAAAAAAAAAAAAAA`, 'LIMIT_EXCEEDED'],
+      ['future version', '2' + payload.slice(1), 'PROFILE_VERSION'],
+    ];
+    for (const [what, text, code] of cases) {
+      await page.fill('#share-open-text', text);
+      await page.click('#share-open');
+      await page.waitForFunction((c) => document.getElementById('step-share').dataset.linkError === c, code, { timeout: 30000 })
+        .catch(() => {});
+      const shown = await page.evaluate(() => {
+        const b = document.getElementById('share-open'), slot = document.getElementById(b.getAttribute('aria-describedby'));
+        return { code: slot.dataset.code, hidden: slot.hidden };
+      });
+      assert.equal(shown.code, code, what);
+      assert.equal(shown.hidden, false, what);
+      assert.deepEqual(await sessionState(page), before, `${what}: the session is untouched`);
+      assert.equal(await page.getAttribute(VERDICT, 'data-verdict'), 'reproduced', `${what}: the opened link stays shown`);
+    }
+    // A bad link in the address bar: the same, where it was opened.
+    await page.goto(`${b.origin}/#tristim=2${payload.slice(1)}`);
+    await waitReady(page, 120000);
+    await page.waitForFunction(() => document.getElementById('step-share').dataset.linkError === 'PROFILE_VERSION', null, { timeout: 60000 });
+    assert.deepEqual((await sessionState(page)).results, before.results);
+    await screenshot(page, 'share-bad-link');
+    assert.deepEqual(b.problems, []);
+  } finally { await b.close(); }
+});
