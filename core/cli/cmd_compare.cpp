@@ -16,7 +16,7 @@
 namespace tristim::cli {
 namespace {
 const char* kCompareUsage =
-    "tristim compare --rgb patches.csv --xyz reference.csv [--objectives ls,psm,de2000]\n"
+    "tristim compare --rgb patches.csv --xyz reference.csv [--rgb b.csv --xyz b_ref.csv ...] [--objectives ls,psm,de2000]\n"
     "                [--models id,id,...] [--white <patch>] [--lab-white ...] [--ref-white ...]\n"
     "                [--test-rgb other.csv --test-xyz other_ref.csv] [--json] [--threads N]\n"
     "                [--linearisation <id>[:options]|fitted.json [--reflectances spectra.csv|<chart>] [--full-scale 255]]\n"
@@ -60,7 +60,7 @@ int run_compare(const Args& args, std::ostream& out) {
     set_compare_threads(static_cast<int>(n));
   }
   const Vec3 ref_white = parse_white(args, "ref-white", whites::D50());
-  PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), ref_white);
+  PatchData d = load_pairs(args, ref_white);  // several --rgb/--xyz: one table of their union (patch_args.hpp)
   const Linearisation lin = linearisation_option(args, "compare", d.ids, d.rgb, d.xyz, ref_white);  // linearise_option.hpp
   int white_index = -1;
   const FitOptions o = fit_options(args, d, white_index);
@@ -126,6 +126,7 @@ int run_compare(const Args& args, std::ostream& out) {
         << std::setw(10) << (r.has_loo ? fmt(r.loo_dE00.max) : "-") << std::setw(11) << cond.str() << "  "
         << fit_status_name(r.status) << "\n";
   }
+  out << per_chart_compare(args, d, o, rows, white_index);  // several charts: their figures apart
   if (!transfer.empty()) {
     out << "\n# train on " << args.get("rgb") << ", test on " << args.get("test-rgb")
         << " (Abed 2013 Table IV layout): mean / max\n";

@@ -93,8 +93,8 @@ std::string builtin_chart(const std::string& value) {
 /// file goes the same way, so its surface stage is applied again.
 PatchData classic_pairs(const Args& args, const std::string& chart, const MethodChoice& surface) {
   const std::string rgb_path = args.get("rgb"), xyz_path = args.get("xyz");
-  if (chart.empty() && surface.method == "none")
-    return load_pairs(rgb_path, xyz_path, parse_white(args, "ref-white", whites::D50()));
+  if (args.all("rgb").size() > 1 || (chart.empty() && surface.method == "none"))  // several: their union (patch_args.hpp)
+    return load_pairs(args, parse_white(args, "ref-white", whites::D50()));
   const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
   if (!rgb.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
   Recipe r;
@@ -206,6 +206,7 @@ int run_fit(const Args& args, std::ostream& out) {
               << ") training mean dE00 " << fmt(ev.training.dE00.mean) << ", leave-one-out mean dE00 "
               << (ev.has_loo ? fmt(ev.loo.dE00.mean) : std::string("-")) << ", status "
               << fit_status_name(ev.fit.status) << (ev.fit.message.empty() ? "" : " (" + ev.fit.message + ")") << "\n";
+    std::cerr << per_chart_figures(args, training.labels, ev);  // several --rgb: each chart's figures
   } else {
     out << text;
   }

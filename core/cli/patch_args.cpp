@@ -98,10 +98,75 @@ PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, c
   return d;
 }
 
+PatchData load_pairs(const Args& args, const Vec3& ref_white) {
+  const std::vector<std::string> rgb = args.all("rgb"), xyz = args.all("xyz");
+  if (rgb.size() != xyz.size())
+    throw Error(ErrorCode::InvalidArgument, "--rgb and --xyz: " + std::to_string(rgb.size()) + " camera tables but " +
+                                                std::to_string(xyz.size()) +
+                                                " reference tables (one --xyz per --rgb, in the same order)");
+  if (rgb.size() <= 1) return load_pairs(args.get("rgb"), args.get("xyz"), ref_white);
+  PatchData d;
+  std::vector<Vec3> all_rgb, all_xyz;
+  for (size_t k = 0; k < rgb.size(); ++k) {
+    const PatchData one = load_pairs(rgb[k], xyz[k], ref_white);
+    const std::string prefix = std::to_string(k + 1) + ":";
+    for (size_t i = 0; i < one.ids.size(); ++i) {
+      d.ids.push_back(prefix + one.ids[i]);
+      d.labels.push_back(prefix + one.labels[i]);
+      all_rgb.push_back(one.rgb.row(static_cast<Eigen::Index>(i)).transpose());
+      all_xyz.push_back(one.xyz.row(static_cast<Eigen::Index>(i)).transpose());
+    }
+  }
+  d.rgb = to_matrix(all_rgb);
+  d.xyz = to_matrix(all_xyz);
+  return d;
+}
+
+std::string per_chart_figures(const Args& args, const std::vector<std::string>& labels, const ModelEvaluation& ev) {
+  const std::vector<std::string> names = args.all("rgb");
+  if (names.size() < 2) return "";
+  std::ostringstream o;
+  for (size_t k = 0; k < names.size(); ++k) {
+    const std::string prefix = std::to_string(k + 1) + ":";
+    std::vector<double> train, loo;
+    for (size_t i = 0; i < labels.size(); ++i)
+      if (labels[i].compare(0, prefix.size(), prefix) == 0) {
+        train.push_back(ev.training.patches.dE00[i]);
+        if (ev.has_loo) loo.push_back(ev.loo.patches.dE00[i]);
+      }
+    if (train.empty()) continue;
+    const Summary t = summarize(train);
+    o << "tristim: chart " << k + 1 << " (" << names[k] << "): " << train.size() << " patches, training mean/max dE00 "
+      << fmt(t.mean) << "/" << fmt(t.max);
+    if (ev.has_loo) {
+      const Summary l = summarize(loo);
+      o << ", leave-one-out mean/max dE00 " << fmt(l.mean) << "/" << fmt(l.max);
+    }
+    o << "\n";
+  }
+  return o.str();
+}
+
+std::string per_chart_compare(const Args& args, const PatchData& d, const FitOptions& options,
+                              const std::vector<CompareRow>& rows, int white_index) {
+  if (args.all("rgb").size() < 2) return "";
+  for (const auto& r : rows) {
+    if (!r.ok) continue;
+    FitOptions o = options;
+    o.objective = r.objective;
+    std::string text = per_chart_figures(args, d.labels, evaluate_model(r.model_id, d.rgb, d.xyz, o, white_index));
+    for (size_t at = 0; (at = text.find("tristim: ", at)) != std::string::npos;) text.replace(at, 9, "# ");
+    return "\n# per chart, " + r.model_id + " (" + objective_id(r.objective) + "), the best row:\n" + text;
+  }
+  return "";
+}
+
 int patch_index(const std::vector<std::string>& ids, const std::string& id) {
   const std::string n = normalise_patch_id(id);
   for (size_t i = 0; i < ids.size(); ++i)
     if (ids[i] == n) return static_cast<int>(i);
+  for (size_t i = 0; i < ids.size(); ++i)  // several charts: an id without its chart's number is chart 1's
+    if (ids[i] == "1:" + n) return static_cast<int>(i);
   throw Error(ErrorCode::UnknownId, "--white: no patch '" + id + "' in the RGB table");
 }
 

@@ -5,6 +5,7 @@
 
 #include "cli.hpp"
 #include "tristim/characterisation/fit.hpp"
+#include "tristim/evaluation/evaluation.hpp"
 
 namespace tristim::cli {
 
@@ -25,7 +26,22 @@ PatchMatrix to_matrix(const std::vector<Vec3>& v);
 /// be in the other (PatchMismatch). Reference L*a*b* is converted with ref_white. Labels: the
 /// RGB file's own spelling of each id ("A01" paired with the reference's "A1" stays "A01").
 PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, const Vec3& ref_white);
-/// Row of `id` in ids (normalised); Error(UnknownId) naming --white otherwise.
+/// Every --rgb with the --xyz at the same position (issue 48: several charts in one fit). One pair:
+/// load_pairs of the two. Several: the union of their patches in the order given, each chart's ids
+/// prefixed with its number ("2:A1"), so ids stay distinct and say which chart they come from; a
+/// fit on them is the fit on one table holding the same rows. InvalidArgument when the counts of
+/// --rgb and --xyz differ.
+PatchData load_pairs(const Args& args, const Vec3& ref_white);
+/// Per chart (several --rgb only; "" otherwise): "tristim: chart k (path): n patches, training
+/// mean/max dE00 …, leave-one-out mean/max dE00 …" lines of the evaluation `ev`, whose rows are
+/// `labels` (load_pairs's "k:id"; rows of no chart number are left out).
+std::string per_chart_figures(const Args& args, const std::vector<std::string>& labels, const ModelEvaluation& ev);
+/// The same for the best row of a compare table (its first that fitted), evaluated again on d with
+/// `options` and that row's objective, under a heading naming the row; "" for one chart.
+std::string per_chart_compare(const Args& args, const PatchData& d, const FitOptions& options,
+                              const std::vector<CompareRow>& rows, int white_index);
+/// Row of `id` in ids (normalised; with several charts an id without a chart number is chart 1's);
+/// Error(UnknownId) naming --white otherwise.
 int patch_index(const std::vector<std::string>& ids, const std::string& id);
 /// --help of fit and compare: the models, objectives and linearisations, each with its table's reference.
 std::string fit_methods_help();

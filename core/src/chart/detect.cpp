@@ -290,9 +290,10 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
   if (out.empty()) {
     if (reasons.empty())
       reasons = regions.count == 0 ? "no flat regions: the image may be blurred, noisy or out of focus at this scale"
-                : quads.empty()    ? "no flat region is shaped like a patch (" + std::to_string(regions.count) + " flat regions)"
+                : quads.empty()    ? "no flat region is shaped like a patch"
                                    : "the largest flat regions form no grid";
-    throw Error(ErrorCode::ChartNotFound, reasons + " (" + std::to_string(quads.size()) + " patch-like regions, " +
+    throw Error(ErrorCode::ChartNotFound, reasons + " (" + std::to_string(regions.count) + " flat regions, " +
+                                              std::to_string(quads.size()) + " patch-like regions, " +
                                               std::to_string(groups.size()) + " grids)");
   }
   return out;

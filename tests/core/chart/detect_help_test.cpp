@@ -65,7 +65,7 @@ TEST_CASE("a miss says why: no grid, or a grid whose colours fit no chart", "[de
   CHECK(wrong.find("a grid of 4×6") != std::string::npos);
 }
 
-TEST_CASE("a seed near a chart too small to find finds it; so does a rough box", "[detect][help]") {
+TEST_CASE("a seed near a chart too small to find finds it, and so does a rough box", "[detect][help]") {
   const ChartScene scene = render_chart_scene(tiny_chart());
   const std::string why = why_of(scene.image);
   INFO("automatic: " << why);
