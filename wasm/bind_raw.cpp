@@ -12,8 +12,6 @@
 // linearRGB() -> Float32Array(3·w·h) with the dark/flat set on this image applied,
 // setLightTrap(corners[8], SampleOptions?) -> LightTrap (Abed 2013 App. C step 1: the trap's mean
 // after the dark frame becomes the flare subtracted from every pixel), clearLightTrap().
-#include <optional>
-
 #include "tristim/capture/image.hpp"
 #include "tristim/chart/layout.hpp"
 #include "tristim/chart/light_trap.hpp"
@@ -32,52 +30,24 @@ using wasm::with_calibrated;
 
 namespace {
 
-std::vector<const RawImage*> images_of(const val& frames) {
-  std::vector<const RawImage*> out;
-  for (const val& f : frames.isArray() ? emscripten::vecFromJSArray<val>(frames) : std::vector<val>{frames})
-    out.push_back(&Conv<const RawHandle*>::from(f)->image);
-  return out;
-}
-
-/// Sets the calibration only if it fits the image (FrameMismatch otherwise; the old one stays).
-void set_calibration(RawHandle& h, FrameCalibration next) {
-  next.check_compatible(h.image);
-  h.calibration = std::move(next);
-}
-
 val set_dark(RawHandle& h, val frames, val mode) {
   return guard([&] {
-    const std::string m = Conv<std::string>::from(mode);
-    const DarkMode dark_mode = m.empty() ? DarkMode::PerPixel : dark_mode_from_id(m);
-    FrameCalibration next = h.calibration;
-    next.dark = average_dark_frames(images_of(frames));
-    next.dark_mode = dark_mode;
-    set_calibration(h, next);
+    h.calibration = with_dark_frames(h.calibration, h.image,
+                                     frames.isArray() ? Conv<std::vector<const RawImage*>>::from(frames)
+                                                      : std::vector<const RawImage*>{&Conv<const RawHandle*>::from(frames)->image},
+                                     Conv<std::string>::from(mode));
     return val(*h.calibration.dark);
   });
 }
 
+/// reflectance: none, a number (grey) or [R, G, B].
 val set_flat(RawHandle& h, val flat, val mode, val reflectance) {
   return guard([&] {
-    const RawImage& f = Conv<const RawHandle*>::from(flat)->image;
     const std::string m = Conv<std::string>::from(mode);
-    const DarkFrame* dark = h.calibration.dark ? &*h.calibration.dark : nullptr;
-    FrameCalibration next = h.calibration;
-    if (m == "radial") {
-      next.falloff = fit_falloff_Guarnera2018(f, dark);
-      next.flat.reset();
-      set_calibration(h, next);
-      return val(*h.calibration.falloff);
-    }
-    if (!m.empty() && m != "pixel") throw Error(ErrorCode::InvalidArgument, "flat mode is 'pixel' or 'radial'");
-    std::optional<std::array<double, 3>> white;
-    if (reflectance.isNumber()) white = std::array<double, 3>{};
-    if (white) white->fill(reflectance.as<double>());
-    else if (!wasm::absent(reflectance)) white = Conv<std::array<double, 3>>::from(reflectance);
-    next.flat = make_flat_field(f, dark, h.calibration.dark_mode, white);
-    next.falloff.reset();
-    set_calibration(h, next);
-    return val(*h.calibration.flat);
+    h.calibration = with_flat_frame(h.calibration, h.image, Conv<const RawHandle*>::from(flat)->image, m,
+                                    reflectance.isNumber() ? std::vector<double>{reflectance.as<double>()}
+                                                           : Conv<std::vector<double>>::from(reflectance));
+    return m == "radial" ? val(*h.calibration.falloff) : val(*h.calibration.flat);
   });
 }
 
@@ -106,15 +76,6 @@ ChartSample sample(const RawHandle* h, const LayoutOptions& layout, const std::a
 /// The profile applied to the image's linear camera RGB (dark/flat applied) -> XYZ image.
 Image3f apply_to_raw(const Profile& profile, const RawHandle* h) {
   return with_calibrated(*h, [&](const RawImage& img) { return apply_profile(profile, img.rgb.data(), img.width, img.height); });
-}
-
-/// The profile applied to any linear camera-RGB image (3·width·height values).
-Image3f apply_to_pixels(const Profile& profile, const std::vector<float>& rgb, int width, int height) {
-  if (width <= 0 || height <= 0) throw Error(ErrorCode::InvalidArgument, "width and height must be positive");
-  const size_t n = 3 * static_cast<size_t>(width) * static_cast<size_t>(height);
-  if (rgb.size() != n)
-    throw Error(ErrorCode::RowLength, "rgb has " + std::to_string(rgb.size()) + " values, width × height × 3 = " + std::to_string(n));
-  return apply_profile(profile, rgb.data(), width, height);
 }
 
 }  // namespace
@@ -165,5 +126,5 @@ EMSCRIPTEN_BINDINGS(tristim_raw) {
   emscripten::function("decodeRaw", &decode);
   def<&sample>("sampleChart");
   def<&apply_to_raw>("applyProfile");
-  def<&apply_to_pixels>("applyProfileToImage");
+  def<&apply_profile_to_pixels>("applyProfileToImage");
 }

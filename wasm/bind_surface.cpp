@@ -35,8 +35,8 @@ struct Corrected3x3 {
   Mat3 matrix_prime, matrix;
   double mu = 1;
 };
-Corrected3x3 fit_corrected_3x3(const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ, const Vec3& white_RGB,
-                               const Vec3& white_XYZ) {
+Corrected3x3 corrected_3x3(const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ, const Vec3& white_RGB,
+                           const Vec3& white_XYZ) {
   const CorrectedMatrix c = fit_corrected_3x3_Abed2013(camera_RGB, reference_XYZ, white_RGB, white_XYZ);
   return {c.matrix_3x4, c.matrix_prime, c.matrix, c.mu};
 }
@@ -77,7 +77,7 @@ EMSCRIPTEN_BINDINGS(tristim_surface) {
   def<&surface_choice_text>("surfaceChoiceText");
   def<&fit_surface_under>("fitSurface");
   def<&fit_joint_under>("fitSurfaceJoint");
-  def<&fit_corrected_3x3>("fitCorrected3x3");
+  def<&corrected_3x3>("fitCorrected3x3");
   def<&geometry_table_methods>("surfaceTable4Methods");
   def<&surface_table4>("surfaceTable4");
 }

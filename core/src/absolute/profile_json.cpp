@@ -170,23 +170,10 @@ json::Value absolute_profile_json(const AbsoluteProfile& p) {
 std::string absolute_profile_to_json(const AbsoluteProfile& p) { return absolute_profile_json(p).dump(2) + "\n"; }
 
 AbsoluteProfile absolute_profile_from_json(const std::string& text) {
-  json::Value o;
-  try {
-    o = json::parse(text);
-  } catch (const Error& e) {
-    throw Error(e.code() == ErrorCode::LimitExceeded ? e.code() : ErrorCode::ProfileInvalid,
-                std::string("absolute profile is not valid JSON: ") + e.what());
-  }
-  if (!o.is_object()) throw Error(ErrorCode::ProfileInvalid, "an absolute profile must be a JSON object");
-  const json::Value* fmt = o.find("format");
-  if (!fmt || !fmt->is_string() || fmt->as_string() != "tristim-absolute-profile")
-    throw Error(ErrorCode::ProfileInvalid, "not a tristim absolute profile (\"format\" must be \"tristim-absolute-profile\")");
-  const json::Value* ver = o.find("version");
-  if (!ver || !ver->is_number()) throw Error(ErrorCode::ProfileInvalid, "missing field 'version'");
-  if (ver->as_number() != kAbsoluteProfileVersion)
-    throw Error(ErrorCode::ProfileVersion, "absolute profile version " + json::number_text(ver->as_number()) +
-                                               " is not supported (this tristim reads version " +
-                                               std::to_string(kAbsoluteProfileVersion) + ")");
+  const fields::Document d{"tristim-absolute-profile", kAbsoluteProfileVersion, "absolute profile", ErrorCode::ProfileInvalid,
+                           ErrorCode::ProfileVersion};
+  const json::Value o = fields::parse_document(text, d);
+  fields::check_document(o, d);
   AbsoluteProfile p;
   try {
     const json::Value& cam = o.at("camera");

@@ -35,6 +35,8 @@ std::string set_of(const std::string& set, const Vec3& XYZ, const std::string& w
 }
 
 const fields::Context kAbsoluteRecipe{ErrorCode::RecipeInvalid, "absolute recipe: "};
+const fields::Document kDocument{"tristim-absolute-recipe", kAbsoluteRecipeVersion, "absolute recipe",
+                                 ErrorCode::RecipeInvalid, ErrorCode::RecipeVersion};
 
 }  // namespace
 
@@ -207,29 +209,14 @@ AbsoluteRecipe complete_absolute_recipe(const AbsoluteRecipe& in) {
 // ---- JSON --------------------------------------------------------------------------------
 
 json::Value absolute_recipe_json(const AbsoluteRecipe& in) {
-  const AbsoluteRecipe r = complete_absolute_recipe(in);
-  json::Value o = json::Value::object();
-  o.set("format", "tristim-absolute-recipe");
-  o.set("version", r.version);
-  fields::write_members(r, o);
-  return o;
+  return fields::write_document(complete_absolute_recipe(in), kDocument);
 }
 
 std::string absolute_recipe_to_json(const AbsoluteRecipe& recipe) { return absolute_recipe_json(recipe).dump(2) + "\n"; }
 
 AbsoluteRecipe absolute_recipe_from_json(const json::Value& o) {
-  if (!o.is_object()) throw Error(ErrorCode::RecipeInvalid, "an absolute recipe must be a JSON object");
-  const json::Value* fmt = o.find("format");
-  if (!fmt || !fmt->is_string() || fmt->as_string() != "tristim-absolute-recipe")
-    throw Error(ErrorCode::RecipeInvalid, "not a tristim absolute recipe (\"format\" must be \"tristim-absolute-recipe\")");
-  const json::Value* ver = o.find("version");
-  if (!ver || !ver->is_number()) throw Error(ErrorCode::RecipeInvalid, "absolute recipe: missing field 'version'");
-  if (ver->as_number() != kAbsoluteRecipeVersion)
-    throw Error(ErrorCode::RecipeVersion, "absolute recipe version " + json::number_text(ver->as_number()) +
-                                              " is not supported (this tristim reads version " +
-                                              std::to_string(kAbsoluteRecipeVersion) + ")");
   AbsoluteRecipe r;
-  fields::read_members(o, r, kAbsoluteRecipe, "", {"format", "version"});
+  fields::read_document(o, r, kDocument, kAbsoluteRecipe);
   const SpectralData& ssf = r.inputs.sensitivities.ssf;
   if (r.inputs.sensitivities.choice == "given")
     for (size_t c = 0; c < 3; ++c)
@@ -240,14 +227,7 @@ AbsoluteRecipe absolute_recipe_from_json(const json::Value& o) {
 }
 
 AbsoluteRecipe absolute_recipe_from_json(const std::string& text) {
-  json::Value v;
-  try {
-    v = json::parse(text);
-  } catch (const Error& e) {
-    if (e.code() == ErrorCode::LimitExceeded) throw Error(ErrorCode::LimitExceeded, std::string("absolute recipe: ") + e.what());
-    throw Error(ErrorCode::RecipeInvalid, std::string("absolute recipe: not valid JSON: ") + e.what());
-  }
-  return absolute_recipe_from_json(v);
+  return absolute_recipe_from_json(fields::parse_document(text, kDocument));
 }
 
 }  // namespace tristim

@@ -273,6 +273,39 @@ std::array<double, 3> FrameCalibration::noise_floor() const {
   return dark ? dark->noise : std::array<double, 3>{0, 0, 0};
 }
 
+FrameCalibration with_dark_frames(FrameCalibration base, const RawImage& image,
+                                  const std::vector<const RawImage*>& frames, std::string_view mode) {
+  for (const RawImage* f : frames)
+    if (!f) throw Error(ErrorCode::InvalidArgument, "a dark frame is missing (null)");
+  base.dark = average_dark_frames(frames);
+  base.dark_mode = mode.empty() ? DarkMode::PerPixel : dark_mode_from_id(mode);
+  base.check_compatible(image);
+  return base;
+}
+
+FrameCalibration with_flat_frame(FrameCalibration base, const RawImage& image, const RawImage& flat, std::string_view mode,
+                                 const std::vector<double>& white_reflectance) {
+  const DarkFrame* dark = base.dark ? &*base.dark : nullptr;
+  if (mode == "radial") {
+    base.falloff = fit_falloff_Guarnera2018(flat, dark);
+    base.flat.reset();
+  } else if (mode.empty() || mode == "pixel") {
+    std::optional<std::array<double, 3>> white;
+    const std::vector<double>& w = white_reflectance;
+    if (w.size() == 1) white = std::array<double, 3>{w[0], w[0], w[0]};
+    else if (w.size() == 3) white = std::array<double, 3>{w[0], w[1], w[2]};
+    else if (!w.empty())
+      throw Error(ErrorCode::InvalidArgument, "the white reflectance is one value or three (R, G, B), got " +
+                                                  std::to_string(w.size()));
+    base.flat = make_flat_field(flat, dark, base.dark_mode, white);
+    base.falloff.reset();
+  } else {
+    throw Error(ErrorCode::InvalidArgument, "flat mode is 'pixel' or 'radial', not '" + std::string(mode) + "'");
+  }
+  base.check_compatible(image);
+  return base;
+}
+
 RawImage apply_calibration(const RawImage& image, const FrameCalibration& calibration) {
   calibration.check_compatible(image);
   RawImage out;

@@ -1,5 +1,6 @@
 // Small JSON value: strict parser, round-trip writer.
 #include "tristim/io/json.hpp"
+#include "tristim/io/fields.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -408,3 +409,30 @@ Value parse(const std::string& text) {
 }
 
 }  // namespace tristim::json
+
+namespace tristim::fields {
+
+json::Value parse_document(const std::string& text, const Document& d) {
+  try {
+    return json::parse(text);
+  } catch (const Error& e) {
+    const bool limit = e.code() == ErrorCode::LimitExceeded;
+    throw Error(limit ? e.code() : d.invalid, std::string(d.what) + (limit ? ": " : ": not valid JSON: ") + e.what());
+  }
+}
+
+void check_document(const json::Value& o, const Document& d) {
+  const std::string what = d.what;
+  if (!o.is_object())
+    throw Error(d.invalid, std::string(std::strchr("aeiou", what[0]) ? "an " : "a ") + what + " must be a JSON object");
+  const json::Value* fmt = o.find("format");
+  if (!fmt || !fmt->is_string() || fmt->as_string() != d.format)
+    throw Error(d.invalid, "not a tristim " + what + " (\"format\" must be \"" + d.format + "\")");
+  const json::Value* ver = o.find("version");
+  if (!ver) throw Error(d.invalid, what + ": missing field 'version'");
+  if (!ver->is_number() || ver->as_number() != d.version)
+    throw Error(d.version_code, what + " version " + (ver->is_number() ? json::number_text(ver->as_number()) : "?") +
+                                    " is not supported (this tristim reads version " + std::to_string(d.version) + ")");
+}
+
+}  // namespace tristim::fields

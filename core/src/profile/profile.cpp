@@ -8,6 +8,7 @@
 
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
+#include "tristim/profile/export.hpp"
 #include "tristim/profile/fields.hpp"
 #include "tristim/version.hpp"
 
@@ -166,24 +167,9 @@ std::string profile_to_json(const Profile& p) {
 }
 
 Profile profile_from_json(const std::string& text) {
-  json::Value o;
-  try {
-    o = json::parse(text);
-  } catch (const Error& e) {
-    // A stated resource limit (io/limits.hpp) keeps its code: the file may be a valid profile.
-    throw Error(e.code() == ErrorCode::LimitExceeded ? e.code() : ErrorCode::ProfileInvalid,
-                std::string("profile is not valid JSON: ") + e.what());
-  }
-  if (!o.is_object()) throw Error(ErrorCode::ProfileInvalid, "a profile must be a JSON object");
-  const json::Value* fmt = o.find("format");
-  if (!fmt || !fmt->is_string() || fmt->as_string() != "tristim-profile")
-    throw Error(ErrorCode::ProfileInvalid, "not a tristim profile (\"format\" must be \"tristim-profile\")");
-  const json::Value* ver = o.find("version");
-  if (!ver) throw Error(ErrorCode::ProfileInvalid, "missing field 'version'");
-  if (!ver->is_number() || ver->as_number() != kProfileVersion)
-    throw Error(ErrorCode::ProfileVersion, "profile version " + (ver->is_number() ? json::number_text(ver->as_number()) : std::string("?")) +
-                                               " is not supported (this tristim reads version " +
-                                               std::to_string(kProfileVersion) + ")");
+  const fields::Document d{"tristim-profile", kProfileVersion, "profile", ErrorCode::ProfileInvalid, ErrorCode::ProfileVersion};
+  const json::Value o = fields::parse_document(text, d);
+  fields::check_document(o, d);
   Profile p;
   p.version = kProfileVersion;
   if (const auto* tv = o.find("tristim_version")) p.tristim_version = tv->as_string("tristim_version");
@@ -252,6 +238,14 @@ Profile profile_from_json(const std::string& text) {
 
 PatchMatrix profile_input(const Profile& profile, const PatchMatrix& camera_RGB) {
   return profile.has_linearisation ? linearise(profile.linearisation, camera_RGB) : camera_RGB;
+}
+
+Image3f apply_profile_to_pixels(const Profile& profile, const std::vector<float>& rgb, int width, int height) {
+  if (width <= 0 || height <= 0) throw Error(ErrorCode::InvalidArgument, "width and height must be positive");
+  const size_t n = 3 * static_cast<size_t>(width) * static_cast<size_t>(height);
+  if (rgb.size() != n)
+    throw Error(ErrorCode::RowLength, "rgb has " + std::to_string(rgb.size()) + " values, width × height × 3 = " + std::to_string(n));
+  return apply_profile(profile, rgb.data(), width, height);
 }
 
 PatchMatrix profile_predict(const Profile& profile, const PatchMatrix& camera_RGB) {

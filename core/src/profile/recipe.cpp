@@ -17,9 +17,9 @@ namespace tristim {
 
 namespace {
 
-[[noreturn]] void invalid(const std::string& what) { throw Error(ErrorCode::RecipeInvalid, "recipe: " + what); }
-
 const fields::Context kRecipe{ErrorCode::RecipeInvalid, "recipe: "};
+const fields::Document kRecipeDocument{"tristim-recipe", kRecipeVersion, "recipe", ErrorCode::RecipeInvalid,
+                                       ErrorCode::RecipeVersion};
 
 }  // namespace
 
@@ -109,49 +109,22 @@ Recipe complete_recipe(const Recipe& in) {
 
 // ---- JSON --------------------------------------------------------------------------------
 
-json::Value recipe_json(const Recipe& in) {
-  const Recipe r = complete_recipe(in);
-  json::Value o = json::Value::object();
-  o.set("format", "tristim-recipe");
-  o.set("version", r.version);
-  fields::write_members(r, o);
-  return o;
-}
+json::Value recipe_json(const Recipe& in) { return fields::write_document(complete_recipe(in), kRecipeDocument); }
 
 std::string recipe_to_json(const Recipe& recipe) { return recipe_json(recipe).dump(2) + "\n"; }
 
 Recipe recipe_from_json(const json::Value& o) {
-  if (!o.is_object()) invalid("a recipe must be a JSON object");
-  const json::Value* fmt = o.find("format");
-  if (!fmt || !fmt->is_string() || fmt->as_string() != "tristim-recipe")
-    invalid("not a tristim recipe (\"format\" must be \"tristim-recipe\")");
-  const json::Value* ver = o.find("version");
-  if (!ver) invalid("missing field 'version'");
-  if (!ver->is_number() || ver->as_number() != kRecipeVersion)
-    throw Error(ErrorCode::RecipeVersion,
-                "recipe version " + (ver->is_number() ? json::number_text(ver->as_number()) : std::string("?")) +
-                    " is not supported (this tristim reads version " + std::to_string(kRecipeVersion) + ")");
   Recipe r;
-  fields::read_members(o, r, kRecipe, "", {"format", "version"});
+  fields::read_document(o, r, kRecipeDocument, kRecipe);
   const json::Value& cap = o.at("capture");
   if (cap.find("light_trap") || cap.find("flare")) {  // optional, but the two together
-    if (!cap.find("light_trap") || !cap.find("flare")) invalid("capture.light_trap and capture.flare go together");
-    if (!r.capture.has_light_trap()) invalid("capture.light_trap: the corners of a light trap cannot all be 0");
+    if (!cap.find("light_trap") || !cap.find("flare")) kRecipe.refuse("capture.light_trap and capture.flare go together");
+    if (!r.capture.has_light_trap()) kRecipe.refuse("capture.light_trap: the corners of a light trap cannot all be 0");
   }
   return complete_recipe(r);
 }
 
-Recipe recipe_from_json(const std::string& text) {
-  json::Value v;
-  try {
-    v = json::parse(text);
-  } catch (const Error& e) {
-    if (e.code() == ErrorCode::LimitExceeded)  // a stated limit (io/limits.hpp) keeps its code
-      throw Error(ErrorCode::LimitExceeded, std::string("recipe: ") + e.what());
-    invalid(std::string("not valid JSON: ") + e.what());
-  }
-  return recipe_from_json(v);
-}
+Recipe recipe_from_json(const std::string& text) { return recipe_from_json(fields::parse_document(text, kRecipeDocument)); }
 
 // ---- use ---------------------------------------------------------------------------------
 

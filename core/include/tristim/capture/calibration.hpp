@@ -115,6 +115,17 @@ struct FrameCalibration {
   std::array<double, 3> noise_floor() const;
 };
 
+/// `base` with the dark frame averaged from `frames`, subtracted in `mode` (dark_mode_from_id's
+/// ids or aliases; "": per_pixel). FrameMismatch if it does not fit `image`.
+FrameCalibration with_dark_frames(FrameCalibration base, const RawImage& image,
+                                  const std::vector<const RawImage*>& frames, std::string_view mode);
+/// `base` with the flat frame as `mode` uses it (flat_field_methods(): "pixel" or "" a per-pixel
+/// flat field with `white_reflectance` of 0 values (none), 1 (grey) or 3 (R, G, B); "radial" the
+/// fall-off fit), after `base`'s dark frame; the other flat correction is cleared. FrameMismatch
+/// if it does not fit `image`; InvalidArgument for another mode or reflectance count.
+FrameCalibration with_flat_frame(FrameCalibration base, const RawImage& image, const RawImage& flat, std::string_view mode,
+                                 const std::vector<double>& white_reflectance = {});
+
 /// A calibrated copy of the image (same size, same saturation mask and metadata).
 RawImage apply_calibration(const RawImage& image, const FrameCalibration& calibration);
 

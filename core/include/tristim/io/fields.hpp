@@ -293,6 +293,41 @@ struct Codec<S, std::enable_if_t<has_schema<S>::value>> {
   static void read(const json::Value& v, S& out, const Context& c, const std::string& p) { read_members(v, out, c, p); }
 };
 
+// ---- versioned documents --------------------------------------------------------------------
+
+/// A document type: {"format": format, "version": version, ...}. `what` names it in messages
+/// ("recipe", "absolute profile"); `invalid` is the code of a refusal, `version_code` the code of
+/// another version.
+struct Document {
+  const char* format;
+  int version;
+  const char* what;
+  ErrorCode invalid, version_code;
+};
+
+/// Parses a document's text: a stated limit (io/limits.hpp) keeps LimitExceeded, anything else
+/// that is not JSON is `d.invalid`.
+json::Value parse_document(const std::string& text, const Document& d);
+/// Refuses what is not an object of the document's format and version (`d.invalid`,
+/// `d.version_code`).
+void check_document(const json::Value& o, const Document& d);
+
+/// {"format", "version", then the listed members of `s`}.
+template <class S>
+json::Value write_document(const S& s, const Document& d) {
+  json::Value o = json::Value::object();
+  o.set("format", d.format);
+  o.set("version", d.version);
+  write_members(s, o);
+  return o;
+}
+/// check_document, then the listed members into `s` (the context's code and prefix for them).
+template <class S>
+void read_document(const json::Value& o, S& s, const Document& d, const Context& c) {
+  check_document(o, d);
+  read_members(o, s, c, "", {"format", "version"});
+}
+
 // ---- declaring members ----------------------------------------------------------------------
 
 template <class>

@@ -70,6 +70,11 @@ PatchMatrix profile_input(const Profile& profile, const PatchMatrix& camera_RGB)
 /// carries a linearisation, linear camera RGB otherwise).
 PatchMatrix profile_predict(const Profile& profile, const PatchMatrix& camera_RGB);
 
+struct Image3f;  // profile/export.hpp
+/// apply_profile (profile/export.hpp) on an image given as 3·width·height linear camera-RGB
+/// values, checked: InvalidArgument for a size that is not positive, RowLength for another count.
+Image3f apply_profile_to_pixels(const Profile& profile, const std::vector<float>& rgb, int width, int height);
+
 /// "fnv1a64:xxxxxxxxxxxxxxxx" of the training data (see the header comment).
 std::string training_digest(const std::vector<std::string>& ids, const PatchMatrix& camera_RGB,
                             const PatchMatrix& reference_XYZ);
