@@ -84,7 +84,8 @@ LayoutOptions layout_options(const Args& args);
 /// `tristim export --dcp …` (cmd_dcp.cpp): run_export hands every option to it when --dcp is given.
 int run_export_dcp(const Args& args, std::ostream& out);
 /// `tristim inspect` of a DNG camera profile (cmd_dcp.cpp): prints its tags as JSON and returns
-/// true when the file starts like a DCP; returns false, having printed nothing, otherwise.
+/// true when the file starts like a DCP (or, named *.clf, a Common LUT Format file: clf_json);
+/// returns false, having printed nothing, otherwise.
 bool inspect_dcp(const std::string& path, std::ostream& out);
 
 /// Comma-separated finite numbers of option --`option`; Error(InvalidArgument) naming it otherwise.

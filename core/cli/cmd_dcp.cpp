@@ -1,6 +1,6 @@
 // CLI: `tristim export --profile p.json --dcp camera.dcp …` (a DNG camera profile, profile/dcp.hpp)
-// and `tristim inspect camera.dcp` (its tags as JSON). Called from the export and inspect commands
-// (cmd_models.cpp, cmd_raw.cpp), which own the command names.
+// and `tristim inspect camera.dcp` (its tags as JSON; `tristim inspect idt.clf` reads a CLF back).
+// Called from the export and inspect commands (cmd_models.cpp, cmd_raw.cpp), which own the names.
 #include <array>
 #include <cmath>
 #include <fstream>
@@ -11,6 +11,7 @@
 #include "patch_args.hpp"
 #include "tristim/capture/raw.hpp"
 #include "tristim/error.hpp"
+#include "tristim/profile/clf.hpp"
 #include "tristim/profile/dcp.hpp"
 #include "tristim/profile/profile.hpp"
 
@@ -143,6 +144,16 @@ int run_export_dcp(const Args& args, std::ostream& out) {
 }
 
 bool inspect_dcp(const std::string& path, std::ostream& out) {
+  // A Common LUT Format file (tristim idt's output) by its extension: read strictly, as JSON.
+  if (ext_of(path) == "clf") {
+    const std::string text = read_file(path);
+    try {
+      out << clf_json(read_clf(text)).dump() << "\n";
+    } catch (const Error& e) {
+      throw Error(e.code(), "'" + path + "': " + e.what());
+    }
+    return true;
+  }
   {
     std::ifstream in(path, std::ios::binary);
     char head[4] = {};

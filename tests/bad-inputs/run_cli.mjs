@@ -10,6 +10,9 @@
 //   recipe    tristim fit --recipe <file> --rgb <good> --xyz <good>
 //   corners   tristim sample <Passport DNG> --chart passport --corners <corners>
 //   dcp       tristim inspect <file>       (a DNG camera profile, read strictly)
+//   link      tristim reproduce <file>     (a file holding a share link; docs/link-format.md)
+//   project   tristim reproduce <file>     (a .tristim project file)
+//   clf       tristim inspect <file.clf>   (a Common LUT Format file, read strictly)
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -43,6 +46,9 @@ function command(c, file) {
     case 'recipe': return ['fit', '--recipe', file, '--rgb', goodRgb, '--xyz', goodRef];
     case 'corners': return ['sample', file, '--chart', 'passport', '--corners', c.corners.join(',')];
     case 'dcp': return ['inspect', file];
+    case 'link': return ['reproduce', file];      // a file holding the link (exit 2 with the code)
+    case 'project': return ['reproduce', file];
+    case 'clf': return ['inspect', file];
     default: throw new Error(`${c.id}: unknown kind ${c.kind}`);
   }
 }

@@ -11,6 +11,7 @@
 #include "tristim/data.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
+#include "../detmath.hpp"
 
 namespace tristim {
 
@@ -50,7 +51,8 @@ namespace {
 
 // CIE 15:2004 eq 8.1-8.3: f(t) and its derivative (the exact constants of XYZ_to_Lab).
 constexpr double kEps = 216.0 / 24389.0, kKappa = 24389.0 / 27.0;
-double df_Lab(double t) { return t > kEps ? 1.0 / (3.0 * std::cbrt(t * t)) : kKappa / 116.0; }
+// detmath: the same bits natively and in wasm (docs/reproducibility.md).
+double df_Lab(double t) { return t > kEps ? 1.0 / (3.0 * detmath::cbrt(t * t)) : kKappa / 116.0; }
 
 void check_finite(const std::vector<Vec3>& v, const char* what) {
   for (size_t i = 0; i < v.size(); ++i)
@@ -261,7 +263,7 @@ IdtResult idt_from_patches(const std::vector<Vec3>& camera_RGB, const std::vecto
   size_t least_C = 0;
   for (size_t p = 0; p < reference_XYZ.size(); ++p) {
     const Vec3 lab = XYZ_to_Lab(reference_XYZ[p] / illuminant_white_XYZ[1], white);
-    const double C = std::hypot(lab[1], lab[2]);
+    const double C = std::sqrt(lab[1] * lab[1] + lab[2] * lab[2]);
     if (C < best_C) best_C = C, least_C = p;
     if (C <= 4 && lab[0] > best_L && camera_RGB[p].minCoeff() > 0) best_L = lab[0], pick = p;
   }
