@@ -18,6 +18,7 @@ const INPUT = {
   profile: ['export', '#step-export input[type=file]'],
   recipe: ['export', '#step-export input[type=file]'],
   dcp: ['export', '#step-export input[type=file]'],
+  project: ['share', '#share-import'],
 };
 const FIT = '#step-fit button.primary';
 const DETECT_AGAIN = '#step-images .detect-panel button:not(.primary)';
@@ -57,7 +58,16 @@ test('every catalogue case shows its code next to its input, and the page still 
     for (const c of cases) {
       const want = expected(c, 'page');
       let got;
-      if (c.kind === 'corners') {
+      if (c.kind === 'link') {
+        // A link pasted into the Share step's Open box: the code next to Open, the session kept.
+        await step(page, 'share');
+        await page.fill('#share-open-text', new TextDecoder().decode(c.bytes));
+        await page.click('#share-open');
+        got = await page.waitForFunction(() => {
+          const slot = document.getElementById(document.getElementById('share-open').getAttribute('aria-describedby'));
+          return !document.getElementById('step-share').dataset.opening && slot && !slot.hidden && slot.dataset.code ? slot.dataset.code : null;
+        }, null, { timeout: 60000 }).then((h) => h.jsonValue(), () => 'no coded error shown');
+      } else if (c.kind === 'corners') {
         await step(page, 'images');
         got = await page.evaluate((cs) => { const ed = window.tristim.views.images.editor; ed.setCorners(cs); ed.onChange(ed.corners, true); }, c.corners)
           .then(() => page.waitForFunction(() => {
