@@ -12,6 +12,7 @@
 //   dcp       tristim inspect <file>       (a DNG camera profile, read strictly)
 //   link      tristim reproduce <file>     (a file holding a share link; docs/link-format.md)
 //   project   tristim reproduce <file>     (a .tristim project file)
+//   clf       tristim inspect <file.clf>   (a Common LUT Format file, read strictly)
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -47,6 +48,7 @@ function command(c, file) {
     case 'dcp': return ['inspect', file];
     case 'link': return ['reproduce', file];      // a file holding the link (exit 2 with the code)
     case 'project': return ['reproduce', file];
+    case 'clf': return ['inspect', file];
     default: throw new Error(`${c.id}: unknown kind ${c.kind}`);
   }
 }

@@ -24,6 +24,7 @@ function run(T, c, passport) {
       case 'dcp': T.readDcp(c.bytes); break;  // the reader the export step's import uses
       case 'link': T.reproduceLink(dec.decode(c.bytes)); break;  // what the Share step's Open calls
       case 'project': T.openProject(c.bytes); break;            // the Share step's project import
+      case 'clf': T.readClf(dec.decode(c.bytes)); break;  // likewise for a CLF
       case 'corners': T.sampleChart(passport, { chart: 'passport' }, c.corners); break;
       default: throw new Error(`${c.id}: unknown kind ${c.kind}`);
     }
