@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <random>
 
+#include "shell.hpp"
 #include "test_support.hpp"
 #include "tristim/absolute/example.hpp"
 #include "tristim/profile/characterise.hpp"
@@ -229,3 +230,34 @@ TEST_CASE("an absolute recipe of per-patch stimuli reproduces from its link", "[
   require_code([&] { share_payload(AbsoluteCharacterisation{complete_absolute_recipe(framed), {}, {}, {}, {}}); },
                ErrorCode::InvalidArgument);
 }
+
+#ifndef __EMSCRIPTEN__
+TEST_CASE("tristim reproduce exits 0 reproduced, 1 differs, 2 for a bad link", "[share][cli]") {
+  using tristim::test::run_shell;
+  using tristim::test::spit;
+  const Planted p = planted();
+  const Characterisation c = characterise(p.recipe, p.training);
+  SharePayload s = share_payload(c, p.training);
+  const std::string dir = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp");
+  const std::string good = dir + "/tristim-share-good.txt", other = dir + "/tristim-share-differs.txt",
+                    bad = dir + "/tristim-share-bad.txt";
+  spit(good, share_link("http://127.0.0.1:8080/", encode_share_payload(s)));
+  s.camera_RGB(0, 0) *= 1.02;
+  spit(other, encode_share_payload(s));
+  spit(bad, "2" + encode_share_payload(s).substr(1));
+  const std::string cli = TRISTIM_CLI;
+  auto status = [&](const std::string& args) {
+    const std::string out = run_shell("'" + cli + "' " + args + " > /dev/null 2>&1; echo $?");
+    return std::stoi(out);
+  };
+  CHECK(status("reproduce " + good) == 0);
+  CHECK(run_shell("'" + cli + "' reproduce --json " + good).find("\"verdict\": \"reproduced\"") != std::string::npos);
+  CHECK(status("reproduce " + other) == 1);
+  const std::string differs = run_shell("'" + cli + "' reproduce --json " + other + "; true");
+  CHECK(differs.find("\"verdict\": \"differs\"") != std::string::npos);
+  CHECK(differs.find("\"differences\"") != std::string::npos);
+  CHECK(status("reproduce " + bad) == 2);
+  CHECK(run_shell("'" + cli + "' reproduce " + bad + " 2>&1; true").find("error PROFILE_VERSION:") != std::string::npos);
+  for (const auto& f : {good, other, bad}) std::remove(f.c_str());
+}
+#endif
