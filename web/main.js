@@ -15,7 +15,7 @@ const engine = new Engine({ boot });
 const storedSession = store.all().catch((e) => { console.warn(`session storage unavailable: ${e.message}`); return {}; });
 
 // The features, in journey order: web/<feature>/view.js, each mounted into <section id="step-<feature>">.
-const STEPS = ['reference', 'surface', 'images', 'linearisation', 'fit', 'results', 'apply', 'export', 'absolute', 'share'];
+const STEPS = ['reference', 'surface', 'images', 'linearisation', 'fit', 'results', 'apply', 'export', 'absolute', 'lab', 'share'];
 const FEATURES = Promise.all(STEPS.map((s) => import(`./${s}/view.js`)))
   .then((mods) => Object.fromEntries(STEPS.map((s, i) => [s, mods[i]])));
 FEATURES.catch(() => {});   // a failed load is reported by start()

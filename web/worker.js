@@ -14,8 +14,9 @@ import * as apply from './apply/handlers.js';
 import * as exporter from './export/handlers.js';
 import * as absolute from './absolute/handlers.js';
 import * as share from './share/handlers.js';
+import * as lab from './lab/handlers.js';
 
-const FEATURES = [reference, surface, images, detect, linearisation, fit, apply, exporter, absolute, share];
+const FEATURES = [reference, surface, images, detect, linearisation, fit, apply, exporter, absolute, lab, share];
 
 const handlers = {
   hello: (T) => ({ result: { version: T.version() } }),

@@ -83,7 +83,8 @@ double pixel_dn(const LabRender& r, int x, int y, int c, GaussianNoise* noise) {
 
 }  // namespace
 
-LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::string& format) {
+LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::string& format_given) {
+  const std::string format = format_given.empty() ? "dng" : format_given;
   if (format != "dng" && format != "tiff")
     throw Error(ErrorCode::InvalidArgument, "lab render writes dng or tiff, not '" + format + "'");
   if (format == "dng" && options.oecf != "linear")

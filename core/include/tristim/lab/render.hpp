@@ -102,7 +102,7 @@ struct LabRenderFiles {
   std::vector<std::uint8_t> dng;    ///< the file's bytes (DNG or TIFF)
   std::string truth;
 };
-/// format: "dng" (options.oecf must be "linear") or "tiff".
+/// format: "dng" (or empty; options.oecf must be "linear") or "tiff".
 LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::string& format = "dng");
 
 /// Chart ids lab rendering draws ("cc24", "passport", "sg140").

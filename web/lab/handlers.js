@@ -1,0 +1,18 @@
+// Worker handlers of the Lab mode: a chart photograph rendered by the engine from measured
+// spectra (DNG bytes, transferred, and its truth as JSON), and camera quality: the SMI / μ ranking
+// of the 52 cameras and one camera's curves beside their best-fit CMF combination.
+import { reply } from '../lib/reply.js';
+
+export const handlers = {
+  /// options: LabRenderOptions fields (camera, chart, illuminant, exposure, shot_gain, …); the
+  /// illuminant's SPD is resolved by the engine from its id.
+  labRender: (T, { options }) => {
+    const out = T.labRender({ ...options, illuminant_spd: T.illuminantSpectrum(options.illuminant ?? 'D65') });
+    return { result: { dng: out.dng, truth: JSON.parse(out.truth) }, transfer: [out.dng.buffer] };
+  },
+  labRanking: (T, { illuminant = 'D65' }) => reply(T.cameraQualityRanking(T.illuminantSpectrum(illuminant))),
+  labCamera: (T, { camera, illuminant = 'D65' }) => {
+    const ssf = T.cameraSensitivities(camera), L = T.illuminantSpectrum(illuminant);
+    return reply({ quality: T.cameraQuality(ssf, L, camera), fit: T.lutherFit(ssf, L) });
+  },
+};

@@ -1,0 +1,32 @@
+// Lab plots, pure functions from arrays to SVG: a camera's spectral sensitivities (solid) beside
+// the best-fit combination of the CIE 1931 colour-matching functions (dashed) — how far the camera
+// is from the Luther condition; both on the camera's scale (its largest value = 1).
+import { getPlot } from '../plots/common.js';
+import { CHANNELS } from '../plots/oecf.js';
+
+/// fit: the engine's LutherFit {wavelengths, camera: [R, G, B], fit: [R, G, B]} -> rows.
+export function lutherRows(fit) {
+  const rows = [];
+  for (const [set, curves] of [['camera', fit.camera], ['best CMF combination', fit.fit]]) {
+    curves.forEach((v, c) => v.forEach((x, i) => rows.push({ set, channel: CHANNELS[c].id, nm: fit.wavelengths[i], v: x })));
+  }
+  return rows;
+}
+
+export function lutherPlot(fit, { width = 720, height = 300, Plot = getPlot() } = {}) {
+  const rows = lutherRows(fit);
+  const cam = rows.filter((d) => d.set === 'camera'), cmf = rows.filter((d) => d.set !== 'camera');
+  return Plot.plot({
+    width, height, marginLeft: 50, marginBottom: 40,
+    x: { domain: [380, 780], label: 'wavelength (nm) →', grid: true },
+    y: { label: '↑ relative sensitivity (camera peak = 1)', grid: true },
+    color: { domain: CHANNELS.map((c) => c.id), range: CHANNELS.map((c) => c.colour), legend: true, label: 'channel' },
+    marks: [
+      Plot.frame({ stroke: '#ccc' }),
+      Plot.ruleY([0], { stroke: '#999' }),
+      Plot.line(cmf, { x: 'nm', y: 'v', z: 'channel', stroke: 'channel', strokeWidth: 1.5, strokeDasharray: '5,4' }),
+      Plot.line(cam, { x: 'nm', y: 'v', z: 'channel', stroke: 'channel', strokeWidth: 2.2 }),
+      Plot.tip(cam, Plot.pointerX({ x: 'nm', y: 'v', stroke: 'channel', title: (d) => `camera ${d.channel} at ${d.nm} nm: ${d.v.toFixed(3)}` })),
+    ],
+  });
+}

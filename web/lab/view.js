@@ -1,0 +1,203 @@
+// The Lab mode (issue 45): a colorimetry lab without cameras, spectrometers or a light booth.
+// (1) Render a chart photograph from measured spectra — one of the 52 cameras, a chart, an
+// illuminant, exposure, shot + read noise, fall-off and flare — as a real DNG the engine writes,
+// shown with its truth (camera RGB per patch), downloadable, and handed to the normal journey
+// (Images step) with one click. (2) Camera quality as a colorimeter: the ISO 17321-1 SMI and the
+// Vora–Trussell μ-factor of the 52 cameras, ranked, and one camera's curves beside the best-fit
+// combination of the CIE colour-matching functions. Every panel names its CLI equivalent.
+import { h, field, select, showError, clearError, errorSlot, numberValue, fmt, download } from '../lib/ui.js';
+import { options } from '../lib/catalog.js';
+import { figure } from '../plots/common.js';
+import { lutherPlot } from './plots.js';
+
+const CHARTS = [
+  { value: 'cc24', label: 'ColorChecker Classic (24)' },
+  { value: 'passport', label: 'ColorChecker Passport (classic side)' },
+  { value: 'sg140', label: 'ColorChecker Digital SG (140)' },
+];
+
+/// Sets a picker of another step as a person would (its change handler runs) when it offers `value`.
+function choose(sel, value) {
+  if (!sel || ![...sel.options].some((o) => o.value === value) || sel.value === value) return;
+  sel.value = value;
+  sel.dispatchEvent(new Event('change'));
+}
+
+const q = (s) => (/^[\w.+-]+$/.test(s) ? s : `"${s}"`);
+
+/// The command line that renders the same file.
+export function renderCommand(o) {
+  let s = `tristim lab render --camera ${q(o.camera)} --chart ${o.chart} --illuminant ${o.illuminant} --exposure ${o.exposure}`;
+  if (o.shot_gain > 0 || o.read_noise > 0) s += ` --noise ${o.shot_gain},${o.read_noise} --seed ${o.seed}`;
+  if (o.falloff > 0) s += ` --falloff ${o.falloff}`;
+  if (o.flare > 0) s += ` --flare ${o.flare}`;
+  return `${s} --out chart.dng`;
+}
+
+export function mount(section, app) {
+  const { engine } = app;
+  const saved = app.session.lab ?? {};
+  const cameras = options(app.catalog.cameras);
+  const illuminants = options(app.catalog.illuminants);
+
+  // ---- (1) render
+  const camSel = select(cameras, saved.camera ?? 'Canon_EOS_5D_Mark_II');
+  const chartSel = select(CHARTS, saved.chart ?? 'cc24');
+  const illumSel = select(illuminants, saved.illuminant ?? 'D65');
+  const num = (name, label, value, attrs = {}) => h('input', { type: 'number', step: 'any', class: 'num', 'data-lab': name, 'aria-label': label, value, ...attrs });
+  const inputs = {
+    exposure: num('exposure', 'Exposure', saved.exposure ?? 0.5, { min: 0.01, max: 4 }),
+    shot_gain: num('shot_gain', 'Shot-noise gain', saved.shot_gain ?? 0, { min: 0 }),
+    read_noise: num('read_noise', 'Read noise', saved.read_noise ?? 0, { min: 0 }),
+    falloff: num('falloff', 'Fall-off', saved.falloff ?? 0, { min: 0, max: 0.9 }),
+    flare: num('flare', 'Flare', saved.flare ?? 0, { min: 0, max: 1 }),
+    seed: num('seed', 'Noise seed', saved.seed ?? 1, { min: 1, step: 1 }),
+  };
+  const renderBtn = h('button', { type: 'button', 'data-action': 'lab-render' }, 'Render the chart');
+  const renderCli = h('pre', { class: 'cli', 'data-lab': 'render-cli' });
+  const renderOut = h('div', { class: 'lab-out', 'aria-live': 'polite' });
+  let last = null;
+
+  function readOptions() {
+    const o = { camera: camSel.value, chart: chartSel.value, illuminant: illumSel.value };
+    for (const [k, el] of Object.entries(inputs)) o[k] = numberValue(el);
+    return o;
+  }
+
+  async function render() {
+    clearError(renderBtn);
+    for (const el of Object.values(inputs)) clearError(el);
+    let o;
+    try { o = readOptions(); } catch (e) { showError(e.input ?? renderBtn, e, 'Lab'); return null; }
+    app.save('lab', { ...o });
+    renderCli.textContent = renderCommand(o);
+    renderBtn.disabled = true;
+    renderOut.replaceChildren(h('p', {}, 'Rendering in the engine…'));
+    try {
+      last = await engine.call('labRender', { options: o });
+    } catch (e) {
+      renderOut.replaceChildren();
+      showError(renderBtn, e, 'Render');
+      return null;
+    } finally { renderBtn.disabled = false; }
+    app.derived.labTruth = last.truth;   // for the curious (and the browser test)
+    show(last);
+    return last;
+  }
+
+  function show({ dng, truth }) {
+    const name = `lab-${truth.chart}-${truth.camera.replace(/[^\w.-]+/g, '_')}-${truth.illuminant}.dng`;
+    const openBtn = h('button', { type: 'button', 'data-action': 'lab-open' }, 'Open in the journey (Images step)');
+    const saveBtn = h('button', { type: 'button', 'data-action': 'lab-download' }, 'Download the DNG');
+    const truthBtn = h('button', { type: 'button', 'data-action': 'lab-truth' }, 'Download the truth (JSON)');
+    openBtn.addEventListener('click', () => openInJourney(name));
+    saveBtn.addEventListener('click', () => download(name, dng, 'image/x-adobe-dng'));
+    truthBtn.addEventListener('click', () => download(name.replace(/\.dng$/, '.json'), JSON.stringify(truth, null, 1), 'application/json'));
+    const rows = truth.patches.map((p) => h('tr', {},
+      h('th', { scope: 'row' }, p.id), ...p.rgb.map((v) => h('td', { class: 'num' }, String(v))),
+      ...p.XYZ.map((v) => h('td', { class: 'num' }, fmt(v, 2)))));
+    renderOut.replaceChildren(
+      h('p', { class: 'summary', 'data-lab': 'summary' },
+        `A ${truth.sensor_width} × ${truth.sensor_height} ${truth.cfa} DNG (${(dng.length / 1e6).toFixed(1)} MB, black ${truth.black}, white ${truth.white_level}): `
+        + `the white diffuser's G at ${fmt(truth.white[1], 0)} DN. The table is the truth: the camera RGB (DN above black) that sampling the patches `
+        + 'recovers exactly when noise and fall-off are off, and the reference XYZ of the same patches.'),
+      h('p', { class: 'actions' }, openBtn, ' ', saveBtn, ' ', truthBtn),
+      h('div', { class: 'table-scroll' }, h('table', { class: 'data', 'data-lab': 'truth' },
+        h('thead', {}, h('tr', {}, ...['patch', 'R', 'G', 'B', 'X', 'Y', 'Z'].map((t) => h('th', { scope: 'col' }, t)))),
+        h('tbody', {}, ...rows))));
+  }
+
+  /// The rendered DNG through the normal journey: the reference and the layout follow the chart
+  /// and illuminant it was rendered with, then the Images step decodes, detects and samples it.
+  async function openInJourney(name) {
+    if (!last) return;
+    const { truth } = last;
+    choose(app.views.reference?.controls?.chartSel, truth.chart);
+    choose(app.views.reference?.controls?.illumSel, truth.illuminant);
+    choose(document.querySelector('#step-images select[data-role="layout"]'), truth.chart);
+    app.goto('images', { focus: true });
+    await app.views.images.setFile('chart', new File([last.dng], name, { type: 'image/x-adobe-dng' }));
+  }
+
+  renderBtn.addEventListener('click', render);
+  const renderPanel = h('section', { class: 'lab-panel', 'aria-labelledby': 'h-lab-render' },
+    h('h3', { id: 'h-lab-render' }, 'Render a chart photograph'),
+    h('p', { class: 'explain' },
+      'The chart\'s measured reflectances, lit by the illuminant, seen through the camera\'s measured spectral sensitivities '
+      + '(u = Σ SSF · S · R, the virtual camera), drawn head-on into a 14-bit Bayer sensor and written as a real DNG. '
+      + 'Exposure: the white diffuser\'s G as a fraction of saturation. Noise: variance = gain · DN + read². '
+      + 'Fall-off: 1 − a·r² (r = 1 at the corners). Flare: a veil of that fraction of the white.'),
+    h('div', { class: 'controls' },
+      field('Camera', camSel, 'One of the 52 cameras with measured sensitivities'),
+      field('Chart', chartSel), field('Illuminant', illumSel),
+      field('Exposure', inputs.exposure), field('Shot-noise gain', inputs.shot_gain), field('Read noise (DN)', inputs.read_noise),
+      field('Fall-off', inputs.falloff), field('Flare', inputs.flare), field('Noise seed', inputs.seed)),
+    h('p', {}, renderBtn), errorSlot(renderBtn),
+    h('p', { class: 'hint' }, 'The same on the command line:'), renderCli, renderOut);
+
+  // ---- (2) camera quality
+  const qIllum = select(illuminants, 'D65');
+  const qCam = select(cameras, saved.camera ?? 'Canon_EOS_5D_Mark_II');
+  const rankBtn = h('button', { type: 'button', 'data-action': 'lab-rank' }, 'Rank the 52 cameras');
+  const plotBtn = h('button', { type: 'button', 'data-action': 'lab-luther' }, 'Plot against the CMFs');
+  const rankBox = h('div', { class: 'table-scroll' });
+  const plotBox = h('div', { class: 'plot-box', 'data-lab': 'luther' });
+  const qCli = h('pre', { class: 'cli' });
+  const setCli = () => { qCli.textContent = `tristim lab smi --illuminant ${qIllum.value} --json\ntristim lab smi --camera ${q(qCam.value)} --illuminant ${qIllum.value} --json`; };
+  setCli();
+
+  async function rank() {
+    clearError(rankBtn);
+    rankBtn.disabled = true;
+    rankBox.replaceChildren(h('p', {}, 'Computing the SMI and μ of every camera…'));
+    let rows;
+    try { rows = await engine.call('labRanking', { illuminant: qIllum.value }); } catch (e) {
+      rankBox.replaceChildren();
+      showError(rankBtn, e, 'Ranking');
+      return null;
+    } finally { rankBtn.disabled = false; }
+    const body = rows.map((r, i) => {
+      const b = h('button', { type: 'button', class: 'link' }, r.camera);
+      b.addEventListener('click', () => { qCam.value = r.camera; setCli(); plot(); });
+      return h('tr', {}, h('td', { class: 'num' }, String(i + 1)), h('td', {}, b), h('td', { class: 'num' }, fmt(r.smi, 1)),
+        h('td', { class: 'num' }, fmt(r.mu_factor, 4)), h('td', { class: 'num' }, fmt(r.mean_dE, 2)));
+    });
+    rankBox.replaceChildren(h('table', { class: 'data', 'data-lab': 'ranking' },
+      h('thead', {}, h('tr', {}, ...['#', 'camera', 'SMI', 'μ', 'mean ΔE*ab'].map((t) => h('th', { scope: 'col' }, t)))),
+      h('tbody', {}, ...body)));
+    return rows;
+  }
+
+  async function plot() {
+    clearError(plotBtn);
+    let r;
+    try { r = await engine.call('labCamera', { camera: qCam.value, illuminant: qIllum.value }); } catch (e) { showError(plotBtn, e, 'Plot'); return null; }
+    const { quality, fit } = r;
+    plotBox.replaceChildren(
+      figure(lutherPlot(fit), { name: `luther-${quality.camera}`, caption: `${quality.camera}: SMI ${fmt(quality.smi, 1)}, μ ${fmt(quality.mu_factor, 4)} under ${qIllum.value}` }),
+      h('p', { class: 'explain' },
+        'Solid: the camera\'s measured sensitivities. Dashed: for each channel, the combination of x̄, ȳ, z̄ closest to it '
+        + '(least squares, weighted by the illuminant). Where they part, two surfaces can match for the camera and not for us '
+        + '(or the reverse): no 3×3 matrix can undo that, which is what the SMI scores on the 18 colours of the ColorChecker.'));
+    return r;
+  }
+
+  rankBtn.addEventListener('click', rank);
+  plotBtn.addEventListener('click', plot);
+  qIllum.addEventListener('change', setCli);
+  qCam.addEventListener('change', setCli);
+  const qualityPanel = h('section', { class: 'lab-panel', 'aria-labelledby': 'h-lab-quality' },
+    h('h3', { id: 'h-lab-quality' }, 'Camera quality as a colorimeter'),
+    h('p', { class: 'explain' },
+      'A camera measures colour exactly only if its sensitivities are a linear combination of the colour-matching functions '
+      + '(the Luther condition). ISO 17321-1\'s sensitivity metamerism index scores the gap: SMI = 100 − 5.5 × the mean ΔE*ab of '
+      + 'ColorChecker patches 1–18 after the best 3×3 matrix (100 = perfect). Vora & Trussell\'s μ-factor measures it in the '
+      + 'spectral domain: 1 when the camera\'s curves span the same space as the CMFs.'),
+    h('div', { class: 'controls' }, field('Illuminant', qIllum), field('Camera', qCam)),
+    h('p', {}, rankBtn, ' ', plotBtn), errorSlot(rankBtn), errorSlot(plotBtn),
+    h('p', { class: 'hint' }, 'The same on the command line:'), qCli,
+    plotBox, rankBox);
+
+  section.append(renderPanel, qualityPanel);
+  return { render, openInJourney, rank, plot };
+}
