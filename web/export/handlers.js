@@ -1,5 +1,5 @@
-// Worker handlers of step 6: the engine's exports (ICC, .cube, DCP, per-patch CSV), the engine's
-// DCP reader for a download read back, and the evaluation of a profile loaded back on the current
+// Worker handlers of step 6: the engine's exports (ICC, .cube, DCP, ACES IDT, per-patch CSV), the
+// engine's DCP and CLF readers for a download read back, and the evaluation of a profile loaded back on the current
 // chart data.
 import { reply, displayOf } from '../lib/reply.js';
 
@@ -16,4 +16,10 @@ export const handlers = {
   // options: DcpOptions (camera_model, hue_sat_map …); the same bytes as `tristim export --dcp`.
   exportDcp: (T, { profile, options }) => reply({ bytes: T.exportDcp(profile, options) }),
   readDcp: (T, { bytes }) => reply(T.readDcp(bytes)),
+  // ACES IDT: {clf, matrix, json}, the files of `tristim idt --camera … --illuminant …` (or of a
+  // chart's patches), and the engine's CLF reader for a download read back.
+  idtCamera: (T, { camera, illuminant, adaptation }) => reply(T.idtCamera(camera, illuminant, adaptation)),
+  idtChart: (T, { rgb, xyz, white, adaptation, rgbName, referenceName, illuminant }) =>
+    reply(T.idtChart(rgb, xyz, white, adaptation, rgbName, referenceName, illuminant)),
+  readClf: (T, { text }) => reply(T.readClf(text)),
 };

@@ -1,20 +1,21 @@
 // Step 6: download the selected profile as JSON, the per-patch CSV, an ICC profile, a .cube LUT
 // and a DNG camera profile (DCP); load any of them back (a profile JSON becomes a result again,
 // evaluated on this chart).
-import { h, field, showError, clearError, download } from '../lib/ui.js';
+import { h, field, showError, clearError, download, select } from '../lib/ui.js';
+import { options } from '../lib/catalog.js';
 import { readCube, readIccHeader } from './formats.js';
 
 export function mount(section, app) {
   const { engine } = app;
   const which = h('p', { class: 'summary' });
-  const btn = (label, fn) => {
+  const btn = (label, fn, needsProfile = () => true) => {
     const b = h('button', { type: 'button', dataset: { export: label } }, label);
     b._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: `export-${label.replace(/\W+/g, '-')}-error` });
     b.setAttribute('aria-describedby', b._errorSlot.id);
     b.addEventListener('click', async () => {
       clearError(b);
       const r = selected();
-      if (!r) { showError(b, Object.assign(new Error('no profile yet'), { code: 'NO_PROFILE' }), label); return; }
+      if (!r && needsProfile()) { showError(b, Object.assign(new Error('no profile yet'), { code: 'NO_PROFILE' }), label); return; }
       try { await fn(r); } catch (e) { showError(b, e, label); }
     });
     return h('div', { class: 'field' }, b, b._errorSlot);
@@ -74,13 +75,60 @@ export function mount(section, app) {
     field('Camera model (UniqueCameraModel)', cameraModel, 'From the chart RAW\'s make and model; edit it if your raw converter names the camera differently.'),
     field('HueSatMap 90×30×30', hueSatMap, 'For a model that is not a 3×3 matrix: the DCP\'s ForwardMatrix carries its linear part at neutral, the HueSatMap the rest.'));
 
-  const importInput = h('input', { type: 'file', accept: '.json,.csv,.icc,.icm,.cube,.dcp' });
+  // ACES Input Transform: the rawtoaces v1 IDT (rows summing to one, least-squares ΔE*ab, CAT02 or
+  // Bradford) from a built-in camera's sensitivities with the 190 training spectra, or from this
+  // chart's patches; the engine writes the CLF and the plain 3×3 that `tristim idt` writes.
+  const idtSource = select([{ value: 'camera', label: 'Built-in camera sensitivities (190 training spectra)' },
+    { value: 'chart', label: 'This chart\'s patches (the selected profile\'s data)' }], 'camera');
+  idtSource.id = 'idt-source';
+  const idtCamera = select(options(app.catalog.cameras), 'Canon_EOS_5D_Mark_II');
+  idtCamera.id = 'idt-camera';
+  const idtIlluminant = select(options(app.catalog.illuminants), 'D55');
+  idtIlluminant.id = 'idt-illuminant';
+  const idtAdaptation = select(['CAT02', 'Bradford'], 'CAT02');
+  idtAdaptation.id = 'idt-adaptation';
+  const idtSummary = h('div', { class: 'idt-summary', 'aria-live': 'polite' });
+  const idtCommand = h('p', { class: 'hint idt-command' });
+  const fromChart = () => idtSource.value === 'chart';
+  const idtName = () => (fromChart() ? `tristim-idt-chart-${idtAdaptation.value}` : `tristim-idt-${idtCamera.value}-${idtIlluminant.value}-${idtAdaptation.value}`).replace(/[^\w.-]+/g, '_');
+  async function idtFiles(r) {
+    const adaptation = idtAdaptation.value;
+    if (!fromChart()) return engine.call('idtCamera', { camera: idtCamera.value, illuminant: idtIlluminant.value, adaptation });
+    // The chart: its camera RGB and reference XYZ, the reference white as its illuminant.
+    const white = Array.from(r.white);
+    return engine.call('idtChart', { rgb: r.rgb, xyz: r.xyz, white, adaptation, rgbName: r.label, referenceName: 'step 1 reference',
+      illuminant: ['ReferenceWhiteXYZ', white.map((v) => v.toFixed(4)).join(' ')] });
+  }
+  function describeIdt() {
+    const chart = fromChart();
+    idtCamera.disabled = chart;
+    idtIlluminant.disabled = chart;
+    idtCommand.textContent = chart
+      ? 'From the chart: the white balance comes from its most neutral bright patch; the CLF takes camera values as this chart\'s RAW has them.'
+      : `The same files as: tristim idt --camera "${idtCamera.value}" --illuminant ${idtIlluminant.value} --adaptation ${idtAdaptation.value} --out idt.clf --matrix idt.txt`;
+  }
+  for (const s of [idtSource, idtCamera, idtIlluminant, idtAdaptation]) s.addEventListener('change', describeIdt);
+  const idtControls = h('div', { class: 'controls' },
+    field('IDT from', idtSource), field('Camera', idtCamera), field('Illuminant', idtIlluminant),
+    field('Chromatic adaptation', idtAdaptation, 'To the ACES white (rawtoaces v1 uses CAT02).'));
+  const idtButtons = h('div', { class: 'controls' },
+    btn('IDT (CLF)', async (r) => {
+      const files = await idtFiles(r);
+      const name = `${idtName()}.clf`;
+      download(name, files.clf, 'application/xml');
+      // The download read back by the engine's strict CLF reader.
+      idtSummary.replaceChildren(h('p', {}, clfText(name, new TextEncoder().encode(files.clf).length, await engine.call('readClf', { text: files.clf }), files.json)));
+    }, fromChart),
+    btn('IDT 3×3 matrix', async (r) => download(`${idtName()}.txt`, (await idtFiles(r)).matrix, 'text/plain'), fromChart));
+
+  const importInput = h('input', { type: 'file', accept: '.json,.csv,.icc,.icm,.cube,.dcp,.clf' });
   const imported = h('div', { class: 'import-result', 'aria-live': 'polite' });
   section.append(which, h('h3', {}, 'Download'), exports,
     h('h3', {}, 'DNG camera profile (DCP, single illuminant)'), dcpControls, dcpNote, dcpSummary,
+    h('h3', {}, 'ACES Input Transform (CLF)'), idtControls, idtButtons, idtCommand, idtSummary,
     h('h3', {}, 'Load an export back'),
-    field('Profile JSON, per-patch CSV, ICC, .cube or DCP', importInput,
-      'A profile JSON is evaluated on the current chart and added to the results; a per-patch CSV can be used as a reference in step 1; ICC, .cube and DCP files are checked and summarised.'),
+    field('Profile JSON, per-patch CSV, ICC, .cube, DCP or CLF', importInput,
+      'A profile JSON is evaluated on the current chart and added to the results; a per-patch CSV can be used as a reference in step 1; ICC, .cube, DCP and CLF files are checked and summarised.'),
     imported);
 
   function selected() {
@@ -112,6 +160,9 @@ export function mount(section, app) {
       } else if (ext === 'dcp') {
         const bytes = new Uint8Array(await f.arrayBuffer());
         imported.append(h('p', {}, dcpText(f.name, bytes.length, await engine.call('readDcp', { bytes }))));
+      } else if (ext === 'clf') {
+        const text = await f.text();
+        imported.append(h('p', {}, clfText(f.name, f.size, await engine.call('readClf', { text }))));
       } else if (ext === 'csv') {
         // The engine reads its own per-patch CSV as a reference (its X_ref, Y_ref, Z_ref columns).
         const r = await app.views.reference.useFile({ name: f.name, text: await f.text() });
@@ -152,6 +203,7 @@ export function mount(section, app) {
     imported.append(h('p', { dataset: { imported: result.key } }, `${f.name}: profile loaded and evaluated on the current chart; it is now selected in Results.`));
   }
   describe();
+  describeIdt();
   return { importInput, cameraModel };
 }
 
@@ -162,4 +214,14 @@ function dcpText(name, size, d) {
   const fm = [d.forward_matrix1, d.forward_matrix2].filter(Boolean).map((m, k) => `ForwardMatrix${k + 1} ${rows(m)}`).join('; ');
   const hsm = d.hue_sat_map ? `HueSatMap ${d.hue_sat_map.dims.join('×')}` : 'no HueSatMap';
   return `${name}: DNG camera profile, UniqueCameraModel “${d.unique_camera_model}”, ${ill}; ${fm}; ${hsm}; ${size} bytes.`;
+}
+
+/// One line about a CLF as the engine's reader gives it (clf_json), with the fit's errors when known.
+function clfText(name, size, c, fit) {
+  const rows = c.matrix.map((row) => row.map((v) => v.toFixed(4)).join(' ')).join(' / ');
+  const info = ['Camera', 'Sensitivities', 'CameraRGB', 'Illuminant', 'IlluminantFile', 'Training', 'Adaptation', 'WhiteBalance']
+    .filter((k) => c.info[k] != null).map((k) => `${k} ${c.info[k]}`).join(', ');
+  const white = c.aces_of_camera_1_1_1.map((v) => v.toFixed(4)).join(' ');
+  const errors = fit ? `; fit on ${fit.errors.samples} samples: ΔE*ab mean ${fit.errors.delta_E76_mean.toFixed(2)}, max ${fit.errors.delta_E76_max.toFixed(2)}` : '';
+  return `${name}: CLF “${c.name}”, ${c.input} → ${c.output}; ${info}; Matrix ${rows}${c.lut1d_entries ? `; LUT1D of ${c.lut1d_entries}` : ''}; camera (1, 1, 1) → ACES ${white}${errors}; ${size} bytes.`;
 }
