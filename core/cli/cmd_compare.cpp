@@ -3,6 +3,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "bootstrap_args.hpp"
 #include "cli.hpp"
 #include "linearise_option.hpp"
 #include "patch_args.hpp"
@@ -20,12 +21,23 @@ const char* kCompareUsage =
     "                [--models id,id,...] [--white <patch>] [--lab-white ...] [--ref-white ...]\n"
     "                [--test-rgb other.csv --test-xyz other_ref.csv] [--json] [--threads N]\n"
     "                [--linearisation <id>[:options]|fitted.json [--reflectances spectra.csv|<chart>] [--full-scale 255]]\n"
+    "                [--bootstrap N [--seed 1] [--level 0.95]]\n"
     "  Every model × objective on the same patches: training and leave-one-out CIEDE2000,\n"
     "  sorted by the held-out mean. With --test-rgb/--test-xyz also the train-on-one /\n"
     "  test-on-another table (Abed 2013 Table IV layout). The rows run on --threads threads\n"
-    "  (default 0: one per hardware thread, at most 16); the numbers do not depend on it.";
+    "  (default 0: one per hardware thread, at most 16); the numbers do not depend on it.\n"
+    "  --bootstrap N: each row refitted on N resamples of the patches (and of each patch's pixels when\n"
+    "  --rgb has sample's R_std,G_std,B_std,n): \"ci\": {\"level\",\"lo\",\"hi\"} next to the training and\n"
+    "  leave-one-out mean dE00 (JSON), the leave-one-out interval as a column (text).";
 
-json::Value compare_row_json(const CompareRow& r) {
+/// A row's bootstrap (evaluation/bootstrap.hpp): the row's model and objective refitted on resamples.
+struct RowBootstrap {
+  bool ok = false;
+  BootstrapResult result;
+  std::string error;
+};
+
+json::Value compare_row_json(const CompareRow& r, const RowBootstrap* b) {
   json::Value o = json::Value::object();
   o.set("model", r.model_id);
   o.set("objective", objective_id(r.objective));
@@ -37,12 +49,26 @@ json::Value compare_row_json(const CompareRow& r) {
   o.set("condition_number", r.condition_number);
   o.set("seconds", r.seconds);
   o.set("cpu_seconds", r.cpu_seconds);
-  o.set("train_dE00", summary_json(r.train_dE00));
+  const bool ci = b && b->ok;
+  o.set("train_dE00", ci ? with_ci(summary_json(r.train_dE00), b->result.train_dE00_mean) : summary_json(r.train_dE00));
   o.set("train_dE_xyz", summary_json(r.train_dE_xyz));
   o.set("has_loo", r.has_loo);
   if (r.has_loo) {
-    o.set("loo_dE00", summary_json(r.loo_dE00));
+    o.set("loo_dE00", ci && b->result.has_loo ? with_ci(summary_json(r.loo_dE00), b->result.loo_dE00_mean)
+                                              : summary_json(r.loo_dE00));
     o.set("loo_dE_xyz", summary_json(r.loo_dE_xyz));
+  }
+  if (b) {
+    json::Value j = json::Value::object();
+    j.set("ok", b->ok);
+    if (b->ok) {
+      j.set("resamples", b->result.resamples);
+      j.set("failed", b->result.failed);
+      j.set("resampling", b->result.pixels ? "patches+pixels" : "patches");
+    } else {
+      j.set("message", b->error);
+    }
+    o.set("bootstrap", j);
   }
   return o;
 }
@@ -51,7 +77,7 @@ int run_compare(const Args& args, std::ostream& out) {
   args.allow_only({"rgb", "xyz", "objectives", "models", "white", "lab-white", "ref-white", "test-rgb",
                    "test-xyz", "json", "objective", "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol",
                    "de-ftol", "de-max-evaluations", "de-rms", "de-step", "linearisation", "reflectances", "full-scale",
-                   "threads"});
+                   "threads", "bootstrap", "seed", "level"});
   if (args.has("threads")) {
     const double n = args.get_double("threads", 0);
     if (!(n >= 0 && n <= 256 && n == static_cast<int>(n)))
@@ -70,6 +96,30 @@ int run_compare(const Args& args, std::ostream& out) {
   if (args.has("models"))
     for (const auto& s : split_list(args.get("models"))) models.push_back(model_info(s).id);
   const auto rows = compare_models(d.rgb, d.xyz, o, models, objectives, white_index);
+  std::vector<RowBootstrap> boot;
+  if (args.has("bootstrap")) {
+    // Each row again (its per-patch leave-one-out errors), then its resamples: rows × resamples fits.
+    BootstrapOptions b = bootstrap_options(args, "compare", args.get("rgb"), d.ids, lin.choice.method == "identity");
+    for (const auto& r : rows) {
+      RowBootstrap rb;
+      if (r.ok) {
+        std::cerr << "tristim compare: bootstrap " << r.model_id << " " << objective_id(r.objective) << "\n";
+        try {
+          FitOptions ro = o;
+          ro.objective = r.objective;
+          const ModelEvaluation ev = evaluate_model(r.model_id, d.rgb, d.xyz, ro, white_index);
+          b.loo_dE00 = ev.has_loo ? ev.loo.patches.dE00 : std::vector<double>{};
+          rb.result = bootstrap_fit(r.model_id, d.rgb, d.xyz, ro, b);
+          rb.ok = true;
+        } catch (const Error& e) {
+          rb.error = std::string(e.code_name()) + ": " + e.what();
+        }
+      } else {
+        rb.error = "the fit was refused";
+      }
+      boot.push_back(rb);
+    }
+  }
   std::vector<TransferCell> transfer;
   if (args.has("test-rgb") || args.has("test-xyz")) {
     PatchData t = load_pairs(args.get("test-rgb"), args.get("test-xyz"), ref_white);
@@ -84,7 +134,7 @@ int run_compare(const Args& args, std::ostream& out) {
     json::Value j = json::Value::object();
     j.set("patches", static_cast<int>(d.rgb.rows()));
     json::Value a = json::Value::array();
-    for (const auto& r : rows) a.push(compare_row_json(r));
+    for (size_t i = 0; i < rows.size(); ++i) a.push(compare_row_json(rows[i], boot.empty() ? nullptr : &boot[i]));
     j.set("rows", a);
     if (!transfer.empty()) {
       json::Value tj = json::Value::array();
@@ -108,11 +158,12 @@ int run_compare(const Args& args, std::ostream& out) {
       << fmt(o.white[1], 4) << "," << fmt(o.white[2], 4) << "; sorted by leave-one-out mean\n";
   out << std::left << std::setw(18) << "model" << std::setw(8) << "obj" << std::right << std::setw(6) << "terms"
       << std::setw(10) << "train" << std::setw(10) << "train" << std::setw(10) << "LOO" << std::setw(10) << "LOO"
-      << std::setw(10) << "LOO" << std::setw(11) << "cond" << "  status\n";
+      << std::setw(10) << "LOO" << std::setw(11) << "cond" << "  status" << (boot.empty() ? "" : "  (LOO mean CI)") << "\n";
   out << std::left << std::setw(18) << "" << std::setw(8) << "" << std::right << std::setw(6) << "" << std::setw(10)
       << "mean" << std::setw(10) << "max" << std::setw(10) << "mean" << std::setw(10) << "p95" << std::setw(10) << "max"
       << std::setw(11) << "" << "\n";
-  for (const auto& r : rows) {
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const CompareRow& r = rows[i];
     out << std::left << std::setw(18) << r.model_id << std::setw(8) << objective_id(r.objective) << std::right
         << std::setw(6) << r.n_terms;
     if (!r.ok) {
@@ -124,7 +175,16 @@ int run_compare(const Args& args, std::ostream& out) {
     out << std::setw(10) << fmt(r.train_dE00.mean) << std::setw(10) << fmt(r.train_dE00.max) << std::setw(10)
         << (r.has_loo ? fmt(r.loo_dE00.mean) : "-") << std::setw(10) << (r.has_loo ? fmt(r.loo_dE00.p95) : "-")
         << std::setw(10) << (r.has_loo ? fmt(r.loo_dE00.max) : "-") << std::setw(11) << cond.str() << "  "
-        << fit_status_name(r.status) << "\n";
+        << fit_status_name(r.status);
+    if (!boot.empty()) {
+      const RowBootstrap& b = boot[i];
+      if (b.ok && b.result.has_loo)
+        out << "  [" << fmt(b.result.loo_dE00_mean.lo) << ", " << fmt(b.result.loo_dE00_mean.hi) << "] ("
+            << fmt(b.result.level * 100, 0) << " %)";
+      else
+        out << "  -";
+    }
+    out << "\n";
   }
   out << per_chart_compare(args, d, o, rows, white_index);  // several charts: their figures apart
   if (!transfer.empty()) {

@@ -2,6 +2,7 @@
 #include <array>
 #include <iostream>
 
+#include "bootstrap_args.hpp"
 #include "cli.hpp"
 #include "patch_args.hpp"
 #include "share_cli.hpp"
@@ -26,6 +27,7 @@ const char* kFitUsage =
     "            [--de-xtol X] [--de-ftol F] [--de-max-evaluations N] [--de-step S]\n"
     "            [--linearisation <id>[:name=value,...]]   (the recipe's linearisation stage: tristim linearise --list)\n"
     "            [--surface <method>:<name>=<value>,...]   (the recipe's surface stage: tristim surface methods)\n"
+    "            [--bootstrap N [--seed 1] [--level 0.95]]\n"
     "tristim fit --recipe recipe.json (--rgb patches.csv | --raw chart.dng) [--xyz reference.csv]\n"
     "            [--out profile.json] [--csv patches_out.csv] [--recipe-out recipe.json]\n"
     "tristim fit --project p.tristim [--out profile.json]   (a project file: tristim share --project, the page's export)\n"
@@ -43,7 +45,10 @@ const char* kFitUsage =
     "  is then a file with spectra (integrated under D50, 1931 observer) or a built-in chart id.\n"
     "  --model corrected-3x3 (Abed 2013 eqs 6-13, App. C eqs 26-28) needs --white <patch>, the white\n"
     "  reference: the 3x4 without its offset, scaled by mu from that white; mu is printed and written\n"
-    "  to the profile as \"corrected_3x3\": {\"mu\": ...}.";
+    "  to the profile as \"corrected_3x3\": {\"mu\": ...}.\n"
+    "  --bootstrap N [--seed 1] [--level 0.95]: N resamples over the patches (and over each patch's pixels\n"
+    "  when --rgb has sample's R_std,G_std,B_std,n columns): \"ci\": {\"level\",\"lo\",\"hi\"} next to the\n"
+    "  training and leave-one-out mean dE00, and \"bootstrap\": each coefficient's interval, their covariance.";
 
 /// A recipe from the flags of the classic form (every stage but characterisation and surface at its
 /// default). `chart`: the built-in chart --xyz names ("" for a file).
@@ -162,18 +167,52 @@ TrainingSet training_from_recipe(const Args& args, Recipe& recipe) {
   return training_set(recipe, d.labels, d.rgb, d.xyz);
 }
 
+/// --bootstrap: the intervals (evaluation/bootstrap.hpp) of the characterisation `c` written into
+/// its profile JSON `p`: "ci" next to the training and leave-one-out mean CIEDE2000 in "metrics",
+/// and a "bootstrap" object with each coefficient's interval, their covariance and each patch's
+/// predicted-XYZ covariance.
+void add_bootstrap(const Args& args, const Characterisation& c, const TrainingSet& training, json::Value& p) {
+  int white_index = -1;
+  const FitOptions options = recipe_fit_options(c.recipe, training.ids, c.linear_RGB, c.reference_XYZ, white_index);
+  const bool linear = c.linearisation.choice.method == "identity";
+  BootstrapOptions b = bootstrap_options(args, "fit", args.has("rgb") ? args.get("rgb") : "", training.ids, linear);
+  if (c.evaluation.has_loo) b.loo_dE00 = c.evaluation.loo.patches.dE00;
+  const BootstrapResult r = bootstrap_fit(c.recipe.characterisation.model, c.linear_RGB, c.reference_XYZ, options, b);
+  json::Value metrics = *p.find("metrics");
+  const auto put = [&](const char* set, const Interval& ci) {
+    if (!metrics.find(set)) return;
+    json::Value m = *metrics.find(set);
+    m.set("dE00", with_ci(*m.find("dE00"), ci));
+    metrics.set(set, m);
+  };
+  put("training", r.train_dE00_mean);
+  if (r.has_loo) put("loo", r.loo_dE00_mean);
+  p.set("metrics", metrics);
+  p.set("bootstrap", bootstrap_json(r, c.profile.model));
+  std::cerr << "tristim fit: bootstrap (" << r.resamples << " resamples, " << (r.pixels ? "patches and pixels" : "patches")
+            << "): training mean dE00 " << fmt(r.level * 100, 0) << " % interval [" << fmt(r.train_dE00_mean.lo) << ", "
+            << fmt(r.train_dE00_mean.hi) << "]";
+  if (r.has_loo) std::cerr << ", leave-one-out [" << fmt(r.loo_dE00_mean.lo) << ", " << fmt(r.loo_dE00_mean.hi) << "]";
+  std::cerr << "\n";
+}
+
 int run_fit(const Args& args, std::ostream& out) {
   if (args.has("project")) return run_fit_project(args, out);  // a .tristim project (cmd_share.cpp)
   TrainingSet training;
   Recipe recipe;
   if (args.has("recipe")) {
-    args.allow_only({"recipe", "rgb", "raw", "xyz", "ref-white", "out", "csv", "recipe-out"});
+    std::vector<std::string> known{"recipe", "rgb", "raw", "xyz", "ref-white", "out", "csv", "recipe-out"};
+    for (const auto& b : bootstrap_option_names()) known.push_back(b);
+    args.allow_only(known);
     recipe = recipe_from_json(read_file(args.get("recipe")));
     training = training_from_recipe(args, recipe);
   } else {
-    args.allow_only({"rgb", "xyz", "model", "objective", "white", "lab-white", "ref-white", "out", "csv",
-                     "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol", "de-ftol",
-                     "de-max-evaluations", "de-rms", "de-step", "no-loo", "recipe-out", "linearisation", "surface"});
+    std::vector<std::string> known{"rgb", "xyz", "model", "objective", "white", "lab-white", "ref-white", "out", "csv",
+                                   "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol", "de-ftol",
+                                   "de-max-evaluations", "de-rms", "de-step", "no-loo", "recipe-out", "linearisation",
+                                   "surface"};
+    for (const auto& b : bootstrap_option_names()) known.push_back(b);
+    args.allow_only(known);
     const std::string chart = builtin_chart(args.get("xyz"));
     const PatchData d = classic_pairs(args, chart, parse_choice(args.get("surface", "none")));
     recipe = recipe_from_flags(args, d, chart);
@@ -183,13 +222,17 @@ int run_fit(const Args& args, std::ostream& out) {
   const Characterisation c = characterise(recipe, training);
   const ModelEvaluation& ev = c.evaluation;
   std::string text = profile_to_json(c.profile);
-  if (c.recipe.characterisation.model == kCorrected3x3) {  // μ of Abed 2013 eq (27), beside the profile
-    json::Value p = json::parse(text), k = json::Value::object();
-    k.set("mu", ev.fit.mu);
-    k.set("white_patch", c.recipe.characterisation.white_patch);
-    p.set("corrected_3x3", k);
+  if (c.recipe.characterisation.model == kCorrected3x3 || args.has("bootstrap")) {
+    json::Value p = json::parse(text);
+    if (c.recipe.characterisation.model == kCorrected3x3) {  // μ of Abed 2013 eq (27), beside the profile
+      json::Value k = json::Value::object();
+      k.set("mu", ev.fit.mu);
+      k.set("white_patch", c.recipe.characterisation.white_patch);
+      p.set("corrected_3x3", k);
+      std::cerr << "tristim fit: corrected 3x3, white scaling mu = " << fmt(ev.fit.mu, 6) << " (Abed 2013 eq 27)\n";
+    }
+    if (args.has("bootstrap")) add_bootstrap(args, c, training, p);
     text = p.dump(2) + "\n";
-    std::cerr << "tristim fit: corrected 3x3, white scaling mu = " << fmt(ev.fit.mu, 6) << " (Abed 2013 eq 27)\n";
   }
   if (args.has("recipe-out")) {
     const std::string r = recipe_to_json(c.recipe);

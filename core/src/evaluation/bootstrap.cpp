@@ -159,4 +159,50 @@ BootstrapResult bootstrap_fit(const std::string& model_id, const PatchMatrix& rg
   return out;
 }
 
+json::Value interval_json(const Interval& interval) {
+  json::Value o = json::Value::object();
+  o.set("level", interval.level);
+  o.set("lo", interval.lo);
+  o.set("hi", interval.hi);
+  return o;
+}
+
+json::Value bootstrap_json(const BootstrapResult& r, const Model& fitted) {
+  json::Value o = json::Value::object();
+  o.set("resamples", r.resamples);
+  o.set("failed", r.failed);
+  o.set("cancelled", r.cancelled);
+  o.set("seed", static_cast<double>(r.seed));
+  o.set("level", r.level);
+  o.set("resampling", r.pixels ? "patches+pixels" : "patches");
+  o.set("inflation", r.inflation);
+  json::Value rows = json::Value::array();
+  for (Eigen::Index c = 0; c < r.coefficients_lo.rows(); ++c) {
+    json::Value row = json::Value::array();
+    for (Eigen::Index t = 0; t < r.coefficients_lo.cols(); ++t) {
+      json::Value k = json::Value::object();
+      k.set("value", fitted.coefficients(c, t));
+      k.set("ci", interval_json({r.level, r.coefficients_lo(c, t), r.coefficients_hi(c, t)}));
+      row.push(k);
+    }
+    rows.push(row);
+  }
+  o.set("coefficients", rows);
+  json::Value cov = json::Value::array();
+  for (Eigen::Index i = 0; i < r.covariance.rows(); ++i) {
+    std::vector<double> v(static_cast<size_t>(r.covariance.cols()));
+    for (Eigen::Index j = 0; j < r.covariance.cols(); ++j) v[static_cast<size_t>(j)] = r.covariance(i, j);
+    cov.push(json::Value(v));
+  }
+  o.set("covariance", cov);
+  json::Value patches = json::Value::array();
+  for (const Mat3& m : r.predicted_XYZ_covariance) {
+    json::Value a = json::Value::array();
+    for (int i = 0; i < 3; ++i) a.push(json::Value(std::vector<double>{m(i, 0), m(i, 1), m(i, 2)}));
+    patches.push(a);
+  }
+  o.set("predicted_XYZ_covariance", patches);
+  return o;
+}
+
 }  // namespace tristim

@@ -45,7 +45,7 @@ TEST_CASE("bootstrap: 95 % intervals of a 3x3 least-squares fit cover the plante
   CHECK(rate < 0.97);
 }
 
-TEST_CASE("bootstrap: same seed, same intervals; intervals bracket the fit; covariance and ellipses", "[evaluation][bootstrap]") {
+TEST_CASE("bootstrap: same seed, same intervals, which bracket the fit, with covariance and ellipses", "[evaluation][bootstrap]") {
   Simulation sim{7};
   PatchMatrix rgb, xyz;
   simulate_chart(sim, rgb, xyz, 0.5);

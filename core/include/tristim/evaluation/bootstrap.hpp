@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "tristim/characterisation/fit.hpp"
+#include "tristim/io/json.hpp"
 
 namespace tristim {
 
@@ -73,5 +74,13 @@ BootstrapResult bootstrap_fit(const std::string& model_id, const PatchMatrix& ca
 /// Percentile interval of `values` (finite ones) at `level`: the (1 − level)/2 and (1 + level)/2
 /// quantiles by the engine's quantile rule.
 Interval percentile_interval(const std::vector<double>& values, double level);
+
+/// {"level", "lo", "hi"}: the "ci" object of the CLI's and the page's JSON.
+json::Value interval_json(const Interval& interval);
+/// The bootstrap as JSON: {"resamples", "failed", "cancelled", "seed", "level", "resampling"
+/// ("patches" | "patches+pixels"), "inflation", "coefficients": 3 rows of P {"value", "ci"} (value:
+/// `fitted`'s coefficient), "covariance": 3P rows of 3P numbers (row-major coefficient order),
+/// "predicted_XYZ_covariance": per patch a 3 × 3 array}.
+json::Value bootstrap_json(const BootstrapResult& result, const Model& fitted);
 
 }  // namespace tristim
