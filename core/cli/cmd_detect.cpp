@@ -53,7 +53,7 @@ const CommandRegistration detect_cmd{Command{
     "  found as cc24, or as passport when asked for). custom needs --rows/--columns; its\n"
     "  orientation cannot be told from colours and is reported as orientation_resolved false.\n"
     "--seed x,y: a point on or near the chart (image pixels, as corners): detection runs in\n"
-    "  windows centred on it, from 1/4 of the image up to all of it, and keeps the chart covering it\n"
+    "  windows centred on it, from 1/4 of the image up to all of it, and keeps the chart near it\n"
     "  (a small chart is then searched at full resolution).\n"
     "--box x0,y0,x1,y1: a rough box around the chart; detection runs within it (+10% each side).\n"
     "Exit status 1 with CHART_NOT_FOUND when no chart reaches --min-confidence; stdout then holds\n"

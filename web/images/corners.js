@@ -34,6 +34,7 @@ export class CornerEditor {
     this.detected = null;      // {candidate, proposal}: a detected chart, drawn as a proposal or labelled in use
     this.trap = null;          // the light trap {x, y, w, h} (measurement-image pixels), or null
     this.onTrapDrawn = null;   // while marking a light trap: called with the rectangle dragged out
+    this.onHelp = null;        // while asking where the chart is: called with {seed: [x, y]} (a click) or {box: [x0, y0, x1, y1]} (a drag)
     this.el = document.createElement('div');
     this.el.className = 'corner-editor';
     this.el.tabIndex = -1;
@@ -53,9 +54,12 @@ export class CornerEditor {
     this.trapRect = svgEl('rect', { class: 'light-trap' });
     this.trapLabel = svgEl('text', { class: 'light-trap-label' });
     this.trapLabel.textContent = 'light trap';
-    this.svg.append(defs, this.detectLayer, this.outline, this.gridLayer, this.detectLabel, this.trapRect, this.trapLabel, this.handleLayer);
+    this.helpRect = svgEl('rect', { class: 'detect-help', fill: 'rgba(80, 160, 255, .12)', stroke: '#4da3ff', 'stroke-width': 2, 'stroke-dasharray': '4 3', 'vector-effect': 'non-scaling-stroke' });
+    this.helpRect.style.display = 'none';
+    this.svg.append(defs, this.detectLayer, this.outline, this.gridLayer, this.detectLabel, this.trapRect, this.trapLabel, this.helpRect, this.handleLayer);
     // Marking a light trap: a drag on the image (not on a handle) draws its rectangle.
     this.svg.addEventListener('pointerdown', (e) => {
+      if (!this.onTrapDrawn && this.onHelp && !e.target.closest('.handle')) { this.pointAtChart(e); return; }
       if (!this.onTrapDrawn || e.target.closest('.handle')) return;
       e.preventDefault();
       this.svg.setPointerCapture(e.pointerId);
@@ -81,6 +85,39 @@ export class CornerEditor {
     this.el.append(this.canvas, this.svg);
     this.el.hidden = true;
     this.handles = CORNER_NAMES.map((name, i) => this.makeHandle(i, name));
+  }
+
+  /// Where the chart is, from the user: a click (moving less than 6 screen px) gives a seed point,
+  /// a drag a rough box, drawn while it is dragged; both in measurement-image pixels.
+  pointAtChart(e) {
+    e.preventDefault();
+    this.svg.setPointerCapture(e.pointerId);
+    const [x0, y0] = this.toImage(e);
+    const r = (v) => Math.round(v * 10) / 10;
+    const isClick = (ev) => Math.hypot(ev.clientX - e.clientX, ev.clientY - e.clientY) < 6;
+    const move = (ev) => {
+      const [x1, y1] = this.toImage(ev);
+      this.helpRect.style.display = isClick(ev) ? 'none' : '';
+      for (const [k, v] of Object.entries({ x: Math.min(x0, x1), y: Math.min(y0, y1), width: Math.abs(x1 - x0), height: Math.abs(y1 - y0) })) this.helpRect.setAttribute(k, v);
+    };
+    const up = (ev) => {
+      this.svg.releasePointerCapture(ev.pointerId);
+      this.svg.removeEventListener('pointermove', move);
+      this.svg.removeEventListener('pointerup', up);
+      this.helpRect.style.display = 'none';
+      const [x1, y1] = this.toImage(ev);
+      const done = this.onHelp;
+      if (done) done(isClick(ev) ? { seed: [r(x0), r(y0)] } : { box: [r(Math.min(x0, x1)), r(Math.min(y0, y1)), r(Math.max(x0, x1)), r(Math.max(y0, y1))] });
+    };
+    this.svg.addEventListener('pointermove', move);
+    this.svg.addEventListener('pointerup', up);
+  }
+
+  /// Arms (a function) or disarms (null) pointAtChart: a click or drag on the image, not on a handle.
+  askWhereTheChartIs(onHelp) {
+    this.onHelp = onHelp;
+    this.el.classList.toggle('pointing', !!onHelp);
+    this.svg.style.cursor = onHelp ? 'crosshair' : '';
   }
 
   makeHandle(i, name) {

@@ -5,11 +5,12 @@ import { reply, coded } from '../lib/reply.js';
 const STAGES = { segment: 'finding flat patches', group: 'grouping patches into grids', orient: 'placing the chart', refine: 'refining the corners' };
 
 export const handlers = {
-  /// detect({layout}) -> {candidates: [ChartCandidate + grid {layout, homography}]}, best first, for
-  /// the chosen layout (a custom grid: its geometry). Throws CHART_NOT_FOUND when there is none.
-  detect: (T, { layout = { chart: 'passport' } }, { state, progress }) => {
+  /// detect({layout, seed?, box?}) -> {candidates: [ChartCandidate + grid {layout, homography}]}, best
+  /// first, for the chosen layout (a custom grid: its geometry); seed [x, y] or box [x0, y0, x1, y1]
+  /// (image pixels): look there (DetectOptions). Throws CHART_NOT_FOUND, saying why, when there is none.
+  detect: (T, { layout = { chart: 'passport' }, seed, box }, { state, progress }) => {
     if (!state.raw?.chart) throw coded('no image decoded yet', 'NO_IMAGE');
-    const options = { charts: [layout.chart] };
+    const options = { charts: [layout.chart], seed, box };
     if (layout.chart === 'custom') options.custom = layout;
     progress(0, 'finding the chart');
     const found = T.detectCharts(state.raw.chart, options, (stage, fraction) => progress(fraction, `finding the chart: ${STAGES[stage] ?? stage}`));

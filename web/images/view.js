@@ -338,9 +338,10 @@ export function mount(section, app) {
 
   /// Looks for the chosen layout in the chart image. apply: take the corners found (a new image);
   /// otherwise they are shown as a proposal unless they are the corners in use. When nothing is
-  /// found the corners stay where they were and the reason is shown next to "Detect again".
+  /// found the corners stay where they were, the detector's reason is shown, and a click near the
+  /// chart (a seed point) or a rough box dragged around it runs detection again there (help).
   let detectSeq = 0;
-  async function detect({ apply = false } = {}) {
+  async function detect({ apply = false, help = null } = {}) {
     const seq = ++detectSeq;
     clearError(againBtn);
     setDetection(null, 'running');
@@ -350,8 +351,9 @@ export function mount(section, app) {
     }
     detectProgress.start('Finding the chart…');
     try {
-      const { candidates } = await engine.call('detect', { layout: layoutOptions() }, { onProgress: detectProgress.update });
+      const { candidates } = await engine.call('detect', { layout: layoutOptions(), ...help }, { onProgress: detectProgress.update });
       if (seq !== detectSeq) return null;
+      editor.askWhereTheChartIs(null);
       const c = candidates[0];
       if (apply || sameCorners(editor.corners, c.corners)) useDetected(c);
       else setDetection(c, 'proposal');
@@ -359,9 +361,12 @@ export function mount(section, app) {
     } catch (e) {
       if (seq !== detectSeq || e.code === 'CANCELLED') return null;
       if (e.input) { setDetection(null, 'idle', 'A layout box could not be read: see the message next to it.'); showError(e.input, e, 'Layout'); return null; }
-      setDetection(null, 'none', e.code === 'CHART_NOT_FOUND'
-        ? `No ${chartName(layoutSel.value)} found in this image; the corners were left where they were: drag them onto the chart.`
+      const missed = e.code === 'CHART_NOT_FOUND';
+      setDetection(null, 'none', missed
+        ? `No ${chartName(layoutSel.value)} found ${help ? 'there' : 'in this image'}: ${e.message}. The corners were left where they were: `
+          + 'click near the chart on the image, or drag a rough box around it, to look there again — or drag the corners onto it.'
         : 'Chart detection failed; the corners were left where they were.');
+      if (missed) editor.askWhereTheChartIs((where) => detect({ apply: true, help: where }));
       showError(againBtn, e, 'Chart detection');
       return null;
     } finally {

@@ -396,7 +396,7 @@ std::vector<double> checked(const std::vector<double>& v, size_t n, const char* 
 
 // Detection helped by a point on or near the chart: windows centred on the seed, growing from an
 // eighth of the image's longer side to the whole image; the first that finds a chart covering
-// the seed (its grid enlarged by half) wins. Small windows see a small chart at full resolution;
+// the seed wins. Small windows see a small chart at full resolution;
 // a window that cuts a large chart finds nothing and the next one holds it.
 std::vector<ChartCandidate> detect_near(const RawImage& image, const std::vector<Target>& wanted,
                                         const DetectOptions& options, const Point& seed) {
@@ -417,7 +417,12 @@ std::vector<ChartCandidate> detect_near(const RawImage& image, const std::vector
       if (e.code() != ErrorCode::ChartNotFound) throw;
       why = e.what();
     }
-    out.erase(std::remove_if(out.begin(), out.end(), [&](const ChartCandidate& c) { return !near_candidate(c, seed, 1.5); }),
+    // Near: within the grid enlarged to twice its size, or within 5 % of the image's longer side of
+    // its centre (a click just beside a small chart).
+    out.erase(std::remove_if(out.begin(), out.end(),
+                             [&](const ChartCandidate& c) {
+                               return !near_candidate(c, seed, 2.0) && (centre_of(c.corners) - seed).norm() > 0.05 * side;
+                             }),
               out.end());
     if (!out.empty()) return out;
     if (why.empty()) why = "the charts found lie away from it";

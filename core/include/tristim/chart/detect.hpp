@@ -58,8 +58,8 @@ struct DetectOptions {
   /// Help from the user (image pixel coordinates; at most one of the two):
   /// seed {x, y}, a point on or near the chart: detection runs in square windows centred on it,
   /// growing from 1/4 of the image's longer side to the whole image, and keeps the first chart
-  /// found whose grid, enlarged by half about its centre, covers the seed (a small chart is then
-  /// searched at full resolution);
+  /// found near the seed — within its grid enlarged to twice its size about its centre, or within
+  /// 5 % of the image's longer side of that centre (a small chart is searched at full resolution);
   /// box {x0, y0, x1, y1}, a rough box around the chart: detection runs within it, enlarged by a
   /// tenth of its size on each side.
   std::vector<double> seed;
