@@ -1,9 +1,11 @@
 // tristim lab: the colorimetry lab — render (a chart photograph as a real DNG, the truth as JSON).
+#include <cmath>
 #include <fstream>
 #include <ostream>
 
 #include "cli.hpp"
 #include "tristim/error.hpp"
+#include "tristim/lab/exercises.hpp"
 #include "tristim/lab/render.hpp"
 #include "tristim/lab/smi.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -98,17 +100,54 @@ int run_smi(const Args& args, std::ostream& out) {
   return 0;
 }
 
+int run_overfit(const Args& args, std::ostream& out) {
+  args.allow_only({"camera", "illuminant", "sensitivities", "noise", "seed", "json"});
+  const SpectralData illuminant = illuminant_arg(args.get("illuminant", "D65"));
+  const std::string camera = args.get("camera", "Canon_EOS_5D_Mark_II");
+  const SpectralData ssf = args.has("sensitivities") ? read_ssf_csv(read_file(args.get("sensitivities")), args.get("sensitivities"))
+                           : camera == "cmf" ? cmf_sensitivities() : camera_ssf(camera);
+  OverfitOptions o;
+  o.noise = args.get_double("noise", o.noise);
+  o.seed = static_cast<std::uint64_t>(args.get_double("seed", 1));
+  const auto rows = lab_overfit_exercise(ssf, illuminant, o);
+  auto num = [](double v) { return std::isfinite(v) ? json::number_text(v) : std::string(); };
+  if (args.has("json")) {
+    json::Value a = json::Value::array();
+    for (const auto& r : rows) {
+      json::Value j = json::Value::object();
+      j.set("model", r.model);
+      j.set("training", r.training);
+      j.set("terms", r.terms);
+      j.set("patches", r.patches);
+      j.set("ok", r.ok);
+      j.set("error_code", r.error_code);
+      j.set("train_dE00", r.ok ? json::Value(r.train_dE00) : json::Value());
+      j.set("loo_dE00", r.ok && std::isfinite(r.loo_dE00) ? json::Value(r.loo_dE00) : json::Value());
+      j.set("test_dE00", r.ok ? json::Value(r.test_dE00) : json::Value());
+      a.push(j);
+    }
+    out << a.dump(1) << "\n";
+  } else {
+    out << "model,training,terms,patches,train_dE00,loo_dE00,test_dE00,error\n";
+    for (const auto& r : rows)
+      out << r.model << ',' << r.training << ',' << r.terms << ',' << r.patches << ',' << (r.ok ? num(r.train_dE00) : "") << ','
+          << (r.ok ? num(r.loo_dE00) : "") << ',' << (r.ok ? num(r.test_dE00) : "") << ',' << r.error_code << "\n";
+  }
+  return 0;
+}
+
 int run_lab(const Args& args, std::ostream& out) {
   const std::string sub = args.positional.empty() ? "" : args.positional[0];
   if (args.positional.size() > 1)
     throw Error(ErrorCode::InvalidArgument, "unexpected argument '" + args.positional[1] + "'");
   if (sub == "render") return run_render(args, out);
   if (sub == "smi") return run_smi(args, out);
-  throw Error(ErrorCode::InvalidArgument, "tristim lab needs a subcommand: render or smi (got '" + sub + "')");
+  if (sub == "overfit") return run_overfit(args, out);
+  throw Error(ErrorCode::InvalidArgument, "tristim lab needs a subcommand: render, smi or overfit (got '" + sub + "')");
 }
 
 CommandRegistration reg_lab(
-    {"lab", "the colorimetry lab: render a chart photograph as a DNG; camera quality (SMI, mu-factor)",
+    {"lab", "the colorimetry lab: render a chart photograph (DNG/TIFF); camera quality (SMI, mu); exercises",
      "tristim lab render --camera \"<one of the 52>\" --chart cc24|sg140|passport --illuminant D65 --out chart.dng\n"
      "                   [--sensitivities ssf.csv] [--exposure 0.5] [--noise shot,read] [--seed 1]\n"
      "                   [--surface <method>:<name>=<value>,...] [--falloff 0] [--flare 0]\n"
@@ -131,7 +170,13 @@ CommandRegistration reg_lab(
      "  dE*ab of ColorChecker patches 1-18, ISO 17321-1/Ohta reflectances, CIE 1931, after the white-preserving\n"
      "  3x3 that minimises that mean) and the Vora-Trussell (1993) mu-factor (1 = the Luther condition).\n"
      "  Without --camera or --sensitivities: the 52 built-in cameras, best SMI first. CSV\n"
-     "  camera,smi,mu_factor,mean_dE, or with --json an array of {\"camera\",\"smi\",\"mu_factor\",\"mean_dE\"}.",
+     "  camera,smi,mu_factor,mean_dE, or with --json an array of {\"camera\",\"smi\",\"mu_factor\",\"mean_dE\"}.\n"
+     "tristim lab overfit [--camera \"<name>\"|cmf] [--sensitivities ssf.csv] [--illuminant D65] [--noise 0.002]\n"
+     "                    [--seed 1] [--json]\n"
+     "  Exercise 2, why a 3x3 is not enough: 3x3, root-polynomial 2, polynomials of 10, 22 and 35 terms fitted by\n"
+     "  least squares on a simulated CC24 and SG140 photo (noise sigma relative to the white's G), scored by\n"
+     "  mean dE00 on the training patches, leave-one-out and the 1269 Munsell chips held out. --camera cmf: the\n"
+     "  CIE 1931 CMFs as the camera (the Luther condition). A model with more terms than patches: TOO_FEW_PATCHES.",
      run_lab});
 
 }  // namespace

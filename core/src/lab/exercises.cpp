@@ -1,0 +1,74 @@
+// The colorimetry lab's exercises (rules in tristim/lab/exercises.hpp).
+#include "tristim/lab/exercises.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "tristim/characterisation/fit.hpp"
+#include "tristim/characterisation/models.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/error.hpp"
+#include "tristim/evaluation/evaluation.hpp"
+#include "tristim/linearisation/oecf_Shen2008.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+
+namespace tristim {
+
+namespace {
+
+PatchMatrix rows_of(const std::vector<Vec3>& v) {
+  PatchMatrix m(static_cast<Eigen::Index>(v.size()), 3);
+  for (size_t i = 0; i < v.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  return m;
+}
+
+}  // namespace
+
+SpectralData cmf_sensitivities() {
+  SpectralData s = align_spectra(cmfs(Observer::CIE1931_2), wavelength_grid(380, 780, 5));
+  s.names = {"R", "G", "B"};
+  return s;
+}
+
+std::vector<OverfitRow> lab_overfit_exercise(const SpectralData& ssf, const SpectralData& illuminant,
+                                             const OverfitOptions& o) {
+  for (const auto& m : o.models) model_info(m);  // UnknownId before any work
+  if (!(o.noise >= 0 && o.noise < 1)) throw Error(ErrorCode::InvalidArgument, "noise must be in [0, 1)");
+  Vec3 white;
+  const SpectralData& munsell = munsell_reflectances();
+  const PatchMatrix test_XYZ = rows_of(reflectances_to_XYZ(munsell, illuminant, Observer::CIE1931_2, &white));
+  const PatchMatrix test_RGB = rows_of(simulate_camera_RGB(ssf, munsell, illuminant));
+  std::vector<OverfitRow> out;
+  for (const auto& chart : o.training) {
+    const SpectralData refl = chart_reflectances(chart);
+    SimulationOptions sim;
+    sim.noise_sigma = o.noise;
+    sim.seed = o.seed;
+    const PatchMatrix rgb = rows_of(simulate_camera_RGB(ssf, refl, illuminant, sim));
+    const PatchMatrix xyz = rows_of(reflectances_to_XYZ(refl, illuminant));
+    FitOptions fo;
+    fo.white = white;
+    for (const auto& m : o.models) {
+      OverfitRow r;
+      r.model = m;
+      r.training = chart;
+      r.terms = model_info(m).n_terms;
+      r.patches = static_cast<int>(rgb.rows());
+      try {
+        const ModelEvaluation e = evaluate_model(m, rgb, xyz, fo);
+        r.ok = true;
+        r.message = e.fit.message;
+        r.train_dE00 = e.training.dE00.mean;
+        r.loo_dE00 = e.has_loo ? e.loo.dE00.mean : std::numeric_limits<double>::quiet_NaN();
+        r.test_dE00 = evaluate(predict(e.fit.model, test_RGB), test_XYZ, white).dE00.mean;
+      } catch (const Error& err) {
+        r.error_code = err.code_name();
+        r.message = err.what();
+      }
+      out.push_back(r);
+    }
+  }
+  return out;
+}
+
+}  // namespace tristim
