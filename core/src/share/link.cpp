@@ -130,7 +130,7 @@ struct ResultsWriter {
   std::string text;
   /// One line "name values" for the value at `path` (skipped when absent or null).
   /// keys: only these members of an object, in this order.
-  void line(const std::string& name, const std::string& path, int digits, std::initializer_list<const char*> keys = {}) {
+  void line(const std::string& name, const std::string& path, int digits, const std::vector<const char*>& keys = {}) {
     const json::Value* v = at_path(root, path);
     if (!v || v->is_null()) return;
     std::string values;
@@ -211,37 +211,52 @@ struct ZStream {
 
 // ---- results -------------------------------------------------------------------------------------
 
-ShareResults share_results(const Profile& profile) {
-  const json::Value p = json::parse(profile_to_json(profile));
-  ResultsWriter w{p, {}};
-  w.line("model", "model.id", kCoefficientDigits);
-  w.line("objective", "objective", kCoefficientDigits);
-  w.line("status", "fit.status", kCoefficientDigits);
-  w.line("coefficients", "model.coefficients", kCoefficientDigits);
-  w.line("linearisation", "linearisation", kCoefficientDigits);
-  for (const char* set : {"training", "loo"}) {
-    const std::string s = set;
-    w.line(s + ".dE00", "metrics." + s + ".dE00", kMetricDigits, {"mean", "median", "p95", "max"});
-    w.line(s + ".dE76.mean", "metrics." + s + ".dE76.mean", kMetricDigits);
-    w.line(s + ".dE94.mean", "metrics." + s + ".dE94.mean", kMetricDigits);
-  }
+namespace {
+
+/// One results line: its name, the profile JSON path it reads, its digits and (for an object)
+/// the members it keeps, in order.
+struct ResultLine {
+  std::string name, path;
+  int digits;
+  std::vector<const char*> keys;
+};
+
+ShareResults results_of(const json::Value& profile, const std::vector<ResultLine>& lines) {
+  ResultsWriter w{profile, {}};
+  for (const auto& l : lines) w.line(l.name, l.path, l.digits, l.keys);
   return w.done();
 }
 
+const std::vector<const char*> kSummary = {"mean", "median", "p95", "max"};
+
+}  // namespace
+
+ShareResults share_results(const Profile& profile) {
+  std::vector<ResultLine> lines = {{"model", "model.id", kCoefficientDigits, {}},
+                                   {"objective", "objective", kCoefficientDigits, {}},
+                                   {"status", "fit.status", kCoefficientDigits, {}},
+                                   {"coefficients", "model.coefficients", kCoefficientDigits, {}},
+                                   {"linearisation", "linearisation", kCoefficientDigits, {}}};
+  for (const std::string s : {"training", "loo"}) {
+    lines.push_back({s + ".dE00", "metrics." + s + ".dE00", kMetricDigits, kSummary});
+    lines.push_back({s + ".dE76.mean", "metrics." + s + ".dE76.mean", kMetricDigits, {}});
+    lines.push_back({s + ".dE94.mean", "metrics." + s + ".dE94.mean", kMetricDigits, {}});
+  }
+  return results_of(json::parse(profile_to_json(profile)), lines);
+}
+
 ShareResults share_results(const AbsoluteProfile& profile) {
-  const json::Value p = absolute_profile_json(profile);
-  ResultsWriter w{p, {}};
-  w.line("transform", "colour.transform", kCoefficientDigits);
-  w.line("status", "colour.status", kCoefficientDigits);
-  w.line("coefficients", "colour.coefficients", kCoefficientDigits);
-  w.line("k", "linearisation.k", kCoefficientDigits);
-  w.line("noise_floor", "normalisation.noise_floor", kCoefficientDigits);
-  w.line("saturation", "normalisation.saturation", kCoefficientDigits);
-  w.line("areas", "normalisation.areas", kCoefficientDigits);
-  w.line("training.dE94", "training.figures.metrics.dE94", kMetricDigits, {"mean", "median", "p95", "max"});
-  w.line("training.dE00", "training.figures.metrics.dE00", kMetricDigits, {"mean", "median", "p95", "max"});
-  w.line("training.relative_Y_error", "training.figures.relative_Y_error", kMetricDigits);
-  return w.done();
+  return results_of(absolute_profile_json(profile),
+                    {{"transform", "colour.transform", kCoefficientDigits, {}},
+                     {"status", "colour.status", kCoefficientDigits, {}},
+                     {"coefficients", "colour.coefficients", kCoefficientDigits, {}},
+                     {"k", "linearisation.k", kCoefficientDigits, {}},
+                     {"noise_floor", "normalisation.noise_floor", kCoefficientDigits, {}},
+                     {"saturation", "normalisation.saturation", kCoefficientDigits, {}},
+                     {"areas", "normalisation.areas", kCoefficientDigits, {}},
+                     {"training.dE94", "training.figures.metrics.dE94", kMetricDigits, kSummary},
+                     {"training.dE00", "training.figures.metrics.dE00", kMetricDigits, kSummary},
+                     {"training.relative_Y_error", "training.figures.relative_Y_error", kMetricDigits, {}}});
 }
 
 // ---- payloads ------------------------------------------------------------------------------------
