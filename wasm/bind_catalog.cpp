@@ -24,21 +24,6 @@ std::vector<MethodInfo> infos(const std::vector<Row>& rows) {
   return out;
 }
 std::vector<MethodInfo> objectives() { return infos(objective_table()); }
-/// One row of the surface table as the page lists it: the MethodInfo with the row's coefficient
-/// names, its equation and, for Saunderson, the option each geometry field sets per role.
-struct SurfaceRow {
-  std::string id, label, reference;
-  std::vector<OptionSpec> options;
-  std::vector<std::string> coefficients;
-  std::string equation;
-  std::map<std::string, std::map<std::string, std::string>> geometry;
-};
-std::vector<SurfaceRow> surfaces() {
-  std::vector<SurfaceRow> out;
-  for (const auto& r : surface_table())
-    out.push_back({r.info.id, r.info.label, r.info.reference, r.info.options, r.coefficients, r.equation, r.geometry});
-  return out;
-}
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(tristim_catalog) {
@@ -52,7 +37,7 @@ EMSCRIPTEN_BINDINGS(tristim_catalog) {
   { using S = OptionSpec; value_object<S>("OptionSpec") FIELD(name) FIELD(type) FIELD(label) FIELD(default_number)
       FIELD(default_text) FIELD(min) FIELD(max) FIELD(choices) FIELD(description); }
   { using S = MethodInfo; value_object<S>("MethodInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(options); }
-  { using S = SurfaceRow; value_object<S>("SurfaceRow") FIELD(id) FIELD(label) FIELD(reference) FIELD(options)
+  { using S = SurfaceListing; value_object<S>("SurfaceListing") FIELD(id) FIELD(label) FIELD(reference) FIELD(options)
       FIELD(coefficients) FIELD(equation) FIELD(geometry); }
   { using S = MethodChoice; value_object<S>("MethodChoice") FIELD(method) FIELD(parameters) FIELD(settings); }
   { using S = LayoutOptions; value_object<S>("LayoutOptions") FIELD(chart) FIELD(rows) FIELD(columns)
@@ -71,7 +56,7 @@ EMSCRIPTEN_BINDINGS(tristim_catalog) {
   def<&model_families>("listModelFamilies");
   def<&objectives>("listObjectives");
   def<&objective_choice_label>("objectiveChoiceLabel");
-  def<&surfaces>("listSurfaceCorrections");
+  def<&surface_listing>("listSurfaceCorrections");
   def<&flat_field_methods>("listFlatFieldModes");
   def<&complete_choice>("completeChoice");
   def<&parse_choice>("parseChoice");

@@ -14,19 +14,6 @@ using wasm::def;
 
 namespace {
 
-/// One row of the linearisation table as the page lists it: the MethodInfo and what the fit needs
-/// besides camera RGB ("", "greys", "reference", "reflectances"), with that need in words.
-struct LinearisationRow {
-  std::string id, label, reference, needs, needs_text;
-  std::vector<OptionSpec> options;
-};
-std::vector<LinearisationRow> linearisation_rows() {
-  std::vector<LinearisationRow> out;
-  for (const auto& r : linearisation_table())
-    out.push_back({r.info.id, r.info.label, r.info.reference, r.needs, linearisation_needs_text(r.needs), r.info.options});
-  return out;
-}
-
 /// Spectral evaluation under a named illuminant ("" = D65, the paper's).
 SpectralEvaluation evaluate_spectral_under(const SpectralModel& model, const std::vector<std::string>& ids,
                                            const PatchMatrix& camera_RGB, const SpectralData& measured,
@@ -45,7 +32,7 @@ std::string spectral_model_text(const SpectralModel& m) { return spectral_model_
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(tristim_linearisation) {
-  { using S = LinearisationRow; value_object<S>("LinearisationRow") FIELD(id) FIELD(label) FIELD(reference) FIELD(needs)
+  { using S = LinearisationListing; value_object<S>("LinearisationListing") FIELD(id) FIELD(label) FIELD(reference) FIELD(needs)
       FIELD(needs_text) FIELD(options); }
   { using S = LinearisationData; value_object<S>("LinearisationData") FIELD(camera_RGB) FIELD(ids) FIELD(full_scale)
       FIELD(reference_XYZ) FIELD(white) FIELD(reflectances) FIELD(basis_reflectances); }
@@ -58,7 +45,7 @@ EMSCRIPTEN_BINDINGS(tristim_linearisation) {
   { using S = SpectralEvaluation; value_object<S>("SpectralEvaluation") FIELD(ids) FIELD(rms) FIELD(dE00)
       FIELD(rms_summary) FIELD(dE00_summary); }
 
-  def<&linearisation_rows>("listLinearisations");
+  def<&linearisation_listing>("listLinearisations");
   def<&fit_linearisation>("fitLinearisation");
   def<&linearise>("linearise");
   def<&delinearise>("delinearise");

@@ -37,6 +37,13 @@ const LinearisationMethod& linearisation_method(const std::string& id) {
   throw Error(ErrorCode::UnknownId, "unknown linearisation method '" + id + "'");
 }
 
+std::vector<LinearisationListing> linearisation_listing() {
+  std::vector<LinearisationListing> out;
+  for (const auto& r : linearisation_table())
+    out.push_back({r.info.id, r.info.label, r.info.reference, r.needs, linearisation_needs_text(r.needs), r.info.options});
+  return out;
+}
+
 std::string linearisation_needs_text(const std::string& needs) {
   if (needs.empty()) return "needs nothing but the camera RGB";
   if (needs == "greys") return "fitted on the chart's grey patches (found automatically from the reference, or listed)";

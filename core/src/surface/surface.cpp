@@ -218,6 +218,13 @@ std::vector<std::string> split(const std::string& s, char sep) {
 
 }  // namespace
 
+std::vector<SurfaceListing> surface_listing() {
+  std::vector<SurfaceListing> out;
+  for (const auto& r : surface_table())
+    out.push_back({r.info.id, r.info.label, r.info.reference, r.info.options, r.coefficients, r.equation, r.geometry});
+  return out;
+}
+
 const std::vector<SurfaceMethod>& surface_table() {
   static const std::vector<SurfaceMethod> table = build_table();
   return table;

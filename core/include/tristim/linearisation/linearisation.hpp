@@ -98,6 +98,13 @@ const LinearisationMethod& linearisation_method(const std::string& id);
 /// What a row's `needs` asks of the data, as one phrase for pickers ("fitted against the reference
 /// XYZ of every patch"); Error(UnknownId) for a value no row has.
 std::string linearisation_needs_text(const std::string& needs);
+/// A row as the page's picker lists it: the MethodInfo's fields, `needs` and its phrase.
+struct LinearisationListing {
+  std::string id, label, reference, needs, needs_text;
+  std::vector<OptionSpec> options;
+};
+/// linearisation_table() as listings, in its order.
+std::vector<LinearisationListing> linearisation_listing();
 /// Fits the chosen method (options checked and completed from the table).
 /// Errors: UnknownId, InvalidArgument (options), TooFewPatches, PatchMismatch (ids and rows
 /// differ), MissingColumn (a needed reference or reflectance is absent), NonFinite,

@@ -49,6 +49,17 @@ struct SurfaceMethod {
 
 /// Every surface correction, in a stable order (`none` first).
 const std::vector<SurfaceMethod>& surface_table();
+/// A row as the page's picker lists it: the MethodInfo's fields, its coefficient names, equation
+/// and (Saunderson) the option each geometry field sets per role.
+struct SurfaceListing {
+  std::string id, label, reference;
+  std::vector<OptionSpec> options;
+  std::vector<std::string> coefficients;
+  std::string equation;
+  std::map<std::string, std::map<std::string, std::string>> geometry;
+};
+/// surface_table() as listings, in its order.
+std::vector<SurfaceListing> surface_listing();
 /// A row by id; Error(UnknownId) naming the id otherwise.
 const SurfaceMethod& surface_method(const std::string& id);
 /// Applies the chosen correction (options checked and completed from the table). The input
