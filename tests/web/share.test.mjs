@@ -1,11 +1,13 @@
 // Share links in the page (issue 44): Share makes a link to the selected profile; a fresh browser
 // opening it recomputes the profile in the worker and shows "reproduced" with the same numbers;
-// the source RAW dropped on it is checked by SHA-256 and sampled again; a tampered, truncated,
+// the source RAW dropped on it is checked by SHA-256 and sampled again; a link whose data give other
+// numbers shows both results side by side; a tampered, truncated,
 // bomb or future-version link shows its coded error where it was opened, and the session (results,
 // selection, storage) is untouched.
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import zlib from 'node:zlib';
+import crypto from 'node:crypto';
 import { openBrowser, screenshot } from './harness.mjs';
 import { openPage, step, waitReady, errorFor, upload, fileBuffer, DNG } from './journey.mjs';
 
@@ -85,6 +87,21 @@ test('a link made in the page reproduces in a fresh browser; damaged links give 
       assert.deepEqual(await sessionState(page), before, `${what}: the session is untouched`);
       assert.equal(await page.getAttribute(VERDICT, 'data-verdict'), 'reproduced', `${what}: the opened link stays shown`);
     }
+    // A link whose data give other numbers (one camera RGB value changed, the check made again, as
+    // another sampling would): "differs", both results side by side, the session untouched.
+    const content = zlib.inflateRawSync(Buffer.from(payload.split('.')[1], 'base64url'));
+    content.writeDoubleLE(content.readDoubleLE(content.length - 8) * 1.05, content.length - 8);
+    const check = crypto.createHash('sha256').update(content).digest().subarray(0, 12).toString('base64url');
+    await page.fill('#share-open-text', `1.${zlib.deflateRawSync(content, { level: 9 }).toString('base64url')}.${check}`);
+    await page.click('#share-open');
+    await page.waitForSelector('#share-verdict-title[data-verdict="differs"]', { timeout: 60000 });
+    const differing = await page.evaluate(() => [...document.querySelectorAll('#share-verdict tr.differs')].map((tr) => tr.dataset.name));
+    assert.ok(differing.includes('coefficients'), differing.join(', '));
+    const [inLink, here] = await row(page, 'coefficients');
+    assert.notEqual(inLink, here);
+    assert.deepEqual(await sessionState(page), before, 'differs: the session is untouched');
+    await screenshot(page, 'share-differs');
+
     // A bad link in the address bar: the same, where it was opened.
     await page.goto(`${b.origin}/#tristim=2${payload.slice(1)}`);
     await waitReady(page, 120000);

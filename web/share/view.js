@@ -95,8 +95,9 @@ export function mount(section, app) {
       : `Differs: recomputed here, the link's ${r.kind} profile does not give the results it was shared with. Both are shown; the link's are not replaced.`;
     const rows = names.map((n) => {
       const a = exp.get(n) ?? '', b = actual.get(n) ?? '';
-      return h('tr', { class: a === b ? '' : 'differs', dataset: { name: n } },
-        h('th', { scope: 'row' }, n), h('td', {}, a || '(absent)'), h('td', {}, b || '(absent)'));
+      const differs = a !== b;
+      return h('tr', { class: differs ? 'differs' : '', dataset: { name: n }, style: differs ? { background: '#fdecea' } : null },
+        h('th', { scope: 'row' }, differs ? `${n} ≠` : n), h('td', {}, a || '(absent)'), h('td', {}, b || '(absent)'));
     });
     const sources = (payload.sources ?? []).map((s) => h('li', {}, `${s.name} — SHA-256 ${s.sha256}`));
     imageField.hidden = !(payload.kind === 'relative' && sources.length);
