@@ -28,7 +28,7 @@ EMSCRIPTEN_BINDINGS(tristim_models) {
   { using S = Model; value_object<S>("Model") FIELD(id) FIELD(coefficients); }
   { using S = FitResult; value_object<S>("FitResult") FIELD(model) FIELD(objective) FIELD(status) FIELD(message)
       FIELD(iterations) FIELD(evaluations) FIELD(condition_number) FIELD(objective_value) FIELD(start_objective_value)
-      FIELD(white_preserved) FIELD(fitted) FIELD(residuals); }
+      FIELD(white_preserved) FIELD(fitted) FIELD(residuals) FIELD(mu); }
   { using S = Summary; value_object<S>("Summary") FIELD(min) FIELD(median) FIELD(mean) FIELD(p95) FIELD(max) FIELD(rms) FIELD(std); }
   { using S = PatchErrors; value_object<S>("PatchErrors") FIELD(dE76) FIELD(dE94) FIELD(dE00) FIELD(dL) FIELD(dC) FIELD(dH)
       FIELD(dE_xyz) FIELD(rel_Y); }

@@ -225,7 +225,8 @@ export function mount(section, app) {
             fit, heldOut: fit.held_out ?? null, referenceText: referenceText(ref), camera: cameraOf(app.derived.image?.metadata) });
           const { status, message } = fit.evaluation.fit;
           const joint = jointSurface(recipe.surface, ref.settings) ? `; surface fitted jointly (Phase II): ${choiceText(fit.surface)} (${fit.surface_status})` : '';
-          pendingLog.push([job, h('li', {}, `${label}: done in ${fit.worker_ms.toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}${joint}`)]);
+          const mu = fit.evaluation.fit.mu ? `; white scaling μ = ${fit.evaluation.fit.mu.toFixed(4)} (Abed 2013 eq 27)` : '';  // corrected-3x3
+          pendingLog.push([job, h('li', {}, `${label}: done in ${fit.worker_ms.toFixed(0)} ms${status !== 'ok' ? ` — ${status}: ${message}` : ''}${joint}${mu}`)]);
         }
         // The first job's row (the default model) replaces the previous results and is shown; rows
         // that end before it wait for it (or for its error), so the first plots are the default's.
@@ -299,7 +300,8 @@ export function mount(section, app) {
       surface: rs.referenceFile ? { method: 'none' } : (s.surface ?? { method: 'none' }),
       // a joint surface fit (Phase II) is anchored to the chart's white patch, so it sets one
       characterisation: { model, objective: choice.objectiveChoices[objective],
-        white_patch: choice.preserveWhite || jointSurface(s.surface, rs) ? brightestPatch(data) : '', lab_white: ref.white },
+        // … and so does Abed's corrected 3×3: μ (eq 27) scales the matrix to the white reference
+        white_patch: choice.preserveWhite || jointSurface(s.surface, rs) || model === 'corrected-3x3' ? brightestPatch(data) : '', lab_white: ref.white },
       evaluation: { leave_one_out: true },
     };
   }

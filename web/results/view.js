@@ -103,7 +103,8 @@ export function mount(section, app) {
     figs.push(figure(swatchPairsPlot(rows), { name: 'swatch-pairs', caption: 'Reference (square) and estimate (disc), display sRGB' }));
     const mean = rows.reduce((s, r) => s + (Number.isFinite(r.dE) ? r.dE : 0), 0) / rows.length;
     parts.push(h('p', { class: 'summary' }, `${rows.length} training patches; mean ΔE00 ${fmt(mean)}; `
-      + `condition number ${fmt(result.fit.evaluation.fit.condition_number, 1)}.`));
+      + `condition number ${fmt(result.fit.evaluation.fit.condition_number, 1)}`
+      + (result.fit.evaluation.fit.mu ? `; corrected 3×3 white scaling μ = ${fmt(result.fit.evaluation.fit.mu, 4)} (Abed 2013 eq 27)` : '') + '.'));
     parts.push(h('div', { class: 'plots' }, figs));
     // The same numbers as a table, for keyboard and screen-reader users (and copying).
     const f2 = (v) => fmt(v, 2);
