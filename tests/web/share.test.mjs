@@ -1,14 +1,16 @@
-// Share links in the page (issue 44): Share makes a link to the selected profile; a fresh browser
-// opening it recomputes the profile in the worker and shows "reproduced" with the same numbers;
-// the source RAW dropped on it is checked by SHA-256 and sampled again; a link whose data give other
-// numbers shows both results side by side; a tampered, truncated,
-// bomb or future-version link shows its coded error where it was opened, and the session (results,
+// Share links in the page (issue 44): Share makes a link to the selected profile (the CLI checks it
+// out too); a fresh browser opening it recomputes the profile in the worker and shows "reproduced"
+// with the same numbers; the source RAW dropped on it is checked by SHA-256 and sampled again; a
+// link whose data give other numbers shows both results side by side; a tampered, truncated, bomb
+// or future-version link shows its coded error where it was opened, and the session (results,
 // selection, storage) is untouched.
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import zlib from 'node:zlib';
 import crypto from 'node:crypto';
-import { openBrowser, screenshot } from './harness.mjs';
+import path from 'node:path';
+import { spawnSync } from 'node:child_process';
+import { openBrowser, screenshot, repoRoot } from './harness.mjs';
 import { openPage, step, waitReady, errorFor, upload, fileBuffer, DNG } from './journey.mjs';
 
 const VERDICT = '#share-verdict-title[data-verdict]';
@@ -36,6 +38,10 @@ test('a link made in the page reproduces in a fresh browser; damaged links give 
       const s = window.tristim.session, r = s.results.find((x) => x.key === s.selected) ?? s.results[0];
       return { model: r.recipe.characterisation.model, dE00: r.fit.evaluation.training.dE00.mean };
     });
+    // The CLI checks out the page's link.
+    const cli = spawnSync(path.join(repoRoot, 'build/native/core/tristim'), ['reproduce', link], { encoding: 'utf8' });
+    assert.equal(cli.status, 0, cli.stderr + cli.stdout);
+    assert.match(cli.stdout, /^reproduced/);
     await screenshot(page, 'share-make');
     assert.deepEqual(maker.problems, []);
   } finally { await maker.close(); }
