@@ -1,5 +1,6 @@
 // Declarations: DNG camera profiles (profile/dcp.hpp) for the page's Export step: a single-
-// illuminant DCP of one profile (the CLI's `tristim export --profile p.json --dcp x.dcp`), and the
+// illuminant DCP of one profile (the CLI's `tristim export --profile p.json --dcp x.dcp`), a dual-
+// illuminant one of two (`--second p2.json`), and the
 // engine's strict reader, whose result crosses as the JSON `tristim inspect x.dcp` prints.
 #include "tristim/profile/dcp.hpp"
 #include "types.hpp"
@@ -22,6 +23,10 @@ namespace {
 std::vector<std::uint8_t> export_dcp(const Profile& profile, const DcpOptions& options) {
   return write_dcp(make_dcp(profile, options));
 }
+/// The dual-illuminant DCP of two profiles of the same camera (`tristim export --second`).
+std::vector<std::uint8_t> export_dcp_dual(const Profile& profile, const Profile& second, const DcpOptions& options) {
+  return write_dcp(make_dcp(profile, options, &second));
+}
 
 }  // namespace
 
@@ -31,5 +36,6 @@ EMSCRIPTEN_BINDINGS(tristim_dcp) {
       FIELD(linear_tone_curve); }
 
   def<&export_dcp>("exportDcp");
+  def<&export_dcp_dual>("exportDcpDual");
   def<static_cast<Dcp (*)(const std::vector<std::uint8_t>&)>(&read_dcp)>("readDcp");
 }

@@ -15,6 +15,8 @@ export const handlers = {
   exportCube: (T, { profile, size = 33 }) => ({ result: { text: T.exportCube(profile, size) } }),
   // options: DcpOptions (camera_model, hue_sat_map …); the same bytes as `tristim export --dcp`.
   exportDcp: (T, { profile, options }) => reply({ bytes: T.exportDcp(profile, options) }),
+  // Two profiles of the camera under two illuminants: `tristim export --profile p --second p2 --dcp`.
+  exportDcpDual: (T, { profile, second, options }) => reply({ bytes: T.exportDcpDual(profile, second, options) }),
   readDcp: (T, { bytes }) => reply(T.readDcp(bytes)),
   // ACES IDT: {clf, matrix, json}, the files of `tristim idt --camera … --illuminant …` (or of a
   // chart's patches), and the engine's CLF reader for a download read back.

@@ -1,7 +1,7 @@
 // Step 6: download the selected profile as JSON, the per-patch CSV, an ICC profile, a .cube LUT
 // and a DNG camera profile (DCP); load any of them back (a profile JSON becomes a result again,
 // evaluated on this chart).
-import { h, field, showError, clearError, download, select } from '../lib/ui.js';
+import { h, field, showError, clearError, download, select, setOptions } from '../lib/ui.js';
 import { options } from '../lib/catalog.js';
 import { readCube, readIccHeader } from './formats.js';
 
@@ -37,7 +37,12 @@ export function mount(section, app) {
       const model = cameraModel.value.trim();
       if (!model) throw Object.assign(new Error('a DCP names its camera: fill in the camera model (make and model)'), { code: 'INVALID_ARGUMENT' });
       const options = { camera_model: model, hue_sat_map: hueSatMap.checked && !hueSatMap.disabled ? [90, 30, 30] : [0, 0, 0] };
-      const { bytes } = await engine.call('exportDcp', { profile: r.fit.profile, options });
+      // A second profile of the camera under another illuminant makes it dual-illuminant (the
+      // engine orders them by colour temperature and refuses two equal illuminants).
+      const second = (app.session.results ?? []).find((x) => x.key === dcpSecond.value && x.key !== r.key);
+      const { bytes } = second
+        ? await engine.call('exportDcpDual', { profile: r.fit.profile, second: second.fit.profile, options })
+        : await engine.call('exportDcp', { profile: r.fit.profile, options });
       const name = dcpName(model);
       download(name, bytes, 'application/octet-stream');
       // The download read back by the engine's strict reader (what `tristim inspect` prints).
@@ -51,6 +56,8 @@ export function mount(section, app) {
   let modelEdited = false;
   cameraModel.addEventListener('input', () => { modelEdited = true; describeDcp(); });
   const hueSatMap = h('input', { type: 'checkbox', id: 'dcp-hue-sat-map' });
+  const dcpSecond = select([{ value: '', label: 'none (single illuminant)' }], '');
+  dcpSecond.id = 'dcp-second';
   const dcpNote = h('p', { class: 'hint dcp-file-name' });
   const dcpSummary = h('div', { class: 'dcp-summary', 'aria-live': 'polite' });
   const dcpName = (model) => `${model.replace(/[\\/:*?"<>|]+/g, '_')}.dcp`;
@@ -64,6 +71,11 @@ export function mount(section, app) {
     const linear = !r || (app.catalog.models.find((m) => m.id === r.modelId)?.linear ?? true);
     hueSatMap.disabled = linear;
     hueSatMap.parentElement?.toggleAttribute('data-disabled', linear);
+    // Every other result can be the second profile (e.g. a profile JSON of the same camera fitted
+    // under another illuminant, loaded back below).
+    const others = (app.session.results ?? []).filter((x) => x.key !== r?.key);
+    setOptions(dcpSecond, [{ value: '', label: 'none (single illuminant)' }, ...others.map((x) => ({ value: x.key, label: x.label }))],
+      others.some((x) => x.key === dcpSecond.value) ? dcpSecond.value : '');
     const model = cameraModel.value.trim();
     dcpNote.textContent = model
       ? `RawTherapee uses a DCP by itself (input profile "Camera standard") when its dcpprofiles folder holds it as "${dcpName(model)}" — `
@@ -73,7 +85,8 @@ export function mount(section, app) {
   }
   const dcpControls = h('div', { class: 'controls' },
     field('Camera model (UniqueCameraModel)', cameraModel, 'From the chart RAW\'s make and model; edit it if your raw converter names the camera differently.'),
-    field('HueSatMap 90×30×30', hueSatMap, 'For a model that is not a 3×3 matrix: the DCP\'s ForwardMatrix carries its linear part at neutral, the HueSatMap the rest.'));
+    field('HueSatMap 90×30×30', hueSatMap, 'For a model that is not a 3×3 matrix: the DCP\'s ForwardMatrix carries its linear part at neutral, the HueSatMap the rest.'),
+    field('Second profile (dual-illuminant)', dcpSecond, 'The same camera under another illuminant (e.g. A with D65): a dual-illuminant DCP, which raw converters interpolate by the white balance.'));
 
   // ACES Input Transform: the rawtoaces v1 IDT (rows summing to one, least-squares ΔE*ab, CAT02 or
   // Bradford) from a built-in camera's sensitivities with the 190 training spectra, or from this
@@ -124,7 +137,7 @@ export function mount(section, app) {
   const importInput = h('input', { type: 'file', accept: '.json,.csv,.icc,.icm,.cube,.dcp,.clf' });
   const imported = h('div', { class: 'import-result', 'aria-live': 'polite' });
   section.append(which, h('h3', {}, 'Download'), exports,
-    h('h3', {}, 'DNG camera profile (DCP, single illuminant)'), dcpControls, dcpNote, dcpSummary,
+    h('h3', {}, 'DNG camera profile (DCP)'), dcpControls, dcpNote, dcpSummary,
     h('h3', {}, 'ACES Input Transform (CLF)'), idtControls, idtButtons, idtCommand, idtSummary,
     h('h3', {}, 'Load an export back'),
     field('Profile JSON, per-patch CSV, ICC, .cube, DCP or CLF', importInput,
