@@ -3,6 +3,11 @@
 // (4000 × 3000), ColorChecker Classic and Digital SG. Target: < 300 ms natively, < 2× in wasm.
 // Stage times come from the detector's progress callback. Prints figures, asserts nothing.
 // Output lines "BENCH <case> <step> <ms>" and "PEAK <case> <MiB>" are read by scripts/bench.sh.
+// Then issue 48's failure kinds (chart_scene.hpp failure_kinds: tilted charts with glare, a cast
+// shadow or a grid-like object beside them, small charts, an open Passport, a chart cut by the
+// frame, strong perspective, phone-like JPEGs, SG, no chart), a few scenes each: found, wrong
+// orientations, false positives, corner error and found after one click, per kind ("KIND" lines;
+// `detect_testset --kinds all` runs the full set, docs/detection.md has its figures).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -103,7 +108,13 @@ int main() {
         spec.seed = 4242;
         const ChartScene scene = render_chart_scene(spec, ptrs);
         run_case(chart + "_" + std::to_string(size[0] * size[1] / 1000000) + "MP", scene.image, chart);
+        if (chart == "cc24" && size[0] == 3000) {  // the same scene as a phone's 8-bit sRGB JPEG
+          spec.phone = true;
+          run_case("cc24_phone_" + std::to_string(size[0] * size[1] / 1000000) + "MP", render_chart_scene(spec, ptrs).image, chart);
+        }
       }
+    std::printf("\nissue 48's failure kinds, 4 scenes each (1200 x 800):\n");
+    print_failure_kinds(run_failure_kinds({}, 4, 1, 1200, ptrs, false));
   } catch (const std::exception& e) {
     std::printf("ERROR %s (peak %.0f MiB)\n", e.what(), peak_mib());
     return 1;

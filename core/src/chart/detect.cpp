@@ -113,10 +113,20 @@ Point centre_of(const std::array<double, 8>& k) {
   return Point((k[0] + k[2] + k[4] + k[6]) / 4, (k[1] + k[3] + k[5] + k[7]) / 4);
 }
 
+// What detection looks at: the image in linear light (`image`: colours, edges, sampling) and, for
+// a stored image, its values as stored (`stored`, sRGB-encoded 8 or 16 bits), where the flat
+// regions are found: there the noise is spread evenly over the levels, where decoding bunches
+// the dark levels into steps that the flat-region test, tuned to sensor noise, splits apart.
+struct Frames {
+  const RawImage& image;
+  const RawImage* stored = nullptr;
+};
+
 // One pass of the pipeline on a working image of longer side <= working_side; its progress is
 // reported as the part [from, to] of the whole.
-std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector<Target>& wanted,
+std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<Target>& wanted,
                                         const DetectOptions& options, int working_side, double from, double to) {
+  const RawImage& image = frames.image;
   auto progress = [&](const char* stage, double f) {
     if (options.progress) options.progress(stage, from + (to - from) * f);
   };
@@ -126,9 +136,12 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
   RawImage scaled;
   if (std::max(image.width, image.height) > working_side) scaled = working_image(image, working_side, &factor);
   const RawImage& work = factor > 1 ? scaled : image;
-  const RegionLabels regions = flat_regions(work);
+  RawImage stored_scaled;
+  if (frames.stored && factor > 1) stored_scaled = working_image(*frames.stored, working_side);
+  const RawImage& segmented = !frames.stored ? work : factor > 1 ? stored_scaled : *frames.stored;
+  const RegionLabels regions = flat_regions(segmented);
   progress("segment", 0.2);
-  const std::vector<PatchQuad> quads = patch_quads(work, regions);
+  const std::vector<PatchQuad> quads = patch_quads(segmented, regions);
   progress("group", 0.3);
   const std::vector<GridGroup> groups = group_grids(quads, 4);
   progress("orient", 0.4);
@@ -304,8 +317,9 @@ std::vector<ChartCandidate> detect_pass(const RawImage& image, const std::vector
 namespace {
 
 // Both passes over the whole of `image`.
-std::vector<ChartCandidate> detect_image(const RawImage& image, const std::vector<Target>& wanted,
+std::vector<ChartCandidate> detect_image(const Frames& frames, const std::vector<Target>& wanted,
                                          const DetectOptions& options) {
+  const RawImage& image = frames.image;
   // The pass at `working_side` first: it finds every chart from a few % of the frame up, so
   // several charts give several candidates. When it finds none and a coarser working image
   // (longer side <= kCoarseSide) is smaller, a pass on that: a large chart whose patches show
@@ -317,11 +331,11 @@ std::vector<ChartCandidate> detect_image(const RawImage& image, const std::vecto
   const bool coarse = (side + kCoarseSide - 1) / kCoarseSide > (side + fine - 1) / fine;
   std::vector<ChartCandidate> out;
   try {
-    out = detect_pass(image, wanted, options, fine, 0.0, coarse ? 0.7 : 1.0);
+    out = detect_pass(frames, wanted, options, fine, 0.0, coarse ? 0.7 : 1.0);
   } catch (const Error& e) {
     if (e.code() != ErrorCode::ChartNotFound || !coarse) throw;
     try {
-      out = detect_pass(image, wanted, options, kCoarseSide, 0.7, 1.0);
+      out = detect_pass(frames, wanted, options, kCoarseSide, 0.7, 1.0);
     } catch (const Error& e2) {
       if (e2.code() != ErrorCode::ChartNotFound) throw;
     }
@@ -356,9 +370,10 @@ RawImage crop(const RawImage& image, int x0, int y0, int x1, int y1) {
 // Detection within the window [x0, x1) × [y0, y1) (clamped to the image): a crop, so a chart
 // that is small in the frame is searched at a finer working scale; corners come back in the
 // image's coordinates. `from`..`to`: this window's share of the progress.
-std::vector<ChartCandidate> detect_window(const RawImage& image, const std::vector<Target>& wanted,
+std::vector<ChartCandidate> detect_window(const Frames& frames, const std::vector<Target>& wanted,
                                           const DetectOptions& options, double x0, double y0, double x1, double y1,
                                           double from, double to) {
+  const RawImage& image = frames.image;
   const int ix0 = std::max(0, static_cast<int>(std::floor(x0))), iy0 = std::max(0, static_cast<int>(std::floor(y0)));
   const int ix1 = std::min(image.width, static_cast<int>(std::ceil(x1)));
   const int iy1 = std::min(image.height, static_cast<int>(std::ceil(y1)));
@@ -367,8 +382,11 @@ std::vector<ChartCandidate> detect_window(const RawImage& image, const std::vect
   DetectOptions o = options;
   if (options.progress)
     o.progress = [&](const std::string& stage, double f) { options.progress(stage, from + (to - from) * f); };
-  if (ix0 == 0 && iy0 == 0 && ix1 == image.width && iy1 == image.height) return detect_image(image, wanted, o);
-  std::vector<ChartCandidate> out = detect_image(crop(image, ix0, iy0, ix1, iy1), wanted, o);
+  if (ix0 == 0 && iy0 == 0 && ix1 == image.width && iy1 == image.height) return detect_image(frames, wanted, o);
+  const RawImage part = crop(image, ix0, iy0, ix1, iy1);
+  RawImage stored_part;
+  if (frames.stored) stored_part = crop(*frames.stored, ix0, iy0, ix1, iy1);
+  std::vector<ChartCandidate> out = detect_image(Frames{part, frames.stored ? &stored_part : nullptr}, wanted, o);
   for (auto& c : out)
     for (int k = 0; k < 4; ++k) c.corners[2 * k] += ix0, c.corners[2 * k + 1] += iy0;
   return out;
@@ -398,8 +416,9 @@ std::vector<double> checked(const std::vector<double>& v, size_t n, const char* 
 // eighth of the image's longer side to the whole image; the first that finds a chart covering
 // the seed wins. Small windows see a small chart at full resolution;
 // a window that cuts a large chart finds nothing and the next one holds it.
-std::vector<ChartCandidate> detect_near(const RawImage& image, const std::vector<Target>& wanted,
+std::vector<ChartCandidate> detect_near(const Frames& frames, const std::vector<Target>& wanted,
                                         const DetectOptions& options, const Point& seed) {
+  const RawImage& image = frames.image;
   if (seed.x() < 0 || seed.y() < 0 || seed.x() >= image.width || seed.y() >= image.height)
     throw Error(ErrorCode::InvalidArgument, "seed: (" + fixed(seed.x(), 1) + ", " + fixed(seed.y(), 1) +
                                                 ") lies outside the " + std::to_string(image.width) + "×" +
@@ -411,7 +430,7 @@ std::vector<ChartCandidate> detect_near(const RawImage& image, const std::vector
     const double h = halves[i];
     std::vector<ChartCandidate> out;
     try {
-      out = detect_window(image, wanted, options, seed.x() - h, seed.y() - h, seed.x() + h, seed.y() + h,
+      out = detect_window(frames, wanted, options, seed.x() - h, seed.y() - h, seed.x() + h, seed.y() + h,
                           double(i) / std::size(halves), double(i + 1) / std::size(halves));
     } catch (const Error& e) {
       if (e.code() != ErrorCode::ChartNotFound) throw;
@@ -440,7 +459,8 @@ std::vector<ChartCandidate> detect_charts(const RawImage& stored_or_linear, cons
     throw Error(ErrorCode::InvalidArgument, "chart detection needs a non-empty RGB image");
   // A stored image (a phone's JPEG, a converter's TIFF or PNG) holds sRGB-encoded values; the
   // 3×3 fit against the reference wants linear light, so they are decoded with the sRGB curve
-  // (IEC 61966-2-1) first — in a copy. The corners do not depend on it.
+  // (IEC 61966-2-1) first — in a copy; the flat regions are still found in the stored values
+  // (Frames). The corners do not depend on it.
   RawImage decoded;
   if (stored_or_linear.meta.encoding == "stored" && stored_or_linear.meta.white_level > 0) {
     decoded = stored_or_linear;
@@ -452,20 +472,20 @@ std::vector<ChartCandidate> detect_charts(const RawImage& stored_or_linear, cons
       v = full == 255 && x == std::floor(x) ? table[size_t(x)] : static_cast<float>(full * sRGB_decode(x / full));
     }
   }
-  const RawImage& image = decoded.rgb.empty() ? stored_or_linear : decoded;
+  const Frames frames{decoded.rgb.empty() ? stored_or_linear : decoded, decoded.rgb.empty() ? nullptr : &stored_or_linear};
   std::vector<ChartCandidate> out;
   if (!options.seed.empty()) {
     if (!options.box.empty()) throw Error(ErrorCode::InvalidArgument, "seed and box: give one of them");
     const std::vector<double> s = checked(options.seed, 2, "seed");
-    out = detect_near(image, wanted, options, Point(s[0], s[1]));
+    out = detect_near(frames, wanted, options, Point(s[0], s[1]));
   } else if (!options.box.empty()) {
     const std::vector<double> b = checked(options.box, 4, "box");
     const double x0 = std::min(b[0], b[2]), x1 = std::max(b[0], b[2]), y0 = std::min(b[1], b[3]), y1 = std::max(b[1], b[3]);
     // A rough box: enlarged by a tenth of its size on each side, so a chart it cuts is still whole.
     const double mx = 0.1 * (x1 - x0), my = 0.1 * (y1 - y0);
-    out = detect_window(image, wanted, options, x0 - mx, y0 - my, x1 + mx, y1 + my, 0.0, 1.0);
+    out = detect_window(frames, wanted, options, x0 - mx, y0 - my, x1 + mx, y1 + my, 0.0, 1.0);
   } else {
-    out = detect_image(image, wanted, options);
+    out = detect_image(frames, wanted, options);
   }
   if (options.progress) options.progress("done", 1.0);
   return out;
