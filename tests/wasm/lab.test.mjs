@@ -83,3 +83,20 @@ test('lab: bad options give coded errors', async () => {
   throwsCode(assert, () => render(T, { ...OPTIONS, exposure: -1 }), 'INVALID_ARGUMENT');
   throwsCode(assert, () => render(T, { ...OPTIONS, colour: 'red' }), 'INVALID_ARGUMENT');
 });
+
+test('lab exercises: spectra to colour and the over-fitting table, as the CLI prints them', async () => {
+  const T = await loadTristim();
+  const e = T.labSpectraToColour('cc24', 'C3', ['D65', 'A'], ['1931']);
+  assert.equal(e.rows.length, 2);
+  const ref = T.referenceChart('cc24', 'A', '1931');
+  const k = Array.from(ref.ids).indexOf('C3');
+  assert.deepEqual(Array.from(e.rows[1].XYZ), Array.from(ref.XYZ.slice(3 * k, 3 * k + 3)));
+  const rows = T.labOverfit(T.cameraSensitivities('Canon_EOS_5D_Mark_II'), T.illuminantSpectrum('D65'), {});
+  const native = JSON.parse(execFileSync(nativeCli, ['lab', 'overfit', '--json']).toString());
+  assert.equal(rows.length, native.length);
+  rows.forEach((r, i) => {
+    assert.equal(r.model, native[i].model);
+    assert.equal(r.error_code, native[i].error_code);
+    if (r.ok) for (const f of ['train_dE00', 'test_dE00']) assert.ok(Math.abs(r[f] - native[i][f]) < 1e-9, `${r.model} ${r.training} ${f}: ${r[f]} vs ${native[i][f]}`);
+  });
+});

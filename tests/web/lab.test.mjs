@@ -53,6 +53,7 @@ test('lab: render a chart, open it in the journey (sampled = truth), rank the ca
 
     // Camera quality: the 52 ranked, best SMI first; one camera against the CMFs.
     await step(page, 'lab');
+    await page.click(`${S} [data-tab="quality"]`);
     await page.click(`${S} [data-action="lab-rank"]`);
     await page.waitForSelector(`${S} table[data-lab="ranking"]`, { timeout: 60000 });
     const ranking = await page.$$eval(`${S} table[data-lab="ranking"] tbody tr`, (trs) => trs.map((tr) => Number(tr.children[2].textContent)));
@@ -64,7 +65,26 @@ test('lab: render a chart, open it in the journey (sampled = truth), rank the ca
     assert.ok(counts.line >= 6, `camera and fitted curves: ${JSON.stringify(counts)}`);
     await screenshot(page, 'lab-quality');
 
+    // Exercise 1: a patch under three lights and two observers, with its stimulus plot.
+    await page.click(`${S} [data-tab="ex1"]`);
+    await page.click(`${S} [data-action="lab-ex1"]`);
+    await page.waitForSelector(`${S} table[data-lab="ex1-table"]`);
+    assert.equal(await page.$$eval(`${S} table[data-lab="ex1-table"] tbody tr`, (r) => r.length), 6);
+    assert.match(await page.textContent(`${S} [data-lab="ex1"] + pre, ${S} pre.cli >> nth=2`), /tristim reference --chart cc24 --illuminant D65/);
+    assert.ok((await markCounts(page, 'lab-ex1-C3')).line >= 4);
+    // Exercise 2: the 35-term polynomial refused on 24 patches, over-fitting in leave-one-out.
+    await page.click(`${S} [data-tab="ex2"]`);
+    await page.click(`${S} [data-action="lab-ex2"]`);
+    await page.waitForSelector(`${S} table[data-lab="ex2-table"]`, { timeout: 60000 });
+    const ex2 = await page.$$eval(`${S} table[data-lab="ex2-table"] tbody tr`, (trs) => trs.map((tr) => [...tr.children].map((c) => c.textContent)));
+    assert.equal(ex2.length, 10);
+    const r22 = ex2.find((r) => r[0] === 'Cheung2004-22' && r[1] === 'cc24'), r3 = ex2.find((r) => r[0] === 'matrix-3x3' && r[1] === 'cc24');
+    assert.ok(Number(r22[5]) > 2 * Number(r3[5]), `leave-one-out: 22 terms ${r22[5]}, 3x3 ${r3[5]}`);
+    assert.match(ex2.find((r) => r[0] === 'Cheung2004-35' && r[1] === 'cc24')[4], /TOO_FEW_PATCHES/);
+    await screenshot(page, 'lab-exercise2');
+
     // A bad option: a coded error next to the input, the page usable.
+    await page.click(`${S} [data-tab="render"]`);
     await page.fill(`${S} input[data-lab="exposure"]`, '9');
     await page.click(`${S} [data-action="lab-render"]`);
     const err = await errorNear(page, `${S} [data-action="lab-render"]`);

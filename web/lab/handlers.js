@@ -10,6 +10,11 @@ export const handlers = {
     const out = T.labRender({ ...options, illuminant_spd: T.illuminantSpectrum(options.illuminant ?? 'D65') });
     return { result: { dng: out.dng, truth: JSON.parse(out.truth) }, transfer: [out.dng.buffer] };
   },
+  /// Exercise 1: one patch's spectra and its XYZ / Lab / xy under each illuminant and observer.
+  labSpectra: (T, { chart, patch, illuminants, observers }) => reply(T.labSpectraToColour(chart, patch, illuminants, observers)),
+  /// Exercise 2: models × training charts on training, leave-one-out and the Munsell chips.
+  labOverfit: (T, { camera, illuminant = 'D65', noise }) => reply(T.labOverfit(
+    camera === 'cmf' ? T.cmfSensitivities() : T.cameraSensitivities(camera), T.illuminantSpectrum(illuminant), { noise })),
   labRanking: (T, { illuminant = 'D65' }) => reply(T.cameraQualityRanking(T.illuminantSpectrum(illuminant))),
   labCamera: (T, { camera, illuminant = 'D65' }) => {
     const ssf = T.cameraSensitivities(camera), L = T.illuminantSpectrum(illuminant);

@@ -30,3 +30,36 @@ export function lutherPlot(fit, { width = 720, height = 300, Plot = getPlot() } 
     ],
   });
 }
+
+/// Exercise 1: the patch's reflectance (black) and the colour stimulus R·S under each illuminant.
+export function stimulusPlot(e, { width = 720, height = 280, Plot = getPlot() } = {}) {
+  const rows = [];
+  e.illuminants.forEach((id, k) => e.stimulus[k].forEach((v, i) => rows.push({ set: `R·S under ${id}`, nm: e.wavelengths[i], v: v / 100 })));
+  e.reflectance.forEach((v, i) => rows.push({ set: 'reflectance R', nm: e.wavelengths[i], v }));
+  return Plot.plot({
+    width, height, marginLeft: 50, marginBottom: 40,
+    x: { label: 'wavelength (nm) →', grid: true },
+    y: { label: '↑ R, and R·S with S(560 nm) = 1', grid: true },
+    color: { legend: true },
+    marks: [Plot.frame({ stroke: '#ccc' }), Plot.line(rows, { x: 'nm', y: 'v', z: 'set', stroke: 'set', strokeWidth: 2 })],
+  });
+}
+
+/// Exercise 2: mean ΔE00 on the training patches, in leave-one-out and on the held-out Munsell
+/// chips, per model, for one training chart (refused models left out).
+export function overfitPlot(rows, training, { width = 720, height = 300, Plot = getPlot() } = {}) {
+  const data = [];
+  for (const r of rows.filter((x) => x.training === training && x.ok)) {
+    for (const [k, v] of [['training', r.train_dE00], ['leave-one-out', r.loo_dE00], ['Munsell (held out)', r.test_dE00]]) {
+      if (Number.isFinite(v)) data.push({ model: `${r.model} (${r.terms})`, kind: k, v });
+    }
+  }
+  return Plot.plot({
+    width, height, marginLeft: 50, marginBottom: 50,
+    fx: { label: null, domain: [...new Set(data.map((d) => d.model))] },
+    x: { axis: null, domain: ['training', 'leave-one-out', 'Munsell (held out)'] },
+    y: { label: '↑ mean ΔE00', grid: true },
+    color: { legend: true, domain: ['training', 'leave-one-out', 'Munsell (held out)'] },
+    marks: [Plot.barY(data, { fx: 'model', x: 'kind', y: 'v', fill: 'kind' }), Plot.ruleY([0])],
+  });
+}

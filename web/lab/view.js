@@ -9,6 +9,7 @@ import { h, field, select, showError, clearError, errorSlot, numberValue, fmt, d
 import { options } from '../lib/catalog.js';
 import { figure } from '../plots/common.js';
 import { lutherPlot } from './plots.js';
+import { spectraPanel, overfitPanel } from './exercises.js';
 
 const CHARTS = [
   { value: 'cc24', label: 'ColorChecker Classic (24)' },
@@ -198,6 +199,21 @@ export function mount(section, app) {
     h('p', { class: 'hint' }, 'The same on the command line:'), qCli,
     plotBox, rankBox);
 
-  section.append(renderPanel, qualityPanel);
-  return { render, openInJourney, rank, plot };
+  // Tabs: one panel shown at a time.
+  const ex1 = spectraPanel(app), ex2 = overfitPanel(app);
+  const panels = [['render', 'Virtual camera', renderPanel], ['quality', 'Camera quality', qualityPanel],
+    ['ex1', 'Exercise 1: spectra to colour', ex1.panel], ['ex2', 'Exercise 2: why a 3×3 is not enough', ex2.panel]];
+  const tabs = h('div', { class: 'lab-tabs', role: 'tablist' });
+  const showTab = (id) => {
+    for (const [k, , p] of panels) p.hidden = k !== id;
+    for (const b of tabs.children) b.setAttribute('aria-selected', String(b.dataset.tab === id));
+  };
+  for (const [k, label] of panels) {
+    const b = h('button', { type: 'button', role: 'tab', 'data-tab': k }, label);
+    b.addEventListener('click', () => showTab(k));
+    tabs.append(b);
+  }
+  section.append(tabs, ...panels.map(([, , p]) => p));
+  showTab('render');
+  return { render, openInJourney, rank, plot, showTab, exercise1: ex1.run, exercise2: ex2.run };
 }

@@ -9,6 +9,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/evaluation/evaluation.hpp"
+#include "tristim/io/patch_files.hpp"
 #include "tristim/linearisation/oecf_Shen2008.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
@@ -23,6 +24,43 @@ PatchMatrix rows_of(const std::vector<Vec3>& v) {
 }
 
 }  // namespace
+
+SpectraToColour lab_spectra_to_colour(const std::string& chart, const std::string& patch,
+                                      const std::vector<std::string>& illuminants, const std::vector<std::string>& observers) {
+  const SpectralData refl = chart_reflectances(chart);
+  const std::string want = normalise_patch_id(patch);
+  size_t k = refl.names.size();
+  for (size_t i = 0; i < refl.names.size(); ++i)
+    if (normalise_patch_id(refl.names[i]) == want) k = i;
+  if (k == refl.names.size()) throw Error(ErrorCode::UnknownId, "chart " + chart + " has no patch '" + patch + "'");
+  SpectraToColour out;
+  out.chart = chart;
+  out.patch = refl.names[k];
+  out.wavelengths = refl.wavelengths;
+  out.reflectance = refl.values[k];
+  out.illuminants = illuminants;
+  for (const auto& id : illuminants) {
+    const SpectralData S = illuminant_spd(id);
+    const auto s = interpolate_spectrum(S.wavelengths, S.values[0], refl.wavelengths, S.linear);
+    const double s560 = interpolate_spectrum(S.wavelengths, S.values[0], {560.0}, S.linear)[0];
+    std::vector<double> stim(s.size());
+    for (size_t i = 0; i < s.size(); ++i) stim[i] = out.reflectance[i] * s[i] * 100 / s560;
+    out.stimulus.push_back(stim);
+    for (const auto& obs : observers) {
+      const ReferenceChart ref = reference_chart(chart, id, parse_observer(obs));
+      ColourRow r;
+      r.illuminant = id;
+      r.observer = observer_name(parse_observer(obs));
+      r.XYZ = ref.XYZ[k];
+      r.Lab = ref.Lab[k];
+      const double sum = r.XYZ.sum();
+      r.x = r.XYZ[0] / sum;
+      r.y = r.XYZ[1] / sum;
+      out.rows.push_back(r);
+    }
+  }
+  return out;
+}
 
 SpectralData cmf_sensitivities() {
   SpectralData s = align_spectra(cmfs(Observer::CIE1931_2), wavelength_grid(380, 780, 5));

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "test_support.hpp"
+#include "tristim/chart/reference.hpp"
 #include "tristim/lab/exercises.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
@@ -55,4 +56,25 @@ TEST_CASE("lab overfit: 22 terms on 24 noisy patches fit them and miss the rest,
   OverfitOptions bad;
   bad.models = {"matrix-9x9"};
   test::require_code([&] { lab_overfit_exercise(cmf_sensitivities(), illuminant_spd("D65"), bad); }, ErrorCode::UnknownId);
+}
+
+TEST_CASE("lab spectra to colour: a patch's XYZ and Lab per illuminant and observer are the reference step's", "[lab]") {
+  const SpectraToColour e = lab_spectra_to_colour("cc24", "c3");
+  CHECK(e.patch == "C3");
+  REQUIRE(e.rows.size() == 6);
+  REQUIRE(e.stimulus.size() == 3);
+  for (const auto& r : e.rows) {
+    const ReferenceChart ref = reference_chart("cc24", r.illuminant, parse_observer(r.observer));
+    size_t k = 0;
+    while (k < ref.ids.size() && ref.ids[k] != "C3") ++k;
+    REQUIRE(k < ref.ids.size());
+    INFO(r.illuminant << " " << r.observer);
+    CHECK((r.XYZ - ref.XYZ[k]).norm() == 0);
+    CHECK(r.x == Approx(r.XYZ[0] / r.XYZ.sum()));
+  }
+  // C3 is the red patch: red under every light once CIELAB normalises to the light's white, and
+  // its chromaticity moves towards the illuminant's (A's x is larger than D65's).
+  for (const auto& r : e.rows) CHECK(r.Lab[1] > 30);
+  CHECK(e.rows[2].x > e.rows[0].x);
+  test::require_code([] { lab_spectra_to_colour("cc24", "Z9"); }, ErrorCode::UnknownId);
 }

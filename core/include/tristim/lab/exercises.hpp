@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/colorimetry/spectra.hpp"
 
 namespace tristim {
@@ -38,6 +39,29 @@ struct OverfitOptions {
 /// Every model × training chart (see header). Error(UnknownId) for an unknown model or chart.
 std::vector<OverfitRow> lab_overfit_exercise(const SpectralData& sensitivities, const SpectralData& illuminant,
                                              const OverfitOptions& options = {});
+
+// Exercise 1, "spectra to colour": one patch's reflectance R(λ), the colour stimulus R(λ)·S(λ)
+// under each illuminant (each S scaled to 100 at 560 nm), and its XYZ (CIE 15 integration,
+// Y_white = 100), CIELAB (relative to that illuminant's white: the von Kries-type normalisation
+// CIELAB builds in) and xy per illuminant × observer — what `tristim reference --chart <c>
+// --illuminant <I> --observer <O>` prints for that patch.
+struct ColourRow {
+  std::string illuminant, observer;
+  Vec3 XYZ = Vec3::Zero(), Lab = Vec3::Zero();
+  double x = 0, y = 0;
+};
+struct SpectraToColour {
+  std::string chart, patch;
+  std::vector<double> wavelengths;
+  std::vector<double> reflectance;
+  std::vector<std::vector<double>> stimulus;  ///< one per illuminant, in the order given
+  std::vector<std::string> illuminants;
+  std::vector<ColourRow> rows;                ///< illuminant-major, then observer
+};
+/// Error(UnknownId) for an unknown chart, patch, illuminant or observer.
+SpectraToColour lab_spectra_to_colour(const std::string& chart, const std::string& patch,
+                                      const std::vector<std::string>& illuminants = {"D65", "A", "F11"},
+                                      const std::vector<std::string>& observers = {"1931", "1964"});
 
 /// The CIE 1931 colour-matching functions as R, G, B sensitivities on 380-780 nm at 5 nm (the
 /// built-in cameras' grid): a camera that meets the Luther condition.
