@@ -709,6 +709,8 @@ std::string base64url_decode(std::string_view text, const std::string& what) {
       out += static_cast<char>((acc >> bits) & 0xff);
     }
   }
+  if (acc & ((1u << bits) - 1))  // canonical only: a changed last character is refused, not ignored
+    throw Error(ErrorCode::ParseError, what + ": the last base64url character has bits set that encode nothing");
   return out;
 }
 

@@ -85,6 +85,7 @@ TEST_CASE("base64url and deflate-raw round-trip every length", "[share]") {
   CHECK(base64url_decode("Zm9vYg==", "t") == "foob");
   require_code([] { base64url_decode("Zm9v+g", "t"); }, ErrorCode::ParseError);
   require_code([] { base64url_decode("Zm9vY", "t"); }, ErrorCode::ParseError);
+  require_code([] { base64url_decode("Zm9vYh", "t"); }, ErrorCode::ParseError);  // "Zm9vYg" with a spare bit set
   const std::string big(100000, ' ');
   require_code([&] { inflate_raw(deflate_raw(big), 65536, "t"); }, ErrorCode::LimitExceeded);
   const std::string d = deflate_raw("hello hello hello");

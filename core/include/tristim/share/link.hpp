@@ -157,7 +157,8 @@ json::Value reproduction_json(const Reproduction& reproduction);
 
 std::string base64url_encode(std::string_view bytes);
 /// Error(ParseError) naming the offset of a character outside the alphabet (padding '=' accepted
-/// at the end only) or an impossible length.
+/// at the end only), an impossible length, or a last character with unused bits set (only the
+/// canonical encoding is read, so no character can change without the bytes changing).
 std::string base64url_decode(std::string_view text, const std::string& what);
 /// Raw deflate at level 9.
 std::string deflate_raw(std::string_view bytes);
