@@ -120,6 +120,8 @@ EMSCRIPTEN_BINDINGS(tristim_absolute) {
   // The exposure-fusion picker (the page's catalog: fusionModes).
   { using S = FusionModeInfo; value_object<S>("FusionModeInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(about); }
   def<&fusion_mode_table>("listFusionModes");
+  { using S = AbsoluteWhiteRule; value_object<S>("AbsoluteWhiteRule") FIELD(id) FIELD(label) FIELD(reference); }
+  def<&absolute_white_rules>("listAbsoluteWhiteRules");
   def<&series_exposures>("checkAbsoluteSeries");
   def<&characterise_absolute>("fitAbsolute");
   emscripten::function("applyAbsolute", &apply);

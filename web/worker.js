@@ -26,6 +26,7 @@ const handlers = {
     models: T.listModels(), modelFamilies: T.listModelFamilies(), objectives: T.listObjectives(),
     linearisations: T.listLinearisations(), surfaces: T.listSurfaceCorrections(), surfacePresets: T.listSurfacePresets(),
     flatFieldModes: T.listFlatFieldModes(), absoluteOptions: T.listAbsoluteOptions(), fusionModes: T.listFusionModes(),
+    absoluteWhiteRules: T.listAbsoluteWhiteRules(),
     exampleLights: T.listExampleLights(), exampleTrainings: T.listExampleTrainings(),
     layouts: Object.fromEntries(T.listChartLayouts().map((id) => [id, id === 'custom' ? null : T.chartLayout({ chart: id })])),
   }),

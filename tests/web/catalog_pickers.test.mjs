@@ -91,7 +91,7 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     'absolute/Exposure fusion': rows(T.listFusionModes()),
     'absolute/Example: light on the chart': rows(T.listExampleLights()),
     'absolute/Example: colour training': rows(T.listExampleTrainings()),
-    'absolute/White of the test figures': { owned: 'the eq 16 white or E: not yet an engine table (issue 43)' },
+    'absolute/White of the test figures': rows(T.listAbsoluteWhiteRules()),
   };
   const b = await openPage();
   try {

@@ -67,8 +67,8 @@ export function mount(section, app) {
   const stimuliInfo = h('span', { class: 'file-state', 'data-role': 'abs-stimuli-info' });
   const testInput = h('input', { type: 'file', accept: '.csv,.txt,text/csv', 'data-role': 'abs-test' });
   const testInfo = h('span', { class: 'file-state', 'data-role': 'abs-test-info' });
-  // The white of the test figures (section 4.1): the engine's choice, E, or a stimulus of the scene.
-  const WHITE_AUTO = [{ value: '', label: 'the brightest chromatic stimulus, eq (16)' }, { value: 'E', label: 'E (X = Y = Z) at the largest Y' }];
+  // The white of the test figures (section 4.1): the engine's rules (eq 16, E), or a stimulus of the scene.
+  const WHITE_AUTO = (app.catalog?.absoluteWhiteRules ?? []).map((r) => ({ value: r.id, label: r.label }));
   const whiteSel = select(WHITE_AUTO, '');
   whiteSel.dataset.role = 'abs-white';
   // The engine's option ranges (listAbsoluteOptions): the zone parameter w of section 3.1.
@@ -427,7 +427,7 @@ export function mount(section, app) {
     lumLegend.replaceChildren(colourBar(out.luminance.range, out.luminance.log));
     const s = out.report.maps;
     srcLegend.replaceChildren(...sourceLegend(s));
-    mapSummary.textContent = `${s.width}×${s.height} pixels from ${s.labels.length} exposure${s.labels.length > 1 ? 's' : ''} (${fusionSel.value === 'recursive' ? 'Algorithm 1' : 'weighted fusion'}) in ${fmt(out.ms, 0)} ms. `
+    mapSummary.textContent = `${s.width}×${s.height} pixels from ${s.labels.length} exposure${s.labels.length > 1 ? 's' : ''} (${(app.catalog?.fusionModes ?? []).find((m) => m.id === s.mode)?.label ?? s.mode}) in ${fmt(out.ms, 0)} ms. `
       + `Y from ${num(s.Y.min)} to ${num(s.Y.max)} cd/m² (median ${num(s.Y.median)}); ${s.saturated_pixels} pixels saturated in every exposure, ${s.unreliable_pixels} without a reliable value.`;
     maps.hidden = false;
   }

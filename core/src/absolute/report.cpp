@@ -7,6 +7,7 @@
 
 #include "tristim/profile/fields.hpp"
 #include "tristim/profile/profile.hpp"
+#include "../citations.hpp"
 #include "fields.hpp"
 
 namespace tristim {
@@ -144,6 +145,12 @@ AbsoluteFitSummary absolute_fit_summary(const AbsoluteProfile& p) {
   f.colour_objective = p.colour_objective;
   f.fusion = fusion_mode_id(p.fusion);
   return f;
+}
+
+std::vector<AbsoluteWhiteRule> absolute_white_rules() {
+  const std::string guarnera = citation::kGuarnera2018;
+  return {{"", "the brightest chromatic stimulus, eq (16)", guarnera + ", eq (16) and section 4.1"},
+          {"E", "E (X = Y = Z) at the largest Y", guarnera + ", section 4.1 (Experiments a and c)"}};
 }
 
 json::Value absolute_report_json(const AbsoluteReport& r) {

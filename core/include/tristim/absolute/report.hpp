@@ -113,6 +113,14 @@ struct AbsoluteReport {
   AbsoluteMapsSummary maps;
 };
 
+/// A choice of the CIELAB white of a test scene's figures as the page's picker lists it (the CLI's
+/// --white): "" the brightest chromatic stimulus as the white patch (eq 16), "E" X = Y = Z at the
+/// largest Y; a stimulus id names the white patch itself.
+struct AbsoluteWhiteRule {
+  std::string id, label, reference;
+};
+std::vector<AbsoluteWhiteRule> absolute_white_rules();
+
 json::Value absolute_report_json(const AbsoluteReport& report);
 /// The same report as readable text (the CLI without --json).
 std::string absolute_report_text(const AbsoluteReport& report);
