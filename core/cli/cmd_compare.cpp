@@ -1,4 +1,5 @@
 // CLI: `tristim compare` — every model x objective on the same patches, sorted by held-out error.
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "patch_args.hpp"
 #include "tristim/characterisation/fit.hpp"
 #include "tristim/characterisation/models.hpp"
+#include "tristim/characterisation/ridge.hpp"
 #include "tristim/error.hpp"
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/io/json.hpp"
@@ -21,14 +23,17 @@ const char* kCompareUsage =
     "                [--models id,id,...] [--white <patch>] [--lab-white ...] [--ref-white ...]\n"
     "                [--test-rgb other.csv --test-xyz other_ref.csv] [--json] [--threads N]\n"
     "                [--linearisation <id>[:options]|fitted.json [--reflectances spectra.csv|<chart>] [--full-scale 255]]\n"
-    "                [--bootstrap N [--seed 1] [--level 0.95]]\n"
+    "                [--bootstrap N [--seed 1] [--level 0.95]] [--ridge]\n"
     "  Every model × objective on the same patches: training and leave-one-out CIEDE2000,\n"
     "  sorted by the held-out mean. With --test-rgb/--test-xyz also the train-on-one /\n"
     "  test-on-another table (Abed 2013 Table IV layout). The rows run on --threads threads\n"
     "  (default 0: one per hardware thread, at most 16); the numbers do not depend on it.\n"
     "  --bootstrap N: each row refitted on N resamples of the patches (and of each patch's pixels when\n"
     "  --rgb has sample's R_std,G_std,B_std,n): \"ci\": {\"level\",\"lo\",\"hi\"} next to the training and\n"
-    "  leave-one-out mean dE00 (JSON), the leave-one-out interval as a column (text).";
+    "  leave-one-out mean dE00 (JSON), the leave-one-out interval as a column (text).\n"
+    "  --ridge: each model also as ridge least squares, lambda chosen by closed-form leave-one-out\n"
+    "  (\"ridge\" rows in JSON, a second table in text): many-term rows whose held-out figure depends on\n"
+    "  the fit become stable.";
 
 /// A row's bootstrap (evaluation/bootstrap.hpp): the row's model and objective refitted on resamples.
 struct RowBootstrap {
@@ -77,7 +82,7 @@ int run_compare(const Args& args, std::ostream& out) {
   args.allow_only({"rgb", "xyz", "objectives", "models", "white", "lab-white", "ref-white", "test-rgb",
                    "test-xyz", "json", "objective", "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol",
                    "de-ftol", "de-max-evaluations", "de-rms", "de-step", "linearisation", "reflectances", "full-scale",
-                   "threads", "bootstrap", "seed", "level"});
+                   "threads", "bootstrap", "seed", "level", "ridge"});
   if (args.has("threads")) {
     const double n = args.get_double("threads", 0);
     if (!(n >= 0 && n <= 256 && n == static_cast<int>(n)))
@@ -120,6 +125,40 @@ int run_compare(const Args& args, std::ostream& out) {
       boot.push_back(rb);
     }
   }
+  // --ridge: every model of the table (as compare lists them) by ridge least squares (ridge.hpp).
+  struct RidgeRow {
+    CompareRow row;
+    double lambda = 0;
+  };
+  std::vector<RidgeRow> ridge;
+  if (args.has("ridge")) {
+    std::vector<std::string> ids;
+    for (const auto& r : rows)
+      if (std::find(ids.begin(), ids.end(), r.model_id) == ids.end()) ids.push_back(r.model_id);
+    FitOptions ls = o;
+    ls.objective = Objective::LeastSquares;
+    for (const auto& id : ids) {
+      RidgeRow rr;
+      rr.row.model_id = id;
+      rr.row.n_terms = model_info(id).n_terms;
+      try {
+        const RidgeResult f = fit_ridge(id, d.rgb, d.xyz, ls);
+        const Metrics train = evaluate(f.fit.fitted, d.xyz, o.white), loo = evaluate(f.loo_XYZ, d.xyz, o.white);
+        rr.row.ok = rr.row.has_loo = true;
+        rr.row.message = f.fit.message;
+        rr.row.condition_number = f.fit.condition_number;
+        rr.row.train_dE00 = train.dE00;
+        rr.row.train_dE_xyz = train.dE_xyz;
+        rr.row.loo_dE00 = loo.dE00;
+        rr.row.loo_dE_xyz = loo.dE_xyz;
+        rr.lambda = f.lambda;
+      } catch (const Error& e) {
+        rr.row.error_code = e.code_name();
+        rr.row.message = e.what();
+      }
+      ridge.push_back(rr);
+    }
+  }
   std::vector<TransferCell> transfer;
   if (args.has("test-rgb") || args.has("test-xyz")) {
     PatchData t = load_pairs(args.get("test-rgb"), args.get("test-xyz"), ref_white);
@@ -136,6 +175,16 @@ int run_compare(const Args& args, std::ostream& out) {
     json::Value a = json::Value::array();
     for (size_t i = 0; i < rows.size(); ++i) a.push(compare_row_json(rows[i], boot.empty() ? nullptr : &boot[i]));
     j.set("rows", a);
+    if (args.has("ridge")) {
+      json::Value rj = json::Value::array();
+      for (const auto& r : ridge) {
+        json::Value x = compare_row_json(r.row, nullptr);
+        x.set("ridge", true);
+        x.set("lambda", r.lambda);
+        rj.push(x);
+      }
+      j.set("ridge", rj);
+    }
     if (!transfer.empty()) {
       json::Value tj = json::Value::array();
       for (const auto& c : transfer) {
@@ -187,6 +236,24 @@ int run_compare(const Args& args, std::ostream& out) {
     out << "\n";
   }
   out << per_chart_compare(args, d, o, rows, white_index);  // several charts: their figures apart
+  if (!ridge.empty()) {
+    out << "\n# ridge least squares, lambda (relative to the largest squared singular value) by leave-one-out\n";
+    out << std::left << std::setw(18) << "model" << std::right << std::setw(6) << "terms" << std::setw(10) << "train"
+        << std::setw(10) << "LOO" << std::setw(10) << "LOO" << std::setw(11) << "lambda" << "\n";
+    out << std::left << std::setw(18) << "" << std::right << std::setw(6) << "" << std::setw(10) << "mean" << std::setw(10)
+        << "mean" << std::setw(10) << "max" << "\n";
+    for (const auto& r : ridge) {
+      out << std::left << std::setw(18) << r.row.model_id << std::right << std::setw(6) << r.row.n_terms;
+      if (!r.row.ok) {
+        out << "  refused: " << r.row.error_code << " (" << r.row.message << ")\n";
+        continue;
+      }
+      std::ostringstream l;
+      l << std::setprecision(2) << std::scientific << r.lambda;
+      out << std::setw(10) << fmt(r.row.train_dE00.mean) << std::setw(10) << fmt(r.row.loo_dE00.mean) << std::setw(10)
+          << fmt(r.row.loo_dE00.max) << std::setw(11) << l.str() << "\n";
+    }
+  }
   if (!transfer.empty()) {
     out << "\n# train on " << args.get("rgb") << ", test on " << args.get("test-rgb")
         << " (Abed 2013 Table IV layout): mean / max\n";

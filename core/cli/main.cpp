@@ -119,7 +119,8 @@ void print_help(std::ostream& out) {
 // Options that take no value. Everything else of the form --key takes the next argument.
 bool is_flag(const std::string& key) {
   return key == "help" || key == "json" || key == "version" || key == "no-header" || key == "no-loo" || key == "de-rms" ||
-         key == "per-wavelength" || key == "list" || key == "payload";
+         key == "per-wavelength" || key == "list" || key == "payload" ||
+         key == "ridge";
 }
 }  // namespace
 

@@ -75,6 +75,23 @@ TEST_CASE("cli: compare --bootstrap --json gives each row's intervals", "[evalua
   }
 }
 
+TEST_CASE("cli: compare --ridge adds ridge rows no worse held-out than least squares", "[characterisation][ridge][cli]") {
+  const Dir t;
+  const std::string cli = TRISTIM_CLI, d = t.d;
+  const json::Value j = json::parse(run_shell(cli + " compare --rgb " + d + "patches.csv --xyz " + d +
+                                              "reference.csv --models matrix-3x3,Finlayson2015-3,Shen2008 --objectives ls --ridge --json"));
+  const auto& ridge = j.at("ridge").as_array();
+  REQUIRE(ridge.size() == 3);
+  for (const auto& r : ridge) {
+    INFO(r.at("model").as_string());
+    REQUIRE(r.at("ok").as_bool());
+    CHECK(r.at("lambda").as_number() >= 0);
+    for (const auto& ls : j.at("rows").as_array())
+      if (ls.at("model").as_string() == r.at("model").as_string())
+        CHECK(r.at("loo_dE00").at("mean").as_number() <= ls.at("loo_dE00").at("mean").as_number() + 1e-9);
+  }
+}
+
 TEST_CASE("cli: fit --model corrected-3x3 --surface reports mu", "[characterisation][corrected][cli]") {
   const Dir t;
   const std::string cli = TRISTIM_CLI, d = t.d;
