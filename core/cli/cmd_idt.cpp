@@ -68,6 +68,9 @@ int run_idt(const Args& args, std::ostream& out) {
                             illuminant_entry);
   } else if (args.has("camera") && args.has("illuminant") && !args.has("reflectances")) {
     files = idt_camera_files(args.get("camera"), args.get("illuminant"), adaptation);  // what the page calls
+  } else if (args.has("sensitivities") && args.has("illuminant") && !args.has("reflectances")) {
+    const std::string path = args.get("sensitivities");  // the page's uploaded CSV: the same call
+    files = idt_sensitivities_files(read_file(path), base_name(path), args.get("illuminant"), adaptation);
   } else {
     IdtOptions o;
     o.adaptation = idt_adaptation(adaptation);

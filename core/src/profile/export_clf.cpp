@@ -427,6 +427,14 @@ IdtFiles idt_camera_files(const std::string& camera, const std::string& illumina
   return idt_files(r, idt_recipe({"Camera", camera}, {"Illuminant", illuminant}, kIdtTraining190, o.adaptation));
 }
 
+IdtFiles idt_sensitivities_files(std::string_view csv, const std::string& name, const std::string& illuminant,
+                                 const std::string& adaptation) {
+  IdtOptions o;
+  o.adaptation = idt_adaptation(adaptation);
+  const IdtResult r = idt_from_sensitivities(read_ssf_csv(csv, name), illuminant_spd(illuminant), idt_training_190(), o);
+  return idt_files(r, idt_recipe({"Sensitivities", name}, {"Illuminant", illuminant}, kIdtTraining190, o.adaptation));
+}
+
 IdtFiles idt_chart_files(const std::vector<Vec3>& rgb, const std::vector<Vec3>& xyz, const Vec3& white,
                          const std::string& adaptation, const std::string& rgb_name, const std::string& reference_name,
                          const std::pair<std::string, std::string>& illuminant) {

@@ -4,7 +4,6 @@
 // reader's refusals. The clients (RawTherapee, ExifTool): dcp_clients_test.cpp.
 #include <Eigen/LU>
 
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -243,17 +242,15 @@ TEST_CASE("dcp: the HueSatMap carries a root-polynomial through the DNG pipeline
   }
 }
 
-TEST_CASE("dcp: a 90x30x30 HueSatMap of a degree-3 root-polynomial is quick", "[dcp][speed]") {
+TEST_CASE("dcp: a 90x30x30 HueSatMap of a degree-3 root-polynomial", "[dcp]") {
+  // Its time is a benchmark (tests/bench/bench_export.cpp), never asserted here.
   const Profile p = root_profile(3);
   DcpOptions o;
   o.camera_model = "Test Camera";
   o.hue_sat_map = {90, 30, 30};
-  const auto t0 = std::chrono::steady_clock::now();
   const Dcp d = make_dcp(p, o);
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("dcp: 90x30x30 HueSatMap of Finlayson2015-3 in %.1f ms\n", ms);
   CHECK(d.hue_sat_map.data1.size() == 90u * 30 * 30 * 3);
-  CHECK(ms < 2000);  // issue 46's goal is 200 ms natively; the check leaves room for a loaded machine
+  CHECK(read_dcp(write_dcp(d)).hue_sat_map.data1 == d.hue_sat_map.data1);
 }
 
 TEST_CASE("dcp: refusals of the export", "[dcp]") {

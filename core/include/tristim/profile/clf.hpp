@@ -73,6 +73,11 @@ IdtRecipe idt_recipe(const std::pair<std::string, std::string>& source, const st
 /// The IDT of a built-in camera (camera_ssf) under a built-in illuminant (illuminant_spd) with the
 /// 190 training spectra: `tristim idt --camera <name> --illuminant <id> [--adaptation a]`.
 IdtFiles idt_camera_files(const std::string& camera, const std::string& illuminant, const std::string& adaptation);
+/// The IDT of sensitivities given as a CSV (read_ssf_csv: wavelength, R, G, B; `name` names the
+/// file in the recipe and in errors) under a built-in illuminant with the 190 training spectra:
+/// `tristim idt --sensitivities <name> --illuminant <id> [--adaptation a]`.
+IdtFiles idt_sensitivities_files(std::string_view csv, const std::string& name, const std::string& illuminant,
+                                 const std::string& adaptation);
 /// The IDT of a chart (idt_from_patches) named by its camera-RGB and reference inputs and its
 /// illuminant entry ({"Illuminant", id} or {"IlluminantFile", name}):
 /// `tristim idt --rgb <rgb_name> --reference <reference_name> --illuminant <id>`.
