@@ -57,7 +57,7 @@ Recipe recipe_from_flags(const Args& args, const PatchData& d, const std::string
   const FitOptions o = fit_options(args, d, white_index);
   Recipe r;
   r.reference.chart = chart.empty() ? "file" : chart;
-  if (chart.empty()) r.reference.data_digest = bytes_digest(read_file(args.get("xyz")));
+  if (chart.empty()) r.reference.data_digest = bytes_digest(read_files(args.all("xyz")));  // every --xyz
   if (args.has("surface")) r.surface = parse_choice(args.get("surface"));
   r.characterisation.model = args.get("model");
   r.characterisation.objective = objective_choice(o);

@@ -122,6 +122,12 @@ PatchData load_pairs(const Args& args, const Vec3& ref_white) {
   return d;
 }
 
+std::string read_files(const std::vector<std::string>& paths) {
+  std::string all;
+  for (const auto& p : paths) all += read_file(p);
+  return all;
+}
+
 std::string per_chart_figures(const Args& args, const std::vector<std::string>& labels, const ModelEvaluation& ev) {
   const std::vector<std::string> names = args.all("rgb");
   if (names.size() < 2) return "";

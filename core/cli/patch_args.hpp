@@ -32,6 +32,9 @@ PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, c
 /// fit on them is the fit on one table holding the same rows. InvalidArgument when the counts of
 /// --rgb and --xyz differ.
 PatchData load_pairs(const Args& args, const Vec3& ref_white);
+/// The bytes of every file of `paths`, one after the other (the data digest of several --xyz; one
+/// file: its bytes).
+std::string read_files(const std::vector<std::string>& paths);
 /// Per chart (several --rgb only; "" otherwise): "tristim: chart k (path): n patches, training
 /// mean/max dE00 …, leave-one-out mean/max dE00 …" lines of the evaluation `ev`, whose rows are
 /// `labels` (load_pairs's "k:id"; rows of no chart number are left out).
