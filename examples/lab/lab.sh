@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The colorimetry lab from the command line (issue 45): render a ColorChecker photographed by a
+# camera of the 52 as a real DNG, run it through the normal journey (detect, sample, reference,
+# fit, evaluate) and compare with the renderer's truth; then camera quality and the exercises.
+#   bash examples/lab/lab.sh [path/to/tristim] [output dir]
+set -euo pipefail
+here=$(cd "$(dirname "$0")/../.." && pwd)
+T=${1:-$here/build/native/core/tristim}
+out=${2:-$(mktemp -d)}
+mkdir -p "$out"
+cam="Nikon_D850"
+
+echo "== render: $cam, ColorChecker Classic, D50, no noise"
+"$T" lab render --camera "$cam" --chart cc24 --illuminant D50 --exposure 0.6 --out "$out/chart.dng" > "$out/truth.json"
+echo "== the journey on the rendered DNG"
+"$T" detect "$out/chart.dng" --chart cc24 > "$out/detect.json"
+"$T" sample "$out/chart.dng" --chart cc24 > "$out/patches.csv" 2>/dev/null
+"$T" reference --chart cc24 --illuminant D50 > "$out/reference.csv"
+"$T" fit --rgb "$out/patches.csv" --xyz "$out/reference.csv" --model matrix-3x3 --out "$out/p.json" > /dev/null
+"$T" evaluate --profile "$out/p.json" --rgb "$out/patches.csv" --xyz "$out/reference.csv" > "$out/evaluate.json"
+echo "== sampled camera RGB vs the renderer's truth (worst |difference|, DN)"
+python3 - "$out/truth.json" "$out/patches.csv" <<'PY'
+import csv, json, sys
+truth = {p["id"]: p["rgb"] for p in json.load(open(sys.argv[1]))["patches"]}
+worst = max(abs(float(r[c]) - truth[r["patch"]][i]) for r in csv.DictReader(open(sys.argv[2])) for i, c in enumerate("RGB"))
+print(f"worst {worst:g} DN (noise off: 0)")
+sys.exit(0 if worst <= 1e-6 else 1)
+PY
+echo "== camera quality: SMI and mu of this camera, and the best five of the 52"
+"$T" lab smi --camera "$cam" --json
+"$T" lab smi > "$out/smi.csv" && head -6 "$out/smi.csv"
+echo "== exercise 1: a patch under three lights (the reference step's numbers)"
+for ill in D65 A F11; do "$T" reference --chart cc24 --illuminant "$ill" --observer 1931 | grep '^C3,' | sed "s/^/$ill: /"; done
+echo "== exercise 2: why a 3x3 is not enough"
+"$T" lab overfit --camera "$cam"
+echo "(files in $out)"
