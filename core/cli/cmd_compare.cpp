@@ -33,7 +33,10 @@ const char* kCompareUsage =
     "  leave-one-out mean dE00 (JSON), the leave-one-out interval as a column (text).\n"
     "  --ridge: each model also as ridge least squares, lambda chosen by closed-form leave-one-out\n"
     "  (\"ridge\" rows in JSON, a second table in text): many-term rows whose held-out figure depends on\n"
-    "  the fit become stable.";
+    "  the fit become stable.\n"
+    "  Rows whose leave-one-out mean moves when the optimiser stops later (iterative objectives, condition\n"
+    "  number > 1e4, stopping tolerances 100x tighter: by more than 0.05 or 2 %) are flagged LOO-unstable\n"
+    "  (JSON: \"loo_stopping\": {\"flagged\", \"perturbed_loo_mean\"}).";
 
 /// A row's bootstrap (evaluation/bootstrap.hpp): the row's model and objective refitted on resamples.
 struct RowBootstrap {
@@ -42,7 +45,7 @@ struct RowBootstrap {
   std::string error;
 };
 
-json::Value compare_row_json(const CompareRow& r, const RowBootstrap* b) {
+json::Value compare_row_json(const CompareRow& r, const RowBootstrap* b, const StoppingCheck* stop = nullptr) {
   json::Value o = json::Value::object();
   o.set("model", r.model_id);
   o.set("objective", objective_id(r.objective));
@@ -62,6 +65,12 @@ json::Value compare_row_json(const CompareRow& r, const RowBootstrap* b) {
     o.set("loo_dE00", ci && b->result.has_loo ? with_ci(summary_json(r.loo_dE00), b->result.loo_dE00_mean)
                                               : summary_json(r.loo_dE00));
     o.set("loo_dE_xyz", summary_json(r.loo_dE_xyz));
+  }
+  if (stop && stop->checked) {
+    json::Value j = json::Value::object();
+    j.set("flagged", stop->flagged);
+    j.set("perturbed_loo_mean", stop->perturbed_loo_mean);
+    o.set("loo_stopping", j);
   }
   if (b) {
     json::Value j = json::Value::object();
@@ -101,6 +110,20 @@ int run_compare(const Args& args, std::ostream& out) {
   if (args.has("models"))
     for (const auto& s : split_list(args.get("models"))) models.push_back(model_info(s).id);
   const auto rows = compare_models(d.rgb, d.xyz, o, models, objectives, white_index);
+  // Rows whose leave-one-out figure moves with the optimiser's stopping point are flagged
+  // (leave_one_out_stopping_check): iterative objectives on ill-conditioned designs only.
+  std::vector<StoppingCheck> stop(rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const CompareRow& r = rows[i];
+    if (!r.ok || !r.has_loo) continue;
+    FitOptions ro = o;
+    ro.objective = r.objective;
+    try {
+      stop[i] = leave_one_out_stopping_check(r.model_id, d.rgb, d.xyz, ro, white_index, r.loo_dE00.mean, r.condition_number);
+    } catch (const Error& e) {
+      std::cerr << "tristim compare: " << r.model_id << " " << objective_id(r.objective) << ": stopping check: " << e.what() << "\n";
+    }
+  }
   std::vector<RowBootstrap> boot;
   if (args.has("bootstrap")) {
     // Each row again (its per-patch leave-one-out errors), then its resamples: rows × resamples fits.
@@ -173,7 +196,7 @@ int run_compare(const Args& args, std::ostream& out) {
     json::Value j = json::Value::object();
     j.set("patches", static_cast<int>(d.rgb.rows()));
     json::Value a = json::Value::array();
-    for (size_t i = 0; i < rows.size(); ++i) a.push(compare_row_json(rows[i], boot.empty() ? nullptr : &boot[i]));
+    for (size_t i = 0; i < rows.size(); ++i) a.push(compare_row_json(rows[i], boot.empty() ? nullptr : &boot[i], &stop[i]));
     j.set("rows", a);
     if (args.has("ridge")) {
       json::Value rj = json::Value::array();
@@ -225,6 +248,8 @@ int run_compare(const Args& args, std::ostream& out) {
         << (r.has_loo ? fmt(r.loo_dE00.mean) : "-") << std::setw(10) << (r.has_loo ? fmt(r.loo_dE00.p95) : "-")
         << std::setw(10) << (r.has_loo ? fmt(r.loo_dE00.max) : "-") << std::setw(11) << cond.str() << "  "
         << fit_status_name(r.status);
+    if (stop[i].flagged)
+      out << " LOO-unstable (" << fmt(stop[i].perturbed_loo_mean) << " with 100x tighter stopping)";
     if (!boot.empty()) {
       const RowBootstrap& b = boot[i];
       if (b.ok && b.result.has_loo)

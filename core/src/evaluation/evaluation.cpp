@@ -147,6 +147,23 @@ PatchMatrix leave_one_out(const std::string& model_id, const PatchMatrix& rgb, c
   return out;
 }
 
+StoppingCheck leave_one_out_stopping_check(const std::string& model_id, const PatchMatrix& rgb, const PatchMatrix& xyz,
+                                           const FitOptions& options, int white_patch_index, double loo_mean,
+                                           double condition_number, double min_condition) {
+  StoppingCheck c;
+  c.loo_mean = loo_mean;
+  if (options.objective == Objective::LeastSquares || !(condition_number > min_condition) || !std::isfinite(loo_mean))
+    return c;
+  FitOptions o = options;
+  o.de2000.xtol_rel /= 100;
+  o.de2000.ftol_rel /= 100;
+  o.psm.step_threshold /= 100;
+  c.perturbed_loo_mean = evaluate(leave_one_out(model_id, rgb, xyz, o, white_patch_index), xyz, options.white).dE00.mean;
+  c.checked = true;
+  c.flagged = std::fabs(c.perturbed_loo_mean - loo_mean) > std::max(0.05, 0.02 * loo_mean);
+  return c;
+}
+
 ModelEvaluation evaluate_model(const std::string& model_id, const PatchMatrix& rgb, const PatchMatrix& xyz,
                                const FitOptions& options, int white_patch_index, bool with_loo) {
   ModelEvaluation ev;

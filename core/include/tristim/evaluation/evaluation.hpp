@@ -57,6 +57,23 @@ PatchMatrix leave_one_out(const std::string& model_id, const PatchMatrix& camera
                           const PatchMatrix& reference_XYZ, const FitOptions& options = {},
                           int white_patch_index = -1);
 
+/// Whether a leave-one-out figure depends on where the optimiser stops (issue 47: Finlayson2015-3
+/// de2000 on the Passport gave 5.56 / 5.66 / 6.79 across three stopping points). The leave-one-out
+/// mean CIEDE2000 is computed again with every stopping tolerance 100× tighter (de2000 xtol_rel and
+/// ftol_rel, psm step_threshold); `flagged` when it moves by more than 0.05 or 2 % of `loo_mean`.
+/// Only iterative objectives whose training fit's condition number exceeds `min_condition` are
+/// checked (least squares has one answer; a well-conditioned loss has a sharp minimum).
+struct StoppingCheck {
+  bool checked = false;
+  bool flagged = false;
+  double loo_mean = 0;            ///< as given
+  double perturbed_loo_mean = 0;  ///< with the tighter tolerances
+};
+StoppingCheck leave_one_out_stopping_check(const std::string& model_id, const PatchMatrix& camera_RGB,
+                                           const PatchMatrix& reference_XYZ, const FitOptions& options,
+                                           int white_patch_index, double loo_mean, double condition_number,
+                                           double min_condition = 1e4);
+
 /// A fit with its training and leave-one-out metrics.
 struct ModelEvaluation {
   FitResult fit;
