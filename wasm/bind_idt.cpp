@@ -1,5 +1,5 @@
 // Declarations: ACES Input Transforms (profile/idt.hpp, profile/clf.hpp) for the page's Export step:
-// the IDT of a built-in camera or of the chart's patches as the files `tristim idt` writes (CLF,
+// the IDT of a built-in camera, of sensitivities uploaded as CSV or of the chart's patches as the files `tristim idt` writes (CLF,
 // plain 3x3, JSON), and the engine's strict CLF reader, whose result crosses as clf_json's object.
 #include "tristim/profile/clf.hpp"
 #include "types.hpp"
@@ -36,6 +36,7 @@ struct tristim::wasm::Conv<ClfDocument> {  // the object clf_json is
 
 EMSCRIPTEN_BINDINGS(tristim_idt) {
   def<&idt_camera_files>("idtCamera");
+  def<&idt_sensitivities_files>("idtSensitivities");
   def<&idt_chart_files>("idtChart");
   def<&read_clf>("readClf");
 }

@@ -1,7 +1,7 @@
 // The Export step's ACES Input Transform (issue 46): a built-in camera under D55 (and Bradford),
 // downloaded as CLF and as the plain 3×3, byte-identical to `tristim idt --camera … --illuminant …
-// --out … --matrix …`, read back by the engine's CLF reader and summarised; from the chart's
-// patches too; a broken CLF loaded back shows a coded error and the page stays usable.
+// --out … --matrix …`, read back by the engine's CLF reader and summarised; from an uploaded
+// sensitivities CSV (= `--sensitivities`) and from the chart's patches too; a broken CLF loaded back shows a coded error and the page stays usable.
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -48,11 +48,25 @@ test('export step: ACES IDT as CLF and 3×3, byte-identical to `tristim idt`, re
     }
     await screenshot(page, 'export-idt');
 
+    // Uploaded sensitivities (colour-science's Canon 5D Mk II): the CLI's --sensitivities file.
+    const ssf = path.join(repoRoot, 'tests/data/colour-science/camera_canon_eos_5d_mark_ii_rawtoaces_v1_scitech_380-780_5nm.csv');
+    await page.selectOption('#idt-source', 'sensitivities');
+    await page.selectOption('#idt-adaptation', 'CAT02');
+    const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.click('#idt-ssf')]);
+    await chooser.setFiles(ssf);
+    await page.waitForFunction(() => /--sensitivities camera_canon/.test(document.querySelector('#step-export .idt-command')?.textContent ?? ''), null, { timeout: 30000 });
+    const [dls] = await Promise.all([page.waitForEvent('download'), page.click('#step-export button[data-export="IDT (CLF)"]')]);
+    assert.equal(dls.suggestedFilename(), 'tristim-idt-camera_canon_eos_5d_mark_ii_rawtoaces_v1_scitech_380-780_5nm-D55-CAT02.clf');
+    const cliSsf = out('export-idt-ssf.clf');
+    execFileSync(CLI, ['idt', '--sensitivities', ssf, '--illuminant', 'D55', '--out', cliSsf]);
+    assert.ok(fs.readFileSync(await dls.path()).equals(fs.readFileSync(cliSsf)), 'page CLF = CLI CLF (--sensitivities), byte for byte');
+    await page.waitForFunction(() => /Sensitivities camera_canon/.test(document.querySelector('#step-export .idt-summary')?.textContent ?? ''), null, { timeout: 30000 });
+
     // From the chart's patches (the example's fit): a CLF the engine reads back.
     await page.selectOption('#idt-source', 'chart');
     assert.equal(await page.isDisabled('#idt-camera'), true);
     const [dlc] = await Promise.all([page.waitForEvent('download'), page.click('#step-export button[data-export="IDT (CLF)"]')]);
-    assert.equal(dlc.suggestedFilename(), 'tristim-idt-chart-Bradford.clf');
+    assert.equal(dlc.suggestedFilename(), 'tristim-idt-chart-CAT02.clf');
     const chartClf = fs.readFileSync(await dlc.path(), 'utf8');
     assert.match(chartClf, /<CameraRGB>[^<]+<\/CameraRGB>/);
     await page.waitForFunction(() => /CameraRGB/.test(document.querySelector('#step-export .idt-summary')?.textContent ?? ''), null, { timeout: 30000 });

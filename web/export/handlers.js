@@ -21,6 +21,7 @@ export const handlers = {
   // ACES IDT: {clf, matrix, json}, the files of `tristim idt --camera … --illuminant …` (or of a
   // chart's patches), and the engine's CLF reader for a download read back.
   idtCamera: (T, { camera, illuminant, adaptation }) => reply(T.idtCamera(camera, illuminant, adaptation)),
+  idtSensitivities: (T, { text, name, illuminant, adaptation }) => reply(T.idtSensitivities(text, name, illuminant, adaptation)),
   idtChart: (T, { rgb, xyz, white, adaptation, rgbName, referenceName, illuminant }) =>
     reply(T.idtChart(rgb, xyz, white, adaptation, rgbName, referenceName, illuminant)),
   readClf: (T, { text }) => reply(T.readClf(text)),

@@ -92,6 +92,7 @@ export function mount(section, app) {
   // Bradford) from a built-in camera's sensitivities with the 190 training spectra, or from this
   // chart's patches; the engine writes the CLF and the plain 3×3 that `tristim idt` writes.
   const idtSource = select([{ value: 'camera', label: 'Built-in camera sensitivities (190 training spectra)' },
+    { value: 'sensitivities', label: 'Sensitivities CSV (wavelength, R, G, B; 190 training spectra)' },
     { value: 'chart', label: 'This chart\'s patches (the selected profile\'s data)' }], 'camera');
   idtSource.id = 'idt-source';
   const idtCamera = select(options(app.catalog.cameras), 'Canon_EOS_5D_Mark_II');
@@ -101,11 +102,35 @@ export function mount(section, app) {
   const idtAdaptation = select(['CAT02', 'Bradford'], 'CAT02');
   idtAdaptation.id = 'idt-adaptation';
   const idtSummary = h('div', { class: 'idt-summary', 'aria-live': 'polite' });
+  // Uploaded sensitivities: kept as text and read by the engine (read_ssf_csv) when the IDT is made.
+  // A button opens the file chooser (the step's one file input in the page stays the import below).
+  const idtSsf = h('button', { type: 'button', id: 'idt-ssf' }, 'Choose a CSV…');
+  let ssf = null;
+  idtSsf.addEventListener('click', () => {
+    const input = h('input', { type: 'file', accept: '.csv,.txt' });
+    input.addEventListener('change', async () => {
+      const f = input.files[0];
+      clearError(idtSsf);
+      if (!f) return;
+      ssf = null;
+      try { ssf = { name: f.name, text: await f.text() }; } catch (e) { showError(idtSsf, e, f.name); }
+      idtSsf.textContent = ssf ? ssf.name : 'Choose a CSV…';
+      describeIdt();
+    });
+    input.click();
+  });
   const idtCommand = h('p', { class: 'hint idt-command' });
   const fromChart = () => idtSource.value === 'chart';
-  const idtName = () => (fromChart() ? `tristim-idt-chart-${idtAdaptation.value}` : `tristim-idt-${idtCamera.value}-${idtIlluminant.value}-${idtAdaptation.value}`).replace(/[^\w.-]+/g, '_');
+  const idtName = () => {
+    const source = idtSource.value === 'sensitivities' ? (ssf?.name ?? 'sensitivities').replace(/\.[^.]*$/, '') : idtCamera.value;
+    return (fromChart() ? `tristim-idt-chart-${idtAdaptation.value}` : `tristim-idt-${source}-${idtIlluminant.value}-${idtAdaptation.value}`).replace(/[^\w.-]+/g, '_');
+  };
   async function idtFiles(r) {
     const adaptation = idtAdaptation.value;
+    if (idtSource.value === 'sensitivities') {
+      if (!ssf) throw Object.assign(new Error('choose a sensitivities CSV (wavelength, R, G, B) first'), { code: 'INVALID_ARGUMENT' });
+      return engine.call('idtSensitivities', { text: ssf.text, name: ssf.name, illuminant: idtIlluminant.value, adaptation });
+    }
     if (!fromChart()) return engine.call('idtCamera', { camera: idtCamera.value, illuminant: idtIlluminant.value, adaptation });
     // The chart: its camera RGB and reference XYZ, the reference white as its illuminant.
     const white = Array.from(r.white);
@@ -113,16 +138,18 @@ export function mount(section, app) {
       illuminant: ['ReferenceWhiteXYZ', white.map((v) => v.toFixed(4)).join(' ')] });
   }
   function describeIdt() {
-    const chart = fromChart();
-    idtCamera.disabled = chart;
+    const chart = fromChart(), upload = idtSource.value === 'sensitivities';
+    idtCamera.disabled = chart || upload;
     idtIlluminant.disabled = chart;
+    idtSsf.disabled = !upload;
+    const source = upload ? `--sensitivities ${ssf?.name ?? '<file.csv>'}` : `--camera "${idtCamera.value}"`;
     idtCommand.textContent = chart
       ? 'From the chart: the white balance comes from its most neutral bright patch; the CLF takes camera values as this chart\'s RAW has them.'
-      : `The same files as: tristim idt --camera "${idtCamera.value}" --illuminant ${idtIlluminant.value} --adaptation ${idtAdaptation.value} --out idt.clf --matrix idt.txt`;
+      : `The same files as: tristim idt ${source} --illuminant ${idtIlluminant.value} --adaptation ${idtAdaptation.value} --out idt.clf --matrix idt.txt`;
   }
   for (const s of [idtSource, idtCamera, idtIlluminant, idtAdaptation]) s.addEventListener('change', describeIdt);
   const idtControls = h('div', { class: 'controls' },
-    field('IDT from', idtSource), field('Camera', idtCamera), field('Illuminant', idtIlluminant),
+    field('IDT from', idtSource), field('Camera', idtCamera), field('Sensitivities CSV', idtSsf), field('Illuminant', idtIlluminant),
     field('Chromatic adaptation', idtAdaptation, 'To the ACES white (rawtoaces v1 uses CAT02).'));
   const idtButtons = h('div', { class: 'controls' },
     btn('IDT (CLF)', async (r) => {
