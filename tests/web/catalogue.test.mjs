@@ -18,6 +18,7 @@ const INPUT = {
   profile: ['export', '#step-export input[type=file]'],
   recipe: ['export', '#step-export input[type=file]'],
   dcp: ['export', '#step-export input[type=file]'],
+  clf: ['export', '#step-export input[type=file]'],
   project: ['share', '#share-import'],
 };
 const FIT = '#step-fit button.primary';
