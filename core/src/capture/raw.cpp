@@ -14,7 +14,7 @@
 
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
-#include "tristim/io/json.hpp"
+#include "tristim/io/fields.hpp"
 #include "../large_buffer.hpp"
 #include "../simd4.hpp"
 
@@ -644,50 +644,31 @@ bool libraw_identifies(const std::uint8_t* data, std::size_t size, int* raw_widt
   return true;
 }
 
+namespace fields {
+using M = RawMetadata;
+TRISTIM_FIELDS(M, member<&M::format>("format"), member<&M::encoding>("encoding"),
+               member<&M::declared_colour>("declared_colour"), member<&M::make>("make"), member<&M::model>("model"),
+               member<&M::lens>("lens"), member<&M::iso>("iso"), member<&M::shutter_s>("shutter_s"),
+               member<&M::f_number>("f_number"), member<&M::timestamp>("timestamp"),
+               member<&M::timestamp_iso>("timestamp_iso"), member<&M::layout>("layout"),
+               member<&M::cfa_pattern>("cfa_pattern"), member<&M::cfa_width>("cfa_width"),
+               member<&M::cfa_height>("cfa_height"), member<&M::block>("block"), member<&M::sensor_width>("sensor_width"),
+               member<&M::sensor_height>("sensor_height"), member<&M::raw_width>("raw_width"),
+               member<&M::raw_height>("raw_height"), member<&M::width>("width"), member<&M::height>("height"),
+               member<&M::bits>("bits"), member<&M::flip>("flip"), member<&M::cfa_black>("cfa_black"),
+               member<&M::black_level>("black_level"), member<&M::white_level>("white_level"),
+               member<&M::saturation>("saturation"), member<&M::rgb_cam>("rgb_cam"), member<&M::cam_xyz>("cam_xyz"),
+               member<&M::as_shot_wb>("as_shot_wb"), member<&M::daylight_wb>("daylight_wb"),
+               member<&M::decoder>("decoder"));
+}  // namespace fields
+
 RawMetadata inspect_raw(const std::uint8_t* data, std::size_t size, const DecodeOptions& options) {
   // Black levels of some cameras come from masked pixels read by unpack(): unpack, then describe.
   auto proc = open_and_unpack(data, size, options, true);
   return build_image(*proc, options).meta;
 }
 
-std::string metadata_to_json(const RawMetadata& m) {
-  auto arr = [](const auto& a) { return json::Value(std::vector<double>(a.begin(), a.end())); };
-  json::Value o = json::Value::object();
-  o.set("format", m.format);
-  o.set("encoding", m.encoding);
-  o.set("declared_colour", m.declared_colour);
-  o.set("make", m.make);
-  o.set("model", m.model);
-  o.set("lens", m.lens);
-  o.set("iso", m.iso);
-  o.set("shutter_s", m.shutter_s);
-  o.set("f_number", m.f_number);
-  o.set("timestamp", static_cast<long long>(m.timestamp));
-  o.set("timestamp_iso", m.timestamp_iso);
-  o.set("layout", m.layout);
-  o.set("cfa_pattern", m.cfa_pattern);
-  o.set("cfa_width", m.cfa_width);
-  o.set("cfa_height", m.cfa_height);
-  o.set("block", m.block);
-  o.set("sensor_width", m.sensor_width);
-  o.set("sensor_height", m.sensor_height);
-  o.set("raw_width", m.raw_width);
-  o.set("raw_height", m.raw_height);
-  o.set("width", m.width);
-  o.set("height", m.height);
-  o.set("bits", m.bits);
-  o.set("flip", m.flip);
-  o.set("cfa_black", arr(m.cfa_black));
-  o.set("black_level", arr(m.black_level));
-  o.set("white_level", m.white_level);
-  o.set("saturation", arr(m.saturation));
-  o.set("rgb_cam", arr(m.rgb_cam));
-  o.set("cam_xyz", arr(m.cam_xyz));
-  o.set("as_shot_wb", arr(m.as_shot_wb));
-  o.set("daylight_wb", arr(m.daylight_wb));
-  o.set("decoder", m.decoder);
-  return o.dump();
-}
+std::string metadata_to_json(const RawMetadata& m) { return fields::write(m).dump(); }
 
 namespace {
 

@@ -24,6 +24,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <type_traits>
@@ -106,6 +107,16 @@ struct Codec<int> {
     Codec<double>::read(v, d, c, p);
     if (d != std::floor(d) || std::fabs(d) > 1e9) c.refuse("'" + p + "' must be an integer");
     out = static_cast<int>(d);
+  }
+};
+template <>
+struct Codec<std::int64_t> {  // a count or time in seconds (exact up to 2^53 as a JSON number)
+  static json::Value write(std::int64_t i) { return static_cast<long long>(i); }
+  static void read(const json::Value& v, std::int64_t& out, const Context& c, const std::string& p) {
+    double d = 0;
+    Codec<double>::read(v, d, c, p);
+    if (d != std::floor(d) || std::fabs(d) > 9007199254740992.0) c.refuse("'" + p + "' must be an integer");
+    out = static_cast<std::int64_t>(d);
   }
 };
 template <>
