@@ -1,9 +1,9 @@
 // tristim lab: the colorimetry lab — render (a chart photograph as a real DNG, the truth as JSON).
 #include <cmath>
-#include <fstream>
 #include <ostream>
 
 #include "cli.hpp"
+#include "patch_args.hpp"
 #include "tristim/error.hpp"
 #include "tristim/lab/exercises.hpp"
 #include "tristim/lab/render.hpp"
@@ -13,16 +13,6 @@
 namespace tristim::cli {
 
 namespace {
-
-void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  std::ofstream f(path, std::ios::binary);
-  f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!f) throw Error(ErrorCode::ExportFailed, "cannot write '" + path + "'");
-}
-
-bool ends_with(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
 
 int run_render(const Args& args, std::ostream& out) {
   args.allow_only({"camera", "sensitivities", "chart", "illuminant", "oecf", "noise", "seed", "exposure", "surface",
@@ -66,11 +56,12 @@ int run_render(const Args& args, std::ostream& out) {
   o.cfa = args.get("cfa", o.cfa);
   o.oecf = args.get("oecf", o.oecf);
   const std::string path = args.get("out");
-  const bool dng = ends_with(path, ".dng") || ends_with(path, ".DNG");
-  if (!dng && !ends_with(path, ".tiff") && !ends_with(path, ".tif"))
+  const std::string ext = ext_of(path);
+  const bool dng = ext == "dng";
+  if (!dng && ext != "tiff" && ext != "tif")
     throw Error(ErrorCode::InvalidArgument, "--out must name a .dng or .tiff file, got '" + path + "'");
   const LabRenderFiles r = lab_render_files(o, dng ? "dng" : "tiff");
-  write_bytes(path, r.dng);
+  write_bytes(path, r.dng.data(), r.dng.size());
   out << r.truth << "\n";
   return 0;
 }

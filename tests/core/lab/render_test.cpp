@@ -19,6 +19,28 @@ using namespace tristim;
 
 namespace {
 
+#ifndef __EMSCRIPTEN__
+// `tristim sample` CSV -> (patch id, R, G, B) per row.
+std::vector<std::pair<std::string, std::array<double, 3>>> sample_rows(const std::string& csv) {
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);  // header
+  std::vector<std::pair<std::string, std::array<double, 3>>> out;
+  while (std::getline(lines, line)) {
+    std::istringstream cells(line);
+    std::string id, v;
+    std::getline(cells, id, ',');
+    std::array<double, 3> rgb{};
+    for (auto& x : rgb) {
+      std::getline(cells, v, ',');
+      x = std::stod(v);
+    }
+    out.emplace_back(id, rgb);
+  }
+  return out;
+}
+#endif
+
 // Detects the chart in the decoded DNG and samples it at the detected corners; every patch's mean
 // must equal the truth to 1e-6 DN (prints the worst).
 void require_recovered(const LabRender& r) {
@@ -165,26 +187,15 @@ TEST_CASE("lab render: the CLI's DNG opens in dcraw_emu and tristim detect + sam
       "'" + cli + "' lab render --camera 'Canon EOS 5D Mark II' --chart passport --illuminant D65 --out " + d + "chart.dng"));
   const auto corners = truth.at("corners").as_numbers();
   // tristim sample without --corners detects the chart first.
-  const std::string csv = test::run_shell("'" + cli + "' sample " + d + "chart.dng --chart passport 2>/dev/null");
-  std::istringstream lines(csv);
-  std::string line;
-  std::getline(lines, line);  // header
-  size_t i = 0;
+  const auto sampled = sample_rows(test::run_shell("'" + cli + "' sample " + d + "chart.dng --chart passport 2>/dev/null"));
   const auto& patches = truth.at("patches").as_array();
+  REQUIRE(sampled.size() == patches.size());
   double worst = 0;
-  while (std::getline(lines, line) && i < patches.size()) {
-    std::istringstream cells(line);
-    std::string id, v;
-    std::getline(cells, id, ',');
-    CHECK(id == patches[i].at("id").as_string());
+  for (size_t i = 0; i < patches.size(); ++i) {
+    CHECK(sampled[i].first == patches[i].at("id").as_string());
     const auto rgb = patches[i].at("rgb").as_numbers();
-    for (int c = 0; c < 3; ++c) {
-      std::getline(cells, v, ',');
-      worst = std::max(worst, std::abs(std::stod(v) - rgb[static_cast<size_t>(c)]));
-    }
-    ++i;
+    for (size_t c = 0; c < 3; ++c) worst = std::max(worst, std::abs(sampled[i].second[c] - rgb[c]));
   }
-  CHECK(i == patches.size());
   CHECK(worst <= 1e-6);
   // dcraw_emu: linear, no white balance, half size, 16-bit TIFF scaled by 65535 / saturation.
   test::run_shell("dcraw_emu -4 -o 0 -r 1 1 1 1 -h -T -Z " + d + "dcraw.tiff " + d + "chart.dng");
@@ -194,22 +205,15 @@ TEST_CASE("lab render: the CLI's DNG opens in dcraw_emu and tristim detect + sam
                                            for (double c : corners) s += (s.empty() ? "" : ",") + json::number_text(c);
                                            return s;
                                          }());
-  std::istringstream dl(dc);
-  std::getline(dl, line);
+  const auto dcraw = sample_rows(dc);
+  REQUIRE(dcraw.size() == patches.size());
   const double scale = 65535.0 / truth.at("saturation").as_number();
   double worst_dc = 0;
-  for (i = 0; std::getline(dl, line) && i < patches.size(); ++i) {
-    std::istringstream cells(line);
-    std::string id, v;
-    std::getline(cells, id, ',');
+  for (size_t i = 0; i < patches.size(); ++i) {
     const auto rgb = patches[i].at("rgb").as_numbers();
-    for (int c = 0; c < 3; ++c) {
-      std::getline(cells, v, ',');
-      worst_dc = std::max(worst_dc, std::abs(std::stod(v) / scale - rgb[static_cast<size_t>(c)]));
-    }
+    for (size_t c = 0; c < 3; ++c) worst_dc = std::max(worst_dc, std::abs(dcraw[i].second[c] / scale - rgb[c]));
   }
   INFO("dcraw_emu's patches vs the truth, worst DN (its 16-bit scaling rounds)");
-  CHECK(i == patches.size());
   CHECK(worst_dc <= 1.0);
   std::system(("rm -rf '" + std::string(tmpl) + "'").c_str());
 }
