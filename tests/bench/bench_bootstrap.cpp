@@ -40,21 +40,8 @@ int main() {
   }
 
   std::printf("\n== coverage: 1000 simulated charts x 1000 resamples, 95 %% intervals, 9 coefficients ==\n");
-  const Mat3 M = test::planted_matrix();
-  long covered = 0, total = 0;
   const auto t0 = Clock::now();
-  for (int run = 0; run < 1000; ++run) {
-    test::simulate_chart(sim, rgb, xyz, 1.0);
-    BootstrapOptions c;
-    c.resamples = 1000;
-    c.seed = static_cast<uint64_t>(run + 1);
-    const BootstrapResult k = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, c);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        covered += k.coefficients_lo(i, j) <= M(i, j) && M(i, j) <= k.coefficients_hi(i, j);
-        ++total;
-      }
-  }
+  const auto [covered, total] = test::coverage_3x3(sim, 1000, 1000);
   std::printf("CASE coverage %.4f of %ld intervals (target 0.93-0.97) in %.1f s\n", static_cast<double>(covered) / total,
               total, ms_since(t0) / 1000);
   return 0;

@@ -23,6 +23,11 @@ struct Dir {
     run_shell(cli + " reference --chart passport --illuminant D50 > " + d + "reference.csv");
   }
   ~Dir() { std::system(("rm -rf " + d).c_str()); }
+  /// `tristim compare` on the example patches with `options`, its JSON.
+  json::Value compare(const std::string& options) const {
+    return json::parse(run_shell(std::string(TRISTIM_CLI) + " compare --rgb " + d + "patches.csv --xyz " + d + "reference.csv " +
+                                 options + " --json 2>/dev/null"));
+  }
 };
 }  // namespace
 
@@ -61,9 +66,7 @@ TEST_CASE("cli: fit --bootstrap writes ci next to the means and each coefficient
 
 TEST_CASE("cli: compare --bootstrap --json gives each row's intervals", "[evaluation][bootstrap][cli]") {
   const Dir t;
-  const std::string cli = TRISTIM_CLI, d = t.d;
-  const json::Value j = json::parse(run_shell(cli + " compare --rgb " + d + "patches.csv --xyz " + d +
-                                              "reference.csv --models matrix-3x3,matrix-3x4 --objectives ls --bootstrap 100 --json 2>/dev/null"));
+  const json::Value j = t.compare("--models matrix-3x3,matrix-3x4 --objectives ls --bootstrap 100");
   const auto& rows = j.at("rows").as_array();
   REQUIRE(rows.size() == 2);
   for (const auto& r : rows) {
@@ -77,9 +80,7 @@ TEST_CASE("cli: compare --bootstrap --json gives each row's intervals", "[evalua
 
 TEST_CASE("cli: compare --ridge adds ridge rows no worse held-out than least squares", "[characterisation][ridge][cli]") {
   const Dir t;
-  const std::string cli = TRISTIM_CLI, d = t.d;
-  const json::Value j = json::parse(run_shell(cli + " compare --rgb " + d + "patches.csv --xyz " + d +
-                                              "reference.csv --models matrix-3x3,Finlayson2015-3,Shen2008 --objectives ls --ridge --json"));
+  const json::Value j = t.compare("--models matrix-3x3,Finlayson2015-3,Shen2008 --objectives ls --ridge");
   const auto& ridge = j.at("ridge").as_array();
   REQUIRE(ridge.size() == 3);
   for (const auto& r : ridge) {
@@ -96,9 +97,7 @@ TEST_CASE("cli: compare --ridge adds ridge rows no worse held-out than least squ
 // leave-one-out mean of 5.56 at the default stopping point and ~6.6-6.8 when stopped later.
 TEST_CASE("cli: compare flags leave-one-out rows that depend on where the optimiser stops", "[evaluation][cli]") {
   const Dir t;
-  const std::string cli = TRISTIM_CLI, d = t.d;
-  const json::Value j = json::parse(run_shell(cli + " compare --rgb " + d + "patches.csv --xyz " + d +
-                                              "reference.csv --models Finlayson2015-3,matrix-3x3 --objectives ls,de2000 --json"));
+  const json::Value j = t.compare("--models Finlayson2015-3,matrix-3x3 --objectives ls,de2000");
   int flagged = 0;
   for (const auto& r : j.at("rows").as_array()) {
     const std::string id = r.at("model").as_string() + " " + r.at("objective").as_string();

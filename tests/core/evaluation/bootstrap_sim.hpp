@@ -4,8 +4,9 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
-#include "tristim/characterisation/models.hpp"
+#include "tristim/evaluation/bootstrap.hpp"
 
 namespace tristim::test {
 
@@ -36,6 +37,25 @@ inline void simulate_chart(Simulation& sim, PatchMatrix& rgb, PatchMatrix& xyz, 
     const Vec3 v = M * rgb.row(i).transpose();
     for (int c = 0; c < 3; ++c) xyz(i, c) = v[c] + sigma * sim.normal();
   }
+}
+
+/// Coverage over `charts` simulated charts (σ = 1) of the planted matrix by the 9 coefficient
+/// intervals of a `resamples`-resample bootstrap of a matrix-3x3 least-squares fit (seeds 1, 2, …):
+/// {covered, total}.
+inline std::pair<long, long> coverage_3x3(Simulation& sim, int charts, int resamples) {
+  const Mat3 M = planted_matrix();
+  long covered = 0, total = 0;
+  PatchMatrix rgb, xyz;
+  for (int run = 0; run < charts; ++run) {
+    simulate_chart(sim, rgb, xyz, 1.0);
+    BootstrapOptions b;
+    b.resamples = resamples;
+    b.seed = static_cast<uint64_t>(run + 1);
+    const BootstrapResult r = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b);
+    for (int c = 0; c < 3; ++c)
+      for (int t = 0; t < 3; ++t, ++total) covered += r.coefficients_lo(c, t) <= M(c, t) && M(c, t) <= r.coefficients_hi(c, t);
+  }
+  return {covered, total};
 }
 
 }  // namespace tristim::test

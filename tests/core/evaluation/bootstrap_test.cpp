@@ -16,7 +16,6 @@ using namespace tristim;
 using tristim::test::require_code;
 
 using test::Simulation;
-using test::planted_matrix;
 using test::simulate_chart;
 
 // The full check (1,000 simulated charts × 1,000 resamples) runs in tests/bench/bench_bootstrap.cpp
@@ -24,21 +23,7 @@ using test::simulate_chart;
 // the binomial standard error is 0.4 %; the full run gives 0.943).
 TEST_CASE("bootstrap: 95 % intervals of a 3x3 least-squares fit cover the planted coefficients", "[evaluation][bootstrap]") {
   Simulation sim{12345};
-  const Mat3 M = planted_matrix();
-  int covered = 0, total = 0;
-  for (int run = 0; run < 300; ++run) {
-    PatchMatrix rgb, xyz;
-    simulate_chart(sim, rgb, xyz, 1.0);
-    BootstrapOptions b;
-    b.resamples = 200;
-    b.seed = static_cast<uint64_t>(run + 1);
-    const BootstrapResult r = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b);
-    for (int c = 0; c < 3; ++c)
-      for (int t = 0; t < 3; ++t) {
-        covered += r.coefficients_lo(c, t) <= M(c, t) && M(c, t) <= r.coefficients_hi(c, t);
-        ++total;
-      }
-  }
+  const auto [covered, total] = test::coverage_3x3(sim, 300, 200);
   const double rate = static_cast<double>(covered) / total;
   std::printf("bootstrap coverage (300 charts x 200 resamples, 9 coefficients): %.4f\n", rate);
   CHECK(rate > 0.92);
