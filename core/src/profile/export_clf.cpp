@@ -377,11 +377,10 @@ json::Value idt_json(const IdtResult& r, const IdtRecipe& recipe) {
   o.set("recipe", rec);
   json::Value e = json::Value::object();
   e.set("samples", r.patches);
-  e.set("delta_E76_mean", r.mean_delta_E76);
-  e.set("delta_E76_max", r.max_delta_E76);
-  e.set("delta_E00_mean", r.mean_delta_E00);
-  e.set("delta_E00_max", r.max_delta_E00);
-  e.set("objective", r.objective);
+  const std::pair<const char*, double> figures[] = {{"delta_E76_mean", r.mean_delta_E76}, {"delta_E76_max", r.max_delta_E76},
+                                                    {"delta_E00_mean", r.mean_delta_E00}, {"delta_E00_max", r.max_delta_E00},
+                                                    {"objective", r.objective}};
+  for (const auto& [k, v] : figures) e.set(k, v);
   e.set("delta_E76", r.delta_E76);
   e.set("delta_E00", r.delta_E00);
   o.set("errors", e);
@@ -393,11 +392,9 @@ json::Value idt_json(const IdtResult& r, const IdtRecipe& recipe) {
 
 json::Value clf_json(const ClfDocument& c) {
   json::Value o = json::Value::object();
-  o.set("id", c.id);
-  o.set("name", c.name);
-  o.set("description", c.description);
-  o.set("input", c.input_descriptor);
-  o.set("output", c.output_descriptor);
+  const std::pair<const char*, const std::string*> texts[] = {{"id", &c.id}, {"name", &c.name}, {"description", &c.description},
+                                                              {"input", &c.input_descriptor}, {"output", &c.output_descriptor}};
+  for (const auto& [k, v] : texts) o.set(k, *v);
   json::Value info = json::Value::object();
   for (const auto& [k, v] : c.info) info.set(k, v);
   o.set("info", info);
