@@ -104,25 +104,13 @@ int run_overfit(const Args& args, std::ostream& out) {
   auto num = [](double v) { return std::isfinite(v) ? json::number_text(v) : std::string(); };
   if (args.has("json")) {
     json::Value a = json::Value::array();
-    for (const auto& r : rows) {
-      json::Value j = json::Value::object();
-      j.set("model", r.model);
-      j.set("training", r.training);
-      j.set("terms", r.terms);
-      j.set("patches", r.patches);
-      j.set("ok", r.ok);
-      j.set("error_code", r.error_code);
-      j.set("train_dE00", r.ok ? json::Value(r.train_dE00) : json::Value());
-      j.set("loo_dE00", r.ok && std::isfinite(r.loo_dE00) ? json::Value(r.loo_dE00) : json::Value());
-      j.set("test_dE00", r.ok ? json::Value(r.test_dE00) : json::Value());
-      a.push(j);
-    }
+    for (const auto& r : rows) a.push(overfit_row_json(r));
     out << a.dump(1) << "\n";
   } else {
     out << "model,training,terms,patches,train_dE00,loo_dE00,test_dE00,error\n";
     for (const auto& r : rows)
-      out << r.model << ',' << r.training << ',' << r.terms << ',' << r.patches << ',' << (r.ok ? num(r.train_dE00) : "") << ','
-          << (r.ok ? num(r.loo_dE00) : "") << ',' << (r.ok ? num(r.test_dE00) : "") << ',' << r.error_code << "\n";
+      out << r.model << ',' << r.training << ',' << r.terms << ',' << r.patches << ',' << num(r.train_dE00) << ','
+          << num(r.loo_dE00) << ',' << num(r.test_dE00) << ',' << r.error_code << "\n";
   }
   return 0;
 }

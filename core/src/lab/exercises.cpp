@@ -9,6 +9,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/evaluation/evaluation.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/linearisation/oecf_Shen2008.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -61,6 +62,15 @@ SpectraToColour lab_spectra_to_colour(const std::string& chart, const std::strin
   }
   return out;
 }
+
+namespace fields {
+using R = OverfitRow;
+TRISTIM_FIELDS(R, member<&R::model>("model"), member<&R::training>("training"), member<&R::terms>("terms"),
+               member<&R::patches>("patches"), member<&R::ok>("ok"), member<&R::error_code>("error_code"),
+               member<&R::train_dE00>("train_dE00"), member<&R::loo_dE00>("loo_dE00"), member<&R::test_dE00>("test_dE00"));
+}  // namespace fields
+
+json::Value overfit_row_json(const OverfitRow& row) { return fields::write(row); }
 
 SpectralData cmf_sensitivities() {
   SpectralData s = align_spectra(cmfs(Observer::CIE1931_2), wavelength_grid(380, 780, 5));

@@ -11,6 +11,7 @@
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/data.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
@@ -198,13 +199,12 @@ LutherFit luther_fit(const SpectralData& ssf, const SpectralData& illuminant) {
   return out;
 }
 
-json::Value camera_quality_json(const CameraQuality& q) {
-  json::Value j = json::Value::object();
-  j.set("camera", q.camera);
-  j.set("smi", q.smi);
-  j.set("mu_factor", q.mu_factor);
-  j.set("mean_dE", q.mean_dE);
-  return j;
-}
+namespace fields {
+using Q = CameraQuality;
+TRISTIM_FIELDS(Q, member<&Q::camera>("camera"), member<&Q::smi>("smi"), member<&Q::mu_factor>("mu_factor"),
+               member<&Q::mean_dE>("mean_dE"));
+}  // namespace fields
+
+json::Value camera_quality_json(const CameraQuality& q) { return fields::write(q); }
 
 }  // namespace tristim

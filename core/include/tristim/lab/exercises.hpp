@@ -11,11 +11,13 @@
 // patches the training error is ~0 and says nothing, which (b) and (c) show.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/colorimetry/spectra.hpp"
+#include "tristim/io/json.hpp"
 
 namespace tristim {
 
@@ -26,8 +28,13 @@ struct OverfitRow {
   int patches = 0;            ///< training patches
   bool ok = false;            ///< false: refused (error_code, message)
   std::string error_code, message;
-  double train_dE00 = 0, loo_dE00 = 0, test_dE00 = 0;  ///< means; loo NaN when N − 1 < terms
+  /// Means; NaN when refused, loo also when N − 1 patches are too few for the model.
+  double train_dE00 = std::numeric_limits<double>::quiet_NaN(), loo_dE00 = std::numeric_limits<double>::quiet_NaN(),
+         test_dE00 = std::numeric_limits<double>::quiet_NaN();
 };
+/// {"model","training","terms","patches","ok","error_code","train_dE00","loo_dE00","test_dE00"}
+/// (NaN as null).
+json::Value overfit_row_json(const OverfitRow& row);
 
 struct OverfitOptions {
   std::vector<std::string> models{"matrix-3x3", "Finlayson2015-2", "Cheung2004-10", "Cheung2004-22", "Cheung2004-35"};
