@@ -39,12 +39,6 @@ json::Value exposure_json(const ExposureSettings& e) {
   return o;
 }
 
-FitStatus status_named(const std::string& s) {
-  for (FitStatus f : {FitStatus::Ok, FitStatus::IllConditioned, FitStatus::ExactlyDetermined, FitStatus::IterationLimit})
-    if (s == fit_status_name(f)) return f;
-  throw Error(ErrorCode::ProfileInvalid, "unknown colour.status '" + s + "'");
-}
-
 }  // namespace
 
 json::Value falloff_fit_json(const FalloffFit& f) { return fields::write(f); }
@@ -264,7 +258,7 @@ AbsoluteProfile absolute_profile_from_json(const std::string& text) {
       }
     }
     p.colour_stimuli = col.at("stimuli").as_int("colour.stimuli", 0, limits::kMaxJsonInt);
-    p.colour_status = status_named(col.at("status").as_string("colour.status"));
+    p.colour_status = fit_status_from_name(col.at("status").as_string("colour.status"));
     p.colour_message = col.at("message").as_string("colour.message");
     p.colour_objective = col.at("objective_value").as_number("colour.objective_value");
     p.fusion = fusion_mode_from_id(o.at("fusion").as_string("fusion"));

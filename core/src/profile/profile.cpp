@@ -54,12 +54,6 @@ std::string guess_illuminant(const Vec3& w) {
   return "custom";
 }
 
-FitStatus status_from_name(const std::string& s) {
-  for (FitStatus st : {FitStatus::Ok, FitStatus::IllConditioned, FitStatus::ExactlyDetermined,
-                       FitStatus::IterationLimit})
-    if (s == fit_status_name(st)) return st;
-  throw Error(ErrorCode::ProfileInvalid, "unknown fit status '" + s + "'");
-}
 
 }  // namespace
 
@@ -217,7 +211,7 @@ Profile profile_from_json(const std::string& text) {
   if (const auto* v = tr.find("rgb_max")) p.rgb_max = v->as_number("training.rgb_max");
   if (!(p.rgb_max > 0)) throw Error(ErrorCode::ProfileInvalid, "training.rgb_max must be positive");
   if (const auto* f = o.find("fit")) {
-    if (const auto* v = f->find("status")) p.status = status_from_name(v->as_string("fit.status"));
+    if (const auto* v = f->find("status")) p.status = fit_status_from_name(v->as_string("fit.status"));
     if (const auto* v = f->find("message")) p.message = v->as_string("fit.message");
     if (const auto* v = f->find("condition_number"); v && v->is_number()) p.condition_number = v->as_number();
     if (const auto* v = f->find("iterations"); v && v->is_number()) p.iterations = v->as_int("fit.iterations", 0, limits::kMaxJsonInt);
@@ -238,6 +232,12 @@ Profile profile_from_json(const std::string& text) {
 
 PatchMatrix profile_input(const Profile& profile, const PatchMatrix& camera_RGB) {
   return profile.has_linearisation ? linearise(profile.linearisation, camera_RGB) : camera_RGB;
+}
+
+FitStatus fit_status_from_name(const std::string& s) {
+  for (FitStatus st : {FitStatus::Ok, FitStatus::IllConditioned, FitStatus::ExactlyDetermined, FitStatus::IterationLimit})
+    if (s == fit_status_name(st)) return st;
+  throw Error(ErrorCode::ProfileInvalid, "unknown fit status '" + s + "'");
 }
 
 Image3f apply_profile_to_pixels(const Profile& profile, const std::vector<float>& rgb, int width, int height) {

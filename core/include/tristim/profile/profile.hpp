@@ -70,6 +70,9 @@ PatchMatrix profile_input(const Profile& profile, const PatchMatrix& camera_RGB)
 /// carries a linearisation, linear camera RGB otherwise).
 PatchMatrix profile_predict(const Profile& profile, const PatchMatrix& camera_RGB);
 
+/// The FitStatus a profile names (fit_status_name's spelling); Error(ProfileInvalid) otherwise.
+FitStatus fit_status_from_name(const std::string& name);
+
 struct Image3f;  // profile/export.hpp
 /// apply_profile (profile/export.hpp) on an image given as 3·width·height linear camera-RGB
 /// values, checked: InvalidArgument for a size that is not positive, RowLength for another count.
