@@ -34,6 +34,10 @@ Profile fitted_profile(const std::string& id, Objective obj = Objective::LeastSq
   PatchMatrix xyz = predict(truth, rgb);
   FitOptions o;
   o.objective = obj;
+  if (id == "corrected-3x3") {  // Abed 2013 eq (27) needs a white reference: the first patch
+    o.white_RGB = rgb.row(0).transpose();
+    o.white_XYZ = xyz.row(0).transpose();
+  }
   const ModelEvaluation ev = evaluate_model(id, rgb, xyz, o);
   std::vector<std::string> ids;
   for (int i = 0; i < 30; ++i) ids.push_back("P" + std::to_string(i + 1));
