@@ -1,6 +1,6 @@
 // CLI: `tristim export --profile p.json --dcp camera.dcp …` (a DNG camera profile, profile/dcp.hpp)
 // and `tristim inspect camera.dcp` (its tags as JSON; `tristim inspect idt.clf` reads a CLF back).
-// Called from the export and inspect commands (cmd_models.cpp, cmd_raw.cpp), which own the names.
+// Called from the export and inspect commands (cmd_export.cpp, cmd_raw.cpp), which own the names.
 #include <array>
 #include <cmath>
 #include <fstream>
