@@ -15,7 +15,7 @@ const rows = (list, label = (r) => r.label ?? r.name) => list.map((r) => ({ valu
 
 /// Every <select> of the page outside an options form: its step, its field's label, its options.
 const selects = (page) => page.$$eval('select:not([data-option])', (els) => els.map((s) => ({
-  step: s.closest('section')?.dataset.step,
+  step: s.closest('section[data-step]')?.dataset.step,
   name: (s.labels?.[0]?.textContent ?? s.getAttribute('aria-label') ?? s.dataset.role ?? '').trim(),
   options: [...s.options].map((o) => ({ value: o.value, label: o.textContent, title: o.title })),
 })));
@@ -92,6 +92,15 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     'absolute/Example: light on the chart': rows(T.listExampleLights()),
     'absolute/Example: colour training': rows(T.listExampleTrainings()),
     'absolute/White of the test figures': rows(T.listAbsoluteWhiteRules()),
+    'export/Second profile (dual-illuminant)': { owned: 'the profiles of this session' },
+    'export/IDT from': { owned: 'where the IDT\'s data come from (a UI choice)' },
+    'export/Camera': rows(cameras),
+    'export/Illuminant': rows(T.listIlluminants()),
+    'export/Chromatic adaptation': { owned: 'the adaptations tristim idt takes (each checked against the engine below)' },
+    'lab/Camera': { owned: 'the built-in cameras, after the CMFs in exercise 2 (checked below)' },
+    'lab/Chart': { owned: 'the charts the renderer draws, named by the page (ids checked below)' },
+    'lab/Illuminant': rows(T.listIlluminants()),
+    'lab/ColorChecker patch': { owned: 'the patches of the CC24 (exercise 1)' },
   };
   const b = await openPage();
   try {
@@ -123,6 +132,17 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     // A training row's transform is a Guarnera2018 matrix the picker offers.
     for (const t of T.listExampleTrainings()) {
       if (t.transform && !guarnera.some((m) => m.id === `Guarnera2018-${t.transform}`)) wrong.push(`example training ${t.id}: transform ${t.transform} is not a Guarnera2018 model`);
+    }
+    // The Export step's adaptations are ones the engine's IDT accepts; the Lab's cameras end in the
+    // engine's 52, its charts are the renderer's (lab_chart_ids).
+    for (const o of byKey['export/Chromatic adaptation'] ?? []) {
+      try { T.idtCamera(cameras[0].id, 'D55', o.value); } catch (e) { wrong.push(`export adaptation ${o.value}: the engine refuses it (${T.errorMessage?.(e) ?? e})`); }
+    }
+    for (const s of found.filter((x) => x.step === 'lab' && x.name === 'Camera')) {
+      if (JSON.stringify(s.options.slice(-cameras.length).map(({ value, label }) => ({ value, label }))) !== JSON.stringify(rows(cameras))) wrong.push('lab camera: not the built-in cameras');
+    }
+    for (const s of found.filter((x) => x.step === 'lab' && x.name === 'Chart')) {
+      if (JSON.stringify(s.options.map((o) => o.value)) !== JSON.stringify([...T.listLabCharts()])) wrong.push(`lab chart: ${s.options.map((o) => o.value)}, the renderer draws ${[...T.listLabCharts()]}`);
     }
     // The flat-field modes cite their table row (the option's title).
     for (const o of byKey['images/Flat-field correction'] ?? []) {
