@@ -20,15 +20,16 @@ namespace tristim::cli {
 namespace {
 
 const char* kShareUsage =
-    "tristim share --profile p.json (--raw chart.dng | --rgb patches.csv) [--xyz reference.csv]\n"
+    "tristim share --profile p.json [--raw chart.dng | --rgb patches.csv] [--xyz reference.csv]\n"
     "              [--base URL] [--payload] [--project out.tristim]\n"
     "tristim share --profile absolute-profile.json [--base URL] [--payload]\n"
     "  Prints a link that recomputes the profile: its recipe, the per-patch camera RGB, the reference\n"
     "  (a built-in chart by id, or --xyz inline), the SHA-256 of the RAW and a digest of the expected\n"
-    "  results, compressed into the URL fragment (nothing is uploaded). --raw / --rgb / --xyz: the\n"
-    "  inputs the profile was fitted on (`tristim fit --recipe`'s); they are fitted again and must give\n"
-    "  the profile's results. --base: the page's address (default http://127.0.0.1:8080/); --payload:\n"
-    "  the payload alone. --project also writes a project file holding the payload and the RAW.\n"
+    "  results, compressed into the URL fragment (nothing is uploaded). A profile holds its training\n"
+    "  patches, so it needs nothing else; --raw / --rgb / --xyz give the inputs it was fitted on\n"
+    "  instead (a profile of an older tristim, or to record the RAW's SHA-256); either way they are\n"
+    "  fitted again and must give the profile's results. --base: the page's address (default\n"
+    "  http://127.0.0.1:8080/); --payload: the payload alone. --project also writes a project file holding the payload and the RAW.\n"
     "  An absolute profile (tristim absolute fit) whose stimuli are per-patch rows needs no inputs.\n"
     "  Format: docs/link-format.md.";
 
@@ -47,10 +48,22 @@ std::string base_name(const std::string& path) {
 }
 
 /// The training set of `recipe` from --raw or --rgb (and --xyz), as `tristim fit --recipe` reads them.
-TrainingSet share_inputs(const Args& args, Recipe& recipe, std::vector<ShareSource>& sources, std::string& raw_bytes) {
-  if (args.has("raw") == args.has("rgb"))
-    throw Error(ErrorCode::InvalidArgument, "share needs the profile's inputs: one of --raw chart image or --rgb patches.csv");
+TrainingSet share_inputs(const Args& args, const Profile& profile, Recipe& recipe, std::vector<ShareSource>& sources,
+                         std::string& raw_bytes) {
   const bool builtin = recipe.reference.chart != "file";
+  if (!args.has("raw") && !args.has("rgb") && !args.has("xyz") && profile.has_training_data) {
+    // The profile's own training patches (characterise() keeps them): camera RGB as sampled,
+    // the reference by chart id, or inline when it was a file.
+    if (!builtin) return training_set(recipe, profile.training_labels, profile.training_camera_RGB, profile.training_reference_XYZ);
+    SharePayload tables;
+    tables.recipe = recipe;
+    tables.labels = profile.training_labels;
+    tables.camera_RGB = profile.training_camera_RGB;
+    return share_training(tables);
+  }
+  if (args.has("raw") == args.has("rgb"))
+    throw Error(ErrorCode::InvalidArgument, "share needs the profile's inputs: one of --raw chart image or --rgb patches.csv "
+                                            "(this profile does not hold its training patches: made by an older tristim?)");
   if (!builtin && !args.has("xyz"))
     throw Error(ErrorCode::InvalidArgument, "the profile's reference is a file: give it with --xyz");
   SharePayload tables;  // the patch tables as a link would carry them (share_training pairs them)
@@ -118,7 +131,7 @@ int run_share(const Args& args, std::ostream& out) {
   Recipe recipe = profile.recipe;
   std::vector<ShareSource> sources;
   std::string raw_bytes;
-  const TrainingSet training = share_inputs(args, recipe, sources, raw_bytes);
+  const TrainingSet training = share_inputs(args, profile, recipe, sources, raw_bytes);
   const Characterisation c = characterise(recipe, training);
   const SharePayload payload = share_payload(c, training, sources);
   const ShareResults given = share_results(profile);

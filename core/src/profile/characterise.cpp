@@ -171,6 +171,10 @@ Characterisation characterise(const Recipe& in, const TrainingSet& t) {
   c.profile.observer = c.recipe.reference.observer == "1964" ? "CIE 1964 10°" : "CIE 1931 2°";
   c.profile.has_recipe = true;
   c.profile.recipe = c.recipe;
+  c.profile.has_training_data = true;
+  c.profile.training_labels = t.labels.size() == t.ids.size() ? t.labels : t.ids;
+  c.profile.training_camera_RGB = t.camera_RGB;
+  c.profile.training_reference_XYZ = t.reference_XYZ;
   if (c.linearisation.choice.method != "identity") {
     // The profile takes the stored values (a JPEG's, a TIFF's) and linearises them itself.
     c.profile.has_linearisation = true;

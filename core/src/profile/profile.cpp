@@ -118,6 +118,37 @@ Profile make_profile(const ModelEvaluation& ev, const FitOptions& options, const
   return p;
 }
 
+namespace {
+/// training.camera_RGB / reference_XYZ: one row of 3 finite numbers per label.
+PatchMatrix read_training_rows(const json::Value& v, const char* name, size_t n) {
+  const auto& rows = v.as_array(name);
+  if (rows.size() != n)
+    throw Error(ErrorCode::ProfileInvalid, std::string(name) + ": " + std::to_string(rows.size()) + " rows for " +
+                                               std::to_string(n) + " labels");
+  PatchMatrix m(static_cast<Eigen::Index>(n), 3);
+  for (size_t i = 0; i < n; ++i) {
+    const auto r = rows[i].as_numbers(name);
+    if (r.size() != 3) throw Error(ErrorCode::ProfileInvalid, std::string(name) + ": rows of 3 values");
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(r[c])) throw Error(ErrorCode::ProfileInvalid, std::string(name) + ": non-finite value");
+      m(static_cast<Eigen::Index>(i), c) = r[c];
+    }
+  }
+  return m;
+}
+
+void read_training_data(const json::Value& labels, const json::Value& tr, Profile& p) {
+  for (const auto& l : labels.as_array("training.labels")) p.training_labels.push_back(l.as_string("training.labels"));
+  const size_t n = p.training_labels.size();
+  if (n == 0 || static_cast<int>(n) != p.training_patches)
+    throw Error(ErrorCode::ProfileInvalid, "training.labels: " + std::to_string(n) + " labels for " +
+                                               std::to_string(p.training_patches) + " training patches");
+  p.training_camera_RGB = read_training_rows(tr.at("camera_RGB"), "training.camera_RGB", n);
+  p.training_reference_XYZ = read_training_rows(tr.at("reference_XYZ"), "training.reference_XYZ", n);
+  p.has_training_data = true;
+}
+}  // namespace
+
 std::string profile_to_json(const Profile& p) {
   const ModelInfo& info = model_info(p.model.id);
   json::Value o = json::Value::object();
@@ -146,6 +177,11 @@ std::string profile_to_json(const Profile& p) {
   tr.set("patches", p.training_patches);
   tr.set("digest", p.training_digest);
   tr.set("rgb_max", p.rgb_max);
+  if (p.has_training_data) {
+    tr.set("labels", fields::write(p.training_labels));
+    tr.set("camera_RGB", fields::write(Eigen::MatrixXd(p.training_camera_RGB)));
+    tr.set("reference_XYZ", fields::write(Eigen::MatrixXd(p.training_reference_XYZ)));
+  }
   o.set("training", tr);
   json::Value f = json::Value::object();
   f.set("status", fit_status_name(p.status));
@@ -210,6 +246,7 @@ Profile profile_from_json(const std::string& text) {
   p.training_digest = tr.at("digest").as_string("training.digest");
   if (const auto* v = tr.find("rgb_max")) p.rgb_max = v->as_number("training.rgb_max");
   if (!(p.rgb_max > 0)) throw Error(ErrorCode::ProfileInvalid, "training.rgb_max must be positive");
+  if (const auto* v = tr.find("labels")) read_training_data(*v, tr, p);
   if (const auto* f = o.find("fit")) {
     if (const auto* v = f->find("status")) p.status = fit_status_from_name(v->as_string("fit.status"));
     if (const auto* v = f->find("message")) p.message = v->as_string("fit.message");

@@ -264,3 +264,42 @@ TEST_CASE("tristim reproduce exits 0 reproduced, 1 differs, 2 for a bad link", "
   for (const auto& f : {good, other, bad}) std::remove(f.c_str());
 }
 #endif
+
+TEST_CASE("a profile holds its training patches, exactly, and they give its results again", "[share][profile]") {
+  const Planted p = planted("Finlayson2015-2", "psm");
+  const Characterisation c = characterise(p.recipe, p.training);
+  REQUIRE(c.profile.has_training_data);
+  const Profile q = profile_from_json(profile_to_json(c.profile));
+  REQUIRE(q.has_training_data);
+  CHECK(q.training_labels == c.profile.training_labels);
+  CHECK((q.training_camera_RGB.array() == p.training.camera_RGB.array()).all());
+  CHECK((q.training_reference_XYZ.array() == p.training.reference_XYZ.array()).all());
+  // A row missing or a label too many: PROFILE_INVALID.
+  std::string text = profile_to_json(c.profile);
+  const size_t at = text.find("\"labels\": [");
+  REQUIRE(at != std::string::npos);
+  text.insert(at + 11, "\"extra\", ");
+  require_code([&] { profile_from_json(text); }, ErrorCode::ProfileInvalid);
+}
+
+#ifndef __EMSCRIPTEN__
+TEST_CASE("tristim share --profile p.json alone makes a link that reproduces, and altered patches are refused", "[share][cli]") {
+  using tristim::test::run_shell;
+  using tristim::test::spit;
+  const Planted p = planted("Finlayson2015-2", "psm");
+  const Characterisation c = characterise(p.recipe, p.training);
+  const std::string dir = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp");
+  const std::string profile = dir + "/tristim-share-profile.json", altered = dir + "/tristim-share-altered.json";
+  spit(profile, profile_to_json(c.profile));
+  Profile changed = c.profile;
+  changed.training_camera_RGB(3, 1) *= 1.01;
+  spit(altered, profile_to_json(changed));
+  const std::string cli = "'" + std::string(TRISTIM_CLI) + "'";
+  const std::string link = run_shell(cli + " share --profile " + profile);
+  REQUIRE(link.rfind("http://127.0.0.1:8080/#tristim=1.", 0) == 0);
+  CHECK(run_shell(cli + " reproduce --json '" + link.substr(0, link.size() - 1) + "'").find("\"verdict\": \"reproduced\"") !=
+        std::string::npos);
+  CHECK(run_shell(cli + " share --profile " + altered + " 2>&1; true").find("error PATCH_MISMATCH:") != std::string::npos);
+  for (const auto& f : {profile, altered}) std::remove(f.c_str());
+}
+#endif

@@ -51,6 +51,13 @@ struct Profile {
   int training_patches = 0;
   std::string training_digest;
   double rgb_max = 1;  ///< largest training camera RGB value (device 1.0 of ICC/.cube exports)
+  /// The training patches themselves (characterise() keeps them; profiles written before have none):
+  /// the labels as the user's data spell them, the camera RGB as sampled (before the linearisation
+  /// stage) and the reference XYZ as given (before a surface correction). With them a profile alone
+  /// is enough to make a reproducible link (tristim share --profile p.json).
+  bool has_training_data = false;
+  std::vector<std::string> training_labels;
+  PatchMatrix training_camera_RGB, training_reference_XYZ;
   FitStatus status = FitStatus::Ok;
   std::string message;
   double condition_number = 0;
