@@ -16,11 +16,7 @@ using namespace tristim;
 using namespace tristim::bench;
 
 int main() {
-#ifdef __EMSCRIPTEN__
-  const char* where = "wasm";
-#else
-  const char* where = "native";
-#endif
+  const char* where = build_name();
   std::printf("bench_bootstrap (%s)\n", where);
   test::Simulation sim{2026};
   PatchMatrix rgb, xyz;

@@ -17,11 +17,7 @@ using namespace tristim;
 using namespace tristim::bench;
 
 int main() {
-#ifdef __EMSCRIPTEN__
-  const char* where = "wasm";
-#else
-  const char* where = "native";
-#endif
+  const char* where = build_name();
   std::printf("bench_lab (%s), best of 3, ms\n", where);
   LabRenderOptions o;
   LabRenderFiles f;

@@ -94,11 +94,7 @@ void read_passport(PatchMatrix& rgb, PatchMatrix& xyz) {
 }  // namespace
 
 int main() {
-#ifdef __EMSCRIPTEN__
-  const char* where = "wasm";
-#else
-  const char* where = "native";
-#endif
+  const char* where = build_name();
   std::printf("bench_models (%s)\n", where);
   PatchMatrix rgb, xyz;
   make_patches(140, rgb, xyz);

@@ -19,11 +19,7 @@ using namespace tristim;
 using namespace tristim::bench;
 
 int main() {
-#ifdef __EMSCRIPTEN__
-  const char* where = "wasm";
-#else
-  const char* where = "native";
-#endif
+  const char* where = build_name();
   std::printf("bench_surface (%s)\n", where);
   const SpectralData sg = chart_reflectances("sg140-2005");
   const MethodChoice truth = parse_choice("saunderson:k1=0.04,k2=0.6,k_ins=0,k1_capture=0.07,k2_capture=0.5,k_ins_capture=0.4");

@@ -32,6 +32,15 @@ inline double peak_mib() {
 #endif
 }
 
+/// Which build runs the benchmark: "wasm" or "native" (the word scripts/bench.sh pairs rows by).
+inline const char* build_name() {
+#ifdef __EMSCRIPTEN__
+  return "wasm";
+#else
+  return "native";
+#endif
+}
+
 /// Milliseconds since t0.
 inline double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
