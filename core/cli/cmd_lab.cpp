@@ -6,11 +6,15 @@
 #include "patch_args.hpp"
 #include "tristim/error.hpp"
 #include "tristim/lab/exercises.hpp"
+#include "tristim/lab/metamerism.hpp"
 #include "tristim/lab/render.hpp"
 #include "tristim/lab/smi.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
 namespace tristim::cli {
+
+// Exercises 3-5 (cmd_lab_exercises.cpp): -1 when `sub` is not one of them.
+int run_lab_exercise(const std::string& sub, const Args& args, std::ostream& out);
 
 namespace {
 
@@ -115,6 +119,46 @@ int run_overfit(const Args& args, std::ostream& out) {
   return 0;
 }
 
+int run_metamers(const Args& args, std::ostream& out) {
+  args.allow_only({"illuminant", "second", "camera", "sensitivities", "observer", "match", "max-match", "top",
+                   "construct", "reflectances", "json"});
+  MetamerOptions o;
+  o.illuminant = args.get("illuminant", o.illuminant);
+  o.illuminant_spd = illuminant_arg(o.illuminant);
+  o.second = args.get("second", o.second);
+  o.second_spd = illuminant_arg(o.second);
+  o.observer = args.get("observer", o.observer);
+  o.camera = args.get("camera", "");
+  if (args.has("sensitivities")) {
+    const std::string path = args.get("sensitivities");
+    o.sensitivities = read_ssf_csv(read_file(path), path);
+    if (o.camera.empty()) o.camera = path;
+  }
+  o.match = args.get("match", o.match);
+  o.max_match = args.get_double("max-match", o.max_match);
+  o.top = static_cast<int>(args.get_double("top", o.top));
+  SpectralData set = args.has("reflectances") ? reflectances_arg(args.get("reflectances")) : SpectralData{};
+  if (args.has("reflectances")) reflectance_to_fraction(set);
+  const MetamerResult r = args.has("construct")
+                              ? (set.values.empty() ? construct_metamer(o, args.get("construct"))
+                                                    : construct_metamer_in(o, set, args.get("construct")))
+                              : (set.values.empty() ? metamer_pairs(o) : metamer_pairs_in(o, set));
+  if (args.has("json")) {
+    out << metamer_result_json(r).dump(1) << "\n";
+    return 0;
+  }
+  if (!args.has("construct"))
+    out << "# " << r.matching << " pairs with dE00 < " << json::number_text(r.max_match) << " for the " << r.match
+        << " under " << r.illuminant << " (" << r.compared << " of " << r.all_pairs << " pairs compared)\n";
+  if (!r.camera_matrix.empty()) out << "# " << r.camera_matrix << "\n";
+  out << "a,b,alpha,viewer,dE00_" << r.illuminant << ",dE00_" << r.second << "\n";
+  for (const auto& p : r.pairs)
+    for (const auto& v : p.views)
+      out << p.a << ',' << p.b << ',' << json::number_text(p.alpha) << ',' << v.viewer << ',' << json::number_text(v.dE00_1)
+          << ',' << json::number_text(v.dE00_2) << "\n";
+  return 0;
+}
+
 int run_lab(const Args& args, std::ostream& out) {
   const std::string sub = args.positional.empty() ? "" : args.positional[0];
   if (args.positional.size() > 1)
@@ -122,7 +166,10 @@ int run_lab(const Args& args, std::ostream& out) {
   if (sub == "render") return run_render(args, out);
   if (sub == "smi") return run_smi(args, out);
   if (sub == "overfit") return run_overfit(args, out);
-  throw Error(ErrorCode::InvalidArgument, "tristim lab needs a subcommand: render, smi or overfit (got '" + sub + "')");
+  if (sub == "metamers") return run_metamers(args, out);
+  if (const int rc = run_lab_exercise(sub, args, out); rc >= 0) return rc;
+  throw Error(ErrorCode::InvalidArgument,
+              "tristim lab needs a subcommand: render, smi, overfit, metamers, shen, table4 or guarnera (got '" + sub + "')");
 }
 
 CommandRegistration reg_lab(
@@ -155,7 +202,34 @@ CommandRegistration reg_lab(
      "  Exercise 2, why a 3x3 is not enough: 3x3, root-polynomial 2, polynomials of 10, 22 and 35 terms fitted by\n"
      "  least squares on a simulated CC24 and SG140 photo (noise sigma relative to the white's G), scored by\n"
      "  mean dE00 on the training patches, leave-one-out and the 1269 Munsell chips held out. --camera cmf: the\n"
-     "  CIE 1931 CMFs as the camera (the Luther condition). A model with more terms than patches: TOO_FEW_PATCHES.",
+     "  CIE 1931 CMFs as the camera (the Luther condition). A model with more terms than patches: TOO_FEW_PATCHES.\n"
+     "tristim lab metamers --illuminant D65 --second A [--camera \"<name>\"] [--sensitivities ssf.csv]\n"
+     "                     [--observer 1931|1964] [--match observer|camera] [--max-match 0.5] [--top 10]\n"
+     "                     [--reflectances <chart id or file>] [--construct <id>] [--json]\n"
+     "  The metamerism explorer. Search: pairs of the 1269 Munsell matte chips (or --reflectances) whose dE00\n"
+     "  under --illuminant is below --max-match for the observer (or the camera, --match camera), the --top\n"
+     "  with the largest dE00 under --second. --construct 5R5/6: a metamer of that chip, the chip plus the\n"
+     "  largest metameric black (Wyszecki 1958) keeping it in [0, 1]: an exact match under --illuminant.\n"
+     "  With a camera, its figures too (camera RGB -> XYZ by its ISO 17321-1 3x3 under each light).\n"
+     "  CSV a,b,alpha,viewer,dE00 under each light; --json adds both spectra, XYZ and Lab under each light.\n"
+     "tristim lab shen [--camera \"<name>\"|cmf] [--sensitivities ssf.csv] [--chart cc24|sg140] [--table L|J]\n"
+     "                 [--J 3,4,...,12] [--sigma 0,1,2,3] [--table-J 8] [--table-sigma 1] [--seeds 3] [--seed 1] [--json]\n"
+     "  Exercise 3, Shen et al. 2008: the OECF from non-grey patches (Shen2008) vs from the greys (grey-based),\n"
+     "  on the paper's simulation (eq 29: rho = 22 u^(1/1.8) + noise sigma, 0-255) through the camera under D65;\n"
+     "  colorimetric (10-term) and spectral characterisation on the non-grey patches, dE00 means over --seeds\n"
+     "  noise realisations. --table L: Tables I-II (L = 0..3 at --table-J, R2 per channel, the paper's rows\n"
+     "  beside); --table J: Figs 2-3 (J sweep at L = 1 per sigma). CSV with units in the header; --json the table.\n"
+     "tristim lab table4 [--camera Nikon_D850] [--illuminant D50] [--noise 0.001] [--seed 1] [--json]\n"
+     "  Exercise 4, Abed et al. 2013 Table IV: every training row (Classic, SG, Custom All, Custom-Matte,\n"
+     "  Custom-Glossy, Total; the custom chart = 50 Munsell chips with Table III's matte and glossy rows) x the\n"
+     "  five methods (surface table4's simulation), tested on a matte CC24 in the capture geometry; the paper's\n"
+     "  cells beside ours.\n"
+     "tristim lab guarnera [--table exposure|table4] [--camera \"<name>\"|cmf] [--illuminant D65]\n"
+     "                     [--light D65 --light A --light F2] [--training projector --training reflective] [--json]\n"
+     "  Exercise 5, Guarnera et al. 2018. exposure: T1, To, T2R and a 10-term polynomial fitted on a CC24, the\n"
+     "  Munsell chips' camera RGB and XYZ scaled by k (dE00 vs k: the root-polynomial is exposure-invariant).\n"
+     "  table4: the Absolute mode's virtual bracket per light and colour training, fitted as a user would,\n"
+     "  applied to one shot, the weighted fusion and Algorithm 1; NRMSE X/Y/Z beside the paper's Table 4.",
      run_lab});
 
 }  // namespace
