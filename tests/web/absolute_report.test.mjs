@@ -13,7 +13,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { screenshot, repoRoot } from './harness.mjs';
-import { openPage, step } from './journey.mjs';
+import { step, pageTest } from './journey.mjs';
 
 const S = '#step-absolute';
 const nativeCli = path.join(repoRoot, 'build/native/core/tristim');
@@ -46,61 +46,47 @@ async function shownFigures(page, report) {
   assert.deepEqual(rows, [...report.test.points, ...report.test.regions].map((r) => r.id));
 }
 
-test('absolute report: the example — the page\'s report equals `tristim absolute evaluate --json` to the bit', async () => {
+pageTest('absolute report: the example — the page\'s report equals `tristim absolute evaluate --json` to the bit', async ({ page }) => {
   const ex = path.join(fixture(), 'example');
   cli(ex, ['absolute', 'fit', '--recipe', 'recipe.json', '--out', 'profile.json']);
   const exposures = fs.readFileSync(path.join(ex, 'exposures.txt'), 'utf8').trim().split('\n').flatMap((e) => ['--exposure', e]);
   const raws = [1, 2, 3, 4, 5].map((i) => `virtual-${i}.raw`);
   const expected = JSON.parse(cli(ex, ['absolute', 'evaluate', 'profile.json', '--stimuli', 'test.csv', ...raws, ...exposures, '--white', 'D1', '--json']));
-  const b = await openPage();
-  try {
-    const { page } = b;
-    await step(page, 'absolute');
-    await page.click(`${S} [data-role="abs-example"]`);
-    await page.waitForSelector(`${S} .abs-maps:not([hidden])`, { timeout: 180000 });
-    assert.equal(await page.$eval(`${S} [data-role="abs-white"]`, (e) => e.value), 'D1');
-    const report = await downloadReport(page);
-    assert.deepStrictEqual(report, expected);
-    await shownFigures(page, report);
-    // the recipe the page downloads is the one the CLI fitted the same profile from
-    const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`${S} [data-role="abs-download-recipe"]`)]);
-    assert.equal(fs.readFileSync(await dl.path(), 'utf8'), fs.readFileSync(path.join(ex, 'recipe.json'), 'utf8'));
-    assert.deepEqual(b.problems, []);
-  } finally {
-    await b.close();
-  }
+  await step(page, 'absolute');
+  await page.click(`${S} [data-role="abs-example"]`);
+  await page.waitForSelector(`${S} .abs-maps:not([hidden])`, { timeout: 180000 });
+  assert.equal(await page.$eval(`${S} [data-role="abs-white"]`, (e) => e.value), 'D1');
+  const report = await downloadReport(page);
+  assert.deepStrictEqual(report, expected);
+  await shownFigures(page, report);
+  // the recipe the page downloads is the one the CLI fitted the same profile from
+  const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`${S} [data-role="abs-download-recipe"]`)]);
+  assert.equal(fs.readFileSync(await dl.path(), 'utf8'), fs.readFileSync(path.join(ex, 'recipe.json'), 'utf8'));
 });
 
-test('absolute report: uploaded region rows naming the bracket\'s files — the page\'s report equals the CLI\'s to the bit', async () => {
+pageTest('absolute report: uploaded region rows naming the bracket\'s files — the page\'s report equals the CLI\'s to the bit', async ({ page }) => {
   const d = fixture();
   const trains = [1, 2, 3, 4, 5].map((i) => `train_${i}.dng`);
   cli(d, ['absolute', 'fit', '--stimuli', 'stimuli.csv', '--dark', 'cap_1.dng', '--dark', 'cap_2.dng', '--flat', 'flat.dng',
     '--camera', 'Canon_EOS_5D_Mark_II', ...trains.flatMap((t) => ['--bracket', t]), '--out', 'page43.json']);
   const expected = JSON.parse(cli(d, ['absolute', 'evaluate', 'page43.json', '--stimuli', 'train_test.csv', ...trains, '--json']));
-  const b = await openPage();
-  try {
-    const { page } = b;
-    await step(page, 'absolute');
-    await page.setInputFiles(`${S} [data-role="abs-series"]`, trains.map((t) => path.join(d, t)));
-    await page.waitForFunction((s) => document.querySelectorAll(`${s} .abs-series tbody tr`).length === 5, S, { timeout: 60000 });
-    await page.setInputFiles(`${S} [data-role="abs-stimuli"]`, path.join(d, 'stimuli.csv'));
-    await page.waitForFunction((s) => /stimuli\.csv: 179 stimuli .*179 of them regions/.test(document.querySelector(`${s} [data-role="abs-stimuli-info"]`)?.textContent ?? ''), S);
-    await page.setInputFiles(`${S} [data-role="abs-lenscap"]`, ['cap_1.dng', 'cap_2.dng'].map((c) => path.join(d, c)));
-    await page.setInputFiles(`${S} [data-role="abs-flat"]`, path.join(d, 'flat.dng'));
-    await page.setInputFiles(`${S} [data-role="abs-test"]`, path.join(d, 'train_test.csv'));
-    await page.waitForFunction((s) => /train_test\.csv: 55 stimuli/.test(document.querySelector(`${s} [data-role="abs-test-info"]`)?.textContent ?? ''), S);
-    await page.waitForFunction((s) => [...document.querySelectorAll(`${s} .file-state`)].filter((e) => /frame/.test(e.textContent)).length === 2, S, { timeout: 60000 });
-    await page.selectOption(`${S} [data-role="abs-camera"]`, 'Canon_EOS_5D_Mark_II');
-    await page.click(`${S} [data-role="abs-fit"]`);
-    await page.waitForSelector(`${S} .abs-maps:not([hidden])`, { timeout: 180000 });
-    const report = await downloadReport(page);
-    assert.deepStrictEqual(report, expected);
-    await shownFigures(page, report);
-    assert.equal(report.test.regions.length, 55);
-    await page.click(`${S} [data-role="abs-rows"] > summary`);
-    await screenshot(page, 'absolute-report-uploaded');
-    assert.deepEqual(b.problems, []);
-  } finally {
-    await b.close();
-  }
+  await step(page, 'absolute');
+  await page.setInputFiles(`${S} [data-role="abs-series"]`, trains.map((t) => path.join(d, t)));
+  await page.waitForFunction((s) => document.querySelectorAll(`${s} .abs-series tbody tr`).length === 5, S, { timeout: 60000 });
+  await page.setInputFiles(`${S} [data-role="abs-stimuli"]`, path.join(d, 'stimuli.csv'));
+  await page.waitForFunction((s) => /stimuli\.csv: 179 stimuli .*179 of them regions/.test(document.querySelector(`${s} [data-role="abs-stimuli-info"]`)?.textContent ?? ''), S);
+  await page.setInputFiles(`${S} [data-role="abs-lenscap"]`, ['cap_1.dng', 'cap_2.dng'].map((c) => path.join(d, c)));
+  await page.setInputFiles(`${S} [data-role="abs-flat"]`, path.join(d, 'flat.dng'));
+  await page.setInputFiles(`${S} [data-role="abs-test"]`, path.join(d, 'train_test.csv'));
+  await page.waitForFunction((s) => /train_test\.csv: 55 stimuli/.test(document.querySelector(`${s} [data-role="abs-test-info"]`)?.textContent ?? ''), S);
+  await page.waitForFunction((s) => [...document.querySelectorAll(`${s} .file-state`)].filter((e) => /frame/.test(e.textContent)).length === 2, S, { timeout: 60000 });
+  await page.selectOption(`${S} [data-role="abs-camera"]`, 'Canon_EOS_5D_Mark_II');
+  await page.click(`${S} [data-role="abs-fit"]`);
+  await page.waitForSelector(`${S} .abs-maps:not([hidden])`, { timeout: 180000 });
+  const report = await downloadReport(page);
+  assert.deepStrictEqual(report, expected);
+  await shownFigures(page, report);
+  assert.equal(report.test.regions.length, 55);
+  await page.click(`${S} [data-role="abs-rows"] > summary`);
+  await screenshot(page, 'absolute-report-uploaded');
 });

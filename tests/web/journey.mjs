@@ -1,7 +1,10 @@
 // Helpers shared by the journey tests: open the page fresh, wait for it, move between steps,
 // upload files, read errors, count plot marks.
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
 import path from 'node:path';
-import { openBrowser, repoRoot } from './harness.mjs';
+import { openBrowser, repoRoot, artifacts } from './harness.mjs';
 import { testFiles, readTestFile } from '../support/test_files.mjs';
 
 /// The real images the journeys upload (tests/support/test_files.mjs): the example Passport DNG,
@@ -17,6 +20,33 @@ export async function openPage() {
   await b.page.goto(b.origin + '/');
   await waitReady(b.page);
   return b;
+}
+
+/// A browser test on a fresh browser: opens it (`open`: openPage by default; openBrowser when the
+/// test loads the page itself), runs body(b) with b = {page, origin, problems, context, close},
+/// then fails on any console error, page error or off-origin request recorded (`problems: false`
+/// when the test judges b.problems itself), and closes the browser whatever happened. Other
+/// options go to node:test (timeout, ...).
+export function pageTest(name, ...args) {
+  const body = args.pop();
+  const { problems = true, open = openPage, ...options } = args[0] ?? {};
+  test(name, options, async () => {
+    const b = await open();
+    try {
+      await body(b);
+      if (problems) assert.deepEqual(b.problems, []);
+    } finally {
+      await b.close();
+    }
+  });
+}
+
+/// The native CLI the byte-for-byte tests compare the page with.
+export const CLI = path.join(repoRoot, 'build/native/core/tristim');
+/// A file in test-artifacts/ (created if missing), for downloads and the CLI's outputs.
+export function artifact(name) {
+  fs.mkdirSync(artifacts, { recursive: true });
+  return path.join(artifacts, name);
 }
 
 export async function waitReady(page, timeout = 60000) {

@@ -5,10 +5,9 @@
 // grey-based ones (R² > 0.99 per channel, as the engine computes it); the fit trains on the
 // linearised RGB and its training ΔE00 is close to the RAW's. Bad input: Shen2008 with more basis
 // functions than the non-grey patches allow shows TOO_FEW_PATCHES next to J.
-import test from 'node:test';
 import assert from 'node:assert/strict';
 import { screenshot } from './harness.mjs';
-import { openPage, step, upload, errorNear } from './journey.mjs';
+import { step, upload, errorNear, pageTest } from './journey.mjs';
 import { loadTristim } from '../wasm/load.mjs';
 import { encodedPassport, tiff16, jpegInPage, EXAMPLE } from './image_fixtures.mjs';
 
@@ -63,93 +62,86 @@ async function linearise(page, method, options = {}) {
   return { r2, text: await page.textContent(SUMMARY) };
 }
 
-test('JPEG and 16-bit TIFF charts: encoding shown, Shen2008 and gamma recover the OECF, the fit matches the RAW', async () => {
+pageTest('JPEG and 16-bit TIFF charts: encoding shown, Shen2008 and gamma recover the OECF, the fit matches the RAW', async ({ page }) => {
   const T = await loadTristim();
   const img = encodedPassport(T);
-  const b = await openPage();
-  try {
-    const { page } = b;
-    const raw = await trainingErrors(page);   // the example RAW, fitted on the first visit
-    const models = MODELS.filter((m) => m in raw);
-    assert.equal(models.length, MODELS.length, 'the example was fitted (every model compared on the first visit)');
+  const raw = await trainingErrors(page);   // the example RAW, fitted on the first visit
+  const models = MODELS.filter((m) => m in raw);
+  assert.equal(models.length, MODELS.length, 'the example was fitted (every model compared on the first visit)');
 
-    // 8-bit JPEG: decoded as stored, its encoding shown, the chart found on decode.
-    const jpeg = await jpegInPage(page, img.width, img.height, img.rgba8);
-    assert.equal(jpeg.subarray(0, 3).toString('hex'), 'ffd8ff');
-    await load(page, 'passport-gamma.jpg', jpeg);
-    assert.match(await page.textContent('#step-images .meta'), /JPEG, 8-bit RGB, 867×578, values as stored \(0–255\)/);
-    assert.match(await page.textContent('#step-images .encoding-note'), /Not linear.*step 2b/);
-    const corners = await page.evaluate(() => Array.from(window.tristim.derived.sample.corners));
-    assert.ok(corners.every((v, i) => Math.abs(v - EXAMPLE.corners[i]) < 6), `corners ${corners}`);
+  // 8-bit JPEG: decoded as stored, its encoding shown, the chart found on decode.
+  const jpeg = await jpegInPage(page, img.width, img.height, img.rgba8);
+  assert.equal(jpeg.subarray(0, 3).toString('hex'), 'ffd8ff');
+  await load(page, 'passport-gamma.jpg', jpeg);
+  assert.match(await page.textContent('#step-images .meta'), /JPEG, 8-bit RGB, 867×578, values as stored \(0–255\)/);
+  assert.match(await page.textContent('#step-images .encoding-note'), /Not linear.*step 2b/);
+  const corners = await page.evaluate(() => Array.from(window.tristim.derived.sample.corners));
+  assert.ok(corners.every((v, i) => Math.abs(v - EXAMPLE.corners[i]) < 6), `corners ${corners}`);
 
-    // identity on a JPEG: the step says so
-    await step(page, 'linearisation');
-    await page.waitForSelector('#step-linearisation [data-role="linearisation-advice"]:not([hidden])');
-    assert.match(await page.textContent('#step-linearisation [data-role="linearisation-encoding"]'), /JPEG, 8 bit per sample.*full scale 255/);
+  // identity on a JPEG: the step says so
+  await step(page, 'linearisation');
+  await page.waitForSelector('#step-linearisation [data-role="linearisation-advice"]:not([hidden])');
+  assert.match(await page.textContent('#step-linearisation [data-role="linearisation-encoding"]'), /JPEG, 8 bit per sample.*full scale 255/);
 
-    // The JPEG fitted as if it were linear: the encoding's curve becomes colour error.
-    const identityFit = await fit(page);
-    assert.match(await page.textContent('#step-fit .summary'), /not linear.*“identity”: choose one in step 2b/);
+  // The JPEG fitted as if it were linear: the encoding's curve becomes colour error.
+  const identityFit = await fit(page);
+  assert.match(await page.textContent('#step-fit .summary'), /not linear.*“identity”: choose one in step 2b/);
 
-    // Shen2008 (defaults K = 2, J = 8, L = 2): curves against the grey-based ones, R² per channel.
-    const shen = await linearise(page, 'Shen2008');
-    for (const v of shen.r2) assert.ok(v > 0.99, `Shen2008 R² ${shen.r2}`);
-    const engineR2 = await page.evaluate(() => Array.from(window.tristim.derived.linearisation.lin.r_squared));
-    assert.deepEqual(shen.r2, engineR2, 'the R² shown is the engine\'s');
-    // the greys, found automatically (ΔE00 from the neutral of the same L* < 2), are left out of the fit
-    const greys = await page.evaluate(() => window.tristim.derived.linearisation.lin.greys);
-    assert.ok(greys.length >= 4 && greys.every((id) => /^D[1-6]$/.test(id)), `greys ${greys}`);
-    assert.match(shen.text, new RegExp(`fitted on ${24 - greys.length} of 24 paired patches`));
-    assert.match(await page.textContent('#step-linearisation [data-role="linearisation-greys"]'),
-      new RegExp(`Grey patches \\(${greys.length}\\): ${greys.join(', ')} — automatic`));
-    assert.ok(await page.locator('figure[data-plot="linearisation-oecf"] svg').count() === 1);
-    assert.ok(await page.isHidden('#step-linearisation [data-role="linearisation-monotonic"]'));
-    assert.ok(await page.locator('figure[data-plot="linearisation-spectral-rms"] svg g[aria-label="bar"] rect').count() === 24);
-    assert.ok(await page.locator('figure[data-plot="linearisation-reflectance"]').count() === 1);
-    const rms = Number(await page.getAttribute('#step-linearisation [data-role="linearisation-spectral"]', 'data-rms-mean'));
-    assert.ok(rms > 0 && rms < 0.08, `spectral RMS ${rms}`);
-    await screenshot(page, 'linearisation-1-jpeg-shen2008');
-    const shenFit = await fit(page);
+  // Shen2008 (defaults K = 2, J = 8, L = 2): curves against the grey-based ones, R² per channel.
+  const shen = await linearise(page, 'Shen2008');
+  for (const v of shen.r2) assert.ok(v > 0.99, `Shen2008 R² ${shen.r2}`);
+  const engineR2 = await page.evaluate(() => Array.from(window.tristim.derived.linearisation.lin.r_squared));
+  assert.deepEqual(shen.r2, engineR2, 'the R² shown is the engine\'s');
+  // the greys, found automatically (ΔE00 from the neutral of the same L* < 2), are left out of the fit
+  const greys = await page.evaluate(() => window.tristim.derived.linearisation.lin.greys);
+  assert.ok(greys.length >= 4 && greys.every((id) => /^D[1-6]$/.test(id)), `greys ${greys}`);
+  assert.match(shen.text, new RegExp(`fitted on ${24 - greys.length} of 24 paired patches`));
+  assert.match(await page.textContent('#step-linearisation [data-role="linearisation-greys"]'),
+    new RegExp(`Grey patches \\(${greys.length}\\): ${greys.join(', ')} — automatic`));
+  assert.ok(await page.locator('figure[data-plot="linearisation-oecf"] svg').count() === 1);
+  assert.ok(await page.isHidden('#step-linearisation [data-role="linearisation-monotonic"]'));
+  assert.ok(await page.locator('figure[data-plot="linearisation-spectral-rms"] svg g[aria-label="bar"] rect').count() === 24);
+  assert.ok(await page.locator('figure[data-plot="linearisation-reflectance"]').count() === 1);
+  const rms = Number(await page.getAttribute('#step-linearisation [data-role="linearisation-spectral"]', 'data-rms-mean'));
+  assert.ok(rms > 0 && rms < 0.08, `spectral RMS ${rms}`);
+  await screenshot(page, 'linearisation-1-jpeg-shen2008');
+  const shenFit = await fit(page);
 
-    // gamma 2.2: the encoding's own inverse.
-    const gamma = await linearise(page, 'gamma');
-    for (const v of gamma.r2) assert.ok(v > 0.99, `gamma R² ${gamma.r2}`);
-    const gammaFit = await fit(page);
-    const recipe = await page.evaluate(() => window.tristim.session.recipe);
-    assert.equal(recipe.linearisation.method, 'gamma', JSON.stringify(await page.evaluate(() => ({ lin: window.tristim.session.linearisation,
-      log: document.querySelector('#step-fit .fit-log').textContent, results: window.tristim.session.results.map((r) => r.recipe.linearisation.method) }))));
-    assert.equal(recipe.capture.saturation, 255, 'the recipe records the JPEG\'s full scale');
+  // gamma 2.2: the encoding's own inverse.
+  const gamma = await linearise(page, 'gamma');
+  for (const v of gamma.r2) assert.ok(v > 0.99, `gamma R² ${gamma.r2}`);
+  const gammaFit = await fit(page);
+  const recipe = await page.evaluate(() => window.tristim.session.recipe);
+  assert.equal(recipe.linearisation.method, 'gamma', JSON.stringify(await page.evaluate(() => ({ lin: window.tristim.session.linearisation,
+    log: document.querySelector('#step-fit .fit-log').textContent, results: window.tristim.session.results.map((r) => r.recipe.linearisation.method) }))));
+  assert.equal(recipe.capture.saturation, 255, 'the recipe records the JPEG\'s full scale');
 
-    // 16-bit TIFF, gamma kept.
-    await load(page, 'passport-gamma.tif', tiff16(img.width, img.height, img.rgb16));
-    assert.match(await page.textContent('#step-images .meta'), /TIFF, 16-bit RGB, 867×578, values as stored \(0–65535\)/);
-    const tiffGamma = await linearise(page, 'Shen2008');
-    for (const v of tiffGamma.r2) assert.ok(v > 0.99, `TIFF Shen2008 R² ${tiffGamma.r2}`);
-    await linearise(page, 'gamma');
-    const tiffFit = await fit(page);
-    assert.equal((await page.evaluate(() => window.tristim.session.recipe)).capture.saturation, 65535);
+  // 16-bit TIFF, gamma kept.
+  await load(page, 'passport-gamma.tif', tiff16(img.width, img.height, img.rgb16));
+  assert.match(await page.textContent('#step-images .meta'), /TIFF, 16-bit RGB, 867×578, values as stored \(0–65535\)/);
+  const tiffGamma = await linearise(page, 'Shen2008');
+  for (const v of tiffGamma.r2) assert.ok(v > 0.99, `TIFF Shen2008 R² ${tiffGamma.r2}`);
+  await linearise(page, 'gamma');
+  const tiffFit = await fit(page);
+  assert.equal((await page.evaluate(() => window.tristim.session.recipe)).capture.saturation, 65535);
 
-    // The fits on linearised data measure as the RAW's do (identity on the JPEG would not).
-    for (const m of models) {
-      const line = `${m}: RAW ${raw[m].toFixed(3)}, JPEG identity ${identityFit[m].toFixed(3)}, JPEG Shen2008 ${shenFit[m].toFixed(3)}, JPEG gamma ${gammaFit[m].toFixed(3)}, TIFF gamma ${tiffFit[m].toFixed(3)}`;
-      console.log(line);
-      assert.ok(Math.abs(gammaFit[m] - raw[m]) < 0.05 * raw[m] + 0.05, line);
-      assert.ok(Math.abs(tiffFit[m] - raw[m]) < 0.05 * raw[m] + 0.05, line);
-      assert.ok(shenFit[m] < 1.5 * raw[m] + 0.5, line);
-      // a 3×3 cannot absorb the encoding's curve (a root-polynomial or the 10-term polynomial partly can)
-      if (m === 'matrix-3x3') assert.ok(identityFit[m] > gammaFit[m] + 2 && identityFit[m] > shenFit[m] + 2, line);
-    }
-
-    // Bad input: J = 20 needs K + J = 22 non-grey patches; the Passport has 18.
-    await step(page, 'linearisation');
-    await page.selectOption(METHOD, 'Shen2008');
-    await page.fill('#step-linearisation [data-option="J"]', '20');
-    await page.dispatchEvent('#step-linearisation [data-option="J"]', 'change');
-    const e = await errorNear(page, '#step-linearisation [data-option="J"]');
-    assert.equal(e.code, 'TOO_FEW_PATCHES', e.text);
-    await screenshot(page, 'linearisation-2-too-few');
-    assert.deepEqual(b.problems, []);
-  } finally {
-    await b.close();
+  // The fits on linearised data measure as the RAW's do (identity on the JPEG would not).
+  for (const m of models) {
+    const line = `${m}: RAW ${raw[m].toFixed(3)}, JPEG identity ${identityFit[m].toFixed(3)}, JPEG Shen2008 ${shenFit[m].toFixed(3)}, JPEG gamma ${gammaFit[m].toFixed(3)}, TIFF gamma ${tiffFit[m].toFixed(3)}`;
+    console.log(line);
+    assert.ok(Math.abs(gammaFit[m] - raw[m]) < 0.05 * raw[m] + 0.05, line);
+    assert.ok(Math.abs(tiffFit[m] - raw[m]) < 0.05 * raw[m] + 0.05, line);
+    assert.ok(shenFit[m] < 1.5 * raw[m] + 0.5, line);
+    // a 3×3 cannot absorb the encoding's curve (a root-polynomial or the 10-term polynomial partly can)
+    if (m === 'matrix-3x3') assert.ok(identityFit[m] > gammaFit[m] + 2 && identityFit[m] > shenFit[m] + 2, line);
   }
+
+  // Bad input: J = 20 needs K + J = 22 non-grey patches; the Passport has 18.
+  await step(page, 'linearisation');
+  await page.selectOption(METHOD, 'Shen2008');
+  await page.fill('#step-linearisation [data-option="J"]', '20');
+  await page.dispatchEvent('#step-linearisation [data-option="J"]', 'change');
+  const e = await errorNear(page, '#step-linearisation [data-option="J"]');
+  assert.equal(e.code, 'TOO_FEW_PATCHES', e.text);
+  await screenshot(page, 'linearisation-2-too-few');
 });

@@ -2,10 +2,9 @@
 // escapes the worker — is replaced by the page: the status line says what happened, the session
 // (chart image, corners, results) is kept, and the next sampling and fit work in the new worker.
 // The crash is provoked with the worker's test-only 'testCrash' message.
-import test from 'node:test';
 import assert from 'node:assert/strict';
 import { screenshot } from './harness.mjs';
-import { openPage, step, setCorners, noErrorNear } from './journey.mjs';
+import { step, setCorners, noErrorNear, pageTest } from './journey.mjs';
 
 async function fitMatrix(page) {
   await step(page, 'fit');
@@ -23,51 +22,41 @@ async function fitMatrix(page) {
 }
 
 for (const how of ['abort', 'uncaught']) {
-  test(`a worker that dies (${how}) is restarted, the page says so and keeps the session`, async () => {
-    const b = await openPage();
-    try {
-      const { page } = b;
-      await step(page, 'images');
-      await page.waitForFunction(() => document.querySelectorAll('#step-images .patch-table tbody tr').length === 24, null, { timeout: 60000 });
-      const corners = await page.evaluate(() => Array.from(window.tristim.session.corners));
-      const results = await page.evaluate(() => window.tristim.session.results?.length ?? 0);
-      const generation = await page.evaluate(() => window.tristim.engine.generation);
+  pageTest(`a worker that dies (${how}) is restarted, the page says so and keeps the session`, { problems: false }, async (b) => {
+    const { page } = b;
+    await step(page, 'images');
+    await page.waitForFunction(() => document.querySelectorAll('#step-images .patch-table tbody tr').length === 24, null, { timeout: 60000 });
+    const corners = await page.evaluate(() => Array.from(window.tristim.session.corners));
+    const results = await page.evaluate(() => window.tristim.session.results?.length ?? 0);
+    const generation = await page.evaluate(() => window.tristim.engine.generation);
 
-      const code = await page.evaluate((h) => window.tristim.engine.call('testCrash', { how: h }).then(() => 'OK', (e) => e.code), how);
-      if (how === 'abort') assert.equal(code, 'ENGINE_CRASHED');
-      await page.waitForFunction(() => document.getElementById('engine-status').dataset.crashes === '1', null, { timeout: 30000 });
-      assert.match(await page.textContent('#engine-status'), /stopped .* restarted; your files, corners and results are kept/);
-      assert.equal(await page.evaluate(() => window.tristim.engine.generation), generation + 1);
-      assert.deepEqual(await page.evaluate(() => Array.from(window.tristim.session.corners)), corners);
-      assert.equal(await page.evaluate(() => window.tristim.session.results?.length ?? 0), results);
-      await screenshot(page, `worker-restart-${how}`);
+    const code = await page.evaluate((h) => window.tristim.engine.call('testCrash', { how: h }).then(() => 'OK', (e) => e.code), how);
+    if (how === 'abort') assert.equal(code, 'ENGINE_CRASHED');
+    await page.waitForFunction(() => document.getElementById('engine-status').dataset.crashes === '1', null, { timeout: 30000 });
+    assert.match(await page.textContent('#engine-status'), /stopped .* restarted; your files, corners and results are kept/);
+    assert.equal(await page.evaluate(() => window.tristim.engine.generation), generation + 1);
+    assert.deepEqual(await page.evaluate(() => Array.from(window.tristim.session.corners)), corners);
+    assert.equal(await page.evaluate(() => window.tristim.session.results?.length ?? 0), results);
+    await screenshot(page, `worker-restart-${how}`);
 
-      // The new worker decodes the kept chart again for a new sampling, and fits.
-      const moved = corners.map((v, i) => v + (i % 2 ? 1 : -1));
-      await setCorners(page, moved);
-      assert.equal(await page.locator('#step-images .patch-table tbody tr').count(), 24);
-      await fitMatrix(page);
-      // The only console errors are the worker's report of the provoked crash.
-      assert.deepEqual(b.problems.filter((p) => !/test: (uncaught error in the worker|the module was made to abort)/.test(p)), []);
-    } finally {
-      await b.close();
-    }
+    // The new worker decodes the kept chart again for a new sampling, and fits.
+    const moved = corners.map((v, i) => v + (i % 2 ? 1 : -1));
+    await setCorners(page, moved);
+    assert.equal(await page.locator('#step-images .patch-table tbody tr').count(), 24);
+    await fitMatrix(page);
+    // The only console errors are the worker's report of the provoked crash.
+    assert.deepEqual(b.problems.filter((p) => !/test: (uncaught error in the worker|the module was made to abort)/.test(p)), []);
   });
 }
 
-test('a compare worker that dies is replaced, the page says so, and the next compare runs', async () => {
-  const b = await openPage();
-  try {
-    const { page } = b;
-    const size = await page.evaluate(() => window.tristim.views.fit.pool.size);
-    const code = await page.evaluate(() => window.tristim.views.fit.pool.clients[0].call('testCrash', { how: 'abort' }).then(() => 'OK', (e) => e.code));
-    assert.equal(code, 'ENGINE_CRASHED');
-    await page.waitForFunction(() => document.getElementById('engine-status').dataset.crashes === '1', null, { timeout: 30000 });
-    assert.match(await page.textContent('#engine-status'), /stopped .* restarted/);
-    assert.equal(await page.evaluate(() => window.tristim.views.fit.pool.clients.length), size, 'the dead worker was replaced');
-    await fitMatrix(page);
-    assert.deepEqual(b.problems.filter((p) => !/test: the module was made to abort/.test(p)), []);
-  } finally {
-    await b.close();
-  }
+pageTest('a compare worker that dies is replaced, the page says so, and the next compare runs', { problems: false }, async (b) => {
+  const { page } = b;
+  const size = await page.evaluate(() => window.tristim.views.fit.pool.size);
+  const code = await page.evaluate(() => window.tristim.views.fit.pool.clients[0].call('testCrash', { how: 'abort' }).then(() => 'OK', (e) => e.code));
+  assert.equal(code, 'ENGINE_CRASHED');
+  await page.waitForFunction(() => document.getElementById('engine-status').dataset.crashes === '1', null, { timeout: 30000 });
+  assert.match(await page.textContent('#engine-status'), /stopped .* restarted/);
+  assert.equal(await page.evaluate(() => window.tristim.views.fit.pool.clients.length), size, 'the dead worker was replaced');
+  await fitMatrix(page);
+  assert.deepEqual(b.problems.filter((p) => !/test: the module was made to abort/.test(p)), []);
 });
