@@ -101,28 +101,17 @@ int run_fit(const Args& args, std::ostream& out) {
   const std::vector<std::string> ids = patch_labels(measured, r.ids);  // as --from spells them
   const double lo = r.wavelengths.front(), hi = r.wavelengths.back();
   if (args.has("json")) {
-    json::Value j = json::Value::object();
-    j.set("method", r.choice.method);
-    j.set("choice", fields::write(r.choice));
-    j.set("surface", surface_choice_text(r.choice));
-    j.set("free", fields::write(r.free));
-    j.set("range_nm", json::Value(std::vector<double>{lo, hi}));
-    j.set("wavelengths", json::Value(r.wavelengths));
-    j.set("illuminant", illuminant);
-    j.set("observer", observer_name(o.observer));
-    j.set("status", r.status);
-    j.set("message", r.message);
-    j.set("evaluations", r.evaluations);
-    json::Value rms = json::Value::object();
-    rms.set("before", r.spectral_rms_before);
-    rms.set("after", r.spectral_rms_after);
-    j.set("spectral_rms", rms);
-    json::Value de = json::Value::object();
-    de.set("before", summary_json(r.summary_dE00_before));
-    de.set("after", summary_json(r.summary_dE00_after));
-    j.set("dE00", de);
-    j.set("patches", fields::rows({{"patch", ids}, {"rms_before", r.rms_before}, {"rms_after", r.rms_after},
-                                   {"dE00_before", r.dE00_before}, {"dE00_after", r.dE00_after}}));
+    const json::Value j = fields::object(
+        {{"method", r.choice.method}, {"choice", fields::write(r.choice)}, {"surface", surface_choice_text(r.choice)},
+         {"free", fields::write(r.free)}, {"range_nm", json::Value(std::vector<double>{lo, hi})},
+         {"wavelengths", json::Value(r.wavelengths)}, {"illuminant", illuminant},
+         {"observer", observer_name(o.observer)}, {"status", r.status}, {"message", r.message},
+         {"evaluations", r.evaluations},
+         {"spectral_rms", fields::object({{"before", r.spectral_rms_before}, {"after", r.spectral_rms_after}})},
+         {"dE00", fields::object({{"before", summary_json(r.summary_dE00_before)},
+                                  {"after", summary_json(r.summary_dE00_after)}})},
+         {"patches", fields::rows({{"patch", ids}, {"rms_before", r.rms_before}, {"rms_after", r.rms_after},
+                                   {"dE00_before", r.dE00_before}, {"dE00_after", r.dE00_after}})}});
     out << j.dump(2) << "\n";
     return 0;
   }
@@ -196,18 +185,11 @@ int run_joint(const Args& args, std::ostream& out) {
   o.free = args.get("free", "capture");
   const JointFitResult r = fit_surface_joint_Abed2013(start_choice(args), camera_RGB, paired, o);
   if (args.has("json")) {
-    json::Value j = json::Value::object();
-    j.set("choice", fields::write(r.choice));
-    j.set("surface", surface_choice_text(r.choice));
-    std::vector<double> m;
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) m.push_back(r.matrix(a, b));
-    j.set("matrix", json::Value(m));
-    j.set("dE_xyz_rms_start", r.dE_xyz_rms_start);
-    j.set("dE_xyz_rms", r.dE_xyz_rms);
-    j.set("status", r.status);
-    j.set("message", r.message);
-    j.set("evaluations", r.evaluations);
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> m = r.matrix;  // row-major, as the text form
+    const json::Value j = fields::object(
+        {{"choice", fields::write(r.choice)}, {"surface", surface_choice_text(r.choice)},
+         {"matrix", json::Value(std::vector<double>(m.data(), m.data() + 9))}, {"dE_xyz_rms_start", r.dE_xyz_rms_start},
+         {"dE_xyz_rms", r.dE_xyz_rms}, {"status", r.status}, {"message", r.message}, {"evaluations", r.evaluations}});
     out << j.dump(2) << "\n";
     return 0;
   }
@@ -230,10 +212,7 @@ int run_table4(const Args& args, std::ostream& out) {
   if (args.has("json")) {
     json::Value a = json::Value::array();
     for (const auto& c : cells) {
-      json::Value o = json::Value::object();
-      o.set("training", c.training);
-      o.set("method", c.method);
-      o.set("ok", c.ok);
+      json::Value o = fields::object({{"training", c.training}, {"method", c.method}, {"ok", c.ok}});
       if (!c.ok) o.set("error_code", c.error_code);
       o.set("message", c.message);
       o.set("dE_xyz", summary_json(c.dE_xyz));
@@ -242,10 +221,7 @@ int run_table4(const Args& args, std::ostream& out) {
       if (c.method == "corrected-3x3") o.set("mu", c.mu);
       a.push(o);
     }
-    json::Value j = json::Value::object();
-    j.set("test", x.test.name);
-    j.set("cells", a);
-    out << j.dump(2) << "\n";
+    out << fields::object({{"test", x.test.name}, {"cells", a}}).dump(2) << "\n";
     return 0;
   }
   out << "training,method,dE_xyz_mean,dE_xyz_max,dE00_mean,dE00_max,status\n";

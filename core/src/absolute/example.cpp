@@ -180,11 +180,8 @@ AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
     double top = 0;
     for (size_t k = 0; k < sg.size(); ++k) top = std::max(top, luminance_sum(sg, k));
     for (size_t k = 0; k < sg.size(); ++k) {
-      VirtualScene s = uniform_scene(W, H, sg, 700.0 * luminance_sum(sg, k) / top);
-      s.stimuli.values = {sg.values[k]};
-      s.stimuli.names = {sg.names[k]};
-      const RawImage f = capture_virtual(ex.sensor, s, mid, seed++);
-      keep(sample_stimulus(f, rx, ry, 8, 8, n, mid, virtual_XYZ(ex.sensor, s, 0), "colour SG " + sg.names[k], false));
+      keep(shoot_colour_stimulus(ex.sensor, sg, k, 700.0 * luminance_sum(sg, k) / top, W, H, mid, seed++, n,
+                                 "colour SG " + sg.names[k]));
     }
     ex.stimuli_csv = stimuli_to_csv(ex.stimuli);
     return ex;
@@ -194,11 +191,7 @@ AbsoluteExample make_absolute_example(const AbsoluteExampleOptions& o) {
   for (const auto& x : ref.XYZ) targets.push_back(x * 7.0);
   const SpectralData proj = projector_spectra(targets, ref.ids);
   for (size_t k = 0; k < targets.size(); ++k) {
-    VirtualScene s = uniform_scene(W, H, proj, targets[k][1]);
-    s.stimuli.values = {proj.values[k]};
-    s.stimuli.names = {proj.names[k]};
-    const RawImage f = capture_virtual(ex.sensor, s, mid, seed++);
-    keep(sample_stimulus(f, rx, ry, 8, 8, n, mid, virtual_XYZ(ex.sensor, s, 0), "colour " + ref.ids[k], false));
+    keep(shoot_colour_stimulus(ex.sensor, proj, k, targets[k][1], W, H, mid, seed++, n, "colour " + ref.ids[k]));
   }
   ex.stimuli_csv = stimuli_to_csv(ex.stimuli);
   return ex;

@@ -200,6 +200,17 @@ void simulate_blocks(const VirtualSensor& s, const VirtualScene& scene, const Ex
 
 }  // namespace
 
+TrainingStimulus shoot_colour_stimulus(const VirtualSensor& sensor, const SpectralData& spectra, size_t k,
+                                       double luminance, int width, int height, const ExposureSettings& exposure,
+                                       std::uint64_t seed, const Normalisation& n, const std::string& id) {
+  VirtualScene scene = uniform_scene(width, height, spectra, luminance);
+  scene.stimuli.values = {spectra.values[k]};
+  scene.stimuli.names = {spectra.names[k]};
+  const RawImage frame = capture_virtual(sensor, scene, exposure, seed);
+  return sample_stimulus(frame, width / 2 - 4, height / 2 - 4, 8, 8, n, exposure, virtual_XYZ(sensor, scene, 0), id,
+                         false);
+}
+
 RawImage capture_virtual(const VirtualSensor& s, const VirtualScene& scene, const ExposureSettings& e,
                          std::uint64_t seed) {
   RawImage img;

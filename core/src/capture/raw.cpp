@@ -16,6 +16,7 @@
 #include "tristim/error.hpp"
 #include "tristim/io/fields.hpp"
 #include "../large_buffer.hpp"
+#include "percentile.hpp"
 #include "../simd4.hpp"
 
 namespace tristim {
@@ -742,9 +743,7 @@ Preview render_preview(const RawImage& image, int max_side) {
       lum[k] = 0.2126f * lin[k * 3] + 0.7152f * lin[k * 3 + 1] + 0.0722f * lin[k * 3 + 2];
     }
   std::vector<float> sorted = lum;
-  const size_t q = std::min(sorted.size() - 1, static_cast<size_t>(0.99 * sorted.size()));
-  std::nth_element(sorted.begin(), sorted.begin() + q, sorted.end());
-  const double p99 = sorted[q];
+  const double p99 = percentile(sorted, 0.99);
   const double gain = p99 > 1e-9 ? 0.9 / p99 : 1.0;
   pv.rgba.resize(n * 4);
   for (size_t k = 0; k < n; ++k) {

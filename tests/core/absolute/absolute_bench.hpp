@@ -105,12 +105,7 @@ inline AbsoluteBench build_bench(const BenchConfig& config) {
   for (const auto& x : cc.XYZ) targets.push_back(x * 7.0);
   const SpectralData proj = projector_spectra(targets, cc.ids);
   for (size_t k = 0; k < targets.size(); ++k) {
-    VirtualScene s = uniform_scene(W, H, proj, targets[k][1]);
-    s.stimuli.values = {proj.values[k]};
-    s.stimuli.names = {proj.names[k]};
-    const RawImage frame = capture_virtual(b.sensor, s, mid, seed++);
-    b.stimuli.push_back(sample_stimulus(frame, W / 2 - 4, H / 2 - 4, 8, 8, b.normalisation, mid,
-                                        virtual_XYZ(b.sensor, s, 0), cc.ids[k], false));
+    b.stimuli.push_back(shoot_colour_stimulus(b.sensor, proj, k, targets[k][1], W, H, mid, seed++, b.normalisation, cc.ids[k]));
   }
   AbsoluteFitOptions o;
   o.transform = config.transform;

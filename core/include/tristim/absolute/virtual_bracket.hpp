@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "tristim/absolute/luminance.hpp"
 #include "tristim/absolute/normalisation.hpp"
 #include "tristim/capture/raw.hpp"
 #include "tristim/colorimetry/spectra.hpp"
@@ -77,6 +78,13 @@ Vec3 virtual_XYZ(const VirtualSensor& sensor, const VirtualScene& scene, int k, 
 /// sets them, at 98 % of the reported level). Noise from `seed` (same seed, same frame).
 RawImage capture_virtual(const VirtualSensor& sensor, const VirtualScene& scene,
                          const ExposureSettings& exposure, std::uint64_t seed);
+
+/// A colour training stimulus as the virtual experiments shoot one: stimulus k of `spectra` alone
+/// filling a width × height frame at `luminance` (cd/m²), one frame at `exposure` (noise from
+/// `seed`), sampled in the 8 × 8 window at the centre with `n`; its X, Y, Z by virtual_XYZ.
+TrainingStimulus shoot_colour_stimulus(const VirtualSensor& sensor, const SpectralData& spectra, size_t k,
+                                       double luminance, int width, int height, const ExposureSettings& exposure,
+                                       std::uint64_t seed, const Normalisation& n, const std::string& id);
 
 /// The same frame as sensor values: a (2·width) × (2·height) RGGB mosaic in DN plus `black`
 /// (clamped to 0..65535), e.g. for a DNG with black level `black` and white level

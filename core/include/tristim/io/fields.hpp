@@ -26,8 +26,10 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "tristim/error.hpp"
@@ -227,6 +229,21 @@ struct Codec<std::map<std::string, V>> {
   }
 };
 
+/// An optional value: null when absent.
+template <class T>
+struct Codec<std::optional<T>> {
+  static json::Value write(const std::optional<T>& v) { return v ? Codec<T>::write(*v) : json::Value(); }
+  static void read(const json::Value& v, std::optional<T>& out, const Context& c, const std::string& p) {
+    if (v.is_null()) {
+      out.reset();
+      return;
+    }
+    T x{};
+    Codec<T>::read(v, x, c, p);
+    out = std::move(x);
+  }
+};
+
 // ---- tables -------------------------------------------------------------------------------
 
 /// One column of a table written as rows: a name and its values (texts or numbers), one per row.
@@ -252,14 +269,25 @@ inline json::Value rows(std::initializer_list<Column> columns) {
   return a;
 }
 
+/// A JSON object from its members in order ({"before", x}, {"after", y}): the one way to write
+/// an object that is no declared struct (a command's own summary).
+inline json::Value object(std::initializer_list<std::pair<const char*, json::Value>> members) {
+  json::Value o = json::Value::object();
+  for (const auto& [name, value] : members) o.set(name, value);
+  return o;
+}
+
 // ---- declared structs -----------------------------------------------------------------------
 
-/// Appends the listed members of `s` to the JSON object `o`.
+/// Appends the members of `list` of `s` to the JSON object `o`.
 template <class S>
-void write_members(const S& s, json::Value& o) {
-  for (const auto& f : Schema<S>::fields())
+void write_list(const S& s, const FieldList<S>& list, json::Value& o) {
+  for (const auto& f : list)
     if (!f.shown || f.shown(s)) o.set(f.name, f.write(s));
 }
+/// Appends the listed members of `s` to the JSON object `o`.
+template <class S>
+void write_members(const S& s, json::Value& o) { write_list(s, Schema<S>::fields(), o); }
 /// Some of the listed members of `s`, in the order `names` gives (a short form of a struct).
 template <class S>
 json::Value write_picked(const S& s, std::initializer_list<const char*> names) {
@@ -273,10 +301,9 @@ json::Value write_picked(const S& s, std::initializer_list<const char*> names) {
 /// The listed members of `o` into `s`: unknown members (other than `also_known`) and missing
 /// required ones refused, naming "path.name".
 template <class S>
-void read_members(const json::Value& o, S& s, const Context& c, const std::string& path,
-                  std::initializer_list<const char*> also_known = {}) {
+void read_list(const json::Value& o, S& s, const FieldList<S>& list, const Context& c, const std::string& path,
+               std::initializer_list<const char*> also_known = {}) {
   if (!o.is_object()) c.refuse(path.empty() ? std::string("expected a JSON object") : "'" + path + "' must be an object");
-  const auto& list = Schema<S>::fields();
   for (const auto& [name, v] : o.members()) {
     bool known = false;
     for (const auto& f : list) known = known || name == f.name;
@@ -292,6 +319,11 @@ void read_members(const json::Value& o, S& s, const Context& c, const std::strin
     if (!f.read) c.refuse("'" + join(path, f.name) + "' cannot be read");
     f.read(*v, s, c, join(path, f.name));
   }
+}
+template <class S>
+void read_members(const json::Value& o, S& s, const Context& c, const std::string& path,
+                  std::initializer_list<const char*> also_known = {}) {
+  read_list(o, s, Schema<S>::fields(), c, path, also_known);
 }
 
 template <class S>
@@ -379,6 +411,28 @@ template <auto M, json::Value (*Write)(const typename member_traits<decltype(M)>
 Field<typename member_traits<decltype(M)>::owner> member_as(const char* name) {
   using S = typename member_traits<decltype(M)>::owner;
   return {name, [](const S& s) { return Write(s.*M); }, nullptr, nullptr, true};
+}
+
+/// The member M2 of the member M1 (a value kept in a part of the struct), under a JSON name.
+template <auto M1, auto M2>
+Field<typename member_traits<decltype(M1)>::owner> nested(const char* name, bool required = true) {
+  using S = typename member_traits<decltype(M1)>::owner;
+  using T = typename member_traits<decltype(M2)>::type;
+  return {name, [](const S& s) { return Codec<T>::write(s.*M1.*M2); },
+          [](const json::Value& v, S& s, const Context& c, const std::string& p) { Codec<T>::read(v, s.*M1.*M2, c, p); },
+          nullptr, required};
+}
+
+/// Some members of S written as one nested JSON object (a section of the document): the fields
+/// List() gives, each read and written on the same S.
+template <class S, const FieldList<S>& (*List)()>
+Field<S> section(const char* name) {
+  return {name, [](const S& s) {
+            json::Value o = json::Value::object();
+            write_list(s, List(), o);
+            return o;
+          },
+          [](const json::Value& v, S& s, const Context& c, const std::string& p) { read_list(v, s, List(), c, p); }};
 }
 
 }  // namespace tristim::fields
