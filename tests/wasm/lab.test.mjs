@@ -100,3 +100,27 @@ test('lab exercises: spectra to colour and the over-fitting table, as the CLI pr
     if (r.ok) for (const f of ['train_dE00', 'test_dE00']) assert.ok(Math.abs(r[f] - native[i][f]) < 1e-9, `${r.model} ${r.training} ${f}: ${r[f]} vs ${native[i][f]}`);
   });
 });
+
+test('lab metamers: the search and a constructed metamer as the CLI prints them; coded errors', async () => {
+  const T = await loadTristim();
+  const cli = (...a) => JSON.parse(execFileSync(nativeCli, ['lab', 'metamers', ...a, '--json']).toString());
+  const found = T.labMetamers({ illuminant: 'D65', second: 'A', max_match: 0.5, top: 3 });
+  const nf = cli('--illuminant', 'D65', '--second', 'A', '--max-match', '0.5', '--top', '3');
+  assert.equal(found.matching, nf.matching);
+  assert.equal(found.compared, nf.compared);
+  assert.deepEqual(found.pairs.map((p) => [p.a, p.b]), nf.pairs.map((p) => [p.a, p.b]));
+  const made = T.labConstructMetamer({ camera: 'Nikon_D850', second: 'F11' }, '5R5/6');
+  const nm = cli('--camera', 'Nikon_D850', '--second', 'F11', '--construct', '5R5/6');
+  const [p, q] = [made.pairs[0], nm.pairs[0]];
+  let worst = { e: 0 };
+  p.reflectance_b.forEach((v, i) => { const e = Math.abs(v - q.reflectance_b[i]); if (e > worst.e) worst = { e, at: `${i}: ${v} vs ${q.reflectance_b[i]}` }; });
+  assert.ok(worst.e < 1e-9, `metamer reflectance, worst ${worst.at}`);
+  p.views.forEach((v, k) => {
+    assert.equal(v.viewer, q.views[k].viewer);
+    for (const f of ['dE00_1', 'dE00_2']) assert.ok(Math.abs(v[f] - q.views[k][f]) < 1e-9, `${v.viewer} ${f}: ${v[f]} vs ${q.views[k][f]}`);
+  });
+  assert.ok(p.views[0].dE00_1 < 1e-9 && p.views[0].dE00_2 > 1);
+  assert.equal(T.listMunsell().length, 1269);
+  throwsCode(assert, () => T.labConstructMetamer({}, '99Q1/1'), 'UNKNOWN_ID');
+  throwsCode(assert, () => T.labMetamers({ match: 'camera' }), 'INVALID_ARGUMENT');
+});
