@@ -17,13 +17,7 @@ using wasm::def;
 
 namespace {
 std::string version() { return kVersion; }
-template <class Row>
-std::vector<MethodInfo> infos(const std::vector<Row>& rows) {
-  std::vector<MethodInfo> out;
-  for (const auto& r : rows) out.push_back(r.info);
-  return out;
-}
-std::vector<MethodInfo> objectives() { return infos(objective_table()); }
+std::vector<MethodInfo> objectives() { return method_infos(objective_table()); }
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(tristim_catalog) {

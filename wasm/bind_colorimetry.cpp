@@ -19,26 +19,6 @@ ReferenceChart parse_reference_file(const std::string& text, const std::string& 
   return r;
 }
 
-/// ΔE per pair of rows; method "CIE2000" | "CIE1994" | "CIE1976" (Lab1 is the reference for 1994).
-std::vector<double> delta_E(const std::string& method, const std::vector<Vec3>& Lab1, const std::vector<Vec3>& Lab2) {
-  if (Lab1.size() != Lab2.size()) throw Error(ErrorCode::InvalidArgument, "Lab1 and Lab2 differ in length");
-  if (method != "CIE2000" && method != "CIE1994" && method != "CIE1976")
-    throw Error(ErrorCode::UnknownId, "unknown ΔE method '" + method + "' (CIE2000, CIE1994, CIE1976)");
-  std::vector<double> out(Lab1.size());
-  for (size_t i = 0; i < out.size(); ++i)
-    out[i] = method == "CIE2000" ? delta_E_CIE2000(Lab1[i], Lab2[i])
-             : method == "CIE1994" ? delta_E_CIE1994(Lab1[i], Lab2[i]) : delta_E_CIE1976(Lab1[i], Lab2[i]);
-  return out;
-}
-
-/// F applied to every row, relative to one white.
-template <Vec3 (*F)(const Vec3&, const Vec3&)>
-std::vector<Vec3> each(const std::vector<Vec3>& XYZ, const Vec3& white) {
-  std::vector<Vec3> out;
-  for (const auto& v : XYZ) out.push_back(F(v, white));
-  return out;
-}
-
 struct SimulatedChart {
   std::vector<std::string> ids;
   std::vector<Vec3> RGB;
@@ -72,8 +52,8 @@ EMSCRIPTEN_BINDINGS(tristim_colorimetry) {
   def<&pair_by_id>("pairById");
   def<&spectral_locus>("spectralLocus");
   def<&delta_E>("deltaE");
-  def<&each<&XYZ_to_Lab>>("XYZToLab");
-  def<&each<&display_sRGB>>("XYZToDisplaySRGB");
+  def<&each_row<&XYZ_to_Lab>>("XYZToLab");
+  def<&each_row<&display_sRGB>>("XYZToDisplaySRGB");
   def<&display_matrix>("displayMatrix");
   def<&simulate_camera>("simulateCamera");
 }

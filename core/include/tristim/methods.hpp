@@ -44,6 +44,14 @@ struct MethodChoice {
   std::map<std::string, std::string> settings; ///< choice / text options
 };
 
+/// The MethodInfo of every row of a stage's table (rows with an `info` member).
+template <class Row>
+std::vector<MethodInfo> method_infos(const std::vector<Row>& rows) {
+  std::vector<MethodInfo> out;
+  for (const auto& r : rows) out.push_back(r.info);
+  return out;
+}
+
 /// Checks `choice` against `info` (Error(UnknownId) for an option the method lacks,
 /// Error(InvalidArgument) for a value of the wrong kind or out of bounds) and returns it with
 /// every missing option filled with its default.

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tristim/error.hpp"
 #include "../detmath.hpp"
 
 namespace tristim {
@@ -77,6 +78,17 @@ double delta_E_CIE1994(const Vec3& Lab1, const Vec3& Lab2, bool textiles) {
   const double SL = 1.0, SC = 1.0 + K1 * C1, SH = 1.0 + K2 * C1;
   const double tL = dL / (kL * SL), tC = dC / SC;
   return std::sqrt(tL * tL + tC * tC + dH2 / (SH * SH));
+}
+
+std::vector<double> delta_E(const std::string& method, const std::vector<Vec3>& Lab1, const std::vector<Vec3>& Lab2) {
+  if (Lab1.size() != Lab2.size()) throw Error(ErrorCode::InvalidArgument, "Lab1 and Lab2 differ in length");
+  if (method != "CIE2000" && method != "CIE1994" && method != "CIE1976")
+    throw Error(ErrorCode::UnknownId, "unknown ΔE method '" + method + "' (CIE2000, CIE1994, CIE1976)");
+  std::vector<double> out(Lab1.size());
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = method == "CIE2000" ? delta_E_CIE2000(Lab1[i], Lab2[i])
+             : method == "CIE1994" ? delta_E_CIE1994(Lab1[i], Lab2[i]) : delta_E_CIE1976(Lab1[i], Lab2[i]);
+  return out;
 }
 
 double delta_E_CIE2000_dL(double L1, double L2, double kL) {

@@ -101,6 +101,25 @@ TEST_CASE("dE76, dE94 and dE2000 match colour-science's expected values (1e-7)",
   CHECK(delta_E_CIE2000(ref, Vec3(50.0, 8.32281957, -73.58297716), 2) == Approx(70.63213819).margin(1e-7));
 }
 
+TEST_CASE("delta_E over rows by method id: colour-science's values per pair, coded errors", "[colorimetry]") {
+  // The same colour-science expectations as above, through the list form the page calls (deltaE).
+  const Vec3 ref(100.0, 21.57210357, 272.2281935);
+  const std::vector<Vec3> refs{ref, ref}, samples{Vec3(100.0, 74.05216981, 276.45318193), Vec3(100.0, 8.32281957, -73.58297716)};
+  const auto d00 = delta_E("CIE2000", refs, samples), d94 = delta_E("CIE1994", refs, samples),
+             d76 = delta_E("CIE1976", refs, samples);
+  REQUIRE(d00.size() == 2);
+  CHECK(d00[0] == Approx(14.87906419).margin(1e-7));
+  CHECK(d00[1] == Approx(68.23111251).margin(1e-7));
+  CHECK(d94[0] == Approx(10.053931954553839).margin(1e-7));
+  CHECK(d94[1] == Approx(57.535453706667425).margin(1e-7));
+  CHECK(d76[0] == Approx(52.64986116).margin(1e-7));
+  test::require_code([&] { delta_E("CIE2001", refs, samples); }, ErrorCode::UnknownId);
+  test::require_code([&] { delta_E("CIE2000", refs, {ref}); }, ErrorCode::InvalidArgument);
+  const auto Lab = each_row<&XYZ_to_Lab>({whites::D65(), Vec3::Zero()}, whites::D65());
+  CHECK(Lab[0].isApprox(Vec3(100, 0, 0), 1e-12));
+  CHECK(Lab[1].norm() == Approx(0).margin(1e-12));
+}
+
 TEST_CASE("Bradford D65 -> D50 matches Lindbloom's published matrix — CAT02 and von Kries differ from it", "[colorimetry]") {
   // B. Lindbloom, "Chromatic Adaptation" (whites D65 = 0.95047, 1, 1.08883; D50 = 0.96422, 1, 0.82521).
   const Vec3 d65(0.95047, 1.0, 1.08883), d50(0.96422, 1.0, 0.82521);

@@ -5,6 +5,8 @@
 // has Y = 100 (CIE 15); absolute data (cd/m²) are fine as long as the white is in cd/m² too.
 #pragma once
 #include <Eigen/Core>
+#include <string>
+#include <vector>
 
 namespace tristim {
 
@@ -53,6 +55,21 @@ DeltaE2000 delta_E_CIE2000_components(const Vec3& Lab1, const Vec3& Lab2, double
 double delta_E_CIE2000(const Vec3& Lab1, const Vec3& Lab2, double kL = 1, double kC = 1, double kH = 1);
 /// The components' dL = ΔL'/(kL·SL) alone (eqs 8, 12, 18): it depends on L1 and L2 only.
 double delta_E_CIE2000_dL(double L1, double L2, double kL = 1);
+
+/// ΔE per pair of rows by method id: "CIE2000", "CIE1994" (graphic arts; Lab1 is the reference)
+/// or "CIE1976". Error(UnknownId) for another id, Error(InvalidArgument) when the lists differ in
+/// length.
+std::vector<double> delta_E(const std::string& method, const std::vector<Vec3>& Lab1, const std::vector<Vec3>& Lab2);
+
+/// F(row, white) for every row: a per-colour function relative to one white (XYZ_to_Lab, ...)
+/// over a list of colours.
+template <Vec3 (*F)(const Vec3&, const Vec3&)>
+std::vector<Vec3> each_row(const std::vector<Vec3>& rows, const Vec3& white) {
+  std::vector<Vec3> out;
+  out.reserve(rows.size());
+  for (const auto& v : rows) out.push_back(F(v, white));
+  return out;
+}
 
 /// Chromatic adaptation transforms (von Kries-type, full adaptation).
 enum class ChromaticAdaptation { Bradford, CAT02, VonKries };
