@@ -20,6 +20,7 @@
 #include "tristim/absolute/stimuli_file.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/profile/export.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -92,27 +93,17 @@ int run_sensitivities(const Args& args, std::ostream& out) {
   for (const auto& e : args.all("exclude")) o.exclude_cameras.push_back(e);
   // Paired by patch id: the reflectance columns in the order of the RGB rows.
   const SensitivityEstimate e = estimate_sensitivities_by_id(rgb.ids, rgb.RGB, refl, illuminant_arg(args.get("illuminant")), o);
-  json::Value s = json::Value::object();
-  s.set("method", "Jiang2013");
-  s.set("patches", e.patches);
-  s.set("unpaired_rgb_rows", e.unpaired);
-  s.set("components", e.components);
-  s.set("basis_cameras", e.basis_cameras);
-  s.set("residual", json::Value(std::vector<double>{e.residual[0], e.residual[1], e.residual[2]}));
-  s.set("residual_rms", e.residual_rms);
-  s.set("areas", json::Value(std::vector<double>{e.areas[0], e.areas[1], e.areas[2]}));
-  s.set("area_ratio_R_G", e.areas[0] / e.areas[1]);
-  s.set("area_ratio_B_G", e.areas[2] / e.areas[1]);
-  s.set("clipped_samples", e.clipped);
+  json::Value s = fields::object(
+      {{"method", "Jiang2013"}, {"patches", e.patches}, {"unpaired_rgb_rows", e.unpaired},
+       {"components", e.components}, {"basis_cameras", e.basis_cameras}, {"residual", fields::write(e.residual)},
+       {"residual_rms", e.residual_rms}, {"areas", fields::write(e.areas)}, {"area_ratio_R_G", e.areas[0] / e.areas[1]},
+       {"area_ratio_B_G", e.areas[2] / e.areas[1]}, {"clipped_samples", e.clipped}});
   if (args.has("compare")) {
     const SpectralData truth = camera_ssf(args.get("compare"));
     const auto A = channel_areas(truth);
-    json::Value c = json::Value::object();
-    c.set("camera", args.get("compare"));
-    c.set("rms_peak_normalised", sensitivity_rms(e.ssf, truth));
-    c.set("area_ratio_R_G", A[0] / A[1]);
-    c.set("area_ratio_B_G", A[2] / A[1]);
-    s.set("compare", c);
+    s.set("compare", fields::object({{"camera", args.get("compare")},
+                                     {"rms_peak_normalised", sensitivity_rms(e.ssf, truth)},
+                                     {"area_ratio_R_G", A[0] / A[1]}, {"area_ratio_B_G", A[2] / A[1]}}));
   }
   const std::string csv = sensitivities_to_csv(e.ssf);
   if (args.has("out")) {

@@ -29,6 +29,31 @@ std::string option_names(const MethodInfo& info) {
 
 }  // namespace
 
+OptionSpec number_option(const std::string& name, const std::string& label, double default_number, double min,
+                         double max, const std::string& description, const std::string& type) {
+  OptionSpec o;
+  o.name = name;
+  o.type = type;
+  o.label = label;
+  o.default_number = default_number;
+  o.min = min;
+  o.max = max;
+  o.description = description;
+  return o;
+}
+
+OptionSpec text_option(const std::string& name, const std::string& label, const std::string& description,
+                       const std::string& default_text, const std::vector<std::string>& choices) {
+  OptionSpec o;
+  o.name = name;
+  o.type = choices.empty() ? "text" : "choice";
+  o.label = label;
+  o.default_text = default_text;
+  o.choices = choices;
+  o.description = description;
+  return o;
+}
+
 MethodChoice complete_choice(const MethodInfo& info, const MethodChoice& choice) {
   MethodChoice out;
   out.method = info.id;

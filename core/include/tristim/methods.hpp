@@ -44,6 +44,13 @@ struct MethodChoice {
   std::map<std::string, std::string> settings; ///< choice / text options
 };
 
+/// An option row of type "number" (or "integer" / "boolean"): default and inclusive bounds.
+OptionSpec number_option(const std::string& name, const std::string& label, double default_number, double min,
+                         double max, const std::string& description, const std::string& type = "number");
+/// An option row of type "text" (or "choice", with its `choices`): default text.
+OptionSpec text_option(const std::string& name, const std::string& label, const std::string& description,
+                       const std::string& default_text = "", const std::vector<std::string>& choices = {});
+
 /// The MethodInfo of every row of a stage's table (rows with an `info` member).
 template <class Row>
 std::vector<MethodInfo> method_infos(const std::vector<Row>& rows) {

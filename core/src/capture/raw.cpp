@@ -680,6 +680,14 @@ namespace {
 struct PreviewBlock {
   int x0, x1, y0, y1;
   int count() const { return (x1 - x0) * (y1 - y0); }
+  /// Sum of the image's R, G, B over the block.
+  std::array<double, 3> sum(const RawImage& image) const {
+    std::array<double, 3> acc{0, 0, 0};
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x)
+        for (int c = 0; c < 3; ++c) acc[c] += image.at(x, y, c);
+    return acc;
+  }
 };
 PreviewBlock preview_block(const RawImage& image, int scale, int i, int j) {
   return {i * scale, std::min((i + 1) * scale, image.width), j * scale, std::min((j + 1) * scale, image.height)};
@@ -705,10 +713,7 @@ Preview render_preview(const RawImage& image, int max_side) {
       for (int i = 0; i < pv.width; ++i) {
         const PreviewBlock b = preview_block(image, pv.scale, i, j);
         const double inv_n = 1.0 / static_cast<double>(b.count());
-        double acc[3] = {0, 0, 0};
-        for (int y = b.y0; y < b.y1; ++y)
-          for (int x = b.x0; x < b.x1; ++x)
-            for (int c = 0; c < 3; ++c) acc[c] += image.at(x, y, c);
+        const std::array<double, 3> acc = b.sum(image);
         std::uint8_t* px = &pv.rgba[(static_cast<size_t>(j) * pv.width + i) * 4];
         for (int c = 0; c < 3; ++c)
           px[c] = static_cast<std::uint8_t>(std::lround(std::min(1.0, std::max(0.0, acc[c] * inv_n / fs)) * 255.0));
@@ -731,10 +736,7 @@ Preview render_preview(const RawImage& image, int max_side) {
     for (int i = 0; i < pv.width; ++i) {
       const PreviewBlock b = preview_block(image, pv.scale, i, j);
       const float inv = 1.0f / static_cast<float>(b.count());
-      double acc[3] = {0, 0, 0};
-      for (int y = b.y0; y < b.y1; ++y)
-        for (int x = b.x0; x < b.x1; ++x)
-          for (int c = 0; c < 3; ++c) acc[c] += image.at(x, y, c);
+      const std::array<double, 3> acc = b.sum(image);
       double cam[3];
       for (int c = 0; c < 3; ++c) cam[c] = std::max(0.0, acc[c] * inv * wb[c] / sat);
       const size_t k = static_cast<size_t>(j) * pv.width + i;

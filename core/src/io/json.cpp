@@ -209,6 +209,12 @@ struct Parser {
   void ws() {
     while (i < s.size() && (s[i] == ' ' || s[i] == '\n' || s[i] == '\r' || s[i] == '\t')) ++i;
   }
+  /// Steps over `c` if it comes next.
+  bool eat(char c) {
+    if (i >= s.size() || s[i] != c) return false;
+    ++i;
+    return true;
+  }
   bool lit(const char* w) {
     const size_t n = std::strlen(w);
     if (s.compare(i, n, w) == 0) {
@@ -338,22 +344,13 @@ struct Parser {
     ++i;
     Value v = Value::array();
     ws();
-    if (i < s.size() && s[i] == ']') {
-      ++i;
-      return v;
-    }
+    if (eat(']')) return v;
     while (true) {
       if (v.size() >= limits::kMaxJsonArray) too_much("array too long", limits::kMaxJsonArray);
       v.push(value());
       ws();
-      if (i < s.size() && s[i] == ',') {
-        ++i;
-        continue;
-      }
-      if (i < s.size() && s[i] == ']') {
-        ++i;
-        return v;
-      }
+      if (eat(',')) continue;
+      if (eat(']')) return v;
       fail("expected ',' or ']'");
     }
   }
@@ -362,18 +359,14 @@ struct Parser {
     Value v = Value::object();
     std::unordered_map<std::string, size_t> index;  // a repeated key replaces the earlier value
     ws();
-    if (i < s.size() && s[i] == '}') {
-      ++i;
-      return v;
-    }
+    if (eat('}')) return v;
     while (true) {
       ws();
       if (i >= s.size() || s[i] != '"') fail("expected a key");
       if (v.size() >= limits::kMaxJsonArray) too_much("object with too many members", limits::kMaxJsonArray);
       std::string key = str();
       ws();
-      if (i >= s.size() || s[i] != ':') fail("expected ':'");
-      ++i;
+      if (!eat(':')) fail("expected ':'");
       Value member = value();
       const auto at = index.find(key);
       if (at != index.end()) {
@@ -383,14 +376,8 @@ struct Parser {
         v.object_.emplace_back(std::move(key), std::move(member));
       }
       ws();
-      if (i < s.size() && s[i] == ',') {
-        ++i;
-        continue;
-      }
-      if (i < s.size() && s[i] == '}') {
-        ++i;
-        return v;
-      }
+      if (eat(',')) continue;
+      if (eat('}')) return v;
       fail("expected ',' or '}'");
     }
   }

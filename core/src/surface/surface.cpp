@@ -93,41 +93,16 @@ const char* kSpectralHelp =
     "per-wavelength coefficients: ';'-separated entries 'nm/c1/c2/...' (the row's coefficients in order); "
     "empty = the scalar options at every wavelength";
 
-OptionSpec number_option(const std::string& name, const std::string& label, double def, double lo, double hi,
-                         const std::string& description) {
-  OptionSpec o;
-  o.name = name;
-  o.type = "number";
-  o.label = label;
-  o.default_number = def;
-  o.min = lo;
-  o.max = hi;
-  o.description = description;
-  return o;
-}
-
-OptionSpec spectral_option() {
-  OptionSpec o;
-  o.name = "spectral";
-  o.type = "text";
-  o.label = "Per-wavelength coefficients";
-  o.description = kSpectralHelp;
-  return o;
-}
+OptionSpec spectral_option() { return text_option("spectral", "Per-wavelength coefficients", kSpectralHelp); }
 
 // Where the coefficients come from (Phase II as an option of the normal fit path).
 OptionSpec fit_option() {
-  OptionSpec o;
-  o.name = "fit";
-  o.type = "choice";
-  o.label = "Coefficients";
-  o.default_text = "fixed";
-  o.choices = {"fixed", "joint"};
-  o.description =
+  return text_option(
+      "fit", "Coefficients",
       "fixed: applied as given; joint: fitted by the fit step jointly with a 3×3 matrix anchored to the chart's white "
       "patch (Phase II, Abed et al. 2013 Fig. 3), these values being the start and, for Saunderson, the fixed "
-      "instrument geometry";
-  return o;
+      "instrument geometry",
+      "fixed", {"fixed", "joint"});
 }
 
 SpectralData apply_rows(const SpectralData& reflectances, const MethodChoice& choice) {
