@@ -1,6 +1,6 @@
 // Worker handlers of the Lab mode: a chart photograph rendered by the engine from measured
 // spectra (DNG bytes, transferred, and its truth as JSON), and camera quality: the SMI / μ ranking
-// of the 52 cameras and one camera's curves beside their best-fit CMF combination.
+// of the 52 cameras and one camera's curves beside their best-fit CMF combination; metamer pairs.
 import { reply } from '../lib/reply.js';
 
 export const handlers = {
@@ -20,4 +20,8 @@ export const handlers = {
     const ssf = T.cameraSensitivities(camera), L = T.illuminantSpectrum(illuminant);
     return reply({ quality: T.cameraQuality(ssf, L, camera), fit: T.lutherFit(ssf, L) });
   },
+  /// The metamerism explorer: options are MetamerOptions fields; `construct` a Munsell id builds a
+  /// metamer of that chip, otherwise pairs are searched in the Munsell set.
+  labMetamers: (T, { options, construct }) => reply(construct ? T.labConstructMetamer(options, construct) : T.labMetamers(options)),
+  labMunsell: (T) => reply(T.listMunsell()),
 };

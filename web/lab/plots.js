@@ -63,3 +63,19 @@ export function overfitPlot(rows, training, { width = 720, height = 300, Plot = 
     marks: [Plot.barY(data, { fx: 'model', x: 'kind', y: 'v', fill: 'kind' }), Plot.ruleY([0])],
   });
 }
+
+/// The metamerism explorer: both reflectances of a pair (the engine's MetamerPair) on its grid.
+export function metamerPlot(result, pair, { width = 720, height = 280, Plot = getPlot() } = {}) {
+  const rows = [];
+  for (const [name, v] of [[pair.a, pair.reflectance_a], [pair.b, pair.reflectance_b]]) {
+    v.forEach((x, i) => rows.push({ set: name, nm: result.wavelengths[i], v: x }));
+  }
+  return Plot.plot({
+    width, height, marginLeft: 50, marginBottom: 40,
+    x: { label: 'wavelength (nm) →', grid: true },
+    y: { label: '↑ reflectance', domain: [0, 1], grid: true },
+    color: { legend: true, domain: [pair.a, pair.b], range: ['#333', '#d95f02'] },
+    marks: [Plot.frame({ stroke: '#ccc' }), Plot.line(rows, { x: 'nm', y: 'v', z: 'set', stroke: 'set', strokeWidth: 2 }),
+      Plot.tip(rows, Plot.pointerX({ x: 'nm', y: 'v', stroke: 'set', title: (d) => `${d.set} at ${d.nm} nm: ${d.v.toFixed(3)}` }))],
+  });
+}
