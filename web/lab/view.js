@@ -10,6 +10,7 @@ import { options } from '../lib/catalog.js';
 import { figure } from '../plots/common.js';
 import { lutherPlot } from './plots.js';
 import { spectraPanel, overfitPanel } from './exercises.js';
+import { metamersPanel } from './metamers.js';
 
 const CHARTS = [
   { value: 'cc24', label: 'ColorChecker Classic (24)' },
@@ -200,13 +201,15 @@ export function mount(section, app) {
     plotBox, rankBox);
 
   // Tabs: one panel shown at a time.
-  const ex1 = spectraPanel(app), ex2 = overfitPanel(app);
+  const ex1 = spectraPanel(app), ex2 = overfitPanel(app), met = metamersPanel(app);
   const panels = [['render', 'Virtual camera', renderPanel], ['quality', 'Camera quality', qualityPanel],
+    ['metamers', 'Metamerism', met.panel],
     ['ex1', 'Exercise 1: spectra to colour', ex1.panel], ['ex2', 'Exercise 2: why a 3×3 is not enough', ex2.panel]];
   const tabs = h('div', { class: 'lab-tabs', role: 'tablist' });
   const showTab = (id) => {
     for (const [k, , p] of panels) p.hidden = k !== id;
     for (const b of tabs.children) b.setAttribute('aria-selected', String(b.dataset.tab === id));
+    if (id === 'metamers') met.loadChips().catch(() => {});  // the chip picker from the engine's list
   };
   for (const [k, label] of panels) {
     const b = h('button', { type: 'button', role: 'tab', 'data-tab': k }, label);
@@ -215,5 +218,5 @@ export function mount(section, app) {
   }
   section.append(tabs, ...panels.map(([, , p]) => p));
   showTab('render');
-  return { render, openInJourney, rank, plot, showTab, exercise1: ex1.run, exercise2: ex2.run };
+  return { render, openInJourney, rank, plot, showTab, exercise1: ex1.run, exercise2: ex2.run, metamers: met.run };
 }
