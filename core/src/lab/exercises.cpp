@@ -2,6 +2,7 @@
 #include "tristim/lab/exercises.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "tristim/characterisation/fit.hpp"
@@ -16,15 +17,11 @@
 
 namespace tristim {
 
-namespace {
-
-PatchMatrix rows_of(const std::vector<Vec3>& v) {
+PatchMatrix lab_patch_matrix(const std::vector<Vec3>& v) {
   PatchMatrix m(static_cast<Eigen::Index>(v.size()), 3);
   for (size_t i = 0; i < v.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
   return m;
 }
-
-}  // namespace
 
 SpectraToColour lab_spectra_to_colour(const std::string& chart, const std::string& patch,
                                       const std::vector<std::string>& illuminants, const std::vector<std::string>& observers) {
@@ -84,16 +81,16 @@ std::vector<OverfitRow> lab_overfit_exercise(const SpectralData& ssf, const Spec
   if (!(o.noise >= 0 && o.noise < 1)) throw Error(ErrorCode::InvalidArgument, "noise must be in [0, 1)");
   Vec3 white;
   const SpectralData& munsell = munsell_reflectances();
-  const PatchMatrix test_XYZ = rows_of(reflectances_to_XYZ(munsell, illuminant, Observer::CIE1931_2, &white));
-  const PatchMatrix test_RGB = rows_of(simulate_camera_RGB(ssf, munsell, illuminant));
+  const PatchMatrix test_XYZ = lab_patch_matrix(reflectances_to_XYZ(munsell, illuminant, Observer::CIE1931_2, &white));
+  const PatchMatrix test_RGB = lab_patch_matrix(simulate_camera_RGB(ssf, munsell, illuminant));
   std::vector<OverfitRow> out;
   for (const auto& chart : o.training) {
     const SpectralData refl = chart_reflectances(chart);
     SimulationOptions sim;
     sim.noise_sigma = o.noise;
     sim.seed = o.seed;
-    const PatchMatrix rgb = rows_of(simulate_camera_RGB(ssf, refl, illuminant, sim));
-    const PatchMatrix xyz = rows_of(reflectances_to_XYZ(refl, illuminant));
+    const PatchMatrix rgb = lab_patch_matrix(simulate_camera_RGB(ssf, refl, illuminant, sim));
+    const PatchMatrix xyz = lab_patch_matrix(reflectances_to_XYZ(refl, illuminant));
     FitOptions fo;
     fo.white = white;
     for (const auto& m : o.models) {
@@ -116,6 +113,30 @@ std::vector<OverfitRow> lab_overfit_exercise(const SpectralData& ssf, const Spec
       out.push_back(r);
     }
   }
+  return out;
+}
+
+std::string lab_number(double v) {
+  if (!std::isfinite(v)) return {};
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+std::string lab_table_csv(const LabTable& t) {
+  auto cell = [](const std::string& v) {
+    if (v.find_first_of(",\"\r\n") == std::string::npos) return v;
+    std::string q = "\"";
+    for (char c : v) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+  };
+  auto line = [&](const std::vector<std::string>& cells) {
+    std::string s;
+    for (size_t i = 0; i < cells.size(); ++i) s += (i ? "," : "") + cell(cells[i]);
+    return s + "\n";
+  };
+  std::string out = line(t.columns);
+  for (const auto& r : t.rows) out += line(r);
   return out;
 }
 
