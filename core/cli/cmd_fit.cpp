@@ -30,6 +30,9 @@ const char* kFitUsage =
     "            [--bootstrap N [--seed 1] [--level 0.95]]\n"
     "tristim fit --recipe recipe.json (--rgb patches.csv | --raw chart.dng) [--xyz reference.csv]\n"
     "            [--out profile.json] [--csv patches_out.csv] [--recipe-out recipe.json]\n"
+    "tristim fit --recipe recipe.json --raw a.dng --raw b.dng [--xyz ra.csv --xyz rb.csv] [--duplicates once|each]\n"
+    "            [--out profile.json] [--csv patches_out.csv] [--recipe-out recipe.json]\n"
+    "            (a recipe with an \"images\" list: one --raw per image, in its order; docs/multi-image.md)\n"
     "tristim fit --project p.tristim [--out profile.json]   (a project file: tristim share --project, the page's export)\n"
     "  Fits camera RGB -> XYZ and prints (or writes) the profile JSON with training and\n"
     "  leave-one-out metrics; the profile embeds the recipe it was made with.\n"
@@ -167,6 +170,52 @@ TrainingSet training_from_recipe(const Args& args, Recipe& recipe) {
   return training_set(recipe, d.labels, d.rgb, d.xyz);
 }
 
+/// The training set of a recipe with an "images" list (issue 48): each --raw sampled with its image
+/// entry (recipe.images[k], which records the file's SHA-256 and the flare measured), paired with
+/// that entry's reference (its built-in chart, or the --xyz at the same position), and the union.
+TrainingSet training_from_images(const Args& args, Recipe& recipe) {
+  const std::vector<std::string> raws = args.all("raw"), xyzs = args.all("xyz");
+  if (args.has("rgb")) throw Error(ErrorCode::InvalidArgument, "a recipe with images takes --raw (one per image), not --rgb");
+  if (raws.size() != recipe.images.size())
+    throw Error(ErrorCode::InvalidArgument, "the recipe lists " + std::to_string(recipe.images.size()) + " images but " +
+                                                std::to_string(raws.size()) + " --raw were given (one per image, in order)");
+  if (!xyzs.empty() && xyzs.size() != raws.size())
+    throw Error(ErrorCode::InvalidArgument, "--xyz: give none (built-in references) or one per --raw, not " +
+                                                std::to_string(xyzs.size()));
+  if (args.has("duplicates")) recipe.duplicates = args.get("duplicates");
+  std::vector<ChartPart> parts;
+  for (size_t k = 0; k < raws.size(); ++k) {
+    RecipeImage& entry = recipe.images[k];
+    const std::string named = "images[" + std::to_string(k) + "] ('" + entry.name + "'): ";
+    std::string bytes;
+    try {
+      bytes = read_file(raws[k]);
+    } catch (const Error& e) {
+      throw Error(e.code(), named + e.what());
+    }
+    const std::vector<ChartSample> samples =
+        sample_recipe_image(entry, k, reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+    const Recipe own = image_recipe(recipe, entry);
+    try {
+      if (entry.reference.chart == "file" && xyzs.empty())
+        throw Error(ErrorCode::InvalidArgument, "its reference is a file: give one --xyz per --raw");
+      ReferenceChart ref;
+      if (xyzs.empty()) {
+        ref = recipe_reference(own);
+      } else {
+        const PatchTable t = read_patch_file(read_file(xyzs[k]), xyzs[k]);
+        ref = reference_from_table(t, illuminant_spd(own.reference.illuminant), parse_observer(own.reference.observer));
+      }
+      for (size_t j = 0; j < samples.size(); ++j)
+        parts.push_back({entry.name + (samples.size() > 1 ? " #" + std::to_string(j + 1) : ""),
+                         training_set(own, samples[j], ref)});
+    } catch (const Error& e) {
+      throw Error(e.code(), named + e.what());
+    }
+  }
+  return training_union(recipe, parts);
+}
+
 /// --bootstrap: the intervals (evaluation/bootstrap.hpp) of the characterisation `c` written into
 /// its profile JSON `p`: "ci" next to the training and leave-one-out mean CIEDE2000 in "metrics",
 /// and a "bootstrap" object with each coefficient's interval, their covariance and each patch's
@@ -201,11 +250,13 @@ int run_fit(const Args& args, std::ostream& out) {
   TrainingSet training;
   Recipe recipe;
   if (args.has("recipe")) {
-    std::vector<std::string> known{"recipe", "rgb", "raw", "xyz", "ref-white", "out", "csv", "recipe-out"};
+    std::vector<std::string> known{"recipe", "rgb", "raw", "xyz", "ref-white", "out", "csv", "recipe-out", "duplicates"};
     for (const auto& b : bootstrap_option_names()) known.push_back(b);
     args.allow_only(known);
     recipe = recipe_from_json(read_file(args.get("recipe")));
-    training = training_from_recipe(args, recipe);
+    if (args.has("duplicates") && recipe.images.empty())
+      throw Error(ErrorCode::InvalidArgument, "--duplicates applies to a recipe with an \"images\" list");
+    training = recipe.images.empty() ? training_from_recipe(args, recipe) : training_from_images(args, recipe);
   } else {
     std::vector<std::string> known{"rgb", "xyz", "model", "objective", "white", "lab-white", "ref-white", "out", "csv",
                                    "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol", "de-ftol",
@@ -222,8 +273,10 @@ int run_fit(const Args& args, std::ostream& out) {
   const Characterisation c = characterise(recipe, training);
   const ModelEvaluation& ev = c.evaluation;
   std::string text = profile_to_json(c.profile);
-  if (c.recipe.characterisation.model == kCorrected3x3 || args.has("bootstrap")) {
+  const std::vector<ChartFigures> charts = chart_figures(c, training);  // several charts: each one's figures
+  if (c.recipe.characterisation.model == kCorrected3x3 || args.has("bootstrap") || !charts.empty()) {
     json::Value p = json::parse(text);
+    if (!charts.empty()) p.set("charts", chart_figures_json(charts));
     if (c.recipe.characterisation.model == kCorrected3x3) {  // μ of Abed 2013 eq (27), beside the profile
       json::Value k = json::Value::object();
       k.set("mu", ev.fit.mu);
@@ -253,6 +306,7 @@ int run_fit(const Args& args, std::ostream& out) {
   } else {
     out << text;
   }
+  std::cerr << chart_figures_text(charts);
   return 0;
 }
 

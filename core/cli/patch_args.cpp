@@ -153,6 +153,20 @@ std::string per_chart_figures(const Args& args, const std::vector<std::string>& 
   return o.str();
 }
 
+std::string chart_figures_text(const std::vector<ChartFigures>& charts) {
+  std::ostringstream o;
+  const auto pair = [](const Summary& s) { return fmt(s.mean) + "/" + fmt(s.max); };
+  for (size_t k = 0; k < charts.size(); ++k) {
+    const ChartFigures& f = charts[k];
+    o << "tristim: chart " << k + 1 << " (" << f.name << "): " << f.patches << " patches";
+    if (f.patches > 0) o << ", training mean/max dE00 " << pair(f.training_dE00);
+    if (f.has_loo && f.patches > 0) o << ", leave-one-out mean/max dE00 " << pair(f.loo_dE00);
+    o << ", held out (fitted on the other charts) mean/max dE00 "
+      << (f.has_held_out ? pair(f.held_out_dE00) : "- (" + f.held_out_error + ")") << "\n";
+  }
+  return o.str();
+}
+
 std::string per_chart_compare(const Args& args, const PatchData& d, const FitOptions& options,
                               const std::vector<CompareRow>& rows, int white_index) {
   if (args.all("rgb").size() < 2) return "";

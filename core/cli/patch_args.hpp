@@ -6,6 +6,7 @@
 #include "cli.hpp"
 #include "tristim/characterisation/fit.hpp"
 #include "tristim/evaluation/evaluation.hpp"
+#include "tristim/profile/characterise.hpp"
 
 namespace tristim::cli {
 
@@ -39,6 +40,10 @@ std::string read_files(const std::vector<std::string>& paths);
 /// mean/max dE00 …, leave-one-out mean/max dE00 …" lines of the evaluation `ev`, whose rows are
 /// `labels` (load_pairs's "k:id"; rows of no chart number are left out).
 std::string per_chart_figures(const Args& args, const std::vector<std::string>& labels, const ModelEvaluation& ev);
+/// Per chart of a recipe with images (profile/characterise.hpp's chart_figures): "tristim: chart k
+/// (name): n patches, training mean/max dE00 …, leave-one-out mean/max dE00 …, held out (fitted on
+/// the other charts) mean/max dE00 …" lines ("" for none).
+std::string chart_figures_text(const std::vector<ChartFigures>& charts);
 /// The same for the best row of a compare table (its first that fitted), evaluated again on d with
 /// `options` and that row's objective, under a heading naming the row; "" for one chart.
 std::string per_chart_compare(const Args& args, const PatchData& d, const FitOptions& options,

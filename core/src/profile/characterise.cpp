@@ -2,8 +2,15 @@
 #include "tristim/profile/characterise.hpp"
 
 #include <algorithm>
+#include <cstring>
+#include <map>
 
+#include "tristim/capture/image.hpp"
+#include "tristim/chart/detect.hpp"
+#include "tristim/chart/light_trap.hpp"
+#include "tristim/characterisation/models.hpp"
 #include "tristim/error.hpp"
+#include "tristim/share/sha256.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/surface/joint.hpp"
 #include "tristim/surface/surface.hpp"
@@ -146,16 +153,112 @@ TrainingSet training_set(const Recipe& in, const std::vector<std::string>& in_id
   return finish(std::move(ids), std::move(labels), std::move(rgb), std::move(xyz), std::move(excluded));
 }
 
+// ---- several chart images (issue 48) ------------------------------------------------------
+
+std::vector<ChartSample> sample_recipe_image(RecipeImage& e, size_t index, const std::uint8_t* bytes, size_t size) {
+  const std::string named = "images[" + std::to_string(index) + "] ('" + e.name + "'): ";
+  try {
+    e.sha256 = sha256_hex(bytes, size);
+    const RawImage image = decode_any(bytes, size);
+    if (image.meta.encoding == "stored" && e.capture.saturation == 0) e.capture.saturation = image.meta.white_level;
+    SampleOptions so;
+    so.area = e.sampling.area;
+    FrameCalibration cal;
+    if (e.capture.has_light_trap()) {  // Abed 2013 App. C step 1: measured again on this image
+      const LightTrap trap = measure_light_trap(image, e.capture.light_trap, so);
+      e.capture.flare = trap.mean;
+      cal = with_light_trap(cal, trap);
+    }
+    const auto& c = e.sampling.corners;
+    if (std::any_of(c.begin(), c.end(), [](double v) { return v != 0; }))
+      return {sample_chart(image, e.sampling.layout, c, so, &cal)};
+    DetectOptions o;
+    o.charts = {e.sampling.layout.chart};
+    if (e.sampling.layout.chart == "custom") o.custom = e.sampling.layout;
+    const std::vector<ChartCandidate> found = detect_charts(image, o);
+    std::vector<ChartSample> samples;
+    if (e.candidate == "all") {
+      for (const auto& k : found) samples.push_back(sample_chart(image, e.sampling.layout, k.corners, so, &cal));
+      return samples;
+    }
+    const size_t k = e.candidate.empty() ? 0 : static_cast<size_t>(std::stoul(e.candidate));
+    if (k >= found.size())
+      throw Error(ErrorCode::InvalidArgument, "candidate " + e.candidate + " asked for, but " +
+                                                  std::to_string(found.size()) + " chart(s) were detected");
+    return {sample_chart(image, e.sampling.layout, found[k].corners, so, &cal)};
+  } catch (const Error& x) {
+    throw Error(x.code(), named + x.what());
+  }
+}
+
+Recipe image_recipe(const Recipe& recipe, const RecipeImage& e) {
+  Recipe r = recipe;
+  r.reference = e.reference;
+  r.capture = e.capture;
+  r.sampling = e.sampling;
+  r.images.clear();
+  return r;
+}
+
+TrainingSet training_union(const Recipe& in, const std::vector<ChartPart>& charts) {
+  const Recipe r = complete_recipe(in);
+  const bool once = r.duplicates == kDuplicatesOnce;
+  std::vector<std::string> ids, labels, excluded;
+  std::vector<Vec3> rgb, xyz;
+  std::vector<std::vector<int>> of_row;  // the charts (from 1) of each row
+  std::map<std::string, size_t> seen;    // patch id + the reference XYZ's bits -> row
+  for (size_t k = 0; k < charts.size(); ++k) {
+    const TrainingSet& t = charts[k].training;
+    const std::string prefix = std::to_string(k + 1) + ":";
+    for (size_t i = 0; i < t.ids.size(); ++i) {
+      const Vec3 X = t.reference_XYZ.row(static_cast<Eigen::Index>(i)).transpose();
+      std::string key = t.ids[i] + '\0';
+      key.append(reinterpret_cast<const char*>(X.data()), sizeof(double) * 3);
+      const auto at = seen.find(key);
+      if (once && at != seen.end()) {  // the same colour again: one row, its camera RGB summed (mean below)
+        rgb[at->second] += t.camera_RGB.row(static_cast<Eigen::Index>(i)).transpose();
+        of_row[at->second].push_back(static_cast<int>(k + 1));
+        continue;
+      }
+      seen.emplace(key, ids.size());
+      ids.push_back(prefix + t.ids[i]);
+      labels.push_back(prefix + (t.labels.size() == t.ids.size() ? t.labels[i] : t.ids[i]));
+      rgb.push_back(t.camera_RGB.row(static_cast<Eigen::Index>(i)).transpose());
+      xyz.push_back(X);
+      of_row.push_back({static_cast<int>(k + 1)});
+    }
+    for (const auto& x : t.excluded) excluded.push_back(prefix + x);
+  }
+  for (size_t j = 0; j < ids.size(); ++j) {
+    if (of_row[j].size() < 2) continue;
+    rgb[j] /= static_cast<double>(of_row[j].size());
+    std::string prefix;
+    for (int k : of_row[j]) prefix += (prefix.empty() ? "" : "+") + std::to_string(k);
+    const auto strip = [](const std::string& s) { return s.substr(s.find(':') + 1); };
+    ids[j] = prefix + ":" + strip(ids[j]);
+    labels[j] = prefix + ":" + strip(labels[j]);
+  }
+  TrainingSet u = finish(std::move(ids), std::move(labels), std::move(rgb), std::move(xyz), std::move(excluded));
+  u.chart_rows.resize(charts.size());
+  for (size_t j = 0; j < of_row.size(); ++j)
+    for (int k : of_row[j]) u.chart_rows[static_cast<size_t>(k - 1)].push_back(static_cast<int>(j));
+  for (const auto& c : charts) u.chart_names.push_back(c.name);
+  return u;
+}
+
 Characterisation characterise(const Recipe& in, const TrainingSet& t) {
   Characterisation c;
   c.recipe = complete_recipe(in);
+  if (!c.recipe.images.empty() && joint_surface(c.recipe.surface))
+    throw Error(ErrorCode::InvalidArgument, "the joint surface fit (Phase II) corrects one built-in chart's spectra; "
+                                            "the recipe has " + std::to_string(c.recipe.images.size()) + " images");
   LinearisationData data;
   data.ids = t.ids;
   data.camera_RGB = t.camera_RGB;
   data.reference_XYZ = t.reference_XYZ;
   data.white = c.recipe.characterisation.lab_white;      // the reference's white: greys are neutral under it
   data.full_scale = c.recipe.capture.saturation;         // 255 / 65535 for a stored image (0: max of the data)
-  if (c.recipe.reference.chart != "file")
+  if (c.recipe.reference.chart != "file" && c.recipe.images.empty())  // several charts: no one chart's spectra
     data.reflectances = correct_surface(c.recipe.surface, chart_reflectances(c.recipe.reference.chart));
   c.linearisation = fit_linearisation(c.recipe.linearisation, data);
   c.linear_RGB = linearise(c.linearisation, t.camera_RGB);
@@ -184,6 +287,84 @@ Characterisation characterise(const Recipe& in, const TrainingSet& t) {
     if (c.linearisation.full_scale > 0) c.profile.rgb_max = c.linearisation.full_scale;
   }
   return c;
+}
+
+namespace {
+
+PatchMatrix rows_of(const PatchMatrix& m, const std::vector<int>& rows) {
+  PatchMatrix out(static_cast<Eigen::Index>(rows.size()), m.cols());
+  for (size_t i = 0; i < rows.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = m.row(rows[i]);
+  return out;
+}
+
+Summary summary_of(const std::vector<double>& v, const std::vector<int>& rows) {
+  std::vector<double> x;
+  for (int i : rows) x.push_back(v[static_cast<size_t>(i)]);
+  return summarize(x);
+}
+
+json::Value mean_max(bool has, const Summary& s) {
+  if (!has) return json::Value();
+  json::Value o = json::Value::object();
+  o.set("dE00_mean", s.mean);
+  o.set("dE00_max", s.max);
+  return o;
+}
+
+}  // namespace
+
+std::vector<ChartFigures> chart_figures(const Characterisation& c, const TrainingSet& t) {
+  std::vector<ChartFigures> out;
+  const ModelEvaluation& ev = c.evaluation;
+  for (size_t k = 0; k < t.chart_rows.size(); ++k) {
+    const std::vector<int>& mine = t.chart_rows[k];
+    ChartFigures f;
+    f.name = k < t.chart_names.size() ? t.chart_names[k] : std::to_string(k + 1);
+    f.patches = static_cast<int>(mine.size());
+    if (mine.empty()) {
+      out.push_back(f);
+      continue;
+    }
+    f.training_dE00 = summary_of(ev.training.patches.dE00, mine);
+    f.has_loo = ev.has_loo;
+    if (ev.has_loo) f.loo_dE00 = summary_of(ev.loo.patches.dE00, mine);
+    // Held out: fitted on the rows no chart but another gave, evaluated on this chart's rows.
+    std::vector<bool> in(static_cast<size_t>(c.linear_RGB.rows()), false);
+    for (int i : mine) in[static_cast<size_t>(i)] = true;
+    std::vector<int> others;
+    for (size_t i = 0; i < in.size(); ++i)
+      if (!in[i]) others.push_back(static_cast<int>(i));
+    try {
+      if (others.empty()) throw Error(ErrorCode::TooFewPatches, "no patch of another chart to train on");
+      int white = -1;
+      FitOptions o = recipe_fit_options(c.recipe, t.ids, c.linear_RGB, c.reference_XYZ, white);
+      if (white >= 0 && in[static_cast<size_t>(white)]) o.preserve_white = false;  // never fitted on what it tests
+      const FitResult r = fit(c.recipe.characterisation.model, rows_of(c.linear_RGB, others),
+                              rows_of(c.reference_XYZ, others), o);
+      const Metrics m = evaluate(predict(r.model, rows_of(c.linear_RGB, mine)), rows_of(c.reference_XYZ, mine), o.white);
+      f.has_held_out = true;
+      f.held_out_dE00 = m.dE00;
+    } catch (const Error& e) {
+      f.held_out_error = std::string(e.code_name()) + ": " + e.what();
+    }
+    out.push_back(f);
+  }
+  return out;
+}
+
+json::Value chart_figures_json(const std::vector<ChartFigures>& figures) {
+  json::Value a = json::Value::array();
+  for (const auto& f : figures) {
+    json::Value o = json::Value::object();
+    o.set("chart", f.name);
+    o.set("patches", f.patches);
+    o.set("training", mean_max(f.patches > 0, f.training_dE00));
+    o.set("loo", mean_max(f.has_loo && f.patches > 0, f.loo_dE00));
+    o.set("held_out", mean_max(f.has_held_out, f.held_out_dE00));
+    o.set("held_out_error", f.held_out_error);
+    a.push(o);
+  }
+  return a;
 }
 
 }  // namespace tristim

@@ -1,6 +1,7 @@
 // Recipe: strict versioned JSON, completion against the method tables, fit options.
 #include "tristim/profile/recipe.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "tristim/capture/calibration.hpp"
@@ -62,39 +63,128 @@ TRISTIM_FIELDS(CharacterisationStage, member<&CharacterisationStage::model>("mod
 TRISTIM_FIELDS(EvaluationStage, member<&EvaluationStage::leave_one_out>("leave_one_out"),
                member<&EvaluationStage::held_out_digest>("held_out_digest"));
 
+// A candidate index is written as a number, "all" as a string; absent: "".
+static bool has_candidate(const RecipeImage& e) { return !e.candidate.empty(); }
+static json::Value candidate_json(const RecipeImage& e) {
+  if (e.candidate == "all") return e.candidate;
+  return std::stoi(e.candidate);
+}
+static void read_candidate(const json::Value& v, RecipeImage& e, const Context& c, const std::string& path) {
+  if (v.is_string() && v.as_string() == "all") {
+    e.candidate = "all";
+    return;
+  }
+  int k = 0;
+  if (v.is_string()) c.refuse("'" + path + "' must be \"all\" or a candidate index (0, 1, …)");
+  read(v, k, c, path);
+  if (k < 0) c.refuse("'" + path + "' must not be negative");
+  e.candidate = std::to_string(k);
+}
+TRISTIM_FIELDS(RecipeImage, member<&RecipeImage::name>("name"), member<&RecipeImage::sha256>("sha256", false),
+               member<&RecipeImage::reference>("reference", false), member<&RecipeImage::capture>("capture", false),
+               member<&RecipeImage::sampling>("sampling", false),
+               with_shown(Field<RecipeImage>{"candidate", candidate_json, read_candidate, nullptr, false}, has_candidate));
+
+static void check_light_trap(const json::Value& capture, const CaptureStage& c, const std::string& path) {
+  if (capture.find("light_trap") || capture.find("flare")) {  // optional, but the two together
+    if (!capture.find("light_trap") || !capture.find("flare"))
+      kRecipe.refuse(path + "light_trap and " + path + "flare go together");
+    if (!c.has_light_trap()) kRecipe.refuse(path + "light_trap: the corners of a light trap cannot all be 0");
+  }
+}
+
+// Each image's stages default to the recipe's own (read before it: the list order below).
+static bool has_images(const Recipe& r) { return !r.images.empty(); }
+static json::Value images_json(const Recipe& r) { return write_elements(r.images); }
+static void read_images(const json::Value& v, Recipe& r, const Context& c, const std::string& path) {
+  if (!v.is_array()) c.refuse("'" + path + "' must be an array");
+  r.images.clear();
+  for (const auto& e : v.as_array()) {
+    const std::string at = path + "[" + std::to_string(r.images.size()) + "]";
+    RecipeImage image;
+    image.reference = r.reference;
+    image.capture = r.capture;
+    image.sampling = r.sampling;
+    read_members(e, image, c, at);
+    if (const json::Value* cap = e.find("capture")) check_light_trap(*cap, image.capture, at + ".capture.");
+    r.images.push_back(std::move(image));
+  }
+}
+
 TRISTIM_FIELDS(Recipe, member<&Recipe::reference>("reference"), member<&Recipe::capture>("capture"),
                member<&Recipe::sampling>("sampling"), member<&Recipe::linearisation>("linearisation"),
                member<&Recipe::surface>("surface"), member<&Recipe::characterisation>("characterisation"),
-               member<&Recipe::evaluation>("evaluation"));
+               member<&Recipe::evaluation>("evaluation"),
+               with_shown(Field<Recipe>{"images", images_json, read_images, nullptr, false}, has_images),
+               with_shown(member<&Recipe::duplicates>("duplicates", false), has_images));
 
 }  // namespace fields
 
 // ---- completion --------------------------------------------------------------------------
 
+namespace {
+
+// The checks of the stages an image entry has too. `p` prefixes the messages ("recipe: ", or
+// "recipe: images[1] ('b.dng'): "); errors of the tables (unknown illuminant, layout) are prefixed
+// with it too for an image entry (`image`).
+template <class F>
+void naming(const std::string& p, bool image, F f) {
+  if (!image) return f();
+  try {
+    f();
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    throw Error(e.code(), what.rfind(p, 0) == 0 ? what : p + (what.rfind("recipe: ", 0) == 0 ? what.substr(8) : what));
+  }
+}
+
+void complete_stages(ReferenceStage& ref, CaptureStage& cap, SamplingStage& s, const std::string& p, bool image) {
+  naming(p, image, [&] {
+    // Reference: the illuminant and observer must exist; the chart must be built in or "file".
+    illuminant_spd(ref.illuminant);
+    ref.observer = observer_name(parse_observer(ref.observer));
+    if (ref.chart != "file") {
+      bool found = false;
+      for (const auto& c : list_charts()) found = found || c.id == ref.chart;
+      if (!found) throw Error(ErrorCode::UnknownId, p + "unknown reference chart '" + ref.chart + "'");
+    }
+    // An alias ("pixel", "channel") is read and written back in the one spelling (dark_mode_id).
+    try {
+      cap.dark_mode = dark_mode_id(dark_mode_from_id(cap.dark_mode));
+    } catch (const Error& e) {
+      throw Error(ErrorCode::InvalidArgument, p + "capture.dark_mode: " + e.what());
+    }
+    if (cap.dark_frames < 0 || cap.saturation < 0 || cap.noise_floor < 0)
+      throw Error(ErrorCode::InvalidArgument, p + "capture counts and levels must not be negative");
+    chart_layout(s.layout);  // UnknownId / InvalidArgument for a bad layout
+    if (!(s.area > 0 && s.area <= 1)) throw Error(ErrorCode::InvalidArgument, p + "sampling.area must be in (0, 1]");
+    for (auto& id : s.exclude) id = normalise_patch_id(id);
+  });
+}
+
+void complete_image(RecipeImage& e, size_t k) {
+  const std::string p = "recipe: images[" + std::to_string(k) + "] ('" + e.name + "'): ";
+  if (e.name.empty()) throw Error(ErrorCode::RecipeInvalid, "recipe: images[" + std::to_string(k) + "] has no name");
+  complete_stages(e.reference, e.capture, e.sampling, p, true);
+  bool hex = e.sha256.size() == 64;
+  for (char c : e.sha256) hex = hex && ((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'));
+  if (!e.sha256.empty() && !hex) throw Error(ErrorCode::RecipeInvalid, p + "sha256 must be 64 lower-case hex digits");
+  const auto& c = e.sampling.corners;
+  const bool corners = std::any_of(c.begin(), c.end(), [](double v) { return v != 0; });
+  if (!e.candidate.empty() && corners)
+    throw Error(ErrorCode::InvalidArgument, p + "give sampling.corners or a detected candidate, not both");
+}
+
+}  // namespace
+
 Recipe complete_recipe(const Recipe& in) {
   Recipe r = in;
   if (r.version != kRecipeVersion)
     throw Error(ErrorCode::RecipeVersion, "recipe version " + std::to_string(r.version) + " is not supported");
-  // Reference: the illuminant and observer must exist; the chart must be built in or "file".
-  illuminant_spd(r.reference.illuminant);
-  r.reference.observer = observer_name(parse_observer(r.reference.observer));
-  if (r.reference.chart != "file") {
-    bool found = false;
-    for (const auto& c : list_charts()) found = found || c.id == r.reference.chart;
-    if (!found) throw Error(ErrorCode::UnknownId, "recipe: unknown reference chart '" + r.reference.chart + "'");
-  }
-  // An alias ("pixel", "channel") is read and written back in the one spelling (dark_mode_id).
-  try {
-    r.capture.dark_mode = dark_mode_id(dark_mode_from_id(r.capture.dark_mode));
-  } catch (const Error& e) {
-    throw Error(ErrorCode::InvalidArgument, std::string("recipe: capture.dark_mode: ") + e.what());
-  }
-  if (r.capture.dark_frames < 0 || r.capture.saturation < 0 || r.capture.noise_floor < 0)
-    throw Error(ErrorCode::InvalidArgument, "recipe: capture counts and levels must not be negative");
-  chart_layout(r.sampling.layout);  // UnknownId / InvalidArgument for a bad layout
-  if (!(r.sampling.area > 0 && r.sampling.area <= 1))
-    throw Error(ErrorCode::InvalidArgument, "recipe: sampling.area must be in (0, 1]");
-  for (auto& id : r.sampling.exclude) id = normalise_patch_id(id);
+  complete_stages(r.reference, r.capture, r.sampling, "recipe: ", false);
+  for (size_t k = 0; k < r.images.size(); ++k) complete_image(r.images[k], k);
+  if (r.duplicates != kDuplicatesOnce && r.duplicates != kDuplicatesEach)
+    throw Error(ErrorCode::InvalidArgument, "recipe: duplicates must be \"once\" or \"each\", not '" + r.duplicates + "'");
   r.linearisation = complete_choice(linearisation_method(r.linearisation.method).info, r.linearisation);
   r.surface = complete_choice(surface_method(r.surface.method).info, r.surface);
   model_info(r.characterisation.model);
@@ -116,17 +206,28 @@ std::string recipe_to_json(const Recipe& recipe) { return recipe_json(recipe).du
 Recipe recipe_from_json(const json::Value& o) {
   Recipe r;
   fields::read_document(o, r, kRecipeDocument, kRecipe);
-  const json::Value& cap = o.at("capture");
-  if (cap.find("light_trap") || cap.find("flare")) {  // optional, but the two together
-    if (!cap.find("light_trap") || !cap.find("flare")) kRecipe.refuse("capture.light_trap and capture.flare go together");
-    if (!r.capture.has_light_trap()) kRecipe.refuse("capture.light_trap: the corners of a light trap cannot all be 0");
-  }
+  fields::check_light_trap(o.at("capture"), r.capture, "capture.");
   return complete_recipe(r);
 }
 
 Recipe recipe_from_json(const std::string& text) { return recipe_from_json(fields::parse_document(text, kRecipeDocument)); }
 
 // ---- use ---------------------------------------------------------------------------------
+
+namespace {
+
+// Several charts (training_union): a row "1+2:D1" is named by "D1" (the first such row), "1:D1"
+// and "2:D1".
+bool names_patch(const std::string& row, const std::string& wanted) {
+  const auto colon = row.find(':');
+  if (colon == std::string::npos) return false;
+  const std::string patch = row.substr(colon + 1), charts = "+" + row.substr(0, colon) + "+";
+  const auto w = wanted.find(':');
+  if (w == std::string::npos) return patch == wanted;
+  return patch == wanted.substr(w + 1) && charts.find("+" + wanted.substr(0, w) + "+") != std::string::npos;
+}
+
+}  // namespace
 
 FitOptions recipe_fit_options(const Recipe& recipe, const std::vector<std::string>& ids,
                               const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ, int& white_index) {
@@ -138,6 +239,8 @@ FitOptions recipe_fit_options(const Recipe& recipe, const std::vector<std::strin
   if (!r.characterisation.white_patch.empty()) {
     for (size_t i = 0; i < ids.size(); ++i)
       if (normalise_patch_id(ids[i]) == r.characterisation.white_patch) white_index = static_cast<int>(i);
+    for (size_t i = 0; i < ids.size() && white_index < 0 && !r.images.empty(); ++i)
+      if (names_patch(ids[i], r.characterisation.white_patch)) white_index = static_cast<int>(i);
     if (white_index < 0)
       throw Error(ErrorCode::UnknownId, "recipe: white patch '" + r.characterisation.white_patch + "' is not in the data");
     o.preserve_white = true;

@@ -7,6 +7,7 @@
 // The profile embeds the (completed) recipe, so `tristim fit --recipe` on the same inputs
 // reproduces it.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,10 @@ struct TrainingSet {
   PatchMatrix camera_RGB;     ///< as sampled (before the linearisation stage), N × 3
   PatchMatrix reference_XYZ;  ///< N × 3, Y = 100 for the perfect diffuser
   std::vector<std::string> excluded;  ///< ids left out, with the reason: "A3 (nonuniform)"
+  /// Several charts (training_union): each chart's name and the rows that came from it (a row
+  /// merged from several charts is listed under each). Empty for one chart.
+  std::vector<std::string> chart_names;
+  std::vector<std::vector<int>> chart_rows;
 };
 
 /// Pairs a chart sample with a reference by patch id, leaving out the recipe's sampling.exclude
@@ -44,6 +49,33 @@ TrainingSet training_set(const Recipe& recipe, const ChartSample& sample, const 
 /// (or already normalised): they are the labels, their normalised forms the keys.
 TrainingSet training_set(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& camera_RGB,
                          const PatchMatrix& reference_XYZ);
+
+/// The chart samples of one image of a recipe with several (issue 48). `bytes`: the image file
+/// (RAW, TIFF, PNG, JPEG); its SHA-256 is recorded in entry.sha256 and, for a stored (non-linear)
+/// image, its full scale in entry.capture.saturation when that is 0. The light trap, if any, is
+/// measured again on this image (Abed 2013 App. C step 1; the flare recorded in entry.capture.flare)
+/// and subtracted; then the chart is sampled at entry.sampling.corners, or, when they are all 0,
+/// detected (chart/detect.hpp, looking for the layout's chart) and the candidate(s) entry.candidate
+/// names sampled: the best by default, "all", or one index. Every error names the image
+/// ("images[1] ('b.dng'): …") and keeps its code: a file that does not decode (RawUnsupported, …),
+/// ChartNotFound, InvalidArgument (a candidate index beyond those found), the sampling's codes.
+std::vector<ChartSample> sample_recipe_image(RecipeImage& entry, size_t index, const std::uint8_t* bytes, size_t size);
+
+/// The recipe an image entry trains with: `recipe` with the entry's reference, capture and
+/// sampling stages in place of its own (and no images).
+Recipe image_recipe(const Recipe& recipe, const RecipeImage& entry);
+
+/// One chart of several: its name ("b.dng", "b.dng #2" for a second candidate) and its training set.
+struct ChartPart {
+  std::string name;
+  TrainingSet training;
+};
+/// The union of several charts' training sets, in order: chart k's (from 1) ids and labels become
+/// "k:A1". With recipe.duplicates "each" that is the concatenation of their rows. With "once"
+/// (the default), rows of the same colour — the same patch id and bit-identical reference XYZ, e.g.
+/// two shots of one chart — become one row "1+2:A1" whose camera RGB is their mean, so each colour
+/// weighs once in the fit. Error(TooFewPatches) when nothing is left.
+TrainingSet training_union(const Recipe& recipe, const std::vector<ChartPart>& charts);
 
 struct Characterisation {
   Recipe recipe;                 ///< completed
@@ -65,5 +97,25 @@ struct Characterisation {
 /// it stands in for the paper's PTFE, its reflectance taken as flat at its measured Y/Y_white);
 /// the training reference XYZ are then those of the fitted correction. Needs a built-in chart.
 Characterisation characterise(const Recipe& recipe, const TrainingSet& training);
+
+/// Figures of one chart of a fit on several (training_union): mean/max CIEDE2000 over its rows in
+/// training and leave-one-out, and held out — the model fitted (same objective and options) on
+/// the rows of the other charts only and evaluated on this chart's (Abed 2013 Table IV's
+/// train-on-one, test-on-another); no held-out figure when the other charts' rows are too few.
+struct ChartFigures {
+  std::string name;
+  int patches = 0;
+  Summary training_dE00;
+  bool has_loo = false;
+  Summary loo_dE00;
+  bool has_held_out = false;
+  Summary held_out_dE00;
+  std::string held_out_error;  ///< why there is no held-out figure ("" when there is one)
+};
+/// One entry per chart of `training` (none for a single chart).
+std::vector<ChartFigures> chart_figures(const Characterisation& c, const TrainingSet& training);
+/// The figures as JSON: [{"chart", "patches", "training": {"dE00_mean", "dE00_max"}, "loo": {…}
+/// (or null), "held_out": {…} (or null), "held_out_error"}].
+json::Value chart_figures_json(const std::vector<ChartFigures>& figures);
 
 }  // namespace tristim

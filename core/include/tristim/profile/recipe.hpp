@@ -22,8 +22,14 @@
 //   "characterisation": {"model": "Finlayson2015-2",
 //                        "objective": {"method": "psm", "parameters": {...}, "settings": {}},
 //                        "white_patch": "D1", "lab_white": [X, Y, Z]},
-//   "evaluation": {"leave_one_out": true, "held_out_digest": ""}
+//   "evaluation": {"leave_one_out": true, "held_out_digest": ""},
+//   "images": [{"name": "a.dng", "sha256": "…", "reference": {…}, "capture": {…},    (only with images)
+//               "sampling": {…}, "candidate": "all"}, …],
+//   "duplicates": "once"                                                         (only with images)
 // }
+// A recipe with `images` trains one fit on the union of several chart images (issue 48; each entry
+// its own capture, reference and sampling, which default to the recipe's own stages when absent).
+// A recipe without them reads, writes and fits exactly as before.
 // Unknown fields, a wrong type, an unknown method id or option, or another version are refused
 // with RecipeInvalid / RecipeVersion / UnknownId naming the field.
 #pragma once
@@ -93,6 +99,24 @@ struct EvaluationStage {
   std::string held_out_digest;           ///< training_digest() of a held-out patch set ("" none)
 };
 
+/// One chart image of a recipe that trains on several (issue 48): its own capture settings (light
+/// trap), reference and sampling (layout; corners, or none to detect the chart).
+struct RecipeImage {
+  std::string name;                      ///< the image file's name as given (messages, the profile)
+  std::string sha256;                    ///< SHA-256 of the image file, 64 hex digits ("" until read)
+  ReferenceStage reference;
+  CaptureStage capture;
+  SamplingStage sampling;                ///< corners all 0: the chart is detected (chart/detect.hpp)
+  /// Which detected chart(s) to sample: "" (sampling.corners, or the best candidate when they are
+  /// all 0), "all" (every candidate: two charts in one image), or a candidate index "0", "1", …
+  /// (written as a JSON number).
+  std::string candidate;
+};
+
+/// How patches of the same colour (same patch id and the same reference XYZ) in several images count.
+inline constexpr const char* kDuplicatesOnce = "once";  ///< merged into one row, camera RGB averaged
+inline constexpr const char* kDuplicatesEach = "each";  ///< every shot its own row (the plain union)
+
 struct Recipe {
   int version = kRecipeVersion;
   ReferenceStage reference;
@@ -102,6 +126,8 @@ struct Recipe {
   MethodChoice surface{"none", {}, {}};
   CharacterisationStage characterisation;
   EvaluationStage evaluation;
+  std::vector<RecipeImage> images;       ///< empty: one image (the stages above) or patch tables
+  std::string duplicates = kDuplicatesOnce;  ///< kDuplicatesOnce | kDuplicatesEach (with images)
 };
 
 /// The recipe as a JSON value / text (see the header comment). Method choices are written
