@@ -110,6 +110,7 @@ async function start() {
   const hash = location.hash.slice(1);
   app.goto(STEPS.includes(hash) ? hash : (app.session.step ?? (fresh ? 'results' : 'reference')));
   app.views.share.openFromHash();   // a shared link (#tristim=…): recomputed, the session untouched
+  app.views.lab?.openFromHash?.();   // a lab set-up link (#lab=…): the exercise's tab, set and run
 
   // Restore (or, on a first visit, load the example): the chart's sampling does not wait for the
   // reference's plots (both are needed before the fit).

@@ -15,8 +15,9 @@ import * as exporter from './export/handlers.js';
 import * as absolute from './absolute/handlers.js';
 import * as share from './share/handlers.js';
 import * as lab from './lab/handlers.js';
+import * as labExercises from './lab/exercises_handlers.js';
 
-const FEATURES = [reference, surface, images, detect, linearisation, fit, apply, exporter, absolute, lab, share];
+const FEATURES = [reference, surface, images, detect, linearisation, fit, apply, exporter, absolute, lab, labExercises, share];
 
 const handlers = {
   hello: (T) => ({ result: { version: T.version() } }),

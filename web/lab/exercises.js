@@ -40,7 +40,7 @@ export function spectraPanel(app) {
     h('h3', { id: 'h-lab-ex1' }, 'Exercise 1 · Spectra to colour: integration, observers, illuminants, adaptation'),
     h('div', { class: 'controls' }, field('ColorChecker patch', patchSel)), h('p', {}, btn), errorSlot(btn),
     h('p', { class: 'hint' }, 'The same on the command line (the patch\'s row):'), cli, out);
-  return { panel, run };
+  return { panel, run, params: { patch: patchSel } };
 }
 
 export function overfitPanel(app) {
@@ -79,5 +79,5 @@ export function overfitPanel(app) {
     h('h3', { id: 'h-lab-ex2' }, 'Exercise 2 · Why a 3×3 is not enough: the Luther condition and over-fitting'),
     h('div', { class: 'controls' }, field('Camera', camSel), field('Noise (fraction of white)', noiseIn)), h('p', {}, btn), errorSlot(btn),
     h('p', { class: 'hint' }, 'The same on the command line:'), cli, out);
-  return { panel, run };
+  return { panel, run, params: { camera: camSel, noise: noiseIn } };
 }

@@ -10,6 +10,8 @@ import { options } from '../lib/catalog.js';
 import { figure } from '../plots/common.js';
 import { lutherPlot } from './plots.js';
 import { spectraPanel, overfitPanel } from './exercises.js';
+import { shenPanel, table4Panel, guarneraPanel } from './exercises_papers.js';
+import { wireLabLinks } from './exercises_link.js';
 import { metamersPanel } from './metamers.js';
 
 const CHARTS = [
@@ -202,9 +204,11 @@ export function mount(section, app) {
 
   // Tabs: one panel shown at a time.
   const ex1 = spectraPanel(app), ex2 = overfitPanel(app), met = metamersPanel(app);
+  const ex3 = shenPanel(app), ex4 = table4Panel(app), ex5 = guarneraPanel(app);
   const panels = [['render', 'Virtual camera', renderPanel], ['quality', 'Camera quality', qualityPanel],
     ['metamers', 'Metamerism', met.panel],
-    ['ex1', 'Exercise 1: spectra to colour', ex1.panel], ['ex2', 'Exercise 2: why a 3×3 is not enough', ex2.panel]];
+    ['ex1', 'Exercise 1: spectra to colour', ex1.panel], ['ex2', 'Exercise 2: why a 3×3 is not enough', ex2.panel],
+    ['ex3', 'Exercise 3: Shen 2008', ex3.panel], ['ex4', 'Exercise 4: Abed 2013', ex4.panel], ['ex5', 'Exercise 5: Guarnera 2018', ex5.panel]];
   const tabs = h('div', { class: 'lab-tabs', role: 'tablist' });
   const showTab = (id) => {
     for (const [k, , p] of panels) p.hidden = k !== id;
@@ -216,7 +220,9 @@ export function mount(section, app) {
     b.addEventListener('click', () => showTab(k));
     tabs.append(b);
   }
-  section.append(tabs, ...panels.map(([, , p]) => p));
+  const links = wireLabLinks(app, { ex1, ex2, ex3, ex4, ex5 }, showTab);   // #lab=… set-up links
+  section.append(links.status, tabs, ...panels.map(([, , p]) => p));
   showTab('render');
-  return { render, openInJourney, rank, plot, showTab, exercise1: ex1.run, exercise2: ex2.run, metamers: met.run };
+  return { render, openInJourney, rank, plot, showTab, exercise1: ex1.run, exercise2: ex2.run, metamers: met.run,
+    exercise3: ex3.run, exercise4: ex4.run, exercise5: ex5.run, openFromHash: links.openFromHash };
 }
