@@ -39,6 +39,9 @@ EMSCRIPTEN_BINDINGS(tristim_models) {
   { using S = CompareRow; value_object<S>("CompareRow") FIELD(model_id) FIELD(objective) FIELD(n_terms) FIELD(ok)
       FIELD(error_code) FIELD(message) FIELD(status) FIELD(condition_number) FIELD(seconds) FIELD(cpu_seconds)
       FIELD(train_dE00) FIELD(loo_dE00) FIELD(train_dE_xyz) FIELD(loo_dE_xyz) FIELD(has_loo); }
+  { using S = StoppingCheck; value_object<S>("StoppingCheck") FIELD(checked) FIELD(flagged) FIELD(loo_mean)
+      FIELD(perturbed_loo_mean); }
+  { using S = RidgeRow; value_object<S>("RidgeRow") FIELD(row) FIELD(lambda); }
   { using S = Profile; value_object<S>("Profile") FIELD(version) FIELD(tristim_version) FIELD(model) FIELD(objective)
       FIELD(white) FIELD(illuminant) FIELD(observer) FIELD(white_preserved) FIELD(white_patch) FIELD(white_RGB)
       FIELD(white_XYZ) FIELD(training_patches) FIELD(training_digest) FIELD(rgb_max) FIELD(status) FIELD(message)
@@ -49,6 +52,8 @@ EMSCRIPTEN_BINDINGS(tristim_models) {
 
   def<&evaluate_model>("evaluateModel");
   def<&compare_models>("compareModels");
+  def<&recipe_stopping_check>("recipeStoppingCheck");
+  def<&recipe_ridge_row>("recipeRidgeRow");
   def<&profile_from_json>("profileFromJson");
   def<static_cast<PatchMatrix (*)(const Model&, const PatchMatrix&)>(&predict)>("predict");
   def<&evaluate>("evaluate");

@@ -63,13 +63,6 @@ BootstrapOptions bootstrap_options(const Args& args, const std::string& command,
   return b;
 }
 
-json::Value with_ci(const json::Value& summary, const Interval& ci) {
-  json::Value out = json::Value::object();
-  for (const auto& m : summary.members()) {
-    out.set(m.first, m.second);
-    if (m.first == "mean") out.set("ci", interval_json(ci));
-  }
-  return out;
-}
+json::Value with_ci(const json::Value& summary, const Interval& ci) { return summary_with_ci(summary, ci); }
 
 }  // namespace tristim::cli

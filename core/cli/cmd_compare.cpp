@@ -149,38 +149,12 @@ int run_compare(const Args& args, std::ostream& out) {
     }
   }
   // --ridge: every model of the table (as compare lists them) by ridge least squares (ridge.hpp).
-  struct RidgeRow {
-    CompareRow row;
-    double lambda = 0;
-  };
   std::vector<RidgeRow> ridge;
   if (args.has("ridge")) {
     std::vector<std::string> ids;
     for (const auto& r : rows)
       if (std::find(ids.begin(), ids.end(), r.model_id) == ids.end()) ids.push_back(r.model_id);
-    FitOptions ls = o;
-    ls.objective = Objective::LeastSquares;
-    for (const auto& id : ids) {
-      RidgeRow rr;
-      rr.row.model_id = id;
-      rr.row.n_terms = model_info(id).n_terms;
-      try {
-        const RidgeResult f = fit_ridge(id, d.rgb, d.xyz, ls);
-        const Metrics train = evaluate(f.fit.fitted, d.xyz, o.white), loo = evaluate(f.loo_XYZ, d.xyz, o.white);
-        rr.row.ok = rr.row.has_loo = true;
-        rr.row.message = f.fit.message;
-        rr.row.condition_number = f.fit.condition_number;
-        rr.row.train_dE00 = train.dE00;
-        rr.row.train_dE_xyz = train.dE_xyz;
-        rr.row.loo_dE00 = loo.dE00;
-        rr.row.loo_dE_xyz = loo.dE_xyz;
-        rr.lambda = f.lambda;
-      } catch (const Error& e) {
-        rr.row.error_code = e.code_name();
-        rr.row.message = e.what();
-      }
-      ridge.push_back(rr);
-    }
+    for (const auto& id : ids) ridge.push_back(ridge_row(id, d.rgb, d.xyz, o));
   }
   std::vector<TransferCell> transfer;
   if (args.has("test-rgb") || args.has("test-xyz")) {

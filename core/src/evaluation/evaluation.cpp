@@ -11,8 +11,10 @@
 #include <thread>
 #endif
 
+#include "tristim/characterisation/ridge.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
+#include "tristim/profile/recipe.hpp"
 
 namespace tristim {
 
@@ -316,6 +318,55 @@ std::vector<TransferCell> transfer_table(const std::vector<NamedPatches>& traini
         cells.push_back(std::move(c));
       }
   return cells;
+}
+
+RidgeRow ridge_row(const std::string& model_id, const PatchMatrix& rgb, const PatchMatrix& xyz, const FitOptions& options) {
+  RidgeRow r;
+  r.row.model_id = model_id;
+  r.row.n_terms = model_info(model_id).n_terms;
+  FitOptions ls = options;
+  ls.objective = Objective::LeastSquares;
+  try {
+    const RidgeResult f = fit_ridge(model_id, rgb, xyz, ls);
+    const Metrics train = evaluate(f.fit.fitted, xyz, options.white), loo = evaluate(f.loo_XYZ, xyz, options.white);
+    r.row.ok = r.row.has_loo = true;
+    r.row.message = f.fit.message;
+    r.row.condition_number = f.fit.condition_number;
+    r.row.train_dE00 = train.dE00;
+    r.row.train_dE_xyz = train.dE_xyz;
+    r.row.loo_dE00 = loo.dE00;
+    r.row.loo_dE_xyz = loo.dE_xyz;
+    r.lambda = f.lambda;
+  } catch (const Error& e) {
+    r.row.error_code = e.code_name();
+    r.row.message = e.what();
+  }
+  return r;
+}
+
+namespace {
+FitOptions options_of(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& rgb, const PatchMatrix& xyz,
+                      int& white_index) {
+  if (ids.size() != static_cast<size_t>(rgb.rows()))
+    throw Error(ErrorCode::InvalidArgument, std::to_string(ids.size()) + " patch ids for " + std::to_string(rgb.rows()) + " patches");
+  return recipe_fit_options(recipe, ids, rgb, xyz, white_index);
+}
+}  // namespace
+
+StoppingCheck recipe_stopping_check(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& rgb,
+                                    const PatchMatrix& xyz, double loo_mean, double condition_number) {
+  int white_index = -1;
+  const FitOptions o = options_of(recipe, ids, rgb, xyz, white_index);
+  return leave_one_out_stopping_check(complete_recipe(recipe).characterisation.model, rgb, xyz, o, white_index, loo_mean,
+                                      condition_number);
+}
+
+RidgeRow recipe_ridge_row(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& rgb,
+                          const PatchMatrix& xyz) {
+  int white_index = -1;
+  FitOptions o = options_of(recipe, ids, rgb, xyz, white_index);
+  o.preserve_white = false;  // ridge has no white constraint (ridge.hpp)
+  return ridge_row(complete_recipe(recipe).characterisation.model, rgb, xyz, o);
 }
 
 }  // namespace tristim

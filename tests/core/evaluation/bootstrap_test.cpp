@@ -104,3 +104,41 @@ TEST_CASE("bootstrap: progress, cancellation and refusals", "[evaluation][bootst
   b.pixel_count.assign(23, 10);
   require_code([&] { bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b); }, ErrorCode::InvalidArgument);
 }
+
+TEST_CASE("bootstrap: a run stepped in chunks gives bootstrap_fit's result, with xy and a*b* ellipses", "[evaluation][bootstrap]") {
+  Simulation sim{11};
+  PatchMatrix rgb, xyz;
+  simulate_chart(sim, rgb, xyz, 0.5);
+  BootstrapOptions b;
+  b.resamples = 120;
+  b.level = 0.9;
+  const BootstrapResult whole = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b);
+  BootstrapRun run("matrix-3x3", rgb, xyz, FitOptions{}, b);
+  CHECK(run.step(50) == 50);
+  const BootstrapResult part = run.result();
+  CHECK(part.cancelled);
+  CHECK(part.resamples == 50);
+  CHECK(run.step(7) == 57);
+  CHECK(run.step(1000) == 120);
+  const BootstrapResult chunked = run.result();
+  CHECK_FALSE(chunked.cancelled);
+  CHECK((whole.coefficients_lo - chunked.coefficients_lo).cwiseAbs().maxCoeff() == 0);
+  CHECK((whole.covariance - chunked.covariance).cwiseAbs().maxCoeff() == 0);
+  CHECK(whole.train_dE00_mean.hi == chunked.train_dE00_mean.hi);
+  REQUIRE(chunked.predicted_xy_covariance.size() == 24);
+  REQUIRE(chunked.predicted_ab_covariance.size() == 24);
+  CHECK(chunked.predicted_xy_covariance[3] == whole.predicted_xy_covariance[3]);
+  CHECK(chunked.ellipse_scale == Approx(std::sqrt(-2 * std::log(0.1))).epsilon(1e-14));
+  // The xy covariance is the XYZ one carried through x = X/(X+Y+Z), y = Y/(X+Y+Z) to first order
+  // (the spread is small): J Σ_XYZ Jᵀ.
+  for (int i = 0; i < 24; i += 5) {
+    const Vec3 v = predict(run.model(), rgb).row(i).transpose();
+    const double s = v.sum();
+    Eigen::Matrix<double, 2, 3> J;
+    J << (s - v[0]) / (s * s), -v[0] / (s * s), -v[0] / (s * s), -v[1] / (s * s), (s - v[1]) / (s * s), -v[1] / (s * s);
+    const Eigen::Matrix2d linear = J * chunked.predicted_XYZ_covariance[static_cast<size_t>(i)] * J.transpose();
+    const Eigen::Matrix2d& c = chunked.predicted_xy_covariance[static_cast<size_t>(i)];
+    CHECK(c.determinant() > 0);
+    CHECK((c - linear).cwiseAbs().maxCoeff() < 0.05 * linear.cwiseAbs().maxCoeff());
+  }
+}

@@ -12,6 +12,8 @@
 
 namespace tristim {
 
+struct Recipe;
+
 /// min, median, mean, 95th percentile (linear interpolation between order statistics, as
 /// numpy's default), max, RMS (sqrt of mean square) and population standard deviation.
 struct Summary {
@@ -111,6 +113,26 @@ std::vector<CompareRow> compare_models(const PatchMatrix& camera_RGB, const Patc
                                        const FitOptions& options = {},
                                        std::vector<std::string> model_ids = {},
                                        std::vector<Objective> objectives = {}, int white_patch_index = -1);
+
+/// A model fitted by ridge least squares (characterisation/ridge.hpp, λ by leave-one-out) as a row
+/// of the comparison: training and leave-one-out metrics against options.white; `lambda` the
+/// chosen λ (relative to σ_max²). A refused fit is a row with ok = false, its code and message.
+struct RidgeRow {
+  CompareRow row;
+  double lambda = 0;
+};
+RidgeRow ridge_row(const std::string& model_id, const PatchMatrix& camera_RGB, const PatchMatrix& reference_XYZ,
+                   const FitOptions& options = {});
+
+/// The two checks `tristim compare` makes, for one fit made from `recipe` (recipe_fit_options: its
+/// objective, lab white, white patch) on its training set (`ids`, camera RGB after linearisation,
+/// reference XYZ), as the page asks them of a result: whether its leave-one-out mean `loo_mean`
+/// depends on where the optimiser stops (leave_one_out_stopping_check), and its model fitted by
+/// ridge least squares (ridge_row; without the recipe's white constraint, which ridge lacks).
+StoppingCheck recipe_stopping_check(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& camera_RGB,
+                                    const PatchMatrix& reference_XYZ, double loo_mean, double condition_number);
+RidgeRow recipe_ridge_row(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& camera_RGB,
+                          const PatchMatrix& reference_XYZ);
 
 /// Natively, compare_models spreads its rows over at most this many threads (0, the default: one
 /// per hardware thread, at most 16). The wasm build always runs the rows in order on one thread

@@ -1,0 +1,80 @@
+// The bootstrap in the module (wasm/bind_bootstrap.cpp), stepped in chunks as the page's worker
+// runs it: the same numbers, to the bit, as `tristim fit --bootstrap` for the same seed, and the
+// profile text it writes; refusals with codes.
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { loadTristim, repoRoot } from './load.mjs';
+
+const CLI = path.join(repoRoot, 'build/native/core/tristim');
+const throwsCode = (f, code) => assert.throws(f, (e) => e.code === code);
+
+/// A CSV's rows as {header: value text} objects.
+const rows = (text) => {
+  const [head, ...lines] = text.trim().split(/\r?\n/);
+  const keys = head.split(',');
+  return lines.map((l) => Object.fromEntries(l.split(',').map((v, i) => [keys[i], v])));
+};
+
+test('bootstrap: chunked in the module = tristim fit --bootstrap (same seed), profile text too', async () => {
+  const T = await loadTristim();
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'tristim-bootstrap-'));
+  try {
+    const dng = path.join(repoRoot, 'examples/web/passport.dng');
+    const sampled = rows(execFileSync(CLI, ['sample', dng, '--chart', 'passport', '--corners', '335,291,649,285,649,486,328,488'], { encoding: 'utf8' }));
+    // Means only (no R_std, G_std, B_std, n): the CLI resamples the patches alone, as the page does.
+    fs.writeFileSync(path.join(dir, 'rgb.csv'), `patch,R,G,B\n${sampled.map((r) => `${r.patch},${r.R},${r.G},${r.B}`).join('\n')}\n`);
+    fs.writeFileSync(path.join(dir, 'ref.csv'), execFileSync(CLI, ['reference', '--chart', 'passport', '--illuminant', 'D50']));
+    const cliText = execFileSync(CLI, ['fit', '--rgb', path.join(dir, 'rgb.csv'), '--xyz', path.join(dir, 'ref.csv'), '--model', 'Finlayson2015-2',
+      '--bootstrap', '200', '--seed', '7', '--level', '0.9', '--recipe-out', path.join(dir, 'recipe.json'), '--csv', path.join(dir, 'fit.csv')],
+    { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] });
+    const cli = JSON.parse(cliText);
+    // The training set in the CLI's order (its per-patch CSV), values as the files give them.
+    const order = rows(fs.readFileSync(path.join(dir, 'fit.csv'), 'utf8')).map((r) => r.patch ?? r.id ?? Object.values(r)[0]);
+    const rgbOf = new Map(sampled.map((r) => [r.patch, [r.R, r.G, r.B].map(Number)]));
+    const refOf = new Map(rows(fs.readFileSync(path.join(dir, 'ref.csv'), 'utf8')).map((r) => [r.patch, [r.X, r.Y, r.Z].map(Number)]));
+    const rgb = Float64Array.from(order.flatMap((id) => rgbOf.get(id)));
+    const xyz = Float64Array.from(order.flatMap((id) => refOf.get(id)));
+    const fit = T.fitTables(fs.readFileSync(path.join(dir, 'recipe.json'), 'utf8'), order, rgb, xyz);
+    const settings = { method: 'bootstrap', parameters: { resamples: 200, seed: 7, level: 0.9 }, settings: {} };
+    const run = T.bootstrapRecipe(fit.recipe, fit.ids, fit.linear_RGB, fit.reference_XYZ, fit.evaluation.loo.patches.dE00, settings);
+    try {
+      assert.equal(run.total(), 200);
+      const seen = [];
+      while (run.done() < run.total()) seen.push(run.step(50));
+      assert.deepEqual(seen, [50, 100, 150, 200]);
+      const b = run.result();
+      const { train_ci, loo_ci, ...rest } = b;
+      assert.deepEqual(rest, cli.bootstrap);   // every interval, the covariance, the ellipses: to the bit
+      assert.deepEqual(train_ci, cli.metrics.training.dE00.ci);
+      assert.deepEqual(loo_ci, cli.metrics.loo.dE00.ci);
+      assert.equal(b.predicted_xy_covariance.length, order.length);
+      assert.ok(b.ellipse_scale > 2.14 && b.ellipse_scale < 2.15);   // √(−2 ln 0.1)
+      assert.equal(run.profileWith(fit.profile), cliText);
+    } finally {
+      run.delete();
+    }
+    // Table-driven settings (the page's form): ranges and defaults from the engine.
+    const info = T.bootstrapOptions();
+    assert.deepEqual(info.options.map((o) => o.name), ['resamples', 'seed', 'level']);
+    assert.equal(info.options[0].default_number, 1000);
+    const bad = (parameters) => () => T.bootstrapRecipe(fit.recipe, fit.ids, fit.linear_RGB, fit.reference_XYZ, null, { method: 'bootstrap', parameters, settings: {} });
+    throwsCode(bad({ resamples: 0 }), 'INVALID_ARGUMENT');
+    throwsCode(bad({ level: 1 }), 'INVALID_ARGUMENT');
+    throwsCode(bad({ samples: 10 }), 'UNKNOWN_ID');
+    throwsCode(() => T.bootstrapRecipe(fit.recipe, fit.ids.slice(1), fit.linear_RGB, fit.reference_XYZ, null, settings), 'INVALID_ARGUMENT');
+    // A cancelled run (fewer resamples than asked) says so.
+    const part = T.bootstrapRecipe(fit.recipe, fit.ids, fit.linear_RGB, fit.reference_XYZ, null, settings);
+    part.step(30);
+    const r = part.result();
+    part.delete();
+    assert.equal(r.cancelled, true);
+    assert.equal(r.resamples, 30);
+    assert.equal(r.loo_ci, undefined);
+  } finally {
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+});
