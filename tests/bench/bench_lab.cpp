@@ -41,6 +41,16 @@ int main() {
   const SpectralData cam = camera_ssf("Canon_EOS_5D_Mark_II");
   t = best_ms(3, [&] { e2 = lab_overfit_exercise(cam, d65); });
   std::printf("BENCH lab exercise2 %.3f\n", t);
+  // Exercises 3-5 as the page runs them (exercise 5: one light, both trainings).
+  ShenExercise e3;
+  t = best_ms(1, [&] { e3 = lab_shen_exercise(cam); });
+  std::printf("BENCH lab exercise3-shen %.3f\n", t);
+  t = best_ms(1, [&] { lab_table4_exercise(); });
+  std::printf("BENCH lab exercise4-table4 %.3f\n", t);
+  t = best_ms(1, [&] { lab_exposure_exercise(cam, d65); });
+  std::printf("BENCH lab exercise5-exposure %.3f\n", t);
+  t = best_ms(1, [&] { lab_guarnera_table4("Canon_EOS_5D_Mark_II", {"A"}); });
+  std::printf("BENCH lab exercise5-table4-one-light %.3f\n", t);
   std::printf("(%zu bytes of DNG/TIFF, %zu cameras ranked, %zu exercise-2 rows)\n", f.dng.size(), q.size(), e2.size());
   return 0;
 }

@@ -22,7 +22,7 @@ export function resultsTable(t, key) {
     h('p', { class: 'actions' }, btn),
     h('div', { class: 'table-scroll' }, h('table', { class: 'data', 'data-lab': `${key}-table` },
       h('thead', {}, h('tr', {}, ...t.columns.map((c) => h('th', { scope: 'col' }, c)))),
-      h('tbody', {}, ...t.rows.map((r) => h('tr', {}, ...r.map((c) => h('td', { class: num(c) ? 'num' : null }, num(c) ? Number(c).toPrecision(4).replace(/\.?0+$/, '') : c))))))));
+      h('tbody', {}, ...t.rows.map((r) => h('tr', {}, ...r.map((c) => h('td', { class: num(c) ? 'num' : null }, c))))))));
 }
 
 function panelShell(id, title, controls, btn, cli, out) {
