@@ -34,10 +34,7 @@ struct tristim::wasm::Conv<AbsoluteRecipe> : StructConv<AbsoluteRecipe> {  // th
   }
 };
 template <>
-struct tristim::wasm::Conv<AbsoluteReport> {  // the object its JSON is (non-finite numbers: null)
-  static val to(const AbsoluteReport& r) { return val::global("JSON").call<val>("parse", val(absolute_report_json(r).dump())); }
-  static AbsoluteReport from(const val&) { wasm::refuse("a report is an output"); }
-};
+struct tristim::wasm::Conv<AbsoluteReport> : wasm::JsonOutput<AbsoluteReport, &absolute_report_json> {};
 template <>
 struct tristim::wasm::Conv<AbsoluteProgress> {  // onProgress(fraction, stage), optional
   static val to(const AbsoluteProgress&) { return val::undefined(); }

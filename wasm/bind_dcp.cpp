@@ -10,11 +10,8 @@ using emscripten::val;
 using emscripten::value_object;
 using wasm::def;
 
-template <>
-struct tristim::wasm::Conv<Dcp> {  // the object dcp_json is (every tag, plus the white checks)
-  static val to(const Dcp& d) { return val::global("JSON").call<val>("parse", val(dcp_json(d).dump())); }
-  static Dcp from(const val&) { wasm::refuse("a DCP read back is an output"); }
-};
+template <>  // the object dcp_json is (every tag, plus the white checks)
+struct tristim::wasm::Conv<Dcp> : wasm::JsonOutput<Dcp, &dcp_json> {};
 
 namespace {
 

@@ -28,11 +28,8 @@ struct tristim::wasm::Conv<std::pair<std::string, std::string>> {  // [key, valu
     return {s[0], s[1]};
   }
 };
-template <>
-struct tristim::wasm::Conv<ClfDocument> {  // the object clf_json is
-  static val to(const ClfDocument& c) { return val::global("JSON").call<val>("parse", val(clf_json(c).dump())); }
-  static ClfDocument from(const val&) { wasm::refuse("a CLF read back is an output"); }
-};
+template <>  // the object clf_json is
+struct tristim::wasm::Conv<ClfDocument> : wasm::JsonOutput<ClfDocument, &clf_json> {};
 
 EMSCRIPTEN_BINDINGS(tristim_idt) {
   def<&idt_camera_files>("idtCamera");

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "convert.hpp"
+#include "tristim/io/json.hpp"
 
 namespace tristim::wasm {
 
@@ -90,6 +91,15 @@ struct Fn<F> {
   static void declare(const char* name, std::index_sequence<K...>) {
     (emscripten::function(name, &First<std::make_index_sequence<K>>::call), ...);
   }
+};
+
+/// A core output with a JSON writer made from its field list (io/fields.hpp) crosses as the object
+/// its JSON is: the members, names and numbers the CLI prints (non-finite numbers: null). Use as
+/// `template <> struct Conv<T> : JsonOutput<T, &t_json> {};`.
+template <class T, json::Value (*Write)(const T&)>
+struct JsonOutput {
+  static val to(const T& t) { return val::global("JSON").call<val>("parse", val(Write(t).dump())); }
+  static T from(const val&) { refuse("an output of the engine, not an input"); }
 };
 
 /// Binds core function F as `name` (see the header comment).

@@ -5,13 +5,12 @@
 // coded errors for mismatched brackets, an all-dark series and non-monotonic stimuli; the module's
 // profile and report equal `tristim absolute fit` and `tristim absolute evaluate --json` to the bit
 // on the example and on test scenes of region rows.
-import test, { after } from 'node:test';
+import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
-import { execFileSync } from 'node:child_process';
-import { loadTristim, throwsCode, repoRoot } from './load.mjs';
+import { loadTristim, throwsCode } from './load.mjs';
+import { absoluteFixture } from '../support/absolute_fixture.mjs';
 
 const near = (a, b, tol, what) => assert.ok(Math.abs(a - b) <= tol, `${what}: ${a} vs ${b} (tolerance ${tol})`);
 const del = (...hs) => { for (const h of hs.flat()) h?.delete(); };
@@ -198,18 +197,7 @@ test('absolute example under F2 with reflective colour training: SG colours unde
 // frames exactly) and the virtual bracket's training chart and scene with stimuli CSVs of region
 // rows. The native CLI fits and evaluates the files; the module the same inputs.
 
-const nativeCli = path.join(repoRoot, 'build/native/core/tristim');
-const fixtureExe = path.join(repoRoot, 'build/native/tests/absolute_fixture');
-let fixtureDir = null;
-function fixture() {
-  if (fixtureDir) return fixtureDir;
-  for (const f of [nativeCli, fixtureExe]) if (!fs.existsSync(f)) throw new Error(`${f} not found: build the native tree first (bash scripts/build.sh)`);
-  fixtureDir = fs.mkdtempSync(path.join(os.tmpdir(), 'tristim-absolute-'));
-  execFileSync(fixtureExe, [fixtureDir]);
-  return fixtureDir;
-}
-after(() => { if (fixtureDir) fs.rmSync(fixtureDir, { recursive: true, force: true }); });
-const cli = (cwd, args) => execFileSync(nativeCli, args, { cwd, stdio: ['ignore', 'pipe', 'pipe'] }).toString();
+const { dir: fixture, cli } = absoluteFixture('tristim-absolute-');
 const decode = (dir, names) => names.map((n) => T_.decodeRaw(new Uint8Array(fs.readFileSync(path.join(dir, n)))));
 let T_ = null;
 

@@ -6,28 +6,15 @@
 // stimuli CSV of region rows naming its files, lens-cap frames, a flat and a test scene of region
 // rows; the CLI fits and evaluates the same files. The downloaded report equals the CLI's JSON, and
 // the figures shown are the CLI's numbers.
-import test, { after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
-import { execFileSync } from 'node:child_process';
-import { screenshot, repoRoot } from './harness.mjs';
+import { screenshot } from './harness.mjs';
 import { step, pageTest } from './journey.mjs';
+import { absoluteFixture } from '../support/absolute_fixture.mjs';
 
 const S = '#step-absolute';
-const nativeCli = path.join(repoRoot, 'build/native/core/tristim');
-const fixtureExe = path.join(repoRoot, 'build/native/tests/absolute_fixture');
-let dir = null;
-function fixture() {
-  if (dir) return dir;
-  for (const f of [nativeCli, fixtureExe]) if (!fs.existsSync(f)) throw new Error(`${f} not found: build the native tree first (bash scripts/build.sh)`);
-  dir = fs.mkdtempSync(path.join(os.tmpdir(), 'tristim-absolute-page-'));
-  execFileSync(fixtureExe, [dir]);
-  return dir;
-}
-after(() => { if (dir) fs.rmSync(dir, { recursive: true, force: true }); });
-const cli = (cwd, args) => execFileSync(nativeCli, args, { cwd, stdio: ['ignore', 'pipe', 'pipe'] }).toString();
+const { dir: fixture, cli } = absoluteFixture('tristim-absolute-page-');
 
 async function downloadReport(page) {
   const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`${S} [data-role="abs-download-report"]`)]);

@@ -133,6 +133,16 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     for (const t of T.listExampleTrainings()) {
       if (t.transform && !guarnera.some((m) => m.id === `Guarnera2018-${t.transform}`)) wrong.push(`example training ${t.id}: transform ${t.transform} is not a Guarnera2018 model`);
     }
+    // The example pickers' hints are the chosen row's `about` (the engine's words), for every row.
+    for (const [name, list] of [['Example: light on the chart', T.listExampleLights()], ['Example: colour training', T.listExampleTrainings()]]) {
+      for (const r of list) {
+        await choose(page, 'absolute', name, r.id);
+        const hint = await page.evaluate((n) => [...document.querySelectorAll('#step-absolute select')]
+          .find((x) => x.labels?.[0]?.textContent.trim() === n)?.closest('.field')?.querySelector('small.hint')?.textContent, name);
+        if (hint !== r.about) wrong.push(`absolute ${name} ${r.id}: hint '${hint}', the row's about '${r.about}'`);
+      }
+      await choose(page, 'absolute', name, list[0].id);
+    }
     // The Export step's adaptations are ones the engine's IDT accepts; the Lab's cameras end in the
     // engine's 52, its charts are the renderer's (lab_chart_ids).
     for (const o of byKey['export/Chromatic adaptation'] ?? []) {

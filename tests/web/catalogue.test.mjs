@@ -7,7 +7,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { screenshot } from './harness.mjs';
-import { step, noErrorNear, errorFor, pageTest } from './journey.mjs';
+import { step, errorFor, pageTest, fitMatrix3x3 } from './journey.mjs';
 import { materialise, expected, readBase, basePath, passportCorners, PASSPORT } from '../bad-inputs/inputs.mjs';
 
 const INPUT = {
@@ -20,24 +20,8 @@ const INPUT = {
   clf: ['export', '#step-export input[type=file]'],
   project: ['share', '#share-import'],
 };
-const FIT = '#step-fit button.primary';
 const DETECT_AGAIN = '#step-images .detect-panel button:not(.primary)';
 const A1 = '#step-images .patch-table tbody tr[data-id="A1"]';
-
-async function fitOnce(page) {
-  await step(page, 'fit');
-  const models = page.locator('#step-fit input[data-model]');
-  for (let i = 0; i < await models.count(); i++) await models.nth(i).setChecked(await models.nth(i).getAttribute('data-model') === 'matrix-3x3');
-  const objs = page.locator('#step-fit input[data-objective]');
-  for (let i = 0; i < await objs.count(); i++) await objs.nth(i).setChecked(i === 0);
-  await page.evaluate(() => document.querySelector('#step-fit .fit-log').replaceChildren());  // the run's lines only
-  await page.click(FIT);
-  // The fit log's summary line ("… fits in N s.") ends the run; no error next to the button.
-  await page.waitForFunction(() => /fits in [\d.]+ s\.$/.test(document.querySelector('#step-fit .fit-log li:last-child')?.textContent ?? ''),
-    null, { timeout: 120000 });
-  assert.match(await page.textContent('#step-fit .fit-log li:last-child'), /^1 of 1 fits/);
-  assert.ok(await noErrorNear(page, FIT), 'the fit succeeds');
-}
 
 pageTest('every catalogue case shows its code next to its input, and the page still fits afterwards', async ({ page }) => {
   await step(page, 'images');
@@ -45,7 +29,7 @@ pageTest('every catalogue case shows its code next to its input, and the page st
   const plainA1 = await page.textContent(A1);
   await step(page, 'reference');
   const summary = await page.textContent('#step-reference .summary');
-  await fitOnce(page);   // the profile import evaluates on the current chart data: fit once first
+  await fitMatrix3x3(page);   // the profile import evaluates on the current chart data: fit once first
 
   const profileText = new TextDecoder().decode(readBase('tests/fuzz/corpus/profile/root2.json')).trimEnd();
   const cases = materialise();
@@ -121,6 +105,6 @@ pageTest('every catalogue case shows its code next to its input, and the page st
   assert.equal(await page.textContent(A1), plainA1);
   await step(page, 'reference');
   assert.equal(await page.textContent('#step-reference .summary'), summary);
-  await fitOnce(page);
+  await fitMatrix3x3(page);
   await screenshot(page, 'catalogue-after');
 });

@@ -17,8 +17,13 @@ export const fixture = (name) => path.join(repoRoot, 'tests/web/fixtures', name)
 /// Opens the page and waits until it has restored (or built) its session.
 export async function openPage() {
   const b = await openBrowser();
-  await b.page.goto(b.origin + '/');
-  await waitReady(b.page);
+  try {
+    await b.page.goto(b.origin + '/');
+    await waitReady(b.page);
+  } catch (e) {
+    await b.close();   // a page that never gets ready must not keep the browser (and the test) alive
+    throw new Error(`${e.message}\nrecorded: ${JSON.stringify(b.problems)}`);
+  }
   return b;
 }
 
@@ -47,6 +52,23 @@ export const CLI = path.join(repoRoot, 'build/native/core/tristim');
 export function artifact(name) {
   fs.mkdirSync(artifacts, { recursive: true });
   return path.join(artifacts, name);
+}
+
+/// Fits the matrix-3x3 with the first objective alone in the Fit step and waits for the run's
+/// summary line ("1 of 1 fits … in N s."), with no error next to the button.
+export async function fitMatrix3x3(page) {
+  const FIT = '#step-fit button.primary';
+  await step(page, 'fit');
+  const models = page.locator('#step-fit input[data-model]');
+  for (let i = 0; i < await models.count(); i++) await models.nth(i).setChecked(await models.nth(i).getAttribute('data-model') === 'matrix-3x3');
+  const objs = page.locator('#step-fit input[data-objective]');
+  for (let i = 0; i < await objs.count(); i++) await objs.nth(i).setChecked(i === 0);
+  await page.evaluate(() => document.querySelector('#step-fit .fit-log').replaceChildren());  // the run's lines only
+  await page.click(FIT);
+  await page.waitForFunction(() => /fits in [\d.]+ s\.$/.test(document.querySelector('#step-fit .fit-log li:last-child')?.textContent ?? ''),
+    null, { timeout: 120000 });
+  assert.match(await page.textContent('#step-fit .fit-log li:last-child'), /^1 of 1 fits/);
+  assert.ok(await noErrorNear(page, FIT), 'the fit succeeds');
 }
 
 export async function waitReady(page, timeout = 60000) {

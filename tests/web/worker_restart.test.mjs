@@ -4,22 +4,7 @@
 // The crash is provoked with the worker's test-only 'testCrash' message.
 import assert from 'node:assert/strict';
 import { screenshot } from './harness.mjs';
-import { step, setCorners, noErrorNear, pageTest } from './journey.mjs';
-
-async function fitMatrix(page) {
-  await step(page, 'fit');
-  const models = page.locator('#step-fit input[data-model]');
-  for (let i = 0; i < await models.count(); i++) await models.nth(i).setChecked(await models.nth(i).getAttribute('data-model') === 'matrix-3x3');
-  const objs = page.locator('#step-fit input[data-objective]');
-  for (let i = 0; i < await objs.count(); i++) await objs.nth(i).setChecked(i === 0);
-  await page.evaluate(() => document.querySelector('#step-fit .fit-log').replaceChildren());  // the run's lines only
-  await page.click('#step-fit button.primary');
-  // The fit log's summary line ("… fits in N s.") ends the run; no error next to the button.
-  await page.waitForFunction(() => /fits in [\d.]+ s\.$/.test(document.querySelector('#step-fit .fit-log li:last-child')?.textContent ?? ''),
-    null, { timeout: 120000 });
-  assert.match(await page.textContent('#step-fit .fit-log li:last-child'), /^1 of 1 fits/);
-  assert.ok(await noErrorNear(page, '#step-fit button.primary'), 'the fit succeeds');
-}
+import { step, setCorners, pageTest, fitMatrix3x3 } from './journey.mjs';
 
 for (const how of ['abort', 'uncaught']) {
   pageTest(`a worker that dies (${how}) is restarted, the page says so and keeps the session`, { problems: false }, async (b) => {
@@ -43,7 +28,7 @@ for (const how of ['abort', 'uncaught']) {
     const moved = corners.map((v, i) => v + (i % 2 ? 1 : -1));
     await setCorners(page, moved);
     assert.equal(await page.locator('#step-images .patch-table tbody tr').count(), 24);
-    await fitMatrix(page);
+    await fitMatrix3x3(page);
     // The only console errors are the worker's report of the provoked crash.
     assert.deepEqual(b.problems.filter((p) => !/test: (uncaught error in the worker|the module was made to abort)/.test(p)), []);
   });
@@ -57,6 +42,6 @@ pageTest('a compare worker that dies is replaced, the page says so, and the next
   await page.waitForFunction(() => document.getElementById('engine-status').dataset.crashes === '1', null, { timeout: 30000 });
   assert.match(await page.textContent('#engine-status'), /stopped .* restarted/);
   assert.equal(await page.evaluate(() => window.tristim.views.fit.pool.clients.length), size, 'the dead worker was replaced');
-  await fitMatrix(page);
+  await fitMatrix3x3(page);
   assert.deepEqual(b.problems.filter((p) => !/test: the module was made to abort/.test(p)), []);
 });

@@ -111,6 +111,15 @@ export function mount(section, app) {
     if (want && transforms.some((t) => t.value === want)) transformSel.value = want;
   });
   const fitBtn = h('button', { type: 'button', class: 'primary', 'data-role': 'abs-fit' }, 'Fit and measure the series');
+  // A picker of engine rows whose hint is the chosen row's `about` (the engine's words, kept current).
+  const aboutField = (label, sel, rows) => {
+    const f = field(label, sel, ' ');
+    const hint = f.querySelector('small.hint');
+    const show = () => { hint.textContent = rows.find((r) => r.id === sel.value)?.about ?? ''; };
+    sel.addEventListener('change', show);
+    show();
+    return f;
+  };
   // Two grid columns for a field whose choices are long (the chosen text stays readable).
   const wide = (el) => { el.classList.add('abs-wide'); return el; };
   const progress = progressBar('Absolute');
@@ -130,8 +139,8 @@ export function mount(section, app) {
       h('div', { class: 'abs-ssf-box' }, ssf.el),
       wide(field('Colour matrix', transformSel)),
       wide(field('Exposure fusion', fusionSel)),
-      field('Example: light on the chart', exLightSel, 'The paper\'s booth lights'),
-      wide(field('Example: colour training', exTrainingSel, 'Under A and F2 projected colours cannot meet Table 4 with this camera (metamerism); reflective colours under the scene\'s light with T2R do')),
+      aboutField('Example: light on the chart', exLightSel, exLights),
+      wide(aboutField('Example: colour training', exTrainingSel, exTrainings)),
       h('div', { class: 'buttons' }, exampleBtn, fitBtn)),
     progress.el);
   fitBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'abs-fit-error' });
