@@ -15,7 +15,8 @@ using wasm::def;
 EMSCRIPTEN_BINDINGS(tristim_lab) {
   { using S = LabRenderOptions; value_object<S>("LabRenderOptions") FIELD(camera) FIELD(sensitivities) FIELD(chart)
       FIELD(illuminant) FIELD(illuminant_spd) FIELD(surface) FIELD(width) FIELD(height) FIELD(corners) FIELD(exposure)
-      FIELD(falloff) FIELD(flare) FIELD(shot_gain) FIELD(read_noise) FIELD(seed) FIELD(bits) FIELD(black) FIELD(cfa); }
+      FIELD(falloff) FIELD(flare) FIELD(shot_gain) FIELD(read_noise) FIELD(seed) FIELD(bits) FIELD(black) FIELD(cfa)
+      FIELD(oecf) FIELD(jpeg_quality); }
   { using S = LabRenderFiles; value_object<S>("LabRenderFiles") FIELD(dng) FIELD(truth); }
   { using S = CameraQuality; value_object<S>("CameraQuality") FIELD(camera) FIELD(smi) FIELD(mu_factor) FIELD(mean_dE)
       FIELD(matrix) FIELD(dE); }

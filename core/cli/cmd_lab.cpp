@@ -20,7 +20,7 @@ namespace {
 
 int run_render(const Args& args, std::ostream& out) {
   args.allow_only({"camera", "sensitivities", "chart", "illuminant", "oecf", "noise", "seed", "exposure", "surface",
-                   "falloff", "flare", "corners", "size", "bits", "black", "cfa", "out"});
+                   "falloff", "flare", "corners", "size", "bits", "black", "cfa", "quality", "out"});
   LabRenderOptions o;
   o.camera = args.get("camera", o.camera);
   if (args.has("sensitivities")) {
@@ -59,12 +59,13 @@ int run_render(const Args& args, std::ostream& out) {
   o.black = static_cast<int>(args.get_double("black", o.black));
   o.cfa = args.get("cfa", o.cfa);
   o.oecf = args.get("oecf", o.oecf);
+  o.jpeg_quality = static_cast<int>(args.get_double("quality", o.jpeg_quality));
   const std::string path = args.get("out");
   const std::string ext = ext_of(path);
-  const bool dng = ext == "dng";
-  if (!dng && ext != "tiff" && ext != "tif")
-    throw Error(ErrorCode::InvalidArgument, "--out must name a .dng or .tiff file, got '" + path + "'");
-  const LabRenderFiles r = lab_render_files(o, dng ? "dng" : "tiff");
+  const std::string format = ext == "dng" ? "dng" : ext == "tiff" || ext == "tif" ? "tiff" : ext == "jpg" || ext == "jpeg" ? "jpeg" : "";
+  if (format.empty())
+    throw Error(ErrorCode::InvalidArgument, "--out must name a .dng, .tiff or .jpg file, got '" + path + "'");
+  const LabRenderFiles r = lab_render_files(o, format);
   write_bytes(path, r.dng.data(), r.dng.size());
   out << r.truth << "\n";
   return 0;
@@ -190,7 +191,9 @@ CommandRegistration reg_lab(
      "  `rgb` (DN above black) that sampling recovers exactly with noise and fall-off off, and the XYZ.\n"
      "  --out .tiff: an RGB image (one pixel per 2x2 sensor block, no CFA) encoded by --oecf (x = DN/saturation;\n"
      "  gamma=g stores x^(1/g)) in 16 bits; the truth adds `stored` per patch (what sampling the TIFF recovers).\n"
-     "  (JPEG output is not offered: the core's only libjpeg user is the JPEG reader.)\n"
+     "tristim lab render ... --oecf sRGB [--quality 95] --out chart.jpg\n"
+     "  --out .jpg: the same image in 8 bits as a baseline JPEG (4:4:4, libjpeg quality --quality, default 95);\n"
+     "  `stored` per patch is the 8-bit value before compression (sampling the JPEG gives it within 1.5 DN).\n"
      "tristim lab smi [--camera \"<name>\"]... [--illuminant D65] [--sensitivities ssf.csv] [--json]\n"
      "  Camera quality as a colorimeter: the ISO 17321-1 sensitivity metamerism index (SMI = 100 - 5.5 x mean\n"
      "  dE*ab of ColorChecker patches 1-18, ISO 17321-1/Ohta reflectances, CIE 1931, after the white-preserving\n"

@@ -124,3 +124,19 @@ test('lab metamers: the search and a constructed metamer as the CLI prints them;
   throwsCode(assert, () => T.labConstructMetamer({}, '99Q1/1'), 'UNKNOWN_ID');
   throwsCode(assert, () => T.labMetamers({ match: 'camera' }), 'INVALID_ARGUMENT');
 });
+
+test('lab render: the JPEG (sRGB OECF, quality 95) is byte-identical to the CLI\'s, and its truth states the quality', async () => {
+  const T = await loadTristim();
+  const out = T.labRender({ ...OPTIONS, oecf: 'sRGB', illuminant_spd: T.illuminantSpectrum(OPTIONS.illuminant) }, 'jpeg');
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'lab-jpeg-'));
+  try {
+    const file = path.join(dir, 'chart.jpg');
+    const truth = JSON.parse(execFileSync(nativeCli, ['lab', 'render', '--camera', OPTIONS.camera, '--chart', OPTIONS.chart,
+      '--illuminant', OPTIONS.illuminant, '--exposure', String(OPTIONS.exposure), '--flare', String(OPTIONS.flare), '--oecf', 'sRGB',
+      '--out', file]).toString());
+    assert.equal(Buffer.compare(Buffer.from(out.dng), fs.readFileSync(file)), 0);
+    assert.deepEqual(JSON.parse(out.truth), truth);
+    assert.equal(truth.jpeg_quality, 95);
+  } finally { fs.rmSync(dir, { recursive: true, force: true }); }
+  throwsCode(assert, () => T.labRender({ ...OPTIONS, oecf: 'sRGB', jpeg_quality: 0, illuminant_spd: T.illuminantSpectrum('D50') }, 'jpeg'), 'INVALID_ARGUMENT');
+});

@@ -1,5 +1,6 @@
 // The colorimetry lab's chart photographs (rules in tristim/lab/render.hpp).
 #include "tristim/lab/render.hpp"
+#include "tristim/lab/jpeg_writer.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -85,12 +86,18 @@ double pixel_dn(const LabRender& r, int x, int y, int c, GaussianNoise* noise) {
 
 LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::string& format_given) {
   const std::string format = format_given.empty() ? "dng" : format_given;
-  if (format != "dng" && format != "tiff")
-    throw Error(ErrorCode::InvalidArgument, "lab render writes dng or tiff, not '" + format + "'");
+  if (format != "dng" && format != "tiff" && format != "jpeg")
+    throw Error(ErrorCode::InvalidArgument, "lab render writes dng, tiff or jpeg, not '" + format + "'");
   if (format == "dng" && options.oecf != "linear")
     throw Error(ErrorCode::InvalidArgument, "a DNG holds linear sensor data: the OECF must be 'linear' (write a .tiff for '" + options.oecf + "')");
   const LabRender r = render_lab_chart(options);
   if (format == "tiff") return {lab_render_tiff(r), lab_render_json(r, 65535).dump(1)};
+  if (format == "jpeg") {
+    const auto bytes = lab_render_jpeg(r);  // the quality is checked before the truth is written
+    json::Value truth = lab_render_json(r, 255);
+    truth.set("jpeg_quality", options.jpeg_quality);
+    return {bytes, truth.dump(1)};
+  }
   return {lab_render_dng(r), lab_render_json(r).dump(1)};
 }
 
@@ -109,7 +116,11 @@ double lab_encode(const LabRenderOptions& o, double dn, double saturation) {
   throw Error(ErrorCode::InvalidArgument, "oecf must be linear, sRGB or gamma=<0.2..5>, got '" + o.oecf + "'");
 }
 
-std::vector<std::uint8_t> lab_render_tiff(const LabRender& r) {
+namespace {
+
+// The RGB image through the OECF at `full_scale` (65535: 16-bit TIFF, 255: 8-bit JPEG), one pixel per
+// measurement pixel; fall-off, flare and noise as in the DNG (one noise draw per pixel and channel).
+std::vector<std::uint16_t> encoded_rgb(const LabRender& r, double full_scale) {
   const LabRenderOptions& o = r.options;
   lab_encode(o, 0, 1);  // an unknown OECF fails before any work
   const bool noisy = o.shot_gain > 0 || o.read_noise > 0;
@@ -119,8 +130,17 @@ std::vector<std::uint8_t> lab_render_tiff(const LabRender& r) {
     for (int x = 0; x < r.width; ++x)
       for (int c = 0; c < 3; ++c)
         rgb[(static_cast<size_t>(y) * r.width + x) * 3 + static_cast<size_t>(c)] = static_cast<std::uint16_t>(
-            std::lround(65535.0 * lab_encode(o, pixel_dn(r, x, y, c, noisy ? &noise : nullptr), r.saturation)));
-  return write_tiff_rgb16(rgb, r.width, r.height);
+            std::lround(full_scale * lab_encode(o, pixel_dn(r, x, y, c, noisy ? &noise : nullptr), r.saturation)));
+  return rgb;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> lab_render_tiff(const LabRender& r) { return write_tiff_rgb16(encoded_rgb(r, 65535), r.width, r.height); }
+
+std::vector<std::uint8_t> lab_render_jpeg(const LabRender& r) {
+  const auto v = encoded_rgb(r, 255);
+  return write_jpeg_rgb8(std::vector<std::uint8_t>(v.begin(), v.end()), r.width, r.height, r.options.jpeg_quality);
 }
 
 LabRender render_lab_chart(const LabRenderOptions& o) {

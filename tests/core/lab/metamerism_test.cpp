@@ -42,7 +42,7 @@ SpectralData subset(const std::vector<std::string>& ids) {
 
 }  // namespace
 
-TEST_CASE("a constructed metamer matches the chip exactly under the first light, not under the second") {
+TEST_CASE("lab metamers: a constructed metamer matches the chip exactly under the first light, not under the second") {
   MetamerOptions o;  // D65, then A, CIE 1931
   const MetamerResult r = construct_metamer(o, "5R5/6");
   REQUIRE(r.pairs.size() == 1);
@@ -67,7 +67,7 @@ TEST_CASE("a constructed metamer matches the chip exactly under the first light,
   CHECK((p.views[0].XYZ_a1 - Xa).cwiseAbs().maxCoeff() < 1e-9);
 }
 
-TEST_CASE("a metamer for a camera matches its RGB under the first light; the observer sees a difference") {
+TEST_CASE("lab metamers: a metamer for a camera matches its RGB under the first light, and the observer sees a difference") {
   MetamerOptions o;
   o.camera = "Canon_EOS_5D_Mark_II";
   o.match = "camera";
@@ -90,7 +90,7 @@ TEST_CASE("a metamer for a camera matches its RGB under the first light; the obs
   CHECK(p.views[0].dE00_1 > 0.1);
 }
 
-TEST_CASE("the search finds a pair planted into a small set") {
+TEST_CASE("lab metamers: the search finds a pair planted into a small set") {
   MetamerOptions o;
   const MetamerResult made = construct_metamer(o, "10GY5/6");
   SpectralData set = subset({"5R5/6", "10GY5/6", "5PB4/10", "2.5Y8/4", "5R5/8", "5RP6/6"});
@@ -107,7 +107,7 @@ TEST_CASE("the search finds a pair planted into a small set") {
   CHECK(r.compared < r.all_pairs);  // the L* window skipped some
 }
 
-TEST_CASE("the L*-window search finds exactly the pairs a full comparison finds") {
+TEST_CASE("lab metamers: the L-star window search finds exactly the pairs a full comparison finds") {
   const SpectralData& m = munsell_reflectances();
   SpectralData set;
   set.wavelengths = m.wavelengths;
@@ -134,7 +134,7 @@ TEST_CASE("the L*-window search finds exactly the pairs a full comparison finds"
   for (size_t k = 1; k < r.pairs.size(); ++k) CHECK(r.pairs[k - 1].views[0].dE00_2 >= r.pairs[k].views[0].dE00_2);
 }
 
-TEST_CASE("metamer explorer: bad options are refused with a code") {
+TEST_CASE("lab metamers: bad options are refused with a code") {
   MetamerOptions o;
   o.match = "camera";
   test::require_code([&] { metamer_pairs(o); }, ErrorCode::InvalidArgument);  // no camera

@@ -248,3 +248,49 @@ TEST_CASE("lab render: a TIFF through a gamma OECF holds the encoded truth, samp
   o.oecf = "gamma=2.2";
   test::require_code([&] { lab_render_files(o, "dng"); }, ErrorCode::InvalidArgument);
 }
+
+TEST_CASE("lab render: a JPEG through the sRGB OECF, detected and sampled, gives the stored 8-bit truth within 1.5 DN", "[lab]") {
+  LabRenderOptions o;
+  o.camera = "Nikon_D850";
+  o.oecf = "sRGB";
+  o.exposure = 0.7;
+  const LabRenderFiles f = lab_render_files(o, "jpeg");
+  REQUIRE(f.dng.size() > 2);
+  CHECK(f.dng[0] == 0xFF);
+  CHECK(f.dng[1] == 0xD8);
+  const RawImage img = decode_jpeg(f.dng.data(), f.dng.size());
+  const json::Value truth = json::parse(f.truth);
+  CHECK(truth.at("jpeg_quality").as_number() == 95);
+  CHECK(truth.at("full_scale").as_number() == 255);
+  REQUIRE(img.width == static_cast<int>(truth.at("width").as_number()));
+  DetectOptions d;
+  d.charts = {"cc24"};
+  const auto found = detect_charts(img, d);
+  REQUIRE(!found.empty());
+  LayoutOptions lo;
+  lo.chart = "cc24";
+  const ChartSample s = sample_chart(img, lo, found[0].corners);
+  const auto& patches = truth.at("patches").as_array();
+  REQUIRE(s.patches.size() == patches.size());
+  const LabRender r = render_lab_chart(o);
+  double worst = 0;
+  std::string where;
+  for (size_t i = 0; i < s.patches.size(); ++i) {
+    const auto stored = patches[i].at("stored").as_numbers();
+    for (size_t c = 0; c < 3; ++c) {
+      // Planted: stored = round(255 · sRGB(rgb / saturation)).
+      CHECK(stored[c] == std::round(255 * sRGB_encode(r.patches[i].rgb[c] / r.saturation)));
+      const double e = std::abs(s.patches[i].mean[c] - stored[c]);
+      if (e > worst) {
+        worst = e;
+        where = s.patches[i].id + " channel " + std::to_string(c) + ": sampled " + std::to_string(s.patches[i].mean[c]) +
+                ", stored " + std::to_string(stored[c]);
+      }
+    }
+  }
+  INFO("worst " << where << " (tolerance 1.5 DN: JPEG quality 95, 4:4:4, YCbCr rounding)");
+  CHECK(worst <= 1.5);
+  o.jpeg_quality = 0;
+  test::require_code([&] { lab_render_files(o, "jpeg"); }, ErrorCode::InvalidArgument);
+  test::require_code([&] { lab_render_files(o, "png"); }, ErrorCode::InvalidArgument);
+}

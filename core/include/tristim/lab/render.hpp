@@ -55,6 +55,7 @@ struct LabRenderOptions {
   /// The encoding of an RGB image (lab_render_tiff; a DNG is always linear): "linear",
   /// "gamma=<γ>" (stored = x^(1/γ)) or "sRGB" (IEC 61966-2-1), x = DN / saturation in [0, 1].
   std::string oecf = "linear";
+  int jpeg_quality = 95;            ///< lab_render_jpeg: libjpeg quality 1..100 (4:4:4, no chroma subsampling)
 };
 
 struct LabPatchTruth {
@@ -88,6 +89,12 @@ std::vector<std::uint8_t> lab_render_dng(const LabRender& render);
 /// DNG (one noise draw per pixel and channel).
 std::vector<std::uint8_t> lab_render_tiff(const LabRender& render);
 
+/// The same RGB image through the OECF in 8 bits (round(255 · encoded)), written as a baseline JPEG
+/// at options.jpeg_quality without chroma subsampling (lab/jpeg_writer.hpp). The truth's `stored`
+/// (lab_render_json with full_scale 255) is the 8-bit value before compression; sampling the
+/// decoded JPEG gives it back within the compression's error (tests: 1.5 DN on a patch's mean at 95).
+std::vector<std::uint8_t> lab_render_jpeg(const LabRender& render);
+
 /// Encoded value of a DN through options.oecf, in [0, 1]. Error(InvalidArgument) for an unknown OECF.
 double lab_encode(const LabRenderOptions& options, double dn, double saturation);
 
@@ -99,10 +106,11 @@ json::Value lab_render_json(const LabRender& render, double full_scale = 0);
 /// What `tristim lab render` writes and prints, and what the page's Lab mode receives: the DNG's
 /// bytes and the truth as JSON text (lab_render_json, pretty-printed).
 struct LabRenderFiles {
-  std::vector<std::uint8_t> dng;    ///< the file's bytes (DNG or TIFF)
+  std::vector<std::uint8_t> dng;    ///< the file's bytes (DNG, TIFF or JPEG)
   std::string truth;
 };
-/// format: "dng" (or empty; options.oecf must be "linear") or "tiff".
+/// format: "dng" (or empty; options.oecf must be "linear"), "tiff" or "jpeg" (the truth adds
+/// "jpeg_quality").
 LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::string& format = "dng");
 
 /// Chart ids lab rendering draws ("cc24", "passport", "sg140").
