@@ -192,17 +192,24 @@ std::vector<double> flat(const PatchMatrix& m) {
   return d;
 }
 
-std::string version_error(const std::string& got) {
-  return "link format version " + got + "; this tristim (" + std::string(kVersion) + ") reads version " +
-         std::to_string(kLinkVersion);
+/// `what` of version `got`, where this tristim reads `reads`.
+std::string version_error(const std::string& what, const std::string& got, const std::string& reads) {
+  return what + " version " + got + "; this tristim (" + std::string(kVersion) + ") reads " + reads;
 }
 
 struct ZStream {
   z_stream s{};
   bool inflating;
-  explicit ZStream(bool inflate_mode) : inflating(inflate_mode) {
+  ZStream(bool inflate_mode, std::string_view dictionary) : inflating(inflate_mode) {
     const int rc = inflating ? inflateInit2(&s, -15) : deflateInit2(&s, 9, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY);
     if (rc != Z_OK) throw Error(ErrorCode::Internal, "zlib could not start");
+    if (dictionary.empty()) return;  // raw streams take their preset dictionary right after init
+    const auto* d = reinterpret_cast<const Bytef*>(dictionary.data());
+    const auto n = static_cast<uInt>(dictionary.size());
+    if ((inflating ? inflateSetDictionary(&s, d, n) : deflateSetDictionary(&s, d, n)) != Z_OK) {
+      inflating ? inflateEnd(&s) : deflateEnd(&s);
+      throw Error(ErrorCode::Internal, "zlib refused the preset dictionary");
+    }
   }
   ~ZStream() { inflating ? inflateEnd(&s) : deflateEnd(&s); }
 };
@@ -332,7 +339,8 @@ SharePayload share_payload_from_json(const json::Value& o) {
   if (text_field(o, "format", "payload") != "tristim-link") bad("\"format\" must be \"tristim-link\"");
   const json::Value& ver = field(o, "version", "payload");
   if (!ver.is_number()) bad("\"version\" must be a number");
-  if (ver.as_number() != kLinkVersion) throw Error(ErrorCode::ProfileVersion, version_error(json::number_text(ver.as_number())));
+  if (ver.as_number() != kPayloadVersion)
+    throw Error(ErrorCode::ProfileVersion, version_error("link payload document", json::number_text(ver.as_number()), "version 1"));
   SharePayload p;
   p.tristim_version = text_field(o, "tristim_version", "payload");
   p.kind = text_field(o, "kind", "payload");
@@ -460,15 +468,336 @@ json::Value link_json(const std::string& content) {
   return out;
 }
 
+// ---- version 2: the same document, compact -------------------------------------------------------
+
+/// The preset dictionary of version 2 (docs/link-format.md): the base recipe, then the words a
+/// link's JSON and results text usually hold, most common last (deflate reaches them cheapest).
+const std::string& dictionary_v2() {
+  static const std::string d = std::string(kBaseRecipeV1) +
+      R"({"recipe":{"reference":{"chart":"file","illuminant":"D65","observer":"1964"},"linearisation":{"method":"Shen2008"},)"
+      R"("surface":{"method":"Saunderson"},"capture":{"light_trap":[]},"exclude_flagged":true},)"
+      R"("transform ","\nk ","\nnoise_floor ","\nsaturation ","\nareas ","\ntraining.dE94 ","\ntraining.relative_Y_error ",)"
+      R"("tristim_version":"0.1.0","kind":"relative","recipe":{"reference":{"chart":"passport"},"sampling":{"layout":)"
+      R"({"chart":"passport"},"corners":[]},"characterisation":{"model":"Finlayson2015-2","objective":{"method":"psm"},)"
+      R"("white_patch":"D1"}},"sources":[".dng"],"results":["model matrix-3x3\nobjective ls\nstatus ok\ncoefficients ",)"
+      R"(" "," "," ","\nlinearisation ","\ntraining.dE00 "," "," "," ","\ntraining.dE76.mean ","\ntraining.dE94.mean ",)"
+      R"("\nloo.dE00 "," "," "," ","\nloo.dE76.mean ","\nloo.dE94.mean ","\n"]})";
+  return d;
+}
+
+/// A number of the results text exactly as printed (printf %g, 10 or 6 significant digits):
+/// value = ±m × 10^x in fixed style ("0.03176675373": m 3176675373, x −11), ±m' × 10^x with m'
+/// the digits of m after the first in exponent style ("1.5e-05": m 15, x −5).
+struct Decimal {
+  bool negative = false, exponent_style = false;
+  int x = 0;
+  std::uint64_t m = 0;
+};
+constexpr int kMaxDecimalExponent = 400;
+
+bool all_digits(std::string_view s) { return !s.empty() && s.find_first_not_of("0123456789") == std::string_view::npos; }
+
+/// Reads a token like %g prints one; false for anything else (render_decimal must give it back).
+bool parse_decimal(std::string_view t, Decimal& d) {
+  d = Decimal{};
+  if (!t.empty() && t[0] == '-') d.negative = true, t.remove_prefix(1);
+  const std::size_t e = t.find('e');
+  const std::string_view mant = t.substr(0, e), ipart = mant.substr(0, mant.find('.'));
+  const std::string_view frac = ipart.size() < mant.size() ? mant.substr(ipart.size() + 1) : std::string_view();
+  if (!all_digits(ipart) || (ipart.size() < mant.size() && !all_digits(frac))) return false;
+  std::string digits = std::string(ipart) + std::string(frac);
+  digits.erase(0, std::min(digits.find_first_not_of('0'), digits.size()));
+  if (digits.size() > 18) return false;
+  for (char c : digits) d.m = d.m * 10 + std::uint64_t(c - '0');
+  if (e == std::string_view::npos) {
+    d.x = -static_cast<int>(frac.size());
+    return frac.size() <= static_cast<std::size_t>(kMaxDecimalExponent);
+  }
+  const std::string_view ex = t.substr(e + 1);
+  if (ipart.size() != 1 || ex.size() < 3 || ex.size() > 4 || (ex[0] != '+' && ex[0] != '-') || !all_digits(ex.substr(1))) return false;
+  d.exponent_style = true;
+  d.x = std::stoi(std::string(ex.substr(1))) * (ex[0] == '-' ? -1 : 1);
+  return std::abs(d.x) <= kMaxDecimalExponent;
+}
+
+std::string render_decimal(const Decimal& d) {
+  std::string s = std::to_string(d.m);
+  if (d.exponent_style) {
+    char ex[16];
+    std::snprintf(ex, sizeof ex, "e%c%02d", d.x < 0 ? '-' : '+', std::abs(d.x));
+    s = s.substr(0, 1) + (s.size() > 1 ? "." + s.substr(1) : "") + ex;
+  } else if (d.x >= 0) {
+    s.append(static_cast<std::size_t>(d.x), '0');
+  } else {
+    const std::size_t k = static_cast<std::size_t>(-d.x);
+    if (s.size() < k + 1) s.insert(0, k + 1 - s.size(), '0');
+    s.insert(s.size() - k, ".");
+  }
+  return (d.negative ? "-" : "") + s;
+}
+
+void put_varint(std::string& out, std::uint64_t v) {
+  for (; v >= 0x80; v >>= 7) out += static_cast<char>((v & 0x7f) | 0x80);
+  out += static_cast<char>(v);
+}
+
+/// Reads a content's binary part in order; every read is bounded.
+struct Cursor {
+  std::string_view bytes;
+  std::size_t at = 0;
+  std::string_view take(std::size_t n, const char* what) {
+    if (n > bytes.size() - at) bad(std::string("the binary part ends inside ") + what);
+    at += n;
+    return bytes.substr(at - n, n);
+  }
+  std::uint64_t varint(const char* what) {
+    std::uint64_t v = 0;
+    for (int shift = 0; shift < 64; shift += 7) {
+      const auto b = static_cast<std::uint8_t>(take(1, what)[0]);
+      if (shift == 63 && b > 1) break;
+      v |= std::uint64_t(b & 0x7f) << shift;
+      if (!(b & 0x80)) return v;
+    }
+    bad(std::string(what) + ": a number beyond 64 bits");
+  }
+};
+
+/// Bytes [from, to) (big-endian: 0 is the most significant) of every value, byte by byte: plane k
+/// holds byte k of each value in turn, so that bytes alike (exponents, leading zeros) sit together.
+std::string planes(const std::vector<std::uint64_t>& values, int from, int to) {
+  std::string out;
+  for (int k = from; k < to; ++k)
+    for (const std::uint64_t v : values) out += static_cast<char>((v >> (8 * (7 - k))) & 0xff);
+  return out;
+}
+void unplane(std::vector<std::uint64_t>& values, std::string_view bytes, int from, int to) {
+  for (int k = from; k < to; ++k)
+    for (std::size_t i = 0; i < values.size(); ++i)
+      values[i] |= std::uint64_t(static_cast<std::uint8_t>(bytes[(k - from) * values.size() + i])) << (8 * (7 - k));
+}
+constexpr int kMantissaHighPlanes = 4, kDoubleHighPlanes = 2;  ///< the compressible leading bytes
+
+/// A relative payload's patches in the order of its built-in chart: the labels a link leaves out.
+/// The writer (`writing`) keeps the ids when the chart cannot be made; the reader says why.
+std::vector<std::string> chart_labels(const Recipe& recipe, bool writing) {
+  if (recipe.reference.chart == "file") return {};
+  try {
+    return recipe_reference(recipe).labels;
+  } catch (const Error&) {
+    if (writing) return {};
+    throw;
+  }
+}
+
+std::string hex_bytes(std::string_view hex) {
+  std::string out;
+  for (std::size_t i = 0; i + 1 < hex.size(); i += 2) out += static_cast<char>(std::stoi(std::string(hex.substr(i, 2)), nullptr, 16));
+  return out;
+}
+
+/// Version 2 content: JSON NUL binary (docs/link-format.md). `tail`: where its incompressible part
+/// (the SHA-256s and the values' low bytes) starts.
+std::string link_content_v2(const SharePayload& p, std::size_t& tail) {
+  json::Value o = json::Value::object();
+  std::string bin;
+  o.set("tristim_version", p.tristim_version);
+  o.set("kind", p.kind);
+  if (p.kind == "absolute") {
+    o.set("recipe", absolute_recipe_json(p.absolute));
+  } else {
+    o.set("recipe", merge_diff(json::parse(kBaseRecipeV1), recipe_json(p.recipe)));
+    if (p.labels != chart_labels(p.recipe, true)) {
+      json::Value ids = json::Value::array();
+      for (const auto& id : p.labels) ids.push(id);
+      o.set("ids", ids);
+    }
+  }
+  json::Value names = json::Value::array();
+  for (const auto& s : p.sources) {
+    if (s.sha256.size() != 64 || s.sha256.find_first_not_of("0123456789abcdef") != std::string::npos)
+      throw Error(ErrorCode::InvalidArgument, "source '" + s.name + "': sha256 must be 64 lower-case hex digits");
+    names.push(s.name);
+    bin += hex_bytes(s.sha256);
+  }
+  o.set("sources", names);
+  // The results text with its numbers cut out (parts), the numbers as exact decimals.
+  json::Value parts = json::Value::array();
+  std::string part, heads;
+  std::vector<std::uint64_t> mantissas;
+  const std::string& text = p.expected.text;
+  for (std::size_t i = 0; i < text.size();) {
+    if (text[i] == ' ' || text[i] == '\n') { part += text[i++]; continue; }
+    const std::size_t j = std::min(text.find_first_of(" \n", i), text.size());
+    const std::string_view token = std::string_view(text).substr(i, j - i);
+    Decimal d;
+    if (parse_decimal(token, d) && render_decimal(d) == token) {
+      parts.push(part);
+      part.clear();
+      const std::uint64_t zigzag = d.x < 0 ? 2 * std::uint64_t(-d.x) - 1 : 2 * std::uint64_t(d.x);
+      put_varint(heads, zigzag << 2 | std::uint64_t(d.exponent_style) << 1 | std::uint64_t(d.negative));
+      mantissas.push_back(d.m);
+    } else {
+      part += token;
+    }
+    i = j;
+  }
+  parts.push(part);
+  o.set("results", parts);
+  std::vector<std::uint64_t> doubles;
+  if (p.kind == "relative") {
+    std::vector<double> values = flat(p.camera_RGB), xyz = flat(p.reference_XYZ);
+    values.insert(values.end(), xyz.begin(), xyz.end());
+    for (const double v : values) {
+      std::uint64_t u;
+      std::memcpy(&u, &v, 8);
+      doubles.push_back(u);
+    }
+  }
+  // The compressible part first; the SHA-256s and the low bytes (all but incompressible) last,
+  // where encode_share_payload ends a deflate block so that they get a block of their own.
+  const std::string head = o.dump() + '\0' + heads + planes(mantissas, 0, kMantissaHighPlanes) + planes(doubles, 0, kDoubleHighPlanes);
+  tail = head.size();
+  return head + bin + planes(mantissas, kMantissaHighPlanes, 8) + planes(doubles, kDoubleHighPlanes, 8);
+}
+
+/// The payload JSON document (share_payload_from_json's form) of version 2 content.
+json::Value link_json_v2(const std::string& content) {
+  const std::size_t nul = content.find('\0');
+  if (nul == std::string::npos) bad("no binary part after the JSON");
+  json::Value o;
+  try {
+    o = json::parse(content.substr(0, nul));
+  } catch (const Error& e) {
+    if (e.code() == ErrorCode::LimitExceeded) throw;
+    bad(std::string("not JSON: ") + e.what());
+  }
+  if (!o.is_object()) bad("must be a JSON object");
+  json::reject_unknown(o, {"tristim_version", "kind", "recipe", "ids", "sources", "results"}, "share payload", ErrorCode::ParseError);
+  const std::string& kind = text_field(o, "kind", "payload");
+  json::Value out = json::Value::object();
+  out.set("format", "tristim-link");
+  out.set("version", kPayloadVersion);
+  out.set("tristim_version", field(o, "tristim_version", "payload"));
+  out.set("kind", kind);
+  const json::Value& recipe = field(o, "recipe", "payload");
+  std::size_t patches = 0, doubles = 0;
+  json::Value ids = json::Value::array();
+  if (kind == "relative") {
+    if (!recipe.is_object()) bad("recipe must be an object (a merge patch)");
+    out.set("recipe", merge_apply(json::parse(kBaseRecipeV1), recipe));
+    const Recipe r = recipe_from_json(out.at("recipe"));
+    if (const json::Value* given = o.find("ids")) {
+      if (!given->is_array()) bad("ids must be an array of strings");
+      ids = *given;
+    } else {
+      if (r.reference.chart == "file") bad("\"ids\" missing: the recipe's reference is a file, so the link must name its patches");
+      for (const auto& label : chart_labels(r, false)) ids.push(label);
+    }
+    patches = ids.as_array().size();
+    doubles = 3 * patches * (r.reference.chart == "file" ? 2 : 1);
+  } else {
+    if (o.find("ids")) bad("only a relative payload has \"ids\"");
+    out.set("recipe", recipe);
+  }
+  const json::Value& names = field(o, "sources", "payload");
+  if (!names.is_array()) bad("sources must be an array of names");
+  const json::Value& parts = field(o, "results", "payload");
+  if (!parts.is_array() || parts.as_array().empty()) bad("results must be a non-empty array of strings");
+  const std::size_t n = parts.as_array().size() - 1;
+  // The binary part: heads, high planes, SHA-256s, low planes (link_content_v2).
+  Cursor in{std::string_view(content).substr(nul + 1)};
+  if (n > in.bytes.size() || doubles > in.bytes.size() || 32 * names.as_array().size() > in.bytes.size())
+    bad("the binary part is shorter than the JSON announces");
+  std::vector<Decimal> numbers(n);
+  for (auto& d : numbers) {
+    const std::uint64_t head = in.varint("the results' numbers");
+    d.negative = head & 1;
+    d.exponent_style = head & 2;
+    const std::uint64_t zigzag = head >> 2;
+    if (zigzag > 2 * kMaxDecimalExponent) bad("results: a number's exponent beyond " + std::to_string(kMaxDecimalExponent));
+    d.x = zigzag & 1 ? -static_cast<int>((zigzag + 1) / 2) : static_cast<int>(zigzag / 2);
+  }
+  std::vector<std::uint64_t> mantissas(n), bits(doubles);
+  unplane(mantissas, in.take(n * kMantissaHighPlanes, "the results' numbers"), 0, kMantissaHighPlanes);
+  unplane(bits, in.take(doubles * kDoubleHighPlanes, "the patch values"), 0, kDoubleHighPlanes);
+  json::Value sources = json::Value::array();
+  for (const auto& name : names.as_array()) {
+    if (!name.is_string()) bad("sources must be an array of names");
+    json::Value s = json::Value::object();
+    s.set("name", name);
+    std::string hex;
+    for (char c : in.take(32, "the sources' SHA-256")) {
+      char b[3];
+      std::snprintf(b, sizeof b, "%02x", static_cast<unsigned>(static_cast<std::uint8_t>(c)));
+      hex += b;
+    }
+    s.set("sha256", hex);
+    sources.push(s);
+  }
+  unplane(mantissas, in.take(n * (8 - kMantissaHighPlanes), "the results' numbers"), kMantissaHighPlanes, 8);
+  const std::size_t left = in.bytes.size() - in.at;
+  if (left != doubles * (8 - kDoubleHighPlanes))
+    bad("the patch values hold " + std::to_string(kDoubleHighPlanes * doubles + left) + " bytes, not " +
+        std::to_string(8 * doubles) + " (3 doubles per patch" + (doubles > 3 * patches ? " for RGB and for XYZ)" : ")"));
+  unplane(bits, in.take(left, "the patch values"), kDoubleHighPlanes, 8);
+  std::string text;
+  for (std::size_t i = 0; i <= n; ++i) {
+    if (!parts.as_array()[i].is_string()) bad("results must be an array of strings");
+    text += parts.as_array()[i].as_string();
+    if (i < n) {
+      numbers[i].m = mantissas[i];
+      text += render_decimal(numbers[i]);
+    }
+    if (text.size() > kMaxLinkInflatedBytes) throw Error(ErrorCode::LimitExceeded, "share payload: results text beyond 1 MiB");
+  }
+  if (kind == "relative") {
+    json::Value patch_values = json::Value::object();
+    patch_values.set("ids", ids);
+    for (std::size_t part = 0; 3 * patches * part < doubles; ++part) {
+      json::Value a = json::Value::array();
+      for (std::size_t i = 0; i < 3 * patches; ++i) {
+        double v;
+        std::memcpy(&v, &bits[part * 3 * patches + i], 8);
+        a.push(v);
+      }
+      patch_values.set(part == 0 ? "RGB" : "XYZ", a);
+    }
+    out.set("patches", patch_values);
+  }
+  out.set("sources", sources);
+  json::Value expected = json::Value::object();
+  expected.set("digest", "sha256:" + sha256_hex(text));
+  expected.set("results", text);
+  out.set("expected", expected);
+  return out;
+}
+
+/// Twelve leading bytes of SHA-256(bytes).
+std::string check_of(std::string_view bytes) {
+  Sha256 h;
+  h.update(bytes);
+  const auto sum = h.digest();
+  return std::string(reinterpret_cast<const char*>(sum.data()), kCheckBytes);
+}
+
+/// "<version>." base64url(deflate-raw) "." base64url(check). Version 1's check is over the content;
+/// version 2's over the compressed bytes, so that no character can change unnoticed, not even one
+/// in bits deflate ignores (a block's padding).
+std::string link_text(int version, const std::string& content, std::string_view dictionary, std::size_t block_end = 0) {
+  const std::string data = deflate_raw(content, dictionary, block_end);
+  return std::to_string(version) + "." + base64url_encode(data) + "." + base64url_encode(check_of(version == 1 ? content : data));
+}
+
 }  // namespace
 
+const std::string& share_link_dictionary() { return dictionary_v2(); }
+
+std::string encode_share_payload_v1(const SharePayload& payload) { return link_text(1, link_content(payload), {}); }
+
 std::string encode_share_payload(const SharePayload& payload) {
-  const std::string text = link_content(payload);
-  Sha256 h;
-  h.update(text);
-  const auto check = h.digest();
-  return std::to_string(kLinkVersion) + "." + base64url_encode(deflate_raw(text)) + "." +
-         base64url_encode(std::string_view(reinterpret_cast<const char*>(check.data()), kCheckBytes));
+  std::size_t tail = 0;
+  const std::string content = link_content_v2(payload, tail);
+  return link_text(kLinkVersion, content, dictionary_v2(), tail);
 }
 
 SharePayload decode_share_payload(std::string_view text) {
@@ -494,21 +823,20 @@ SharePayload decode_share_payload(std::string_view text) {
   const std::size_t dot1 = text.find('.');
   const std::string_view version = text.substr(0, dot1);
   if (version.empty() || version.size() > 9 || version.find_first_not_of("0123456789") != std::string_view::npos)
-    bad("does not start with a format version (\"1.\"): not a tristim link");
-  if (version != std::to_string(kLinkVersion)) throw Error(ErrorCode::ProfileVersion, version_error(std::string(version)));
+    bad("does not start with a format version (\"2.\"): not a tristim link");
+  if (version != "1" && version != "2")
+    throw Error(ErrorCode::ProfileVersion, version_error("link format", std::string(version), "versions 1 and 2"));
   if (dot1 == std::string_view::npos) bad("truncated after its version");
   const std::size_t dot2 = text.find('.', dot1 + 1);
   if (dot2 == std::string_view::npos) bad("truncated: no check after the data");
   const std::string data = base64url_decode(text.substr(dot1 + 1, dot2 - dot1 - 1), "share payload data");
   const std::string check = base64url_decode(text.substr(dot2 + 1), "share payload check");
   if (check.size() != kCheckBytes) bad("the check has " + std::to_string(check.size()) + " bytes, not " + std::to_string(kCheckBytes) + " (truncated?)");
-  const std::string json_text = inflate_raw(data, kMaxLinkInflatedBytes, "share payload");
-  Sha256 h;
-  h.update(json_text);
-  const auto sum = h.digest();
-  if (!std::equal(check.begin(), check.end(), sum.begin(), [](char a, std::uint8_t b) { return static_cast<std::uint8_t>(a) == b; }))
-    bad("the check does not match the content: the link was changed or cut");
-  return share_payload_from_json(link_json(json_text));
+  const bool v1 = version == "1";
+  if (!v1 && check != check_of(data)) bad("the check does not match the data: the link was changed or cut");
+  const std::string json_text = inflate_raw(data, kMaxLinkInflatedBytes, "share payload", v1 ? std::string_view() : dictionary_v2());
+  if (v1 && check != check_of(json_text)) bad("the check does not match the content: the link was changed or cut");
+  return share_payload_from_json(v1 ? link_json(json_text) : link_json_v2(json_text));
 }
 
 std::string share_link(const std::string& base, const std::string& payload) {
@@ -714,22 +1042,27 @@ std::string base64url_decode(std::string_view text, const std::string& what) {
   return out;
 }
 
-std::string deflate_raw(std::string_view bytes) {
+std::string deflate_raw(std::string_view bytes, std::string_view dictionary, std::size_t block_end) {
   if (bytes.size() > (1u << 30)) throw Error(ErrorCode::LimitExceeded, "deflate input beyond 1 GiB");
-  ZStream z(false);
-  std::string out(deflateBound(&z.s, static_cast<uLong>(bytes.size())), '\0');
+  block_end = std::min(block_end, bytes.size());
+  ZStream z(false, dictionary);
+  std::string out(deflateBound(&z.s, static_cast<uLong>(bytes.size())) + 64, '\0');  // + a block end
   z.s.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
-  z.s.avail_in = static_cast<uInt>(bytes.size());
   z.s.next_out = reinterpret_cast<Bytef*>(&out[0]);
   z.s.avail_out = static_cast<uInt>(out.size());
+  if (block_end > 0) {  // Z_BLOCK: the block ends here, its bits unaligned, the history kept
+    z.s.avail_in = static_cast<uInt>(block_end);
+    if (deflate(&z.s, Z_BLOCK) != Z_OK || z.s.avail_in != 0) throw Error(ErrorCode::Internal, "deflate could not end a block");
+  }
+  z.s.avail_in = static_cast<uInt>(bytes.size() - block_end);
   if (deflate(&z.s, Z_FINISH) != Z_STREAM_END) throw Error(ErrorCode::Internal, "deflate did not finish");
   out.resize(z.s.total_out);
   return out;
 }
 
-std::string inflate_raw(std::string_view bytes, std::size_t max_bytes, const std::string& what) {
+std::string inflate_raw(std::string_view bytes, std::size_t max_bytes, const std::string& what, std::string_view dictionary) {
   if (bytes.size() > (1u << 30)) throw Error(ErrorCode::LimitExceeded, what + ": compressed data beyond 1 GiB");
-  ZStream z(true);
+  ZStream z(true, dictionary);
   z.s.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
   z.s.avail_in = static_cast<uInt>(bytes.size());
   std::string out;
@@ -750,6 +1083,15 @@ std::string inflate_raw(std::string_view bytes, std::size_t max_bytes, const std
                                            (z.s.msg ? std::string(" (") + z.s.msg + ")" : std::string()));
   }
   if (z.s.avail_in != 0) throw Error(ErrorCode::ParseError, what + ": " + std::to_string(z.s.avail_in) + " bytes after the compressed data");
+  // The bits after the last block's end fill the last byte with zeros (as every deflate writer
+  // pads): a link whose final character changes only those bits is refused, not read the same.
+  // data_type: the bits zlib took from the input but did not use (it may read a byte ahead).
+  const std::size_t unused = static_cast<std::size_t>(z.s.data_type & 63), taken = (unused + 7) / 8;
+  std::uint64_t tail = 0;
+  for (std::size_t j = 0; j < taken && j < z.s.total_in; ++j)
+    tail |= std::uint64_t(static_cast<std::uint8_t>(bytes[z.s.total_in - taken + j])) << (8 * j);
+  if (unused > 0 && (tail >> (8 * taken - unused)) != 0)
+    throw Error(ErrorCode::ParseError, what + ": bits set after the end of the compressed data");
   return out;
 }
 
@@ -766,7 +1108,7 @@ bool is_project_file(std::string_view bytes) { return bytes.substr(0, kProjectPr
 std::string project_to_bytes(const Project& project) {
   json::Value header = json::Value::object();
   header.set("format", "tristim-project");
-  header.set("version", kLinkVersion);
+  header.set("version", kProjectVersion);
   header.set("payload", share_payload_json(project.payload));
   json::Value images = json::Value::array();
   std::size_t offset = 0;
@@ -795,7 +1137,7 @@ Project project_from_bytes(std::string_view bytes) {
   if (!is_project_file(bytes)) bad_project("does not start with \"TRISTIM-PROJECT\"");
   if (bytes.substr(0, kProjectMagic.size()) != kProjectMagic) {
     const std::string_view v = bytes.substr(kProjectPrefix.size(), bytes.find('\n') - kProjectPrefix.size());
-    throw Error(ErrorCode::ProfileVersion, "project file " + version_error(std::string(v.substr(0, 16))));
+    throw Error(ErrorCode::ProfileVersion, version_error("project file", std::string(v.substr(0, 16)), "version 1"));
   }
   std::size_t at = kProjectMagic.size();
   const std::size_t nl = bytes.find('\n', at);
@@ -818,8 +1160,8 @@ Project project_from_bytes(std::string_view bytes) {
   json::reject_unknown(header, {"format", "version", "payload", "images", "session"}, "project file", ErrorCode::ParseError);
   if (text_field(header, "format", "project") != "tristim-project") bad_project("\"format\" must be \"tristim-project\"");
   const json::Value& ver = field(header, "version", "project");
-  if (!ver.is_number() || ver.as_number() != kLinkVersion)
-    throw Error(ErrorCode::ProfileVersion, "project file " + version_error(ver.is_number() ? json::number_text(ver.as_number()) : "?"));
+  if (!ver.is_number() || ver.as_number() != kProjectVersion)
+    throw Error(ErrorCode::ProfileVersion, version_error("project file", ver.is_number() ? json::number_text(ver.as_number()) : "?", "version 1"));
   Project p;
   p.payload = share_payload_from_json(field(header, "payload", "project"));
   const std::string_view blob = bytes.substr(at + length);

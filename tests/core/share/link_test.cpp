@@ -1,6 +1,7 @@
 // Share links and project files (share/link.hpp): SHA-256 against FIPS 180-2's examples, base64url
 // and deflate-raw round trips, a planted fit that reproduces from its link, and every planted
-// damage (a changed byte, a cut, a bomb, a future version) refused with its code.
+// damage (a changed byte, a cut, a bomb, a future version) refused with its code. Links are
+// written in format version 2; a version 1 link (a fixture made before version 2) is still read.
 #include <Eigen/LU>
 #include <random>
 
@@ -122,7 +123,43 @@ TEST_CASE("a planted fit reproduces from its link and recovers the planted matri
       in >> v;
       CHECK(v == Approx(p.M(r, c) / 40).margin(1e-9));  // RGB was planted × 40
     }
-  CHECK(payload.size() < 2000);
+  CHECK(payload.size() < 1100);  // version 2: 24 patches, a 3×3 (version 1: ~1,700)
+}
+
+TEST_CASE("a version 1 link is still read and reproduces, and version 2 carries the same payload, shorter", "[share]") {
+  // A link made before version 2 (tests/fuzz/corpus/share_payload/passport-link.txt: "L" + link).
+  std::string v1 = tristim::test::slurp(tristim::test::test_file_path("tests/fuzz/corpus/share_payload/passport-link.txt")).substr(1);
+  REQUIRE(v1.find("#tristim=1.") != std::string::npos);
+  const SharePayload old = decode_share_payload(v1);
+  CHECK(reproduce_share(old).verdict == "reproduced");
+  const std::string v2 = encode_share_payload(old);
+  REQUIRE(v2.rfind("2.", 0) == 0);
+  CHECK(v2.size() + 400 < v1.size());
+  const SharePayload back = decode_share_payload(v2);
+  CHECK(share_payload_json(back).dump() == share_payload_json(old).dump());  // the same document, bit for bit
+  CHECK(encode_share_payload_v1(back) == v1.substr(v1.find('=') + 1));       // and written as version 1, the same link
+}
+
+TEST_CASE("version 2 links: patch ids only when not in the chart order, the results text exactly, numbers or not", "[share]") {
+  const Planted p = planted();
+  const Characterisation c = characterise(p.recipe, p.training);
+  SharePayload s = share_payload(c, p.training);
+  auto content_of = [](const std::string& payload) {
+    const std::size_t a = payload.find('.'), b = payload.rfind('.');
+    return inflate_raw(base64url_decode(payload.substr(a + 1, b - a - 1), "t"), 1u << 20, "t", share_link_dictionary());
+  };
+  CHECK(content_of(encode_share_payload(s)).find("\"ids\"") == std::string::npos);
+  // Another order (or a subset) travels with its ids.
+  std::swap(s.labels[0], s.labels[1]);
+  const std::string swapped = encode_share_payload(s);
+  CHECK(content_of(swapped).find("\"ids\":[\"" + s.labels[0] + "\",\"" + s.labels[1] + "\"") != std::string::npos);
+  CHECK(decode_share_payload(swapped).labels == s.labels);
+  // Numbers as %g prints them come back as they were; tokens that only look like numbers too.
+  s.expected.text = "model matrix-3x3\ncoefficients 0 -0 100 0.5 -0.0001234567891 1.5e-05 -9.999999999e+100 1e-300 12345678901234567\n"
+                    "odd 007 1.50 .5 5. 1e5 1e+5 -e+05 nan inf null 2.2x x2.2 0.000 \n\n  trailing 3";
+  const SharePayload back = decode_share_payload(encode_share_payload(s));
+  CHECK(back.expected.text == s.expected.text);
+  CHECK(back.expected.digest == "sha256:" + sha256_hex(s.expected.text));
 }
 
 TEST_CASE("a link whose data give other numbers differs, with both results", "[share]") {
@@ -168,10 +205,21 @@ TEST_CASE("damaged links are refused with their codes", "[share]") {
     const std::string bomb(64u << 20, '[');
     const std::string t = "1." + base64url_encode(deflate_raw(bomb)) + ".AAAAAAAAAAAAAAAA";
     require_code([&] { decode_share_payload(t); }, ErrorCode::LimitExceeded);
+    // Version 2 checks the compressed bytes first: a bomb needs a valid check to be inflated at all.
+    const std::string data = deflate_raw(bomb, share_link_dictionary());
+    Sha256 h;
+    h.update(data);
+    const auto sum = h.digest();
+    const std::string checked = base64url_encode(std::string(reinterpret_cast<const char*>(sum.data()), 12));
+    require_code([&] { decode_share_payload("2." + base64url_encode(data) + ".AAAAAAAAAAAAAAAA"); }, ErrorCode::ParseError);
+    require_code([&] { decode_share_payload("2." + base64url_encode(data) + "." + checked); }, ErrorCode::LimitExceeded);
   }
   SECTION("a future version, outside and inside") {
-    require_code([&] { decode_share_payload("2" + payload.substr(1)); }, ErrorCode::ProfileVersion);
-    std::string text = inflate_raw(base64url_decode(payload.substr(dot1 + 1, dot2 - dot1 - 1), "t"), 1u << 20, "t");
+    require_code([&] { decode_share_payload("3" + payload.substr(1)); }, ErrorCode::ProfileVersion);
+    // Inside: a version 1 link's JSON document says "version": 2 (a document version never written).
+    const std::string v1 = encode_share_payload_v1(decode_share_payload(payload));
+    const std::size_t a = v1.find('.'), b = v1.rfind('.');
+    std::string text = inflate_raw(base64url_decode(v1.substr(a + 1, b - a - 1), "t"), 1u << 20, "t");
     const auto at = text.find("\"version\":1");
     REQUIRE(at != std::string::npos);
     text.replace(at, 11, "\"version\":2");
@@ -247,7 +295,7 @@ TEST_CASE("tristim reproduce exits 0 reproduced, 1 differs, 2 for a bad link", "
   spit(good, share_link("http://127.0.0.1:8080/", encode_share_payload(s)));
   s.camera_RGB(0, 0) *= 1.02;
   spit(other, encode_share_payload(s));
-  spit(bad, "2" + encode_share_payload(s).substr(1));
+  spit(bad, "3" + encode_share_payload(s).substr(1));
   const std::string cli = TRISTIM_CLI;
   auto status = [&](const std::string& args) {
     const std::string out = run_shell("'" + cli + "' " + args + " > /dev/null 2>&1; echo $?");
@@ -296,7 +344,7 @@ TEST_CASE("tristim share --profile p.json alone makes a link that reproduces, an
   spit(altered, profile_to_json(changed));
   const std::string cli = "'" + std::string(TRISTIM_CLI) + "'";
   const std::string link = run_shell(cli + " share --profile " + profile);
-  REQUIRE(link.rfind("http://127.0.0.1:8080/#tristim=1.", 0) == 0);
+  REQUIRE(link.rfind("http://127.0.0.1:8080/#tristim=2.", 0) == 0);
   CHECK(run_shell(cli + " reproduce --json '" + link.substr(0, link.size() - 1) + "'").find("\"verdict\": \"reproduced\"") !=
         std::string::npos);
   CHECK(run_shell(cli + " share --profile " + altered + " 2>&1; true").find("error PATCH_MISMATCH:") != std::string::npos);

@@ -1,19 +1,23 @@
-// Reproducible profile links (format version 1, docs/link-format.md): everything needed to
-// recompute a profile — the recipe, the per-patch camera RGB, the reference (a built-in chart by
-// id, or inline XYZ), the tristim version, the SHA-256 of each source image and the expected
-// results with their digest — as a compact text that fits in a URL fragment:
+// Reproducible profile links (docs/link-format.md): everything needed to recompute a profile —
+// the recipe, the per-patch camera RGB, the reference (a built-in chart by id, or inline XYZ), the
+// tristim version, the SHA-256 of each source image and the expected results — as a compact text
+// that fits in a URL fragment:
 //
-//   content = payload JSON (relative: the recipe as an RFC 7386 merge patch against a pinned
-//             default recipe, the patches' ids only) NUL camera RGB [and inline XYZ] as
-//             little-endian doubles — a relative payload; an absolute one is its JSON alone
-//   payload = "1." base64url(deflate-raw(content)) "." base64url(SHA-256(content)[0..11])
+//   payload = "2." base64url(data) "." base64url(SHA-256(data)[0..11]), data = deflate-raw(content,
+//             preset dictionary)
+//   content = JSON (the recipe as an RFC 7386 merge patch against a pinned default recipe, the
+//             patches' ids only when they differ from the chart's, the source names, the expected
+//             results' text with its numbers cut out) NUL binary (each source's SHA-256, the
+//             results' numbers as exact decimals, the camera RGB [and inline XYZ] as IEEE-754
+//             doubles, byte-shuffled so that their exponent bytes compress)
 //   link    = <page address> "#tristim=" payload
 //
-// The trailing check catches a changed or truncated payload before anything is read from it;
-// deflate-raw is RFC 1951 (zlib's raw mode natively and in wasm; the page uses the module, never
-// CompressionStream, so both sides run the same code). Reading never inflates more than
-// kMaxLinkInflatedBytes (a decompression bomb is refused while it inflates). The check and the
-// digest identify data, they do not authenticate it: anyone can make a link.
+// Version 1 links ("1.": the whole JSON document, digest and hex SHA-256 included, doubles as
+// they are, the check over the content) are still read. The trailing check catches a changed or
+// truncated payload before anything is read from it; deflate-raw is RFC 1951 (zlib's raw mode natively and in wasm; the page
+// uses the module, never CompressionStream, so both sides run the same code). Reading never
+// inflates more than kMaxLinkInflatedBytes (a decompression bomb is refused while it inflates).
+// The check and the digest identify data, they do not authenticate it: anyone can make a link.
 //
 // Opening a link (reproduce) recomputes the profile from the data in it and compares the
 // expected results — coefficients to 10 significant digits, metrics to 6 — with the new ones:
@@ -38,7 +42,13 @@
 
 namespace tristim {
 
-constexpr int kLinkVersion = 1;
+/// The link format written ("2."); version 1 links are read too.
+constexpr int kLinkVersion = 2;
+/// The version of the payload's JSON document (share_payload_json: project files, reproduce's
+/// report): unchanged by the link's version 2, which encodes the same document more compactly.
+constexpr int kPayloadVersion = 1;
+/// Project files' format version ("TRISTIM-PROJECT 1").
+constexpr int kProjectVersion = 1;
 /// Refused beyond this many characters of link or payload text (LimitExceeded).
 constexpr std::size_t kMaxLinkChars = 1u << 20;
 /// Inflation stops with LimitExceeded when the payload JSON would exceed this (a bomb).
@@ -61,7 +71,7 @@ struct ShareResults {
 };
 
 struct SharePayload {
-  int version = kLinkVersion;
+  int version = kPayloadVersion;  ///< the JSON document's version
   std::string tristim_version;
   std::string kind = "relative";          ///< "relative" (Recipe) | "absolute" (AbsoluteRecipe)
   Recipe recipe;                          ///< kind "relative"
@@ -95,11 +105,14 @@ json::Value share_payload_json(const SharePayload& payload);
 /// readers' codes for the recipe).
 SharePayload share_payload_from_json(const json::Value& value);
 
-/// "1.<data>.<check>" (see the header comment).
+/// "2.<data>.<check>" (see the header comment).
 std::string encode_share_payload(const SharePayload& payload);
-/// Reads a link (its "#tristim=" fragment), or a bare payload. Errors: LimitExceeded (text
-/// longer than kMaxLinkChars, or inflating beyond kMaxLinkInflatedBytes), ProfileVersion (a
-/// payload of another format version), ParseError (not a payload, bad base64url, a truncated or
+/// The version 1 text of a payload ("1.<data>.<check>"), as tristim wrote links before version 2:
+/// for tests and for a reader that only knows version 1.
+std::string encode_share_payload_v1(const SharePayload& payload);
+/// Reads a link (its "#tristim=" fragment), or a bare payload, of version 1 or 2. Errors:
+/// LimitExceeded (text longer than kMaxLinkChars, or inflating beyond kMaxLinkInflatedBytes),
+/// ProfileVersion (a payload of another format version), ParseError (not a payload, bad base64url, a truncated or
 /// corrupt deflate stream, a check that does not match, malformed JSON or fields).
 SharePayload decode_share_payload(std::string_view text);
 /// base + "#tristim=" + payload (base's own fragment, if any, replaced).
@@ -160,11 +173,16 @@ std::string base64url_encode(std::string_view bytes);
 /// at the end only), an impossible length, or a last character with unused bits set (only the
 /// canonical encoding is read, so no character can change without the bytes changing).
 std::string base64url_decode(std::string_view text, const std::string& what);
-/// Raw deflate at level 9.
-std::string deflate_raw(std::string_view bytes);
+/// Raw deflate at level 9; `dictionary`: a preset dictionary (zlib's deflateSetDictionary), which
+/// the reader must pass to inflate_raw too; `block_end` > 0: a deflate block ends after that many
+/// bytes (zlib's Z_BLOCK), so that what follows (e.g. incompressible bytes) gets a block of its own.
+std::string deflate_raw(std::string_view bytes, std::string_view dictionary = {}, std::size_t block_end = 0);
 /// Error(LimitExceeded) as soon as the output would exceed `max_bytes`; Error(ParseError) for a
 /// corrupt or truncated stream, or bytes after its end.
-std::string inflate_raw(std::string_view bytes, std::size_t max_bytes, const std::string& what);
+std::string inflate_raw(std::string_view bytes, std::size_t max_bytes, const std::string& what,
+                        std::string_view dictionary = {});
+/// The preset dictionary of version 2 links (docs/link-format.md gives it verbatim).
+const std::string& share_link_dictionary();
 
 // ---- project files (.tristim) --------------------------------------------------------------------
 //
