@@ -25,6 +25,8 @@ SpectralEvaluation evaluate_spectral_under(const SpectralModel& model, const std
 val spectral_W(const SpectralModel& m) { return wasm::Conv<PatchMatrix>::to(m.W); }
 void set_spectral_W(SpectralModel& m, val v) { m.W = wasm::Conv<PatchMatrix>::from(v); }
 
+MethodInfo spectral_info() { return spectral_method(); }
+
 std::string linearisation_text(const Linearisation& l) { return linearisation_json(l).dump(2) + "\n"; }
 Linearisation linearisation_from_text(const std::string& text) { return linearisation_from_json(json::parse(text)); }
 std::string spectral_model_text(const SpectralModel& m) { return spectral_model_json(m).dump(2) + "\n"; }
@@ -38,10 +40,12 @@ EMSCRIPTEN_BINDINGS(tristim_linearisation) {
       FIELD(reference_XYZ) FIELD(white) FIELD(reflectances) FIELD(basis_reflectances); }
   { using S = Linearisation; value_object<S>("Linearisation") FIELD(choice) FIELD(coefficients) FIELD(full_scale)
       FIELD(domain) FIELD(r_squared) FIELD(fitted) FIELD(greys) FIELD(grey_reason) FIELD(grey_coefficients)
-      FIELD(monotonic) FIELD(message); }
+      FIELD(monotonic) FIELD(extrapolated) FIELD(message); }
+  { using S = Extrapolation; value_object<S>("Extrapolation") FIELD(patch) FIELD(channel) FIELD(x) FIELD(bound) FIELD(relative); }
   { using S = CurveSamples; value_object<S>("CurveSamples") FIELD(x) FIELD(linear) FIELD(grey_based); }
   { using S = SpectralModel; value_object<S>("SpectralModel") FIELD(linearisation) FIELD(wavelengths)
-      .field("W", &spectral_W, &set_spectral_W) FIELD(training_patches); }
+      .field("W", &spectral_W, &set_spectral_W) FIELD(training_patches) FIELD(training_set) FIELD(training_ids)
+      FIELD(greys) FIELD(grey_reason); }
   { using S = SpectralEvaluation; value_object<S>("SpectralEvaluation") FIELD(ids) FIELD(rms) FIELD(dE00)
       FIELD(rms_summary) FIELD(dE00_summary); }
 
@@ -53,7 +57,8 @@ EMSCRIPTEN_BINDINGS(tristim_linearisation) {
   def<&linearisation_text>("linearisationToJson");
   def<&linearisation_from_text>("linearisationFromJson");
   def<&chart_reflectances>("chartReflectances");
-  def<&fit_spectral>("fitSpectral");
+  def<&fit_spectral>("fitSpectral");  // options (spectralMethod's) may be left out: the paper's non-grey training
+  def<&spectral_info>("spectralMethod");
   def<&estimate_reflectances>("estimateReflectances");
   def<&evaluate_spectral_under>("evaluateSpectral");
   def<&spectral_csv>("spectralCsv");

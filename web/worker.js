@@ -25,9 +25,10 @@ const handlers = {
   catalog: (T) => reply({
     charts: T.listCharts(), illuminants: T.listIlluminants(), observers: T.listObservers(), cameras: T.listCameras(),
     models: T.listModels(), modelFamilies: T.listModelFamilies(), objectives: T.listObjectives(),
-    linearisations: T.listLinearisations(), surfaces: T.listSurfaceCorrections(), surfacePresets: T.listSurfacePresets(),
+    linearisations: T.listLinearisations(), spectral: T.spectralMethod(), surfaces: T.listSurfaceCorrections(), surfacePresets: T.listSurfacePresets(),
     flatFieldModes: T.listFlatFieldModes(), absoluteOptions: T.listAbsoluteOptions(), fusionModes: T.listFusionModes(),
     absoluteWhiteRules: T.listAbsoluteWhiteRules(),
+    bootstrapOptions: T.bootstrapOptions(),
     exampleLights: T.listExampleLights(), exampleTrainings: T.listExampleTrainings(),
     layouts: Object.fromEntries(T.listChartLayouts().map((id) => [id, id === 'custom' ? null : T.chartLayout({ chart: id })])),
   }),

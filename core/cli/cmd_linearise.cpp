@@ -205,6 +205,7 @@ int run_linearise(const Args& args, std::ostream& out) {
     Linearisation shown = l;  // the patches it names, as the RGB file spells them
     shown.fitted = patch_labels(rgb, l.fitted);
     shown.greys = patch_labels(rgb, l.greys);
+    for (Extrapolation& e : shown.extrapolated) e.patch = patch_labels(rgb, {e.patch})[0];
     o.set("linearisation", linearisation_json(shown));
     o.set("curves", curves_json(l));
     out << o.dump(2) << "\n";
@@ -280,16 +281,46 @@ namespace {
 const char* kSpectralUsage =
     "tristim spectral fit --rgb patches.csv --reflectances spectra.csv|<chart id>\n"
     "                     [--linearisation <id>[:options] | fitted.json] [--full-scale 255]\n"
+    "                     [--use-greys] [--grey id;id;...] [--grey-threshold 2]\n"
     "                     [--illuminant D65] [--observer 1931] [--out model.json] [--csv estimates.csv]\n"
     "tristim spectral apply model.json --rgb patches.csv [--reflectances measured.csv] [--out estimates.csv] [--json]\n"
     "tristim spectral apply model.json <image.dng|image.pfm> --out bands.tiff\n"
     "  Spectral characterisation (Shen et al. 2008 eqs 26-28): W = [r][û]⁺ from linearised camera\n"
-    "  RGB to reflectance. `fit` prints the model JSON with the training patches' spectral RMS\n"
+    "  RGB to reflectance, trained on the non-grey patches as the paper does (--use-greys: on every\n"
+    "  patch; the greys by the Shen2008 linearisation's rule, options below). `fit` prints the model\n"
+    "  JSON (training_set, training_patches, training_ids, greys) with every patch's spectral RMS\n"
     "  (eq 28) and CIEDE2000 of the estimated reflectances under --illuminant/--observer\n"
     "  (default D65, 1931), or writes it to --out; --csv writes the estimated reflectances.\n"
     "  `apply` writes estimated reflectances of patches (spectral CSV) — with --reflectances and\n"
     "  --json, their errors as JSON instead — or of an image as a multi-band 32-bit float TIFF\n"
     "  (one band per wavelength).";
+
+/// The CLI flag of a catalog option: --name with '_' as '-' (use_greys -> --use-greys).
+std::string flag_of(const OptionSpec& o) {
+  std::string f = o.name;
+  for (char& ch : f)
+    if (ch == '_') ch = '-';
+  return f;
+}
+
+/// The spectral characterisation's options (spectral_method()) from their flags.
+MethodChoice spectral_options(const Args& args) {
+  MethodChoice c;
+  for (const OptionSpec& o : spectral_method().options) {
+    const std::string f = flag_of(o);
+    if (!args.has(f)) continue;
+    if (o.type == "boolean") c.parameters[o.name] = 1;
+    else if (o.type == "text" || o.type == "choice") c.settings[o.name] = args.get(f);
+    else c.parameters[o.name] = args.get_double(f, o.default_number);
+  }
+  return c;
+}
+
+std::string spectral_help() {
+  std::string s = "Spectral characterisation options (" + spectral_method().reference + "):\n";
+  for (const OptionSpec& o : spectral_method().options) s += "  --" + flag_of(o) + ": " + o.description + "\n";
+  return s + "\n" + linearisations_help();
+}
 
 /// Estimated reflectances with each column named as the patch file spells its id.
 SpectralData labelled(SpectralData estimates, const PatchTable& table) {
@@ -318,21 +349,25 @@ int run_spectral(const Args& args, std::ostream& out) {
   const std::string what = args.positional[0];
   const Observer observer = parse_observer(args.get("observer", "1931"));
   if (what == "fit") {
-    args.allow_only({"rgb", "reflectances", "linearisation", "full-scale", "illuminant", "observer", "out", "csv"});
+    std::vector<std::string> allowed{"rgb", "reflectances", "linearisation", "full-scale", "illuminant", "observer", "out", "csv"};
+    for (const OptionSpec& o : spectral_method().options) allowed.push_back(flag_of(o));
+    args.allow_only(allowed);
     if (args.positional.size() != 1) throw Error(ErrorCode::InvalidArgument, "spectral fit takes no positional argument");
     PatchTable table;
     LinearisationData d = load_data(args, table);
     PatchMatrix rgb = d.camera_RGB;
     const Linearisation l = linearisation_option(args, "spectral", d.ids, rgb, d.reference_XYZ, d.white);
     if (d.reflectances.size() == 0) throw Error(ErrorCode::MissingColumn, "spectral fit needs --reflectances");
-    const SpectralModel m = fit_spectral(l, d.ids, d.camera_RGB, d.reflectances);
+    const SpectralModel m = fit_spectral(l, d.ids, d.camera_RGB, d.reflectances, spectral_options(args));
     const SpectralEvaluation e = evaluate_spectral(m, d.ids, d.camera_RGB, d.reflectances, illuminant_of(args), observer);
     if (args.has("csv")) write_text(args.get("csv"), spectral_csv(labelled(estimate_reflectances(m, d.ids, d.camera_RGB), table)));
     json::Value o = spectral_model_json(m);
     o.set("training", evaluation_json(e, table));
     if (args.has("out")) {
       write_text(args.get("out"), o.dump(2) + "\n");
-      std::cerr << "tristim spectral: " << d.ids.size() << " patches, spectral RMS mean " << e.rms_summary.mean
+      std::cerr << "tristim spectral: W trained on " << m.training_patches << " of " << d.ids.size()
+                << (m.training_set == "all" ? " patches (greys included)" : " patches, the non-grey ones")
+                << "; every patch: spectral RMS mean " << e.rms_summary.mean
                 << ", CIEDE2000 mean " << e.dE00_summary.mean << "\n";
     } else {
       out << o.dump(2) << "\n";
@@ -392,7 +427,7 @@ int run_spectral(const Args& args, std::ostream& out) {
 const CommandRegistration reg_linearise({"linearise", "fit a linearisation (inverse OECF) -> linear patches CSV / JSON",
                                          kLineariseUsage, run_linearise, linearisations_help});
 const CommandRegistration reg_spectral({"spectral", "spectral characterisation: fit W, estimate reflectances",
-                                        kSpectralUsage, run_spectral, linearisations_help});
+                                        kSpectralUsage, run_spectral, spectral_help});
 
 }  // namespace
 }  // namespace tristim::cli

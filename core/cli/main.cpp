@@ -120,7 +120,7 @@ void print_help(std::ostream& out) {
 bool is_flag(const std::string& key) {
   return key == "help" || key == "json" || key == "version" || key == "no-header" || key == "no-loo" || key == "de-rms" ||
          key == "per-wavelength" || key == "list" || key == "payload" ||
-         key == "ridge";
+         key == "ridge" || key == "use-greys";
 }
 }  // namespace
 

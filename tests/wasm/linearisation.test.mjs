@@ -48,7 +48,12 @@ test('fitSpectral: estimates, spectral RMS and CIEDE2000 per patch', async () =>
   const { T, rgb, ids, cc24 } = await simulatedCC24();
   const lin = T.fitLinearisation('Shen2008', { camera_RGB: rgb, ids, reflectances: cc24, full_scale: 255 });
   const model = T.fitSpectral(lin, ids, rgb, cc24);
-  assert.equal(model.training_patches, 24);
+  // the paper's training set: the non-grey patches (the automatic rule finds D2-D6 grey)
+  assert.equal(model.training_set, 'non-grey');
+  assert.deepEqual(model.greys, ['D2', 'D3', 'D4', 'D5', 'D6']);
+  assert.equal(model.training_patches, 19);
+  assert.equal(T.fitSpectral(lin, ids, rgb, cc24, { method: '', parameters: { use_greys: 1 }, settings: {} }).training_patches, 24);
+  assert.deepEqual(T.spectralMethod().options.map((o) => o.name), ['grey', 'grey_threshold', 'use_greys']);
   assert.equal(model.W.length, 3 * model.wavelengths.length);
   const est = T.estimateReflectances(model, ids, rgb);
   assert.equal(est.values.length, 24);

@@ -69,8 +69,9 @@ export const handlers = {
   /// chart's reflectances through the surface stage (a built-in chart), at `fullScale` (255, 65535;
   /// 0 for RAW). Returns the fitted Linearisation, its curves, the grey comparison, the linearised
   /// RGB and — with reflectances — the spectral characterisation: per patch estimated reflectance,
-  /// spectral RMS (eq 28) and CIEDE2000 under `illuminant`/`observer`.
-  linearisationFit: (T, { choice, ids, rgb, xyz, white, chart, surface, fullScale, illuminant, observer }, { progress }) => {
+  /// spectral RMS (eq 28) and CIEDE2000 under `illuminant`/`observer`, W trained as `spectralChoice`
+  /// says (the catalog's `spectral` options; left out: the paper's non-grey patches).
+  linearisationFit: (T, { choice, ids, rgb, xyz, white, chart, surface, fullScale, illuminant, observer, spectralChoice }, { progress }) => {
     progress(NaN, `fitting ${choice.method}`);
     const data = { ids, camera_RGB: rgb, reference_XYZ: xyz, white, full_scale: fullScale ?? 0 };
     let measured = null;
@@ -84,14 +85,15 @@ export const handlers = {
     if (measured) {
       progress(NaN, 'spectral characterisation');
       try {
-        const model = T.fitSpectral(lin, ids, rgb, measured);
+        const model = T.fitSpectral(lin, ids, rgb, measured, spectralChoice ?? { method: '', parameters: {}, settings: {} });
         const est = T.estimateReflectances(model, ids, rgb);
         const ev = T.evaluateSpectral(model, ids, rgb, measured, illuminant ?? 'D65', observer ?? '1931');
         // the measured curves of the fitted patches, in the order of `ids`, on their own grid
         const norm = (id) => String(id).trim().toUpperCase().replace(/^([A-Z]+)0+(\d)/, '$1$2');
         const at = new Map(measured.names.map((n, i) => [norm(n), i]));
         out.spectral = { ids: ev.ids, rms: ev.rms, dE00: ev.dE00, rms_summary: ev.rms_summary, dE00_summary: ev.dE00_summary,
-          training_patches: model.training_patches, wavelengths: est.wavelengths, estimated: est.values, est_ids: est.names,
+          training_patches: model.training_patches, training_set: model.training_set, training_ids: model.training_ids,
+          greys: model.greys, grey_reason: model.grey_reason, wavelengths: est.wavelengths, estimated: est.values, est_ids: est.names,
           measured: { wavelengths: measured.wavelengths, values: est.names.map((n) => measured.values[at.get(norm(n))] ?? []) } };
       } catch (e) { out.spectral = { error: err(e) }; }
     }

@@ -27,6 +27,8 @@ export function mount(section, app) {
   const byId = Object.fromEntries(rows.map((r) => [r.id, r]));
   const choice = (app.session.linearisation = completeChoice(byId[app.session.linearisation?.method] ?? byId.identity ?? rows[0], app.session.linearisation));
   const st = (app.session.linearisationSettings ??= { patch: '' });
+  const spectralInfo = app.catalog.spectral;        // the engine's spectral characterisation row (its training-set options)
+  const spectralChoice = (app.session.spectral = completeChoice(spectralInfo, app.session.spectral));
 
   const methodSel = select(rows.map((r) => ({ value: r.id, label: `${r.label} (${r.id})` })), choice.method);
   const about = h('p', { class: 'hint', dataset: { role: 'linearisation-about' } });
@@ -38,6 +40,8 @@ export function mount(section, app) {
   const greysNote = h('p', { class: 'hint', dataset: { role: 'linearisation-greys' } });
   const monotonicWarn = h('p', { class: 'warning', role: 'alert', hidden: true, dataset: { role: 'linearisation-monotonic' } });
   const clipWarn = h('p', { class: 'warning', role: 'status', hidden: true, dataset: { role: 'linearisation-clipped' } });
+  const extrapWarn = h('p', { class: 'warning', role: 'status', hidden: true, dataset: { role: 'linearisation-extrapolated' } });
+  const spectralForm = h('div', { class: 'controls spectral-options' });
   const r2Box = h('div', { class: 'table-box' });
   const curveBox = h('div', { class: 'plot-box' });
   const patchSel = select([], st.patch);
@@ -53,14 +57,19 @@ export function mount(section, app) {
       + 'The fit (step 3) trains on the linearised camera RGB, and the profile\'s recipe records the choice.'),
     encoding, advice,
     h('div', { class: 'controls' }, field('Linearisation', methodSel, 'A row of the engine\'s linearisation table')),
-    about, formBox, progress.el, summary, greysNote, monotonicWarn, clipWarn, r2Box, curveBox,
+    about, formBox, progress.el, summary, greysNote, monotonicWarn, clipWarn, extrapWarn, r2Box, curveBox,
     h('h3', {}, 'Spectral characterisation with this linearisation (Shen et al. 2008, eqs 26–28)'),
     h('p', { class: 'hint' }, 'W = [r][û]⁺ (eq 27) maps the linearised camera RGB of the chart\'s patches to their reflectances; estimated and measured '
-      + 'reflectance of a patch, and the spectral RMS (eq 28) of every patch. Training errors: the patches W was fitted on.'),
+      + 'reflectance of a patch, and the spectral RMS (eq 28) of every patch (W is fitted on the training patches named below, errors shown for all).'),
+    h('p', { class: 'hint', dataset: { role: 'spectral-about' } }, `${spectralInfo.label} — ${spectralInfo.reference}.`),
+    spectralForm,
     h('div', { class: 'controls' }, field('Patch to plot', patchSel)),
     spectralNote, spectralBox, barsBox);
 
-  const persist = () => { app.save('linearisation', JSON.parse(JSON.stringify(choice))); app.save('linearisationSettings', { ...st }); };
+  const persist = () => {
+    app.save('linearisation', JSON.parse(JSON.stringify(choice))); app.save('linearisationSettings', { ...st });
+    app.save('spectral', JSON.parse(JSON.stringify(spectralChoice)));
+  };
   const image = () => app.derived.image?.metadata;
   const stored = () => image()?.encoding === 'stored';
 
@@ -112,7 +121,7 @@ export function mount(section, app) {
       const out = await engine.call('linearisationFit', {
         choice, ids: d.ids, rgb: d.rgb, xyz: d.xyz, white: Array.from(d.reference.white),
         chart: builtIn ? rs.chart : null, surface: builtIn ? app.session.surface ?? { method: 'none' } : null,
-        fullScale: storedFullScale(image()), illuminant: rs.illuminant, observer: rs.observer,
+        fullScale: storedFullScale(image()), illuminant: rs.illuminant, observer: rs.observer, spectralChoice,
       }, { onProgress: progress.update });
       if (mine !== seq) return null;
       app.derived.linearisation = out;
@@ -127,7 +136,7 @@ export function mount(section, app) {
       summary.textContent = `No ${choice.method} linearisation on these patches (see the message above); the fit would fail the same way.`;
       for (const b of [greysNote, r2Box, curveBox, spectralBox, barsBox, spectralNote, patchSel]) b.replaceChildren();
       app.mark('linearisation', '');
-      monotonicWarn.hidden = clipWarn.hidden = true;
+      monotonicWarn.hidden = clipWarn.hidden = extrapWarn.hidden = true;
       return null;
     } finally { if (mine === seq) progress.done(); }
   }
@@ -145,13 +154,14 @@ export function mount(section, app) {
     const { lin, comparison: cmp } = out;
     const warnings = lin.message ? lin.message.split('; ') : [];
     const clipped = warnings.filter((w) => /clipped/.test(w));
+    const noted = warnings.filter((w) => !/clipped/.test(w) && !/not increasing/.test(w) && !/^extrapolated /.test(w));
     const left = d.excluded.filter((e) => e.flags.includes('saturated')).map((e) => e.id);
     summary.dataset.method = lin.choice.method;
     summary.textContent = `${byId[lin.choice.method]?.label ?? lin.choice.method}: `
       + (lin.fitted.length ? `fitted on ${lin.fitted.length} of ${d.ids.length} paired patches` : `a stated curve (nothing fitted), applied to the ${d.ids.length} paired patches`)
       + (lin.full_scale > 1 ? `, x = stored value / ${fmt(lin.full_scale, lin.full_scale % 1 ? 2 : 0)}` : '')
       + `. Options: ${optionText(lin.choice)}.`
-      + (warnings.filter((w) => !/clipped/.test(w) && !/not increasing/.test(w)).length ? ` Notes: ${warnings.filter((w) => !/clipped/.test(w) && !/not increasing/.test(w)).join('; ')}.` : '');
+      + (noted.length ? ` Notes: ${noted.join('; ')}.` : '');
     greysNote.textContent = cmp?.greys?.length
       ? `Grey patches (${cmp.greys.length}): ${cmp.greys.join(', ')} — ${cmp.reason || 'given'}.`
       : `No grey patches to compare with${cmp?.error ? `: ${cmp.error.message} (${cmp.error.code})` : cmp?.reason ? ` (${cmp.reason})` : ''}.`;
@@ -163,9 +173,27 @@ export function mount(section, app) {
       ...clipped.map((w) => `${w[0].toUpperCase()}${w.slice(1)}.`),
       stored() && image().bits === 8 && (clipped.length || left.length) ? 'An 8-bit image keeps nothing above 255: expose the chart so that its white stays below the top code.' : '']
       .filter(Boolean).join(' ');
+    renderExtrapolated(lin);
     renderR2(lin, cmp);
     renderCurves(out, d);
     renderSpectral(out.spectral, d);
+  }
+
+  /// The patches whose stored value lies outside the fitted range of a channel (the engine's
+  /// lin.extrapolated: Shen2008 fits on the non-grey patches and is applied to all).
+  function renderExtrapolated(lin) {
+    const list = lin.extrapolated ?? [];
+    extrapWarn.hidden = !list.length;
+    if (!list.length) { extrapWarn.replaceChildren(); return; }
+    const byPatch = new Map();
+    for (const e of list) byPatch.set(e.patch, [...(byPatch.get(e.patch) ?? []), e]);
+    const pct = (v) => `${v > 0 ? '+' : ''}${fmt(100 * v, 1)} %`;
+    extrapWarn.replaceChildren(
+      `Extrapolated: ${byPatch.size} patch${byPatch.size > 1 ? 'es lie' : ' lies'} outside the range the curve was fitted on `
+        + `(${lin.fitted.length} patches), so the curve is extended beyond its data there. By how much, relative to the end of the fitted range passed: `,
+      ...[...byPatch].flatMap(([id, es], k) => [k ? '; ' : '', h('span', { dataset: { patch: id } },
+        `${id} ${es.map((e) => `${CHANNELS[e.channel]} ${pct(e.relative)}`).join(', ')}`)]),
+      '. Their linear values are less certain than the fitted patches\'.');
   }
 
   function renderR2(lin, cmp) {
@@ -228,7 +256,12 @@ export function mount(section, app) {
     patchSel.replaceChildren(...ids.map((id) => h('option', { value: id, selected: id === current }, id)));
     patchSel.value = current;
     spectralNote.dataset.rmsMean = String(sp.rms_summary.mean);
-    spectralNote.textContent = `${sp.training_patches} patches: spectral RMS mean ${fmt(sp.rms_summary.mean, 4)}, max ${fmt(sp.rms_summary.max, 4)} (reflectance factor); `
+    spectralNote.dataset.trainingSet = sp.training_set;
+    spectralNote.dataset.trainingPatches = String(sp.training_patches);
+    const left = sp.ids.filter((id) => !sp.training_ids.includes(id));
+    spectralNote.textContent = `W trained on ${sp.training_patches} of ${sp.ids.length} patches (${sp.training_set === 'non-grey'
+      ? `the non-grey ones, as the paper does; greys left out: ${left.join(', ') || 'none found'}` : 'all, greys included'}). `
+      + `All ${sp.ids.length} patches: spectral RMS mean ${fmt(sp.rms_summary.mean, 4)}, max ${fmt(sp.rms_summary.max, 4)} (reflectance factor); `
       + `CIEDE2000 of the estimated reflectances mean ${fmt(sp.dE00_summary.mean)}, max ${fmt(sp.dE00_summary.max)} `
       + `(${d.reference.settings.illuminant}, CIE ${d.reference.settings.observer}).`;
     drawPatch(sp, current);
@@ -275,6 +308,7 @@ export function mount(section, app) {
   for (const topic of ['sample', 'reference', 'surface']) app.on(topic, schedule);
   app.on('step', (s) => { if (s === 'linearisation' && stale) run(); });
 
+  spectralForm.replaceChildren(...optionsForm(spectralInfo, spectralChoice, () => { persist(); schedule(); }));
   renderForm();
   renderEncoding();
   return { run, choice: () => choice, controls: { methodSel, patchSel, formBox } };

@@ -4,6 +4,7 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "rows.hpp"
@@ -159,6 +160,33 @@ std::vector<int> usable_rows(const LinearisationData& data, const std::vector<in
     add_warning(l, std::string("channel ") + kChannel[channel] + ": clipped (0 or full scale) and left out: " + s);
   }
   return rows;
+}
+
+void check_extrapolation(Linearisation& l, const LinearisationData& data) {
+  static const char* kChannel = "RGB";
+  l.extrapolated.clear();
+  std::ostringstream above, below;
+  std::string last_above, last_below;
+  for (Eigen::Index r = 0; r < data.camera_RGB.rows(); ++r) {
+    const std::string id = data.ids.empty() ? std::to_string(r + 1) : data.ids[static_cast<size_t>(r)];
+    for (int c = 0; c < 3; ++c) {
+      const double x = data.camera_RGB(r, c) / l.full_scale, lo = l.domain[c][0], hi = l.domain[c][1];
+      if (!std::isfinite(x) || (x >= lo && x <= hi)) continue;
+      const double bound = x > hi ? hi : lo;
+      Extrapolation e{id, c, x, bound, (x - bound) / (bound != 0 ? std::fabs(bound) : hi - lo)};
+      l.extrapolated.push_back(e);
+      std::ostringstream& s = x > hi ? above : below;
+      std::string& last = x > hi ? last_above : last_below;
+      if (last != id) s << (last.empty() ? "" : "), ") << id << " (";
+      else s << ", ";
+      last = id;
+      s << kChannel[c] << " " << std::showpos << std::fixed << std::setprecision(1) << 100 * e.relative << std::noshowpos << " %";
+    }
+  }
+  if (!last_above.empty())
+    add_warning(l, "extrapolated above the fitted range (relative to its top): " + above.str() + ")");
+  if (!last_below.empty())
+    add_warning(l, "extrapolated below the fitted range (relative to its bottom): " + below.str() + ")");
 }
 
 void record_fit(Linearisation& l, const LinearisationData& data, const std::array<std::vector<int>, 3>& rows,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rows.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/error.hpp"
 #include "tristim/linearisation/guarnera2018.hpp"
 
@@ -157,13 +158,29 @@ CurveSamples sample_curve(const Linearisation& fitted, int channel, int n) {
 
 // ---- JSON ----------------------------------------------------------------------------------------
 
-namespace {
+namespace linearisation_detail {
 
 json::Value strings_json(const std::vector<std::string>& v) {
   json::Value a = json::Value::array();
   for (const auto& s : v) a.push(s);
   return a;
 }
+
+std::vector<std::string> strings_from_json(const json::Value& a, const std::string& what) {
+  if (!a.is_array()) throw Error(ErrorCode::ProfileInvalid, what + " must be an array");
+  std::vector<std::string> out;
+  for (const auto& e : a.as_array()) {
+    if (!e.is_string()) throw Error(ErrorCode::ProfileInvalid, what + " must hold strings");
+    out.push_back(e.as_string());
+  }
+  return out;
+}
+
+}  // namespace linearisation_detail
+
+namespace {
+
+using linearisation_detail::strings_json;
 
 [[noreturn]] void invalid(const std::string& what) {
   throw Error(ErrorCode::ProfileInvalid, "linearisation: " + what);
@@ -176,14 +193,7 @@ const json::Value& field(const json::Value& o, const std::string& key) {
 }
 
 std::vector<std::string> strings_of(const json::Value& o, const std::string& key) {
-  const json::Value& a = field(o, key);
-  if (!a.is_array()) invalid("'" + key + "' must be an array");
-  std::vector<std::string> out;
-  for (const auto& e : a.as_array()) {
-    if (!e.is_string()) invalid("'" + key + "' must hold strings");
-    out.push_back(e.as_string());
-  }
-  return out;
+  return linearisation_detail::strings_from_json(field(o, key), "linearisation: '" + key + "'");
 }
 
 std::array<std::vector<double>, 3> triple_of(const json::Value& o, const std::string& key) {
@@ -202,6 +212,12 @@ std::array<std::vector<double>, 3> triple_of(const json::Value& o, const std::st
 }
 
 }  // namespace
+
+namespace fields {
+TRISTIM_FIELDS(Extrapolation, member<&Extrapolation::patch>("patch"), member<&Extrapolation::channel>("channel"),
+               member<&Extrapolation::x>("x"), member<&Extrapolation::bound>("bound"),
+               member<&Extrapolation::relative>("relative"));
+}  // namespace fields
 
 json::Value linearisation_json(const Linearisation& l) {
   json::Value o = json::Value::object();
@@ -229,6 +245,7 @@ json::Value linearisation_json(const Linearisation& l) {
   o.set("grey_coefficients", grey);
   o.set("monotonic", l.monotonic);
   o.set("message", l.message);
+  if (!l.extrapolated.empty()) o.set("extrapolated", fields::write(l.extrapolated));  // other rows: unchanged JSON
   return o;
 }
 
@@ -280,6 +297,8 @@ Linearisation linearisation_from_json(const json::Value& o) {
   const json::Value& msg = field(o, "message");
   if (!msg.is_string()) invalid("'message' must be a string");
   l.message = msg.as_string();
+  if (const json::Value* e = o.find("extrapolated"))
+    fields::read(*e, l.extrapolated, fields::Context{ErrorCode::ProfileInvalid, "linearisation: "}, "extrapolated");
   // A curve that needs coefficients must have them.
   const std::string& id = l.choice.method;
   if (id != "identity" && id != "sRGB")

@@ -35,6 +35,10 @@ std::vector<int> usable_rows(const LinearisationData& data, const std::vector<in
 /// 400-700 nm when reflectances are known (Shen 2008 Fig 5), else Y / Y_white of the reference.
 PatchMatrix grey_values(const LinearisationData& data, const std::vector<int>& rows);
 
+/// JSON array of strings, and back (Error(ProfileInvalid) "<what> must be an array / hold strings").
+json::Value strings_json(const std::vector<std::string>& v);
+std::vector<std::string> strings_from_json(const json::Value& a, const std::string& what);
+
 /// Appends a warning to l.message ("; "-separated).
 void add_warning(Linearisation& l, const std::string& warning);
 
@@ -47,6 +51,10 @@ double inverse_log_polynomial(const Linearisation& l, int channel, double linear
 
 /// Sets l.monotonic / adds a warning when a channel's curve is not increasing over its domain.
 void check_monotonic(Linearisation& l, double (*apply)(const Linearisation&, int, double));
+
+/// Fills l.extrapolated with every row and channel of `data` whose x lies outside l.domain (set
+/// by record_fit) and adds one warning naming them, by how much relative to the range's end.
+void check_extrapolation(Linearisation& l, const LinearisationData& data);
 
 /// Fills l.domain[c] from the x of the fitted rows, and l.fitted (union over channels, in row
 /// order) from per-channel row lists.

@@ -239,6 +239,29 @@ ShenChannelFit oecf_Shen2008(const std::vector<double>& x, const Eigen::MatrixXd
   return f;
 }
 
+std::vector<OptionSpec> grey_options() {
+  return {
+      {"grey", "text", "Grey patches", 0, "", 0, 0, {},
+       "';'-separated ids of grey patches (left out of the fit unless use_greys is 1; Shen2008 compares its curve with "
+       "theirs, R²); empty: automatic"},
+      {"grey_threshold", "number", "Grey threshold (ΔE00)", 2, "", 0.01, 50, {},
+       "automatic greys: CIEDE2000 from the neutral of the same L* below this"},
+      {"use_greys", "boolean", "Fit on greys too", 0, "", 0, 1, {},
+       "1: the grey patches take part in the fit (the paper fits on non-grey samples only)"},
+  };
+}
+
+std::vector<int> training_rows(const LinearisationData& data, const MethodChoice& choice, GreySelection& greys) {
+  greys = select_greys(data, split_ids(choice_text(choice, "grey")), choice_number(choice, "grey_threshold"));
+  const bool use_greys = choice_number(choice, "use_greys") != 0;
+  std::vector<bool> is_grey(data.ids.size(), false);
+  for (int r : greys.rows) is_grey[static_cast<size_t>(r)] = true;
+  std::vector<int> rows;
+  for (size_t r = 0; r < static_cast<size_t>(data.camera_RGB.rows()); ++r)
+    if (use_greys || r >= is_grey.size() || !is_grey[r]) rows.push_back(static_cast<int>(r));
+  return rows;
+}
+
 namespace linearisation_detail {
 
 namespace {
@@ -258,17 +281,11 @@ Linearisation fit_Shen2008(const LinearisationData& data, const MethodChoice& ch
   l.choice = choice;
   l.full_scale = full_scale_of(data);
 
-  const GreySelection greys = select_greys(data, split_ids(choice_text(choice, "grey")), choice_number(choice, "grey_threshold"));
+  GreySelection greys;
+  const std::vector<int> candidates = training_rows(data, choice, greys);
   l.grey_reason = greys.reason;
-  std::vector<bool> is_grey(data.ids.size(), false);
-  for (int r : greys.rows) {
-    is_grey[static_cast<size_t>(r)] = true;
-    l.greys.push_back(id_of(data, r));
-  }
+  for (int r : greys.rows) l.greys.push_back(id_of(data, r));
   const bool use_greys = choice_number(choice, "use_greys") != 0;
-  std::vector<int> candidates;
-  for (size_t r = 0; r < data.ids.size(); ++r)
-    if (use_greys || !is_grey[r]) candidates.push_back(static_cast<int>(r));
 
   // eq (7): the basis, on the patches' wavelengths inside the set's range.
   const std::string source = choice_text(choice, "basis");
@@ -312,6 +329,7 @@ Linearisation fit_Shen2008(const LinearisationData& data, const MethodChoice& ch
     for (double& v : l.coefficients[c]) v /= top;
   }
   record_fit(l, data, used, l.full_scale);
+  check_extrapolation(l, data);  // fitted on the non-grey patches, applied to every patch
 
   // R² with the greys (Tables I-II): per channel, the squared correlation between the recovered
   // OECF and the grey-based one of the same order K ("between the OECFs estimated from nongray
@@ -351,13 +369,8 @@ LinearisationMethod row_Shen2008() {
       {"L", "integer", "Refinements L", 2, "", 0, 20, {}, "iterations of the refinement loop after eq (22); the paper's 2"},
       {"basis", "choice", "Basis set", 0, "munsell1269", 0, 0, {"munsell1269", "patches", "user"},
        "reflectances the PCA basis comes from: the 1269 Munsell chips, the patches' own, or a set given with the data"},
-      {"grey", "text", "Grey patches", 0, "", 0, 0, {},
-       "';'-separated ids of grey patches (left out of the fit, used for R²); empty: automatic"},
-      {"grey_threshold", "number", "Grey threshold (ΔE00)", 2, "", 0.01, 50, {},
-       "automatic greys: CIEDE2000 from the neutral of the same L* below this"},
-      {"use_greys", "boolean", "Fit on greys too", 0, "", 0, 1, {},
-       "1: the grey patches take part in the fit (the paper fits on non-grey samples only)"},
   };
+  for (OptionSpec& g : grey_options()) o.push_back(std::move(g));
   return {{"Shen2008", "Non-grey samples with known reflectances (Shen et al. 2008)",
            std::string(citation::kShen2008) + ", eqs (6)-(22)", o},
           "reflectances", fit_Shen2008, apply_polynomial, inverse_polynomial};

@@ -7,6 +7,8 @@
 
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
+#include "../citations.hpp"
+#include "rows.hpp"
 
 namespace tristim {
 
@@ -21,21 +23,45 @@ void check_rows(const std::vector<std::string>& ids, const PatchMatrix& camera_R
 
 }  // namespace
 
+const MethodInfo& spectral_method() {
+  static const MethodInfo info{"pseudo-inverse", "Pseudo-inverse spectral characterisation (Shen et al. 2008)",
+                               std::string(citation::kShen2008) + ", eqs (26)-(28)", grey_options()};
+  return info;
+}
+
 SpectralModel fit_spectral(const Linearisation& linearisation, const std::vector<std::string>& ids,
-                           const PatchMatrix& camera_RGB, const SpectralData& reflectances) {
+                           const PatchMatrix& camera_RGB, const SpectralData& reflectances, const MethodChoice& options) {
   check_rows(ids, camera_RGB, "spectral fit");
-  const Eigen::Index Q = camera_RGB.rows();
-  if (Q < 3) throw Error(ErrorCode::TooFewPatches, "spectral fit: W (eq 27) needs at least 3 patches, got " + std::to_string(Q));
   if (reflectances.wavelengths.empty()) throw Error(ErrorCode::MissingColumn, "spectral fit: no reflectances");
+  const MethodChoice choice = complete_choice(spectral_method(), options);
   SpectralModel m;
   m.linearisation = linearisation;
   m.wavelengths = reflectances.wavelengths;
+  // The training set (the paper's: the non-grey patches), by the Shen2008 linearisation's rule.
+  LinearisationData data;
+  data.ids = ids;
+  data.camera_RGB = camera_RGB;
+  data.reflectances = reflectances;
+  GreySelection greys;
+  const std::vector<int> rows = training_rows(data, choice, greys);
+  const bool all = choice_number(choice, "use_greys") != 0;
+  m.training_set = all ? "all" : "non-grey";
+  m.grey_reason = greys.reason;
+  for (int r : greys.rows) m.greys.push_back(ids[static_cast<size_t>(r)]);
+  for (int r : rows) m.training_ids.push_back(ids[static_cast<size_t>(r)]);
+  const Eigen::Index Q = static_cast<Eigen::Index>(rows.size());
   m.training_patches = static_cast<int>(Q);
+  if (Q < 3)
+    throw Error(ErrorCode::TooFewPatches, "spectral fit: W (eq 27) needs at least 3 " +
+                                              std::string(all ? "" : "non-grey ") + "patches, got " + std::to_string(Q) +
+                                              (all ? "" : " (use_greys = 1 trains on the greys too)"));
   const Eigen::Index N = static_cast<Eigen::Index>(m.wavelengths.size());
-  const PatchMatrix u = linearise(linearisation, camera_RGB);  // [û]ᵀ, Q × 3
-  Eigen::MatrixXd R(N, Q);                                     // [r], N × Q
+  PatchMatrix stored(Q, 3);
+  for (Eigen::Index q = 0; q < Q; ++q) stored.row(q) = camera_RGB.row(rows[static_cast<size_t>(q)]);
+  const PatchMatrix u = linearise(linearisation, stored);  // [û]ᵀ, Q × 3
+  Eigen::MatrixXd R(N, Q);                                 // [r], N × Q
   for (Eigen::Index q = 0; q < Q; ++q) {
-    const std::vector<double>& r = reflectances.column(ids[static_cast<size_t>(q)]);
+    const std::vector<double>& r = reflectances.column(m.training_ids[static_cast<size_t>(q)]);
     for (Eigen::Index i = 0; i < N; ++i) R(i, q) = r[static_cast<size_t>(i)];
   }
   // eq (27): W = [r][û]⁺; with [û] (3 × Q) of full row rank, [û]⁺ = [û]ᵀ([û][û]ᵀ)⁻¹, computed
@@ -148,6 +174,10 @@ json::Value spectral_model_json(const SpectralModel& m) {
   for (Eigen::Index i = 0; i < m.W.rows(); ++i) W.push(json::Value(std::vector<double>{m.W(i, 0), m.W(i, 1), m.W(i, 2)}));
   o.set("W", W);
   o.set("training_patches", m.training_patches);
+  o.set("training_set", m.training_set);
+  o.set("training_ids", linearisation_detail::strings_json(m.training_ids));
+  o.set("greys", linearisation_detail::strings_json(m.greys));
+  o.set("grey_reason", m.grey_reason);
   return o;
 }
 
@@ -182,6 +212,15 @@ SpectralModel spectral_model_from_json(const json::Value& o) {
   }
   const json::Value* q = o.find("training_patches");
   if (q && q->is_number()) m.training_patches = q->as_int("training_patches", 0, limits::kMaxJsonInt);
+  // Written since the non-grey default; a model without them was trained on every patch.
+  if (const json::Value* t = o.find("training_set")) {
+    if (!t->is_string() || (t->as_string() != "all" && t->as_string() != "non-grey"))
+      throw invalid("'training_set' must be \"all\" or \"non-grey\"");
+    m.training_set = t->as_string();
+  }
+  for (const auto& [key, out] : {std::pair{"training_ids", &m.training_ids}, std::pair{"greys", &m.greys}})
+    if (const json::Value* a = o.find(key)) *out = linearisation_detail::strings_from_json(*a, std::string("spectral model: '") + key + "'");
+  if (const json::Value* r = o.find("grey_reason"); r && r->is_string()) m.grey_reason = r->as_string();
   return m;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <Eigen/LU>
+#include <map>
 #include <random>
 
 #include "test_support.hpp"
@@ -294,4 +295,37 @@ TEST_CASE("Shen2008: real RAW patches through an 8-bit γ = 2.2 encoding (a Tabl
     CHECK(l.r_squared.mean() > previous.mean());  // Table I: R² grows with L
     previous = l.r_squared;
   }
+}
+
+TEST_CASE("Shen2008: the patches beyond the fitted range are named (the example chart's white and light grey)", "[linearisation][shen]") {
+  // The ColorChecker through the paper's simulated camera (eq 29, noise-free): the curve is fitted
+  // on the 18 non-grey patches and applied to all 24; white D1 lies above every chromatic patch in
+  // every channel, light grey D2 in G and B, black D6 below the darkest in every channel.
+  const LinearisationData d = simulated("cc24", 0, 1);
+  const Linearisation l = fit_linearisation(MethodChoice{"Shen2008", {}, {{"grey", greys_of("cc24")}}}, d);
+  std::map<std::string, std::vector<int>> above, below;
+  for (const Extrapolation& e : l.extrapolated) {
+    INFO(e.patch << " channel " << e.channel << ": x " << e.x << ", bound " << e.bound << ", relative " << e.relative);
+    const bool up = e.x > l.domain[e.channel][1];
+    CHECK(e.bound == (up ? l.domain[e.channel][1] : l.domain[e.channel][0]));
+    CHECK(e.relative == Approx(e.x / e.bound - 1).epsilon(1e-12));
+    CHECK((up ? e.relative > 0 : e.relative < 0));
+    (up ? above : below)[e.patch].push_back(e.channel);
+  }
+  CHECK(above == std::map<std::string, std::vector<int>>{{"D1", {0, 1, 2}}, {"D2", {1, 2}}});
+  CHECK(below == std::map<std::string, std::vector<int>>{{"D6", {0, 1, 2}}});
+  // The fitted patches themselves are inside by definition; the warning names the same patches.
+  CHECK(l.message.find("extrapolated above the fitted range (relative to its top): D1 (R +") != std::string::npos);
+  CHECK(l.message.find("D2 (G +") != std::string::npos);
+  // Written and read back with the curve.
+  const Linearisation back = linearisation_from_json(json::parse(linearisation_json(l).dump()));
+  REQUIRE(back.extrapolated.size() == l.extrapolated.size());
+  for (size_t i = 0; i < l.extrapolated.size(); ++i) {
+    CHECK(back.extrapolated[i].patch == l.extrapolated[i].patch);
+    CHECK(back.extrapolated[i].relative == l.extrapolated[i].relative);
+  }
+  // Trained on the greys too, every patch is inside the range: nothing is named.
+  const Linearisation all = fit_linearisation(MethodChoice{"Shen2008", {{"use_greys", 1}}, {{"grey", greys_of("cc24")}}}, d);
+  CHECK(all.extrapolated.empty());
+  CHECK(all.message.find("extrapolated") == std::string::npos);
 }

@@ -1,5 +1,6 @@
 // Spectral characterisation (Shen et al. 2008 eqs 26-28): planted W, per-pixel = per-patch,
 // CSV and JSON round trips, colorimetric error of the estimates, bad input.
+#include <Eigen/LU>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -126,4 +127,121 @@ TEST_CASE("spectral: the multi-band float TIFF holds every band", "[linearisatio
   CHECK(tags[339].values == V(bands, 3));                     // SampleFormat: float, every band
   CHECK(tags[270].ascii == "reflectance");
   CHECK(test::tiff_float_strip(b) == px);                     // every band of every pixel, verbatim
+}
+
+namespace {
+
+/// A camera with known sensitivities m (3 × N) and reflectances in a 3-dimensional span B, so
+/// the planted spectral map is W = B (m B)⁻¹ (r = W u for every reflectance of the span). Six
+/// spectrally flat greys (in the span too) are photographed with flare (u·1.1 + 0.03), so they
+/// do not follow the map: W trained on the non-grey patches must still be the planted one.
+struct PlantedGreys {
+  std::vector<std::string> ids, greys;
+  SpectralData reflectances;
+  PatchMatrix stored;
+  Linearisation lin;
+  Eigen::MatrixXd W;  // N × 3, the planted map
+};
+
+PlantedGreys planted_with_greys() {
+  PlantedGreys p;
+  const std::vector<double> wl = wavelength_grid(400, 700, 10);
+  const size_t N = wl.size();
+  Eigen::MatrixXd B(N, 3), m(3, N);
+  for (size_t i = 0; i < N; ++i) {
+    const double t = (wl[i] - 400) / 300;
+    B.row(i) << 0.5, t - 0.5, std::cos(3 * t);
+    m.col(i) << std::exp(-std::pow((t - 0.8) / 0.2, 2)), std::exp(-std::pow((t - 0.5) / 0.2, 2)),
+        std::exp(-std::pow((t - 0.2) / 0.2, 2));
+  }
+  m /= (m * B.col(0)).maxCoeff() * 2.5;
+  p.W = B * (m * B).inverse();
+  p.reflectances.wavelengths = wl;
+  LinearisationData d;
+  d.camera_RGB = PatchMatrix::Constant(1, 3, 1);
+  d.full_scale = 255;
+  p.lin = fit_linearisation(parse_choice("sRGB"), d);
+  std::vector<Eigen::Vector3d> rgb;
+  auto add = [&](const std::string& id, const Eigen::VectorXd& r, bool flare) {
+    p.ids.push_back(id);
+    p.reflectances.names.push_back(id);
+    p.reflectances.values.emplace_back(r.data(), r.data() + N);
+    Eigen::Vector3d u = m * r;
+    if (flare) u = (u * 1.1).array() + 0.03;
+    rgb.push_back(u);
+  };
+  for (int q = 0; q < 18; ++q)  // chromatic: clearly away from the neutral axis
+    add("C" + std::to_string(q + 1), B * Eigen::Vector3d(1.0 + 0.03 * q, (q % 2 ? 1 : -1) * (0.3 + 0.3 * std::fabs(std::sin(q))), 0.3 * std::cos(2 * q)), false);
+  for (int g = 0; g < 6; ++g) {
+    p.greys.push_back("G" + std::to_string(g + 1));
+    add(p.greys.back(), B.col(0) * (0.15 + 0.3 * g), true);  // flat reflectance 0.075 .. 0.825
+  }
+  p.stored.resize(static_cast<Eigen::Index>(rgb.size()), 3);
+  for (size_t q = 0; q < rgb.size(); ++q)
+    for (int c = 0; c < 3; ++c) p.stored(static_cast<Eigen::Index>(q), c) = 255 * sRGB_encode(rgb[q][c]);
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("spectral: W trained on the non-grey patches (the paper's default) recovers the planted map", "[linearisation][spectral]") {
+  const PlantedGreys p = planted_with_greys();
+  const SpectralModel m = fit_spectral(p.lin, p.ids, p.stored, p.reflectances);
+  CHECK(m.training_set == "non-grey");
+  CHECK(m.greys == p.greys);  // the flat ones, found by the Shen2008 linearisation's rule
+  CHECK(m.training_patches == 18);
+  CHECK(m.training_ids == std::vector<std::string>(p.ids.begin(), p.ids.begin() + 18));
+  const double scale = p.W.cwiseAbs().maxCoeff();
+  INFO("worst |W - W_planted| " << (m.W - p.W).cwiseAbs().maxCoeff() << " of " << scale);
+  CHECK((m.W - p.W).cwiseAbs().maxCoeff() < 1e-9 * scale);
+  // Every option of the catalog row is accepted by name; use_greys = 1 trains on all 24, and the
+  // flared greys pull W off the planted map.
+  const SpectralModel all = fit_spectral(p.lin, p.ids, p.stored, p.reflectances, MethodChoice{"", {{"use_greys", 1}}, {}});
+  CHECK(all.training_set == "all");
+  CHECK(all.training_patches == 24);
+  CHECK((all.W - p.W).cwiseAbs().maxCoeff() > 1e-3 * scale);
+  // Given greys: only those are left out.
+  const SpectralModel given = fit_spectral(p.lin, p.ids, p.stored, p.reflectances, MethodChoice{"", {}, {{"grey", "G1;G2"}}});
+  CHECK(given.training_patches == 22);
+  CHECK(given.greys == std::vector<std::string>{"G1", "G2"});
+}
+
+TEST_CASE("spectral: the non-grey default changes the training set and nothing else", "[linearisation][spectral]") {
+  // The default equals use_greys = 1 on the non-grey rows alone, bit for bit: the same W, the same
+  // estimates for every patch (greys included); only the training set differs.
+  const PlantedGreys p = planted_with_greys();
+  const SpectralModel def = fit_spectral(p.lin, p.ids, p.stored, p.reflectances);
+  const std::vector<std::string> chromatic(p.ids.begin(), p.ids.begin() + 18);
+  const SpectralModel sub =
+      fit_spectral(p.lin, chromatic, p.stored.topRows(18), p.reflectances, MethodChoice{"", {{"use_greys", 1}}, {}});
+  CHECK(def.W == sub.W);
+  CHECK(def.wavelengths == sub.wavelengths);
+  CHECK(estimate_reflectances(def, p.ids, p.stored).values == estimate_reflectances(sub, p.ids, p.stored).values);
+  // With no greys among the patches the default trains on all of them, as before.
+  const SpectralModel none = fit_spectral(p.lin, chromatic, p.stored.topRows(18), p.reflectances);
+  CHECK(none.training_set == "non-grey");
+  CHECK(none.greys.empty());
+  REQUIRE(none.training_patches == 18);
+  CHECK(none.W == sub.W);
+  // JSON: the training set round-trips; a model written before it existed was trained on all.
+  const SpectralModel back = spectral_model_from_json(json::parse(spectral_model_json(def).dump()));
+  CHECK(back.training_set == "non-grey");
+  CHECK(back.training_ids == def.training_ids);
+  CHECK(back.greys == def.greys);
+  CHECK(back.grey_reason == def.grey_reason);
+  json::Value old = json::Value::object();
+  const json::Value current = spectral_model_json(def);
+  for (const auto& [k, v] : current.members())
+    if (k != "training_set" && k != "training_ids" && k != "greys" && k != "grey_reason") old.set(k, v);
+  CHECK(spectral_model_from_json(old).training_set == "all");
+  json::Value bad = spectral_model_json(def);
+  bad.set("training_set", "greys");
+  test::require_code([&] { spectral_model_from_json(bad); }, ErrorCode::ProfileInvalid);
+  // Bad options and too few non-grey patches: coded errors.
+  test::require_code([&] { fit_spectral(p.lin, p.ids, p.stored, p.reflectances, MethodChoice{"", {{"J", 3}}, {}}); },
+                     ErrorCode::UnknownId);
+  test::require_code([&] { fit_spectral(p.lin, p.ids, p.stored, p.reflectances, MethodChoice{"", {}, {{"grey", "Z9"}}}); },
+                     ErrorCode::UnknownId);
+  const std::vector<std::string> greys_only(p.ids.begin() + 18, p.ids.end());
+  test::require_code([&] { fit_spectral(p.lin, greys_only, p.stored.bottomRows(6), p.reflectances); }, ErrorCode::TooFewPatches);
 }

@@ -52,6 +52,17 @@ struct LinearisationData {
   double full_scale = 0;          ///< the largest value the encoding can hold (255, 65535); 0: max of the data
 };
 
+/// A patch whose stored value in one channel lies outside the range that channel's curve was
+/// fitted on, so the curve is extrapolated there (Shen2008 fits on the non-grey patches and is
+/// applied to all: a chart's white and light greys lie above every chromatic patch).
+struct Extrapolation {
+  std::string patch;   ///< patch id
+  int channel = 0;     ///< 0, 1, 2 (R, G, B)
+  double x = 0;        ///< stored value / full scale
+  double bound = 0;    ///< the end of the fitted range it passes (domain[channel][0] or [1])
+  double relative = 0; ///< (x − bound) / bound: > 0 above the range, < 0 below it (a bound of 0: / the range's width)
+};
+
 /// A fitted linearisation: enough to apply it and to show how it was made.
 struct Linearisation {
   MethodChoice choice;            ///< method id and its (completed) options
@@ -73,6 +84,9 @@ struct Linearisation {
   /// methods' units; empty when there are no greys.
   std::array<std::vector<double>, 3> grey_coefficients;
   bool monotonic = true;          ///< false: a curve is not increasing over its fitted range (see message)
+  /// Shen2008: every patch and channel outside the fitted range (a warning in message too);
+  /// empty for the other rows.
+  std::vector<Extrapolation> extrapolated;
   std::string message;            ///< warnings ("; "-separated), empty when none
 };
 
@@ -141,7 +155,8 @@ CurveSamples sample_curve(const Linearisation& fitted, int channel, int n = 101)
 /// JSON of a fitted linearisation (every double with 17 significant digits: exact round trip):
 /// {"method", "parameters", "settings", "full_scale", "coefficients": [[..],[..],[..]],
 ///  "domain", "r_squared", "fitted", "greys", "grey_reason", "grey_coefficients", "monotonic",
-///  "message"}. NaN R² is written as null.
+///  "message"} and, when not empty, "extrapolated": [{"patch", "channel", "x", "bound",
+///  "relative"}]. NaN R² is written as null.
 json::Value linearisation_json(const Linearisation& fitted);
 /// Reads it back (Error(ProfileInvalid) naming the field; UnknownId for an unknown method).
 Linearisation linearisation_from_json(const json::Value& value);
@@ -157,6 +172,15 @@ struct GreySelection {
   std::string reason;      ///< e.g. "automatic: ΔE00 from neutral < 2 (D1 0.41, D2 0.35, …)"
 };
 GreySelection select_greys(const LinearisationData& data, const std::vector<std::string>& given, double threshold);
+
+/// The grey options of a fit that leaves the grey patches out by default (the Shen2008 row and
+/// the spectral characterisation, spectral.hpp): grey (';'-separated ids, empty: automatic),
+/// grey_threshold (ΔE00 of the automatic rule), use_greys (0/1). One list, so both read alike.
+std::vector<OptionSpec> grey_options();
+/// The rows of `data` a fit with those options trains on: every row when use_greys = 1, else the
+/// rows select_greys does not pick (by the choice's grey and grey_threshold). `greys` receives
+/// the selection.
+std::vector<int> training_rows(const LinearisationData& data, const MethodChoice& choice, GreySelection& greys);
 
 /// Splits an id list "A1;A2,A3" (';' or ',' separated; the recipe syntax uses ';').
 std::vector<std::string> split_ids(const std::string& list);

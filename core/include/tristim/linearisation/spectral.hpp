@@ -5,6 +5,14 @@
 //   rms = sqrt((r − r̂)ᵀ(r − r̂) / N)  eq (28)
 // û is the camera RGB through a fitted Linearisation (any row of the table); the reflectances
 // are fractions on the training set's wavelength grid, which W keeps.
+//
+// Training set: the paper divides each chart into grey and non-grey patches (the ColorChecker's
+// 6 greys, the DC's 13) and trains W on the non-grey ones ("the two sets containing nongray
+// samples were used for the OECF estimation ... as well as colorimetric and spectral
+// characterization", section "Experiments"); that is the default here. The greys are found by
+// the same rule as the Shen2008 linearisation's (select_greys: given ids, or CIEDE2000 from the
+// neutral of the same L* below a threshold, with the reflectances under D65); use_greys = 1
+// trains on every patch.
 #pragma once
 #include <Eigen/Core>
 #include <string>
@@ -21,14 +29,28 @@ struct SpectralModel {
   Linearisation linearisation;      ///< stored values -> û
   std::vector<double> wavelengths;  ///< N, nm (the training reflectances' grid)
   Eigen::MatrixXd W;                ///< N × 3, eq (27)
-  int training_patches = 0;
+  int training_patches = 0;         ///< Q, the patches W was fitted on
+  /// "non-grey" (the paper's: the greys left out) or "all" (use_greys = 1).
+  std::string training_set = "all";
+  std::vector<std::string> training_ids;  ///< the Q patches W was fitted on, in input order
+  std::vector<std::string> greys;         ///< the grey patches found (left out unless "all")
+  std::string grey_reason;                ///< how they were found (select_greys)
 };
 
+/// The spectral characterisation's row of the catalog: id "pseudo-inverse", the paper, and its
+/// options — use_greys, grey, grey_threshold: the same names, meanings and defaults as the
+/// Shen2008 linearisation's (grey_options()), so the CLI (--use-greys, --grey,
+/// --grey-threshold), the page and --help read them from here.
+const MethodInfo& spectral_method();
+
 /// Fits W (eq 27) from stored camera RGB (Q × 3, rows named by `ids`) and measured reflectances
-/// (a column per id). Errors: PatchMismatch (ids vs rows), MissingColumn (an id without a
-/// reflectance), TooFewPatches (Q < 3), IllConditioned ([û] of rank < 3).
+/// (a column per id), on the non-grey patches unless options say use_greys = 1 (`options`:
+/// values for spectral_method()'s options, the rest default). Errors: PatchMismatch (ids vs
+/// rows), MissingColumn (an id without a reflectance), UnknownId / InvalidArgument (options, a
+/// given grey id), TooFewPatches (fewer than 3 training patches), IllConditioned ([û] of rank < 3).
 SpectralModel fit_spectral(const Linearisation& linearisation, const std::vector<std::string>& ids,
-                           const PatchMatrix& camera_RGB, const SpectralData& reflectances);
+                           const PatchMatrix& camera_RGB, const SpectralData& reflectances,
+                           const MethodChoice& options = {});
 
 /// Reflectance estimates r̂ = W û (eq 26) of stored camera RGB, one column per id, on
 /// model.wavelengths.
@@ -59,7 +81,8 @@ void estimate_reflectance_image(const SpectralModel& model, const float* rgb, si
 std::string spectral_csv(const SpectralData& spectra);
 
 /// JSON: {"format": "tristim-spectral", "version": 1, "linearisation": {...},
-/// "wavelengths": [...], "W": [[w_R, w_G, w_B] per wavelength], "training_patches": Q}
+/// "wavelengths": [...], "W": [[w_R, w_G, w_B] per wavelength], "training_patches": Q,
+/// "training_set": "non-grey"|"all", "training_ids": [...], "greys": [...], "grey_reason"}
 /// (17 significant digits: exact round trip). The reader refuses anything else (ProfileInvalid).
 json::Value spectral_model_json(const SpectralModel& model);
 SpectralModel spectral_model_from_json(const json::Value& value);
