@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The colorimetry lab from the command line (issue 45): render a ColorChecker photographed by a
 # camera of the 52 as a real DNG, run it through the normal journey (detect, sample, reference,
-# fit, evaluate) and compare with the renderer's truth; then camera quality and the exercises.
+# fit, evaluate) and compare with the renderer's truth; then camera quality, the exercises and metamers.
 #   bash examples/lab/lab.sh [path/to/tristim] [output dir]
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
@@ -33,4 +33,7 @@ echo "== exercise 1: a patch under three lights (the reference step's numbers)"
 for ill in D65 A F11; do "$T" reference --chart cc24 --illuminant "$ill" --observer 1931 | grep '^C3,' | sed "s/^/$ill: /"; done
 echo "== exercise 2: why a 3x3 is not enough"
 "$T" lab overfit --camera "$cam"
+echo "== metamerism: Munsell pairs matching under D65, apart under A; a metamer of 5R5/6 made for the eye, seen by the camera"
+"$T" lab metamers --illuminant D65 --second A --max-match 0.5 --top 3
+"$T" lab metamers --illuminant D65 --second F11 --camera "$cam" --construct 5R5/6
 echo "(files in $out)"
