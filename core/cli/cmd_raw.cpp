@@ -149,6 +149,13 @@ int run_sample(const Args& args, std::ostream& out) {
               << best.confidence << ", orientation " << best.orientation << "): --corners ";
     for (int i = 0; i < 8; ++i) std::cerr << (i ? "," : "") << std::lround(corners[i] * 100) / 100.0;
     std::cerr << "\n";
+    // A chart cut by the frame: the patches inside it are sampled, the others named.
+    options.partial = !best.missing.empty();
+    if (options.partial) {
+      std::cerr << "tristim sample: the chart runs off the image; not sampled:";
+      for (const auto& id : best.missing) std::cerr << ' ' << id;
+      std::cerr << "\n";
+    }
   }
   const FrameCalibration cal = frame_calibration(args, image, options);
   const ChartSample s = sample_chart(image, layout, corners, options, &cal);
@@ -185,7 +192,8 @@ const CommandRegistration sample_cmd{Command{
     "  measurement image of `tristim inspect`: width x height; pixel (x, y) covers [x, x+1));\n"
     "  full-resolution pixel coordinates for TIFF, PNG and JPEG images.\n"
     "  Without --corners the chart is detected (`tristim detect`) and the corners used are\n"
-    "  printed on stderr; CHART_NOT_FOUND when there is none.\n"
+    "  printed on stderr; CHART_NOT_FOUND when there is none. A chart cut by the frame: only the\n"
+    "  patches inside the image are written, the others named on stderr.\n"
     "--dark: dark frames (repeat the option), averaged, subtracted per pixel or per channel\n"
     "  (--dark-mode, default per_pixel; the recipe's capture.dark_mode; pixel and channel are\n"
     "  accepted as aliases).\n"

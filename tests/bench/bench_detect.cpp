@@ -6,7 +6,8 @@
 // Then issue 48's failure kinds (chart_scene.hpp failure_kinds: tilted charts with glare, a cast
 // shadow or a grid-like object beside them, small charts, an open Passport, a chart cut by the
 // frame, strong perspective, phone-like JPEGs, SG, no chart), a few scenes each: found, wrong
-// orientations, false positives, corner error and found after one click, per kind ("KIND" lines;
+// orientations, false positives, corner error and found after one click, per kind, before and after
+// the cut-chart step ("KIND" lines;
 // `detect_testset --kinds all` runs the full set, docs/detection.md has its figures).
 #include <algorithm>
 #include <array>
@@ -113,7 +114,13 @@ int main() {
           run_case("cc24_phone_" + std::to_string(size[0] * size[1] / 1000000) + "MP", render_chart_scene(spec, ptrs).image, chart);
         }
       }
-    std::printf("\nissue 48's failure kinds, 4 scenes each (1200 x 800):\n");
+    // Before and after: the detector with charts cut by the frame refused (as it was before
+    // issue 48's cut-chart step; DetectOptions::cut_charts false) and as it is now.
+    DetectOptions before;
+    before.cut_charts = false;
+    std::printf("\nissue 48's failure kinds, 4 scenes each (1200 x 800), BEFORE (cut charts refused):\n");
+    print_failure_kinds(run_failure_kinds({}, 4, 1, 1200, ptrs, false, before));
+    std::printf("\nissue 48's failure kinds, 4 scenes each (1200 x 800), NOW:\n");
     print_failure_kinds(run_failure_kinds({}, 4, 1, 1200, ptrs, false));
   } catch (const std::exception& e) {
     std::printf("ERROR %s (peak %.0f MiB)\n", e.what(), peak_mib());

@@ -592,7 +592,8 @@ double percentile_of(std::vector<double> v, double p) {
 }  // namespace
 
 std::vector<KindFigures> run_failure_kinds(const std::vector<std::string>& kinds, int count, std::uint64_t seed,
-                                           int width, const std::vector<const RawImage*>& photos, bool verbose) {
+                                           int width, const std::vector<const RawImage*>& photos, bool verbose,
+                                           const DetectOptions& base) {
   std::vector<KindFigures> out;
   for (const std::string& kind : kinds.empty() ? failure_kinds() : kinds) {
     KindFigures f;
@@ -600,7 +601,7 @@ std::vector<KindFigures> run_failure_kinds(const std::vector<std::string>& kinds
     for (int i = 0; i < count; ++i) {
       const SceneSpec spec = failure_kind_spec(kind, i, seed, width, width * 2 / 3, !photos.empty());
       const ChartScene scene = render_chart_scene(spec, photos);
-      DetectOptions options;
+      DetectOptions options = base;
       options.charts = {spec.chart};
       auto run = [&](const DetectOptions& o, std::string* why) {
         try {
@@ -666,6 +667,26 @@ void print_failure_kinds(const std::vector<KindFigures>& figures) {
     std::printf("KIND %s n=%d found=%d wrong_orientation=%d false_positives=%d found_with_click=%d median_px=%.4f\n",
                 f.kind.c_str(), f.n, f.found, f.wrong_orientation, f.false_positives, f.found_with_click,
                 percentile_of(f.errors, 0.5));
+}
+
+SceneSpec plain_scene_spec(const std::string& chart, double rotation, std::uint64_t seed) {
+  SceneSpec s;
+  s.chart = chart;
+  s.width = 900;
+  s.height = 600;
+  s.area_fraction = 0.15;
+  s.tilt_deg = 12;
+  s.tilt_axis_deg = 30;
+  s.rotation_deg = rotation;
+  s.blur_sigma = 0.8;
+  s.seed = seed;
+  return s;
+}
+
+double max_corner_error(const std::array<double, 8>& a, const std::array<double, 8>& b) {
+  double e = 0;
+  for (int i = 0; i < 4; ++i) e = std::max(e, std::hypot(a[2 * i] - b[2 * i], a[2 * i + 1] - b[2 * i + 1]));
+  return e;
 }
 
 }  // namespace tristim

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tristim/capture/raw.hpp"
+#include "tristim/chart/detect.hpp"
 
 namespace tristim {
 
@@ -130,12 +131,21 @@ struct KindFigures {
   std::vector<std::string> why;  ///< the detector's reason per miss
 };
 /// Renders and detects `count` scenes of each kind (`kinds` empty: all) at width × 2/3 width.
-/// `verbose`: one line per scene on stdout.
+/// `verbose`: one line per scene on stdout. `base`: the detector's options (its charts are set
+/// per scene), e.g. cut_charts false for the figures before issue 48's cut-chart step.
 std::vector<KindFigures> run_failure_kinds(const std::vector<std::string>& kinds, int count, std::uint64_t seed,
-                                           int width, const std::vector<const RawImage*>& photos, bool verbose);
+                                           int width, const std::vector<const RawImage*>& photos, bool verbose,
+                                           const DetectOptions& base = {});
 /// The table of run_failure_kinds: kind, n, found, wrong orientation, false positives, corner
 /// error median/p95, found with a click, median ms; then a "KIND <id> <found> ..." line per kind.
 void print_failure_kinds(const std::vector<KindFigures>& figures);
+
+/// A plain scene for the unit tests: 900 × 600, the grid 15 % of the frame, tilted 12° about an
+/// axis at 30°, rotated `rotation`° in plane, blur 0.8 px, the rest SceneSpec's defaults.
+SceneSpec plain_scene_spec(const std::string& chart, double rotation, std::uint64_t seed);
+
+/// Largest distance between corresponding corners of two corner lists (x1,y1..x4,y4), px.
+double max_corner_error(const std::array<double, 8>& a, const std::array<double, 8>& b);
 
 /// Portable uniform [0, 1) from mt19937_64 (53 bits).
 class SceneRandom {

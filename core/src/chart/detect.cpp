@@ -74,22 +74,23 @@ bool contains(const std::array<double, 8>& k, const Point& p) {
 }
 
 // Best score of the patches' colours against the reference read in another orientation that
-// maps the grid onto itself (180°, the two mirrors; and 90°/270° for a square grid).
-double symmetric_alternatives(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
+// maps the grid onto itself (180°, the two mirrors; and 90°/270° for a square grid). `cells`:
+// the layout index (row-major) of each colour in rgb (a chart cut by the frame shows some).
+double symmetric_alternatives(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref, const std::vector<int>& cells,
                               const std::vector<Point>& where, int R, int C) {
   double best = 1e9;
   for (int t = 1; t < 8; ++t) {
     if (t % 2 == 1 && R != C) continue;  // 90° and 270° (and their mirrors) need a square grid
-    std::vector<Vec3> permuted(ref.size());
-    for (int r = 0; r < R; ++r)
-      for (int c = 0; c < C; ++c) {
-        const int mc = t >= 4 ? C - 1 - c : c;  // mirror first
-        int rr = r, cc = mc;
-        if (t % 4 == 1) rr = mc, cc = R - 1 - r;          // quarter turn (square grids)
-        if (t % 4 == 2) rr = R - 1 - r, cc = C - 1 - mc;  // half turn
-        if (t % 4 == 3) rr = C - 1 - mc, cc = r;          // three quarters (square grids)
-        permuted[size_t(r) * C + c] = ref[size_t(rr) * C + cc];
-      }
+    std::vector<Vec3> permuted;
+    for (int k : cells) {
+      const int r = k / C, c = k % C;
+      const int mc = t >= 4 ? C - 1 - c : c;  // mirror first
+      int rr = r, cc = mc;
+      if (t % 4 == 1) rr = mc, cc = R - 1 - r;          // quarter turn (square grids)
+      if (t % 4 == 2) rr = R - 1 - r, cc = C - 1 - mc;  // half turn
+      if (t % 4 == 3) rr = C - 1 - mc, cc = r;          // three quarters (square grids)
+      permuted.push_back(ref[size_t(rr) * C + cc]);
+    }
     best = std::min(best, reference_fit_score(rgb, permuted, where));
   }
   return best;
@@ -189,7 +190,10 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
             if (q.found > most || d < best_d) best_d = d, chosen = &q, most = q.found;
           }
       }
-      if (!chosen->inside) {
+      // A placement running off the image: a chart cut by the frame when at least half of the
+      // layout's patches were found as quads; it is refined and sampled where it is visible.
+      bool cut = !chosen->inside;
+      if (cut && (!options.cut_charts || static_cast<int>(group.cells.size()) * 2 < N)) {
         if (static_cast<int>(group.cells.size()) * 2 >= N)
           note("a grid of " + grid_size(group) + " fits the " + t.id +
                " layout only partly inside the image: the chart may be cut off by the frame");
@@ -223,6 +227,10 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
         ref = refine_corners(image, t.layout, corners, 0.3 * pitch_w, true);
       }
       corners = ref.corners;
+      // (refined corners of a chart at the border may leave the image: sampled as cut too)
+      for (int i = 0; i < 4 && options.cut_charts; ++i)
+        cut = cut || corners[2 * i] < 0 || corners[2 * i + 1] < 0 || corners[2 * i] > image.width ||
+              corners[2 * i + 1] > image.height;
       ChartCandidate c;
       c.chart = t.id;
       c.corners = corners;
@@ -234,20 +242,33 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
       c.runner_up_residual = runner_up;
       double final_score = 0, alternative_score = 1e9;
       try {
-        check_corners(corners, image.width, image.height);
+        check_corners(corners, image.width, image.height, cut);
         LayoutOptions lo = t.layout;
         lo.gap = ref.gap;
-        const ChartSample s = sample_chart(image, lo, corners);
+        SampleOptions so;
+        so.partial = cut;
+        const ChartSample s = sample_chart(image, lo, corners, so);
+        c.missing = s.missing;
         if (!t.reference.empty()) {
-          std::vector<Vec3> rgb;
-          for (const auto& ps : s.patches) rgb.emplace_back(ps.mean[0], ps.mean[1], ps.mean[2]);
+          if (s.patches.size() < 6) throw Error(ErrorCode::CornersOutside, "fewer than 6 patches inside the image");
+          // The visible patches (layout order) and their reference colours and places.
+          std::vector<Vec3> rgb, ref_visible;
+          std::vector<int> cells;
           std::vector<Point> where;
-          for (const auto& cell : t.grid.patches)
+          size_t next = 0;
+          for (size_t k = 0; k < t.grid.patches.size() && next < s.patches.size(); ++k) {
+            const auto& cell = t.grid.patches[k];
+            if (s.patches[next].id != cell.id) continue;
+            const auto& m = s.patches[next++].mean;
+            rgb.emplace_back(m[0], m[1], m[2]);
+            ref_visible.push_back(t.reference[k]);
+            cells.push_back(static_cast<int>(k));
             where.emplace_back(t.grid.columns > 1 ? cell.column / (t.grid.columns - 1.0) : 0.5,
                                t.grid.rows > 1 ? cell.row / (t.grid.rows - 1.0) : 0.5);
-          final_score = reference_fit_score(rgb, t.reference, where);
-          alternative_score = symmetric_alternatives(rgb, t.reference, where, t.grid.rows, t.grid.columns);
-          const std::vector<double> e = reference_fit_residuals(rgb, t.reference, where);
+          }
+          final_score = reference_fit_score(rgb, ref_visible, where);
+          alternative_score = symmetric_alternatives(rgb, t.reference, cells, where, t.grid.rows, t.grid.columns);
+          const std::vector<double> e = reference_fit_residuals(rgb, ref_visible, where);
           for (size_t k = 0; k < e.size(); ++k) c.patches.push_back({s.patches[k].id, e[k]});
           std::vector<double> sorted = e;
           std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
@@ -389,6 +410,20 @@ std::vector<ChartCandidate> detect_window(const Frames& frames, const std::vecto
   std::vector<ChartCandidate> out = detect_image(Frames{part, frames.stored ? &stored_part : nullptr}, wanted, o);
   for (auto& c : out)
     for (int k = 0; k < 4; ++k) c.corners[2 * k] += ix0, c.corners[2 * k + 1] += iy0;
+  // A chart cut by the window but not by the image is left to a larger window.
+  out.erase(std::remove_if(out.begin(), out.end(),
+                           [&](const ChartCandidate& c) {
+                             if (c.missing.empty()) return false;
+                             for (int k = 0; k < 4; ++k) {
+                               const double x = c.corners[2 * k], y = c.corners[2 * k + 1];
+                               if ((x < ix0 && ix0 > 0) || (x > ix1 && ix1 < image.width) || (y < iy0 && iy0 > 0) ||
+                                   (y > iy1 && iy1 < image.height))
+                                 return true;
+                             }
+                             return false;
+                           }),
+            out.end());
+  if (out.empty()) throw Error(ErrorCode::ChartNotFound, "the chart found runs off the window searched");
   return out;
 }
 
@@ -511,6 +546,8 @@ std::string candidates_to_json(const std::vector<ChartCandidate>& candidates) {
     o.precision(4);
     for (size_t k = 0; k < c.patches.size(); ++k)
       o << (k ? "," : "") << "{\"id\":\"" << c.patches[k].id << "\",\"residual\":" << c.patches[k].residual << '}';
+    o << "],\"missing\":[";
+    for (size_t k = 0; k < c.missing.size(); ++k) o << (k ? "," : "") << '"' << c.missing[k] << '"';
     o << "]}";
   }
   o << "]}\n";

@@ -119,10 +119,10 @@ std::array<double, 9> homography_unit_square(const std::array<double, 8>& corner
   return out;
 }
 
-void check_corners(const std::array<double, 8>& k, int width, int height) {
+void check_corners(const std::array<double, 8>& k, int width, int height, bool may_leave_image) {
   for (int i = 0; i < 4; ++i) {
     const double x = k[2 * i], y = k[2 * i + 1];
-    if (!std::isfinite(x) || !std::isfinite(y) || x < 0 || y < 0 || x > width || y > height) {
+    if (!std::isfinite(x) || !std::isfinite(y) || (!may_leave_image && (x < 0 || y < 0 || x > width || y > height))) {
       std::ostringstream ss;
       ss << "corner " << i + 1 << " (" << x << ", " << y << ") lies outside the " << width << " x "
          << height << " image";
@@ -154,7 +154,7 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout_opti
   if (calibration) calibration->check_compatible(image);
   ChartSample out;
   out.layout = chart_layout(layout_options);
-  check_corners(corners, image.width, image.height);
+  check_corners(corners, image.width, image.height, options.partial);
   out.homography = homography_unit_square(corners);
   Eigen::Matrix3d H;
   for (int r = 0; r < 3; ++r)
@@ -182,6 +182,16 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout_opti
       s.quad[2 * i + 1] = a[1];
       s.sample_quad[2 * i] = b[0];
       s.sample_quad[2 * i + 1] = b[1];
+    }
+    if (options.partial) {
+      bool inside = true;
+      for (int i = 0; i < 4; ++i)
+        inside = inside && s.sample_quad[2 * i] >= 0 && s.sample_quad[2 * i] <= image.width &&
+                 s.sample_quad[2 * i + 1] >= 0 && s.sample_quad[2 * i + 1] <= image.height;
+      if (!inside) {
+        out.missing.push_back(cell.id);
+        continue;
+      }
     }
     double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
     for (auto uv : {std::array<double, 2>{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}}) {
@@ -266,6 +276,9 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout_opti
     if (nonuniform) s.flags.push_back("nonuniform");
     out.patches.push_back(std::move(s));
   }
+  if (out.patches.empty())
+    throw Error(ErrorCode::CornersOutside, "no patch's sample area lies inside the " + std::to_string(image.width) +
+                                               " x " + std::to_string(image.height) + " image");
   return out;
 }
 

@@ -18,7 +18,9 @@ LightTrap measure_light_trap(const RawImage& image, const std::array<double, 8>&
     dark_only.dark = calibration->dark;
     dark_only.dark_mode = calibration->dark_mode;
   }
-  const ChartSample s = sample_chart(image, one, corners, options, calibration ? &dark_only : nullptr);
+  SampleOptions whole = options;  // the trap lies wholly inside the image, cut chart or not
+  whole.partial = false;
+  const ChartSample s = sample_chart(image, one, corners, whole, calibration ? &dark_only : nullptr);
   const PatchSample& p = s.patches.at(0);
   if (std::find(p.flags.begin(), p.flags.end(), "saturated") != p.flags.end())
     throw Error(ErrorCode::NoUsableData, "the light trap has saturated pixels: it is not dark, check its corners");

@@ -13,12 +13,6 @@ using tristim::test::code_of;
 
 namespace {
 
-double max_corner_error(const std::array<double, 8>& a, const std::array<double, 8>& b) {
-  double e = 0;
-  for (int i = 0; i < 4; ++i) e = std::max(e, std::hypot(a[2 * i] - b[2 * i], a[2 * i + 1] - b[2 * i + 1]));
-  return e;
-}
-
 std::string why_of(const RawImage& image, const DetectOptions& o = {}) {
   try {
     detect_charts(image, o);

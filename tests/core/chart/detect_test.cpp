@@ -20,26 +20,6 @@ using Point = Eigen::Vector2d;
 
 namespace {
 
-SceneSpec plain_spec(const std::string& chart, double rotation, std::uint64_t seed) {
-  SceneSpec s;
-  s.chart = chart;
-  s.width = 900;
-  s.height = 600;
-  s.area_fraction = 0.15;
-  s.tilt_deg = 12;
-  s.tilt_axis_deg = 30;
-  s.rotation_deg = rotation;
-  s.blur_sigma = 0.8;
-  s.seed = seed;
-  return s;
-}
-
-double max_corner_error(const std::array<double, 8>& a, const std::array<double, 8>& b) {
-  double e = 0;
-  for (int i = 0; i < 4; ++i) e = std::max(e, std::hypot(a[2 * i] - b[2 * i], a[2 * i + 1] - b[2 * i + 1]));
-  return e;
-}
-
 RawImage mirrored(const RawImage& in) {
   RawImage out = in;
   for (int y = 0; y < in.height; ++y)
@@ -73,7 +53,7 @@ TEST_CASE("working image: block means, saturation bits OR-ed, factor from the lo
 }
 
 TEST_CASE("flat regions and quads: one quad per visible patch, centred on it", "[detect]") {
-  SceneSpec spec = plain_spec("cc24", 20, 3);
+  SceneSpec spec = plain_scene_spec("cc24", 20, 3);
   spec.shot_gain = 0.5;
   spec.read_noise = 1;
   const ChartScene scene = render_chart_scene(spec);
@@ -166,7 +146,7 @@ TEST_CASE("reference fit: a planted 3x3 gives zero residuals, a swapped pair sta
 TEST_CASE("refinement: corners 3 px off come back within 0.1 px, the gap too", "[detect]") {
   for (const std::string chart : {"cc24", "sg140"}) {
     INFO(chart);
-    SceneSpec spec = plain_spec(chart, 200, 5);
+    SceneSpec spec = plain_scene_spec(chart, 200, 5);
     if (chart == "cc24") spec.gap = 0.18;
     const ChartScene scene = render_chart_scene(spec);
     std::array<double, 8> start = scene.corners;
@@ -185,7 +165,7 @@ TEST_CASE("every rotation is found with A1's corner first", "[detect]") {
   for (const std::string chart : {"cc24", "sg140"})
     for (int rotation : {0, 90, 180, 270}) {
       INFO(chart << " rotated " << rotation);
-      SceneSpec spec = plain_spec(chart, rotation + 4, 11 + rotation);
+      SceneSpec spec = plain_scene_spec(chart, rotation + 4, 11 + rotation);
       if (chart == "sg140") spec.gap = 0.2;  // the printed SG's gaps (the hint-less test below has none)
       const ChartScene scene = render_chart_scene(spec);
       DetectOptions o;
@@ -207,7 +187,7 @@ TEST_CASE("a large image with a large and a small chart: both are candidates", "
   // SG of 4 % (patches of ~30 px; ~10 px in a 1000 px working image, too small for a coarse
   // pass). Both must be reported, each at its chart with A1 first, refined on the full image;
   // progress never goes back.
-  SceneSpec large = plain_spec("cc24", 23, 51), small = plain_spec("sg140", 200, 52);
+  SceneSpec large = plain_scene_spec("cc24", 23, 51), small = plain_scene_spec("sg140", 200, 52);
   for (SceneSpec* s : {&large, &small}) s->width = 2400, s->height = 1600;
   large.area_fraction = 0.2;
   large.cx = 0.33;
@@ -239,38 +219,24 @@ TEST_CASE("a large image with a large and a small chart: both are candidates", "
 }
 
 TEST_CASE("without a hint the layout is recognised — a mirrored chart is refused", "[detect][bad]") {
-  const ChartScene sg = render_chart_scene(plain_spec("sg140", 33, 21));
+  const ChartScene sg = render_chart_scene(plain_scene_spec("sg140", 33, 21));
   const auto found = detect_charts(sg.image);
   REQUIRE(!found.empty());
   CHECK(found[0].chart == "sg140");
   CHECK(max_corner_error(found[0].corners, sg.corners) < 0.5);
   // A mirror image has the colours in an order no real chart shows: not a chart.
-  const ChartScene cc = render_chart_scene(plain_spec("cc24", 10, 22));
+  const ChartScene cc = render_chart_scene(plain_scene_spec("cc24", 10, 22));
   CHECK(code_of([&] { detect_charts(mirrored(cc.image)); }) == ErrorCode::ChartNotFound);
 }
 
-TEST_CASE("bad input: no chart, a chart cut off by the frame, two charts", "[detect][bad]") {
-  SceneSpec none = plain_spec("cc24", 0, 31);
+TEST_CASE("bad input: no chart, and two charts", "[detect][bad]") {
+  SceneSpec none = plain_scene_spec("cc24", 0, 31);
   none.area_fraction = 1e-4;  // a chart of a few pixels: nothing to find
   CHECK(code_of([&] { detect_charts(render_chart_scene(none).image); }) == ErrorCode::ChartNotFound);
-  for (const std::string chart : {"cc24", "sg140"}) {
-    INFO(chart << " cut off");
-    SceneSpec cut = plain_spec(chart, 15, 32);
-    cut.area_fraction = 0.25;
-    cut.cx = 0.92;
-    cut.allow_cut = true;
-    const ChartScene scene = render_chart_scene(cut);
-    REQUIRE(scene.cut);
-    try {
-      const auto found = detect_charts(scene.image);
-      for (const auto& c : found) CHECK(c.confidence < 0.5);  // never a confident answer
-    } catch (const Error& e) {
-      CHECK(e.code() == ErrorCode::ChartNotFound);
-    }
-  }
+  // (A chart cut off by the frame is found since issue 48: detect_cut_test.cpp.)
   // Two charts side by side: two candidates, each at its chart.
-  const ChartScene left = render_chart_scene(plain_spec("cc24", 80, 41));
-  const ChartScene right = render_chart_scene(plain_spec("cc24", 300, 42));
+  const ChartScene left = render_chart_scene(plain_scene_spec("cc24", 80, 41));
+  const ChartScene right = render_chart_scene(plain_scene_spec("cc24", 300, 42));
   RawImage both = left.image;
   both.width = left.image.width * 2;
   both.rgb.assign(size_t(both.width) * both.height * 3, 0.f);

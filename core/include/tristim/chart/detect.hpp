@@ -64,6 +64,9 @@ struct DetectOptions {
   /// tenth of its size on each side.
   std::vector<double> seed;
   std::vector<double> box;
+  /// Find charts partly outside the frame (ChartCandidate::missing names the patches outside);
+  /// false refuses them, as the detector did before (benchmarks compare the two).
+  bool cut_charts = true;
   /// Candidates below this confidence are dropped.
   double min_confidence = 0.5;
   int max_candidates = 8;
@@ -96,10 +99,16 @@ struct ChartCandidate {
   double coverage = 0;               ///< fraction of the layout's patches found as quads
   double supported = 0;              ///< fraction of the patches with edges on 2+ sides (refinement)
   double alternative_residual = 0;   ///< best score of the chart's other symmetric orientations at the final corners
-  std::vector<PatchAgreement> patches;
+  std::vector<PatchAgreement> patches;  ///< the patches inside the image
+  /// A chart cut by the frame: the ids of the patches whose sample area lies outside the image
+  /// (its corners are then extrapolated and may lie outside it; sample with
+  /// SampleOptions::partial). Empty for a whole chart.
+  std::vector<std::string> missing;
 };
 
-/// Finds charts. Best candidate first; several charts give several candidates.
+/// Finds charts. Best candidate first; several charts give several candidates. A chart partly
+/// outside the frame is found when at least half of its patches are inside: its corners are
+/// extrapolated (they may lie outside the image) and ChartCandidate::missing names the rest.
 /// Errors: ChartNotFound (nothing above min_confidence; the message says why, about the largest
 /// grid seen: "no flat region is shaped like a patch", "the largest flat regions form no grid",
 /// "a grid of 4×6 found but its colours do not fit the cc24 chart (…)", a grid that runs off the
@@ -110,7 +119,7 @@ std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOpt
 
 /// Candidates as JSON `{"candidates": [{"chart", "corners": [[x,y]×4], "confidence",
 /// "orientation", "angle", "orientation_resolved", "residual", "gap", "edge_rms", "patches":
-/// [{"id", "residual"}]}]}`.
+/// [{"id", "residual"}], "missing": [ids]}]}`.
 std::string candidates_to_json(const std::vector<ChartCandidate>& candidates);
 
 // ================================================================ the steps

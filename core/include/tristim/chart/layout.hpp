@@ -61,9 +61,10 @@ std::vector<std::string> chart_layout_ids();
 std::array<double, 9> homography_unit_square(const std::array<double, 8>& corners);
 
 /// Checks the corners against a width × height image: CornersOutside if any lies outside
-/// [0, width] × [0, height]; CornersCrossed if the quadrilateral is self-intersecting,
-/// degenerate, not convex or counter-clockwise (mirrored: corners must go clockwise from A1).
-void check_corners(const std::array<double, 8>& corners, int width, int height);
+/// [0, width] × [0, height] (with `may_leave_image`: only if one is not finite); CornersCrossed
+/// if the quadrilateral is self-intersecting, degenerate, not convex or counter-clockwise
+/// (mirrored: corners must go clockwise from A1).
+void check_corners(const std::array<double, 8>& corners, int width, int height, bool may_leave_image = false);
 
 struct SampleOptions {
   double area = 0.5;              ///< sampled fraction of the patch's width and height, (0, 1]
@@ -76,6 +77,10 @@ struct SampleOptions {
   /// errors (a gradient, glare, dust or a patch border in the sample area). Pixel noise alone —
   /// a large σ on a flat patch, as in a dim photo — does not flag: its mean is still precise.
   double nonuniform_threshold = 0.05;
+  /// A chart cut by the frame: the corners may lie outside the image (they must still go
+  /// clockwise and be convex); a patch whose sample area is not wholly inside the image is left
+  /// out of ChartSample::patches and named in ChartSample::missing. CornersOutside when none is.
+  bool partial = false;
 };
 
 struct PatchSample {
@@ -93,7 +98,8 @@ struct PatchSample {
 struct ChartSample {
   ChartLayout layout;
   std::array<double, 9> homography{};
-  std::vector<PatchSample> patches;
+  std::vector<PatchSample> patches;  ///< layout order; with SampleOptions::partial only the visible ones
+  std::vector<std::string> missing;  ///< ids of the patches outside the image (SampleOptions::partial)
 };
 
 /// Samples every patch of `layout` placed by `corners` (see the header comment). Saturated
