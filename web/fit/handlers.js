@@ -1,6 +1,8 @@
 // Worker handler of step 3: one fit of a recipe (the engine's Recipe) on the chart sample paired
-// with the reference, with its display colours and its errors on a held-out set.
-import { reply, displayOf } from '../lib/reply.js';
+// with the reference, with its display colours and its errors on a held-out set; and the bootstrap
+// of a fitted result in steps (the engine's BootstrapRun, kept here between the page's calls so a
+// cancel message is taken between two chunks).
+import { reply, displayOf, coded } from '../lib/reply.js';
 
 export const handlers = {
   /// A measured patch file (CSV/CGATS with R,G,B and maybe X,Y,Z) for a held-out test set.
@@ -24,4 +26,44 @@ export const handlers = {
     out.worker_ms = performance.now() - t0;
     return reply(out);
   },
+
+  /// Starts the bootstrap of a fitted result (the engine's bootstrapRecipe: the recipe's fit on its
+  /// training set; `settings` a choice of the bootstrapOptions table); a run in progress is dropped.
+  bootstrapStart: (T, { recipe, ids, rgb, xyz, loo, settings }, { state }) => {
+    state.bootstrap?.delete();
+    state.bootstrap = null;
+    state.bootstrap = T.bootstrapRecipe(recipe, ids, rgb, xyz, loo, settings);
+    return { result: { done: 0, total: state.bootstrap.total() } };
+  },
+  /// Runs the next `count` resamples of the current run.
+  bootstrapStep: (T, { count }, { state }) => {
+    const run = state.bootstrap;
+    if (!run) throw coded('no bootstrap is running (it was cancelled or never started)', 'INVALID_ARGUMENT');
+    run.step(count);
+    return { result: { done: run.done(), total: run.total() } };
+  },
+  /// The run's intervals and covariances, and `profile` (JSON text) with them added; ends the run.
+  bootstrapResult: (T, { profile }, { state }) => {
+    const run = state.bootstrap;
+    if (!run) throw coded('no bootstrap is running (it was cancelled or never started)', 'INVALID_ARGUMENT');
+    try {
+      return reply({ bootstrap: run.result(), profile: profile ? run.profileWith(profile) : null });
+    } finally {
+      run.delete();
+      state.bootstrap = null;
+    }
+  },
+  /// Drops the current run (the page's Cancel).
+  bootstrapCancel: (T, _msg, { state }) => {
+    state.bootstrap?.delete();
+    state.bootstrap = null;
+    return { result: { cancelled: true } };
+  },
+
+  /// `tristim compare`'s two checks of a fitted result (the engine's recipeStoppingCheck and
+  /// recipeRidgeRow): does its leave-one-out mean move when the optimiser stops 100× later, and
+  /// its model by ridge least squares with λ chosen by leave-one-out.
+  looStability: (T, { recipe, ids, rgb, xyz, loo_mean, condition_number }) =>
+    reply(T.recipeStoppingCheck(recipe, ids, rgb, xyz, loo_mean, condition_number)),
+  ridgeRow: (T, { recipe, ids, rgb, xyz }) => reply(T.recipeRidgeRow(recipe, ids, rgb, xyz)),
 };

@@ -29,7 +29,25 @@ export function zoomDomain(points, arrows, pad = 0.03) {
   return { x: [cx - side / 2, cx + side / 2], y: [cy - side / 2, cy + side / 2] };
 }
 
-export function xyPlot({ locus, points = [], arrows = [], white, width = 460, observer = '1931', zoom = false }, { Plot = getPlot() } = {}) {
+/// ellipses: [{id, cx, cy, cov: [[a, b], [b, c]], k}] -> closed outlines [{id, x, y}] (for a
+/// line mark with z: 'id'): the points c + k·L·(cos t, sin t), L the Cholesky factor of cov, i.e.
+/// the curve (p − c)ᵀ cov⁻¹ (p − c) = k². Ellipses whose covariance is not positive definite or not
+/// finite are left out.
+export function ellipseOutlines(ellipses, steps = 48) {
+  const out = [];
+  for (const e of ellipses) {
+    const [[a, b], [, c]] = e.cov ?? [[NaN, NaN], [NaN, NaN]];
+    const l11 = Math.sqrt(a), l21 = b / l11, l22 = Math.sqrt(c - l21 * l21);
+    if (![l11, l21, l22, e.cx, e.cy, e.k].every(Number.isFinite) || !(l11 > 0) || !(l22 > 0)) continue;
+    for (let s = 0; s <= steps; s++) {
+      const t = (2 * Math.PI * s) / steps, u = Math.cos(t), v = Math.sin(t);
+      out.push({ id: e.id, x: e.cx + e.k * l11 * u, y: e.cy + e.k * (l21 * u + l22 * v) });
+    }
+  }
+  return out;
+}
+
+export function xyPlot({ locus, points = [], arrows = [], white, width = 460, observer = '1931', zoom = false, ellipses = [] }, { Plot = getPlot() } = {}) {
   const L = locus ? locusData(locus) : { line: [], ticks: [] };
   const marks = [
     Plot.line(L.line, { x: 'x', y: 'y', stroke: '#444', strokeWidth: 1.2 }),
@@ -47,7 +65,9 @@ export function xyPlot({ locus, points = [], arrows = [], white, width = 460, ob
     marks.push(Plot.arrow(arrows, { x1: 'x1', y1: 'y1', x2: 'x2', y2: 'y2', stroke: '#111', strokeWidth: 1, headLength: 5, title: 'title' }));
   }
   marks.push(Plot.dot(points, { x: 'x', y: 'y', r: 4.5, fill: 'fill', stroke: '#222', strokeWidth: 0.7, title: 'title', tip: true }));
-  const z = zoom ? zoomDomain(points, arrows) : null;
+  const outlines = ellipseOutlines(ellipses);
+  if (outlines.length) marks.push(Plot.line(outlines, { x: 'x', y: 'y', z: 'id', stroke: '#c0392b', strokeWidth: 1.2, className: 'ellipse' }));
+  const z = zoom ? zoomDomain(points, [...arrows, ...outlines.map((p) => ({ x1: p.x, y1: p.y, x2: p.x, y2: p.y }))]) : null;
   return Plot.plot({
     width, aspectRatio: 1, marginLeft: 44, marginBottom: 38, clip: zoom,
     x: { domain: z?.x ?? [0, 0.8], label: `x (CIE ${observer} chromaticity, unitless) →`, grid: true },

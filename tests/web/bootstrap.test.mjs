@@ -1,0 +1,98 @@
+// The results step's "Uncertainty (bootstrap)" on the example: progress while it runs, a Cancel
+// that stops it, and for N = 200 the same intervals, to the bit, as `tristim fit --bootstrap` on
+// the same training set and recipe; the intervals in the table and the ellipses on the xy and a*b*
+// plots.
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { screenshot, openBrowser } from './harness.mjs';
+import { pageTest, step, CLI, artifact, waitReady } from './journey.mjs';
+
+/// The page after the first visit's compare of every model (slow on a busy machine).
+async function open() {
+  const b = await openBrowser();
+  await b.page.goto(b.origin + '/');
+  await waitReady(b.page, 300000);
+  return b;
+}
+
+/// Fits only matrix-3x3 × least squares in step 3 and waits for its row in the results.
+async function fitMatrix(page) {
+  await step(page, 'fit');
+  await page.waitForSelector('#step-fit button.primary:not([disabled])', { timeout: 180000 });
+  await page.$$eval('#step-fit input[data-model], #step-fit input[data-objective]', (els) => {
+    for (const e of els) {
+      const want = e.dataset.model ? e.dataset.model === 'matrix-3x3' : e.dataset.objective === 'ls';
+      if (e.checked !== want) e.click();
+    }
+  });
+  await page.click('#step-fit button.primary');
+  await page.waitForFunction(() => window.tristim.session.results?.length === 1 && !document.querySelector('#step-fit button.primary[disabled]'), null, { timeout: 120000 });
+  await step(page, 'results');
+}
+
+const setOption = async (page, name, value) => {
+  await page.fill(`#step-results fieldset.uncertainty input[data-option="${name}"]`, String(value));
+  await page.dispatchEvent(`#step-results fieldset.uncertainty input[data-option="${name}"]`, 'change');
+};
+
+pageTest('bootstrap: progress, cancel, intervals equal the CLI\'s, ellipses drawn', { timeout: 600000, open }, async ({ page }) => {
+  await fitMatrix(page);
+  // The form is the engine's table: its bounds and defaults.
+  const max = await page.getAttribute('#step-results fieldset.uncertainty input[data-option="resamples"]', 'max');
+  assert.equal(max, '100000');
+
+  // Cancel: a long run stops where it is, and nothing is kept.
+  await setOption(page, 'resamples', 100000);
+  await page.click('#step-results button[data-action="bootstrap"]');
+  await page.waitForFunction(() => /\d+ of 100000 resamples/.test(document.querySelector('#step-results fieldset.uncertainty .progress-text')?.textContent ?? ''), null, { timeout: 60000 });
+  await page.click('#step-results button[data-action="bootstrap-cancel"]');
+  const cancelled = await page.waitForFunction(() => {
+    const t = document.querySelector('#step-results .bootstrap-note')?.textContent ?? '';
+    return /^Cancelled after/.test(t) ? t : null;
+  }, null, { timeout: 30000 }).then((h) => h.jsonValue());
+  const doneAtCancel = Number(/after (\d+) of/.exec(cancelled)[1]);
+  assert.ok(doneAtCancel > 0 && doneAtCancel < 100000, cancelled);
+  assert.equal(await page.evaluate(() => window.tristim.session.results[0].bootstrap), undefined);
+
+  // N = 200, seed 3, level 0.9.
+  await setOption(page, 'resamples', 200);
+  await setOption(page, 'seed', 3);
+  await setOption(page, 'level', 0.9);
+  await page.click('#step-results button[data-action="bootstrap"]');
+  await page.waitForSelector('#step-results table.coefficients', { timeout: 60000 });
+  const r = await page.evaluate(() => {
+    const x = window.tristim.session.results[0];
+    return { ids: Array.from(x.ids), rgb: Array.from(x.rgb), xyz: Array.from(x.xyz), profile: x.fit.profile, bootstrap: x.bootstrap };
+  });
+  // The same training set and recipe through the CLI (values written in JS's shortest round-trip form).
+  const row = (id, i, a) => `${id},${a[3 * i]},${a[3 * i + 1]},${a[3 * i + 2]}`;
+  fs.writeFileSync(artifact('bootstrap-rgb.csv'), `patch,R,G,B\n${r.ids.map((id, i) => row(id, i, r.rgb)).join('\n')}\n`);
+  fs.writeFileSync(artifact('bootstrap-xyz.csv'), `patch,X,Y,Z\n${r.ids.map((id, i) => row(id, i, r.xyz)).join('\n')}\n`);
+  fs.writeFileSync(artifact('bootstrap-recipe.json'), JSON.stringify(JSON.parse(r.profile).recipe));
+  const cli = JSON.parse(execFileSync(CLI, ['fit', '--recipe', artifact('bootstrap-recipe.json'), '--rgb', artifact('bootstrap-rgb.csv'),
+    '--xyz', artifact('bootstrap-xyz.csv'), '--bootstrap', '200', '--seed', '3', '--level', '0.9'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] }));
+  const { train_ci, loo_ci, ...page_ } = r.bootstrap;
+  assert.deepEqual(page_, cli.bootstrap);
+  assert.deepEqual(train_ci, cli.metrics.training.dE00.ci);
+  assert.deepEqual(loo_ci, cli.metrics.loo.dE00.ci);
+  // The exported profile carries the covariance and the intervals.
+  const exported = JSON.parse(r.profile);
+  assert.deepEqual(exported.bootstrap.covariance, cli.bootstrap.covariance);
+  assert.deepEqual(exported.metrics.loo.dE00.ci, cli.metrics.loo.dE00.ci);
+
+  // Shown: intervals next to the training and leave-one-out means, each coefficient's, ellipses.
+  const cell = (col) => page.textContent(`#step-results table.compare td[data-col="${col}"] small.ci`);
+  const f = (v) => v.toFixed(2);
+  assert.match(await cell('train-mean'), new RegExp(`\\[${f(train_ci.lo)}, ${f(train_ci.hi)}\\]`));
+  assert.match(await cell('loo-mean'), new RegExp(`\\[${f(loo_ci.lo)}, ${f(loo_ci.hi)}\\]`));
+  assert.equal(await page.$$eval('#step-results table.coefficients td small.ci', (e) => e.length), 9);
+  const ellipses = async (plot) => page.$$eval(`figure[data-plot="${plot}"] g.ellipse path`, (e) => e.length);
+  assert.equal(await ellipses('xy-arrows'), r.ids.length);
+  assert.equal(await ellipses('lab-a-b'), r.ids.length);
+  assert.match(await page.textContent('figure[data-plot="lab-a-b"] figcaption'), /90 % region over 200 bootstrap refits/);
+  await page.$eval('#step-results fieldset.uncertainty', (e) => e.scrollIntoView());
+  await screenshot(page, 'bootstrap-results');
+  await page.$eval('figure[data-plot="lab-a-b"]', (e) => e.scrollIntoView());
+  await screenshot(page, 'bootstrap-ellipses');
+});
