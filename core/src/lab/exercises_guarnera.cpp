@@ -8,6 +8,8 @@
 #include "tristim/absolute/characterise.hpp"
 #include "tristim/absolute/normalisation.hpp"
 #include "tristim/absolute/profile.hpp"
+#include "tristim/absolute/recipe.hpp"
+#include "tristim/absolute/report.hpp"
 #include "tristim/capture/calibration.hpp"
 #include "tristim/characterisation/fit.hpp"
 #include "tristim/characterisation/models.hpp"
@@ -89,24 +91,25 @@ std::vector<GuarneraRow> lab_guarnera_table4(const std::string& camera, const st
       AbsoluteFitOptions fo;
       fo.transform = transform;
       AbsoluteProfile p = fit_absolute_Guarnera2018(stimuli, n, fo);
+      const std::vector<AbsoluteStimulus> test = read_absolute_stimuli(ex.test_csv, "the example's test scene");
       for (const char* shots : {"single", "weighted", "recursive"}) {
         const bool single = std::string(shots) == "single";
         p.fusion = std::string(shots) == "recursive" ? FusionMode::Recursive : FusionMode::Weighted;
-        const std::vector<const RawImage*> frames = single ? std::vector<const RawImage*>{series[series.size() / 2]} : series;
-        const AbsoluteImage img = apply_absolute(p, frames);
-        // The ColorChecker cells (not the E ladder): means over the central half; white per eq (16).
-        std::vector<Vec3> est, ref;
-        double y_max = 0;
-        Vec3 white = Vec3::Zero();
-        for (const auto& g : ex.regions) {
-          y_max = std::max(y_max, g.XYZ[1]);
-          if (g.id == ex.white_id) white = g.XYZ;
-          if (g.id[0] == 'E') continue;
-          int count = 0;
-          est.push_back(window_mean(img, g.x + g.w / 2, g.y + g.h / 2, std::max(1, g.w / 2), count));
-          ref.push_back(g.XYZ);
+        // The Absolute mode's evaluation of the example's test scene (its cells as region rows of
+        // the middle frame, measured on the maps over their central half; white per eq 16): the
+        // chromatic rows' figures are the 24 ColorChecker cells'.
+        AbsoluteApplyOptions ao;
+        ao.names = ex.frame_names;
+        std::vector<const RawImage*> frames = series;
+        if (single) {
+          frames = {series[series.size() / 2]};
+          ao.names = {ex.frame_names[series.size() / 2]};
         }
-        const AbsoluteMetrics m = evaluate_absolute(lab_patch_matrix(est), lab_patch_matrix(ref), white_Guarnera2018(white, y_max));
+        const AbsoluteMaps maps = apply_absolute_series(p, frames, ao);
+        const AbsoluteTestReport rep = evaluate_absolute_test(p, &maps, test);
+        AbsoluteMetrics m;
+        for (const auto& f : rep.figures)
+          if (f.group == "colour") m = f.metrics;
         GuarneraRow r;
         r.light = light;
         r.training = training;

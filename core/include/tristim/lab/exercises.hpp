@@ -176,8 +176,9 @@ LabTable exposure_table(const std::vector<ExposureRow>& rows);
 // each colour training (projector: the paper's; reflective: ColorChecker SG patches), fitted as a
 // user would (n from the lens cap, S measured, f(r) from the flat, eq 8 across the bracket, M of
 // the training's transform), applied to a single shot (the middle exposure) and to the whole
-// bracket by the weighted fusion and by Algorithm 1 (recursive); the 24 ColorChecker cells'
-// means (central half) against their truth: NRMSE per X, Y, Z, mean ΔE00 (white per eq 16) and the
+// bracket by the weighted fusion and by Algorithm 1 (recursive), evaluated as the Absolute mode
+// does (evaluate_absolute_test on the example's test scene, its chromatic rows: the 24
+// ColorChecker cells, central half of each): NRMSE per X, Y, Z, mean ΔE00 (white per eq 16) and the
 // mean relative Y error (16-pixel cells: a quarter of the example's pixels, NRMSE within 0.0015).
 // The paper's rows beside: D65; A ~ its ILS (incandescent), F2 ~ its CWF.
 struct GuarneraRow {
