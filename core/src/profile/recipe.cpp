@@ -169,6 +169,10 @@ void complete_image(RecipeImage& e, size_t k) {
   bool hex = e.sha256.size() == 64;
   for (char c : e.sha256) hex = hex && ((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'));
   if (!e.sha256.empty() && !hex) throw Error(ErrorCode::RecipeInvalid, p + "sha256 must be 64 lower-case hex digits");
+  const bool index = !e.candidate.empty() && e.candidate.size() < 10 &&
+                     std::all_of(e.candidate.begin(), e.candidate.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (!e.candidate.empty() && e.candidate != "all" && !index)
+    throw Error(ErrorCode::RecipeInvalid, p + "candidate must be \"all\" or a candidate index (0, 1, …)");
   const auto& c = e.sampling.corners;
   const bool corners = std::any_of(c.begin(), c.end(), [](double v) { return v != 0; });
   if (!e.candidate.empty() && corners)

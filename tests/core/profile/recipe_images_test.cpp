@@ -167,6 +167,9 @@ TEST_CASE("recipe images: bad entries are refused with a code naming the image",
                ErrorCode::RecipeInvalid);
   require_code([&] { recipe_from_json(edit("\"sha256\": \"\"", "\"sha256\": \"xyz\"")); },
                ErrorCode::RecipeInvalid);
+  Recipe odd = r;
+  odd.images[0].candidate = "first";
+  CHECK(error_message([&] { recipe_to_json(odd); }, ErrorCode::RecipeInvalid).find("images[0] ('a.dng')") != std::string::npos);
   Recipe both = r;
   both.images[0].sampling.corners = {1, 1, 50, 1, 50, 30, 1, 30};
   both.images[0].candidate = "0";
