@@ -1,6 +1,7 @@
 // The whole absolute chain (Guarnera 2018 eq 4) on the virtual bracket camera, evaluated as
 // section 4.1 does: ΔE94, ΔE00 (white per eq 16, or E at the largest luminance), NRMSE per X, Y,
-// Z, relative Y error, median absolute error in cd/m². Figures are printed (Table 3/4 layout).
+// Z, relative Y error, median absolute error in cd/m². Figures are printed (Table 3/4 layout) and
+// held against the paper's Tables 2-4 (paper_table3 / the Experiment (a) case state how).
 //
 // Three settings:
 //  1. equal-tristimulus test stimuli between the training ones (the luminance module, eq 9);
@@ -151,6 +152,38 @@ TEST_CASE("absolute: equal-tristimulus test stimuli between the training ones (e
   }
 }
 
+namespace {
+
+/// Table 3 of the paper (booth scenes, eq 15 colour profile, statistics without the edge areas):
+/// median and mean ΔE94, ΔE00 for a single shot and for 3 exposures. The paper's illuminants
+/// D65, ILS (incandescent) and CWF (cool white fluorescent) are matched here by D65, A and F2.
+struct PaperTable3 {
+  const char* ours;
+  const char* paper;
+  double single[4], multiple[4];  // ΔE94 median, mean, ΔE00 median, mean
+};
+constexpr PaperTable3 kTable3[] = {
+    {"D65", "D65", {1.8079, 3.0498, 1.4515, 2.3650}, {1.4844, 2.4152, 1.2731, 2.0581}},
+    {"A", "ILS", {2.2595, 2.8006, 2.8368, 3.3098}, {2.0524, 2.5414, 2.5255, 2.9773}},
+    {"F2", "CWF", {3.1048, 4.3133, 2.5169, 3.8778}, {2.6768, 3.6685, 2.1674, 3.0521}},
+};
+
+/// Our median and mean ΔE94 / ΔE00 no higher than the paper's: the virtual camera has no
+/// registration error, no spectroradiometer error and a chart instead of a booth scene, so its
+/// figures are a lower bound of what the paper measured — being above them is a regression. The
+/// maxima are printed, not held: the paper's (8.8-18.8 without edges) come from object edges a
+/// chart has few of, ours from the colour module's metamerism on one patch.
+void check_against_table(const AbsoluteMetrics& m, const double paper[4], const char* what) {
+  const double ours[4] = {m.metrics.dE94.median, m.metrics.dE94.mean, m.metrics.dE00.median, m.metrics.dE00.mean};
+  const char* names[4] = {"dE94 median", "dE94 mean", "dE00 median", "dE00 mean"};
+  for (int k = 0; k < 4; ++k) {
+    INFO(what << " " << names[k] << ": ours " << ours[k] << ", the paper's " << paper[k] << " (tolerance: not above it)");
+    CHECK(ours[k] <= paper[k]);
+  }
+}
+
+}  // namespace
+
 TEST_CASE("absolute: ColorChecker under D65, A, F2 per pixel, colour module trained on other colours (T2R)", "[absolute]") {
   test::BenchConfig cfg;
   cfg.transform = "T2R";
@@ -170,6 +203,14 @@ TEST_CASE("absolute: ColorChecker under D65, A, F2 per pixel, colour module trai
     CHECK(mean_nrmse(r.fused) < 0.013);
     CHECK(mean_nrmse(r.fused) <= r.best_single);
     CHECK(r.fused.metrics.dE00.mean < r.single.metrics.dE00.mean);
+    for (const PaperTable3& t : kTable3)  // Table 3 (eq 15 = T2R here): single shot and multiple shots
+      if (std::string(t.ours) == ill) {
+        std::printf("  Table 3, %s (paper): single dE94 median %.3f mean %.3f, dE00 median %.3f mean %.3f; "
+                    "multiple dE94 %.3f %.3f, dE00 %.3f %.3f\n", t.paper, t.single[0], t.single[1], t.single[2],
+                    t.single[3], t.multiple[0], t.multiple[1], t.multiple[2], t.multiple[3]);
+        check_against_table(r.single, t.single, "single shot vs Table 3");
+        check_against_table(r.fused, t.multiple, "fused vs Table 3 multiple shot");
+      }
   }
 }
 
@@ -251,4 +292,14 @@ TEST_CASE("absolute: Experiment (a), colour targets under projector illuminants 
   CHECK(r.single.relative_Y_error < 0.024);
   CHECK(r.fused.relative_Y_error < 0.024);
   CHECK(r.fused.relative_Y_error < floor.relative_Y_error + 0.005);
+  // Table 2, test row (T1, single shot): ΔE94 median 1.7428 mean 1.7622 max 3.9997; ΔE00 median
+  // 1.6317 mean 1.6352 max 4.5783. Median and mean: ours no higher (check_against_table). The
+  // maximum here (about 6.5 / 5.8) is above the paper's: it is the colour module's floor (the
+  // same sample with an exact luminance module, "M floor") — one target under one projector mix
+  // that this camera sees metamerically —, so it is held to that floor instead: the chain adds
+  // less than 0.25 to it.
+  const double table2_test[4] = {1.7428, 1.7622, 1.6317, 1.6352};
+  check_against_table(r.single, table2_test, "single shot vs Table 2 (test)");
+  CHECK(r.single.metrics.dE94.max < floor.metrics.dE94.max + 0.25);
+  CHECK(r.single.metrics.dE00.max < floor.metrics.dE00.max + 0.25);
 }
