@@ -2,7 +2,8 @@
 // (shareSample -> the payload text, shareLink -> the link; shareAbsolute for an absolute recipe of
 // per-patch rows), opening a link (reproduceLink ->
 // Reproduction; with the source image at hand reproduceLinkImage samples it again), project files
-// (projectFile -> Uint8Array, openProject), and the SHA-256 of bytes.
+// (projectFile -> Uint8Array, openProject), the SHA-256 of bytes, and version 2's preset deflate
+// dictionary (shareLinkDictionary: for tools and tests that read a link's content themselves).
 #include "tristim/share/link.hpp"
 #include "tristim/share/sha256.hpp"
 #include "types.hpp"
@@ -24,6 +25,7 @@ EMSCRIPTEN_BINDINGS(tristim_share) {
   def<&share_absolute_payload>("shareAbsolute");
   def<&share_link>("shareLink");
   def<&share_link_limit>("shareLinkLimit");
+  def<&share_link_dictionary>("shareLinkDictionary");
   def<&reproduce_link>("reproduceLink");
   def<&reproduce_link_image>("reproduceLinkImage");
   def<&project_file>("projectFile");

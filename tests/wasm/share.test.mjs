@@ -11,6 +11,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import zlib from 'node:zlib';
+import { createHash } from 'node:crypto';
 import { execFileSync, spawnSync } from 'node:child_process';
 import { loadTristim, readBytes, testPath, repoRoot, throwsCode } from './load.mjs';
 
@@ -121,7 +122,7 @@ test('damaged links: each its code in the module; the CLI exits 2 with the same 
   const cases = [
     ['tampered', tampered, 'PARSE_ERROR'],
     ['truncated', link.slice(0, link.length - 30), 'PARSE_ERROR'],
-    ['future version', '2' + payload.slice(1), 'PROFILE_VERSION'],
+    ['future version', '3' + payload.slice(1), 'PROFILE_VERSION'],
     ['not a link', 'https://example.org/#tristim=hello', 'PARSE_ERROR'],
     ['bomb', bomb, 'LIMIT_EXCEEDED'],
   ];
@@ -135,5 +136,31 @@ test('damaged links: each its code in the module; the CLI exits 2 with the same 
   throwsCode(assert, () => T.reproduceLinkImage(T.shareSample(JSON.stringify(base), sample, T.recipeReference(JSON.stringify(base)), [{ name: 'x.dng', sha256: '0'.repeat(64) }]),
     readBytes('examples/web/passport.dng')), 'PATCH_MISMATCH');
 });
+
+test('version 2 is written; a version 1 link (made before it) is still read, in the module and with the CLI', () => {
+  const v1 = fs.readFileSync(path.join(repoRoot, 'tests/fuzz/corpus/share_payload/passport-link.txt'), 'utf8').slice(1);
+  assert.match(v1, /#tristim=1\./);
+  const r = T.reproduceLink(v1);
+  assert.equal(r.verdict, 'reproduced', JSON.stringify(r.differences));
+  // Its payload written again is version 2, shorter, and reads to the same document.
+  const v2 = execFileSync(cli, ['share', '--profile', writeProfile(r.profile), '--raw', dng, '--payload']).toString().trim();
+  assert.match(v2, /^2\./);
+  assert.ok(v2.length + 400 < v1.length, `${v2.length} against ${v1.length}`);
+  assert.equal(T.reproduceLink(v2).verdict, 'reproduced');
+  assert.equal(run(['reproduce', v1]).status, 0);
+  // The data are checked by their SHA-256 and inflate with the documented dictionary (docs/link-format.md).
+  const [, text, check] = v2.split('.');
+  const data = Buffer.from(text, 'base64url');
+  assert.equal(createHash('sha256').update(data).digest().subarray(0, 12).toString('base64url'), check);
+  const content = zlib.inflateRawSync(data, { dictionary: Buffer.from(T.shareLinkDictionary(), 'latin1') });
+  assert.ok(JSON.parse(content.subarray(0, content.indexOf(0)).toString()).results.length > 10);
+});
+
+/// A profile JSON text in a file of the test's directory: its path.
+function writeProfile(text) {
+  const file = path.join(dir, 'v1-profile.json');
+  fs.writeFileSync(file, text);
+  return file;
+}
 
 test.after(() => fs.rmSync(dir, { recursive: true, force: true }));

@@ -12,6 +12,7 @@ import path from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { openBrowser, screenshot, repoRoot } from './harness.mjs';
 import { openPage, step, waitReady, errorFor, upload, fileBuffer, DNG } from './journey.mjs';
+import { loadTristim } from '../wasm/load.mjs';
 
 const VERDICT = '#share-verdict-title[data-verdict]';
 /// The session's state a link must not change: the selected result, the results, what is stored.
@@ -21,6 +22,23 @@ const sessionState = (page) => page.evaluate(async () => ({
   stored: Object.keys(await window.tristim.store.all()).sort(),
   corners: Array.from(window.tristim.session.corners ?? []),
 }));
+const dictionary = Buffer.from((await loadTristim()).shareLinkDictionary(), 'latin1');
+
+/// Version 2 content (docs/link-format.md: JSON NUL heads, mantissa bytes 0–3, patch values' bytes
+/// 0–1, SHA-256s, mantissa bytes 4–7, values' bytes 2–7) with the top mantissa bit of the last
+/// patch value flipped: that camera B is 1.5× or 2/3 of what it was.
+function changeLastPatchValue(content) {
+  const nul = content.indexOf(0);
+  const json = JSON.parse(content.subarray(0, nul).toString());
+  const n = json.results.length - 1;
+  let at = nul + 1;
+  for (let i = 0; i < n; i++) while (content[at++] & 0x80);   // the heads (LEB128)
+  const v = (content.length - at - 8 * n - 32 * json.sources.length) / 8;
+  assert.ok(Number.isInteger(v) && v > 0, `${v} patch values`);
+  const out = Buffer.from(content);
+  out[at + 4 * n + v + (v - 1)] ^= 0x08;                      // byte 1 of the last value
+  return out;
+}
 const row = (page, name) => page.evaluate((n) => [...document.querySelectorAll(`#share-verdict tr[data-name="${n}"] td`)].map((td) => td.textContent), name);
 
 test('a link made in the page reproduces in a fresh browser; damaged links give coded errors, the session untouched', async () => {
@@ -33,7 +51,8 @@ test('a link made in the page reproduces in a fresh browser; damaged links give 
     await page.waitForFunction(() => document.getElementById('share-link').value.includes('#tristim='), null, { timeout: 60000 });
     link = await page.inputValue('#share-link');
     assert.ok(link.startsWith(maker.origin + '/'), link.slice(0, 60));
-    assert.ok(link.length < 4000, `${link.length} characters`);
+    assert.ok(link.length < 1400, `${link.length} characters`);
+    assert.match(link, /#tristim=2\./);
     made = await page.evaluate(() => {
       const s = window.tristim.session, r = s.results.find((x) => x.key === s.selected) ?? s.results[0];
       return { model: r.recipe.characterisation.model, dE00: r.fit.evaluation.training.dE00.mean };
@@ -77,7 +96,7 @@ test('a link made in the page reproduces in a fresh browser; damaged links give 
       ['tampered', theirs.slice(0, theirs.indexOf('#tristim=') + 9) + payload.slice(0, mid) + (payload[mid] === 'A' ? 'B' : 'A') + payload.slice(mid + 1), 'PARSE_ERROR'],
       ['truncated', theirs.slice(0, theirs.length - 25), 'PARSE_ERROR'],
       ['bomb', `1.${zlib.deflateRawSync(Buffer.alloc(32 << 20, '[')).toString('base64url')}.AAAAAAAAAAAAAAAA`, 'LIMIT_EXCEEDED'],
-      ['future version', '2' + payload.slice(1), 'PROFILE_VERSION'],
+      ['future version', '3' + payload.slice(1), 'PROFILE_VERSION'],
     ];
     for (const [what, text, code] of cases) {
       await page.fill('#share-open-text', text);
@@ -95,10 +114,10 @@ test('a link made in the page reproduces in a fresh browser; damaged links give 
     }
     // A link whose data give other numbers (one camera RGB value changed, the check made again, as
     // another sampling would): "differs", both results side by side, the session untouched.
-    const content = zlib.inflateRawSync(Buffer.from(payload.split('.')[1], 'base64url'));
-    content.writeDoubleLE(content.readDoubleLE(content.length - 8) * 1.05, content.length - 8);
-    const check = crypto.createHash('sha256').update(content).digest().subarray(0, 12).toString('base64url');
-    await page.fill('#share-open-text', `1.${zlib.deflateRawSync(content, { level: 9 }).toString('base64url')}.${check}`);
+    const content = changeLastPatchValue(zlib.inflateRawSync(Buffer.from(payload.split('.')[1], 'base64url'), { dictionary }));
+    const data = zlib.deflateRawSync(content, { level: 9, dictionary });   // version 2 checks the compressed bytes
+    const check = crypto.createHash('sha256').update(data).digest().subarray(0, 12).toString('base64url');
+    await page.fill('#share-open-text', `2.${data.toString('base64url')}.${check}`);
     await page.click('#share-open');
     await page.waitForSelector('#share-verdict-title[data-verdict="differs"]', { timeout: 60000 });
     const differing = await page.evaluate(() => [...document.querySelectorAll('#share-verdict tr.differs')].map((tr) => tr.dataset.name));
@@ -109,7 +128,7 @@ test('a link made in the page reproduces in a fresh browser; damaged links give 
     await screenshot(page, 'share-differs');
 
     // A bad link in the address bar: the same, where it was opened.
-    await page.goto(`${b.origin}/#tristim=2${payload.slice(1)}`);
+    await page.goto(`${b.origin}/#tristim=3${payload.slice(1)}`);
     await waitReady(page, 120000);
     await page.waitForFunction(() => document.getElementById('step-share').dataset.linkError === 'PROFILE_VERSION', null, { timeout: 60000 });
     assert.deepEqual((await sessionState(page)).results, before.results);

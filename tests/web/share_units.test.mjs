@@ -1,9 +1,11 @@
 // The Share step's pure functions (web/share/project.js) under node: a session with typed arrays
 // and byte buffers goes into a project's parts and comes back equal; the results text splits into
-// rows; a project naming an image it does not hold, or an unknown array type, is a coded error.
+// rows; a project naming an image it does not hold, or an unknown array type, is a coded error;
+// a link beyond the engine's limit is not offered, the note says why and points to a project file.
 import test from 'node:test';
 import assert from 'node:assert/strict';
-import { encodeSession, decodeSession, resultRows } from '../../web/share/project.js';
+import { encodeSession, decodeSession, resultRows, linkOffer } from '../../web/share/project.js';
+import { loadTristim } from '../wasm/load.mjs';
 
 test('a session round-trips through encodeSession / decodeSession', () => {
   const raw = new Uint8Array([1, 2, 3, 250]).buffer;
@@ -37,4 +39,15 @@ test('a project that names a missing image or an unknown array type is refused w
 
 test('results text rows', () => {
   assert.deepEqual(resultRows('model matrix-3x3\ncoefficients 1 2 3\nstatus\n'), [['model', 'matrix-3x3'], ['coefficients', '1 2 3'], ['status', '']]);
+});
+
+test('a link beyond the engine\'s limit is not offered: the note says why and offers a project file', async () => {
+  const limit = (await loadTristim()).shareLinkLimit();
+  assert.equal(limit, 16000);
+  const within = linkOffer('x'.repeat(limit), limit, 'matrix-3x3');
+  assert.equal(within.link.length, limit);
+  assert.match(within.note, /^matrix-3x3: 16000 characters\./);
+  const beyond = linkOffer('x'.repeat(limit + 1), limit, 'matrix-3x3');
+  assert.equal(beyond.link, '');
+  assert.match(beyond.note, /16001 characters, more than 16000 .*cut such links.*project file/);
 });

@@ -55,3 +55,11 @@ export const resultRows = (text) => text.split('\n').filter(Boolean).map((line) 
   const sp = line.indexOf(' ');
   return sp < 0 ? [line, ''] : [line.slice(0, sp), line.slice(sp + 1)];
 });
+
+/// What the Share step offers for a `link` against the engine's length `limit` (shareLinkLimit):
+/// {link, note} within it; beyond it no link, and a note that says why and offers a project file.
+export function linkOffer(link, limit, label) {
+  if (link.length > limit)
+    return { link: '', note: `The link would have ${link.length} characters, more than ${limit} (some mail and chat programs cut such links): export a project file instead (below).` };
+  return { link, note: `${label}: ${link.length} characters. Whoever opens it recomputes this profile from the data in the link (in this page, or with tristim reproduce) and sees whether it comes out the same. Nothing is uploaded: the data are in the part after #, which browsers never send.` };
+}

@@ -6,7 +6,7 @@
 // Opening a link or a bad link changes nothing in the session; every text from a link is shown as
 // text, never as HTML.
 import { h, field, showError, clearError, download, fileBytes } from '../lib/ui.js';
-import { encodeSession, decodeSession, resultRows } from './project.js';
+import { encodeSession, decodeSession, resultRows, linkOffer } from './project.js';
 
 export function mount(section, app) {
   const { engine } = app;
@@ -34,15 +34,10 @@ export function mount(section, app) {
       const [{ link }, limit] = await Promise.all([
         engine.call('shareLink', { recipe: r.recipe, ...fitInputs(), image, base: location.href.split('#')[0] }),
         engine.call('shareLimit')]);
-      if (link.length > limit) {
-        linkOut.value = '';
-        copyBtn.disabled = true;
-        makeNote.textContent = `The link would have ${link.length} characters, more than ${limit} (some mail and chat programs cut such links): export a project file instead (below).`;
-        return;
-      }
-      linkOut.value = link;
-      copyBtn.disabled = false;
-      makeNote.textContent = `${r.label ?? r.recipe.characterisation.model}: ${link.length} characters. Whoever opens it recomputes this profile from the data in the link (in this page, or with tristim reproduce) and sees whether it comes out the same. Nothing is uploaded: the data are in the part after #, which browsers never send.`;
+      const offer = linkOffer(link, limit, r.label ?? r.recipe.characterisation.model);
+      linkOut.value = offer.link;
+      copyBtn.disabled = !offer.link;
+      makeNote.textContent = offer.note;
     } catch (e) {
       makeNote.textContent = '';
       showError(makeBtn, e, 'Share');
