@@ -128,7 +128,15 @@ ShenExercise lab_shen_exercise(const SpectralData& ssf, const ShenOptions& o) {
     }
     rows[0].r_squared = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
     for (auto& r : rows)
-      if (!r.ok) r = ShenRow{r.method, r.J, r.L, sigma, false, r.error_code};
+      if (!r.ok) {  // refused: no partial sums from the seeds before the refusal
+        ShenRow refused;
+        refused.method = r.method;
+        refused.J = r.J;
+        refused.L = r.L;
+        refused.sigma = sigma;
+        refused.error_code = r.error_code;
+        r = refused;
+      }
     return rows;
   };
 
