@@ -16,20 +16,33 @@ async function open() {
   return b;
 }
 
-/// Fits only matrix-3x3 × least squares in step 3 and waits for its row in the results.
-async function fitMatrix(page) {
+/// Fits only `model` × `objective` in step 3 and waits for its row in the results.
+async function fitOne(page, model = 'matrix-3x3', objective = 'ls') {
   await step(page, 'fit');
   await page.waitForSelector('#step-fit button.primary:not([disabled])', { timeout: 180000 });
-  await page.$$eval('#step-fit input[data-model], #step-fit input[data-objective]', (els) => {
+  await page.$$eval('#step-fit input[data-model], #step-fit input[data-objective]', (els, [m, o]) => {
     for (const e of els) {
-      const want = e.dataset.model ? e.dataset.model === 'matrix-3x3' : e.dataset.objective === 'ls';
+      const want = e.dataset.model ? e.dataset.model === m : e.dataset.objective === o;
       if (e.checked !== want) e.click();
     }
-  });
+  }, [model, objective]);
   await page.click('#step-fit button.primary');
   await page.waitForFunction(() => window.tristim.session.results?.length === 1 && !document.querySelector('#step-fit button.primary[disabled]'), null, { timeout: 120000 });
   await step(page, 'results');
 }
+
+/// The selected result's training set as CSVs and its recipe as JSON in test-artifacts/ (values in
+/// JS's shortest round-trip form, so the CLI reads the same doubles).
+function writeTraining(r) {
+  const row = (id, i, a) => `${id},${a[3 * i]},${a[3 * i + 1]},${a[3 * i + 2]}`;
+  fs.writeFileSync(artifact('bootstrap-rgb.csv'), `patch,R,G,B\n${r.ids.map((id, i) => row(id, i, r.rgb)).join('\n')}\n`);
+  fs.writeFileSync(artifact('bootstrap-xyz.csv'), `patch,X,Y,Z\n${r.ids.map((id, i) => row(id, i, r.xyz)).join('\n')}\n`);
+  fs.writeFileSync(artifact('bootstrap-recipe.json'), JSON.stringify(JSON.parse(r.profile).recipe));
+}
+const training = (page) => page.evaluate(() => {
+  const x = window.tristim.session.results[0];
+  return { ids: Array.from(x.ids), rgb: Array.from(x.rgb), xyz: Array.from(x.xyz), profile: x.fit.profile, bootstrap: x.bootstrap };
+});
 
 const setOption = async (page, name, value) => {
   await page.fill(`#step-results fieldset.uncertainty input[data-option="${name}"]`, String(value));
@@ -37,7 +50,7 @@ const setOption = async (page, name, value) => {
 };
 
 pageTest('bootstrap: progress, cancel, intervals equal the CLI\'s, ellipses drawn', { timeout: 600000, open }, async ({ page }) => {
-  await fitMatrix(page);
+  await fitOne(page);
   // The form is the engine's table: its bounds and defaults.
   const max = await page.getAttribute('#step-results fieldset.uncertainty input[data-option="resamples"]', 'max');
   assert.equal(max, '100000');
@@ -61,15 +74,9 @@ pageTest('bootstrap: progress, cancel, intervals equal the CLI\'s, ellipses draw
   await setOption(page, 'level', 0.9);
   await page.click('#step-results button[data-action="bootstrap"]');
   await page.waitForSelector('#step-results table.coefficients', { timeout: 60000 });
-  const r = await page.evaluate(() => {
-    const x = window.tristim.session.results[0];
-    return { ids: Array.from(x.ids), rgb: Array.from(x.rgb), xyz: Array.from(x.xyz), profile: x.fit.profile, bootstrap: x.bootstrap };
-  });
-  // The same training set and recipe through the CLI (values written in JS's shortest round-trip form).
-  const row = (id, i, a) => `${id},${a[3 * i]},${a[3 * i + 1]},${a[3 * i + 2]}`;
-  fs.writeFileSync(artifact('bootstrap-rgb.csv'), `patch,R,G,B\n${r.ids.map((id, i) => row(id, i, r.rgb)).join('\n')}\n`);
-  fs.writeFileSync(artifact('bootstrap-xyz.csv'), `patch,X,Y,Z\n${r.ids.map((id, i) => row(id, i, r.xyz)).join('\n')}\n`);
-  fs.writeFileSync(artifact('bootstrap-recipe.json'), JSON.stringify(JSON.parse(r.profile).recipe));
+  const r = await training(page);
+  // The same training set and recipe through the CLI.
+  writeTraining(r);
   const cli = JSON.parse(execFileSync(CLI, ['fit', '--recipe', artifact('bootstrap-recipe.json'), '--rgb', artifact('bootstrap-rgb.csv'),
     '--xyz', artifact('bootstrap-xyz.csv'), '--bootstrap', '200', '--seed', '3', '--level', '0.9'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] }));
   const { train_ci, loo_ci, ...page_ } = r.bootstrap;
@@ -95,4 +102,24 @@ pageTest('bootstrap: progress, cancel, intervals equal the CLI\'s, ellipses draw
   await screenshot(page, 'bootstrap-results');
   await page.$eval('figure[data-plot="lab-a-b"]', (e) => e.scrollIntoView());
   await screenshot(page, 'bootstrap-ellipses');
+});
+
+pageTest('leave-one-out checks: the stopping-point flag and the ridge row are tristim compare --ridge\'s', { timeout: 600000, open }, async ({ page }) => {
+  await fitOne(page, 'Finlayson2015-3', 'de2000');
+  await page.click('#step-results button[data-action="loo-checks"]');
+  await page.waitForSelector('#step-results table.ridge tbody tr', { timeout: 120000 });
+  const r = await training(page);
+  writeTraining(r);
+  const white = JSON.parse(r.profile).recipe.characterisation.lab_white.join(',');
+  const cli = JSON.parse(execFileSync(CLI, ['compare', '--rgb', artifact('bootstrap-rgb.csv'), '--xyz', artifact('bootstrap-xyz.csv'),
+    '--models', 'Finlayson2015-3', '--objectives', 'de2000', '--ridge', '--json', '--lab-white', white], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] }));
+  const stop = cli.rows[0].loo_stopping;
+  const flag = await page.textContent('#step-results table.compare:not(.ridge) td.status');
+  if (stop.flagged) assert.match(flag, new RegExp(`LOO-unstable: ${stop.perturbed_loo_mean.toFixed(2)} with 100× tighter stopping`));
+  else assert.match(flag, /LOO stable/);
+  const ridge = await page.$$eval('#step-results table.ridge tbody tr td', (e) => e.map((x) => x.textContent));
+  const c = cli.ridge[0];
+  assert.deepEqual(ridge.slice(0, 4), [c.train_dE00.mean.toFixed(2), c.loo_dE00.mean.toFixed(2), c.loo_dE00.max.toFixed(2), c.lambda.toExponential(2)]);
+  await page.$eval('#step-results table.compare', (e) => e.scrollIntoView());
+  await screenshot(page, 'loo-checks');
 });
