@@ -419,16 +419,20 @@ std::string link_content(const SharePayload& p) {
   return text + values;
 }
 
-/// The payload JSON (share_payload_from_json's form) of a link's content.
-json::Value link_json(const std::string& content) {
-  const std::size_t nul = content.find('\0');
-  json::Value o;
+/// The JSON before a content's NUL (all of it without one): ParseError when it is not JSON.
+json::Value content_json(const std::string& content, std::size_t nul) {
   try {
-    o = json::parse(content.substr(0, nul));
+    return json::parse(content.substr(0, nul));
   } catch (const Error& e) {
     if (e.code() == ErrorCode::LimitExceeded) throw;
     bad(std::string("not JSON: ") + e.what());
   }
+}
+
+/// The payload JSON (share_payload_from_json's form) of a version 1 link's content.
+json::Value link_json(const std::string& content) {
+  const std::size_t nul = content.find('\0');
+  const json::Value o = content_json(content, nul);
   const std::string_view values = nul == std::string::npos ? std::string_view() : std::string_view(content).substr(nul + 1);
   const json::Value* kind = o.is_object() ? o.find("kind") : nullptr;
   if (!kind || !kind->is_string() || kind->as_string() != "relative") {
@@ -664,13 +668,7 @@ std::string link_content_v2(const SharePayload& p, std::size_t& tail) {
 json::Value link_json_v2(const std::string& content) {
   const std::size_t nul = content.find('\0');
   if (nul == std::string::npos) bad("no binary part after the JSON");
-  json::Value o;
-  try {
-    o = json::parse(content.substr(0, nul));
-  } catch (const Error& e) {
-    if (e.code() == ErrorCode::LimitExceeded) throw;
-    bad(std::string("not JSON: ") + e.what());
-  }
+  const json::Value o = content_json(content, nul);
   if (!o.is_object()) bad("must be a JSON object");
   json::reject_unknown(o, {"tristim_version", "kind", "recipe", "ids", "sources", "results"}, "share payload", ErrorCode::ParseError);
   const std::string& kind = text_field(o, "kind", "payload");
