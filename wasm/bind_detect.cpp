@@ -41,11 +41,11 @@ std::vector<ChartCandidate> detect(const RawHandle* h, DetectOptions options, co
 
 EMSCRIPTEN_BINDINGS(tristim_detect) {
   { using S = DetectOptions; value_object<S>("DetectOptions") FIELD(charts) FIELD(custom) FIELD(custom_reference)
-      FIELD(working_side) FIELD(seed) FIELD(box) FIELD(min_confidence) FIELD(max_candidates); }
+      FIELD(working_side) FIELD(seed) FIELD(box) FIELD(cut_charts) FIELD(min_confidence) FIELD(max_candidates); }
   { using S = PatchAgreement; value_object<S>("PatchAgreement") FIELD(id) FIELD(residual); }
   { using S = ChartCandidate; value_object<S>("ChartCandidate") FIELD(chart) FIELD(corners) FIELD(confidence)
       FIELD(orientation) FIELD(angle) FIELD(orientation_resolved) FIELD(residual) FIELD(runner_up_residual) FIELD(gap)
-      FIELD(edge_rms) FIELD(edges) FIELD(coverage) FIELD(supported) FIELD(alternative_residual) FIELD(patches); }
+      FIELD(edge_rms) FIELD(edges) FIELD(coverage) FIELD(supported) FIELD(alternative_residual) FIELD(patches) FIELD(missing); }
 
   def<&detect>("detectCharts");
 }

@@ -1,6 +1,7 @@
 // Detection helped on the page (issue 48): a chart too small for the automatic passes is missed,
 // the page says why and asks where the chart is; one click near it finds it (a seed point), the
-// corners move onto it; a rough box dragged around it finds it too. The image is rendered at test
+// corners move onto it; a rough box dragged around it finds it too. Meanwhile the patch table,
+// sampled under the corners left from before, is marked stale until the chart is found. The image is rendered at test
 // time by the engine's lab (a Passport of 75 × 50 px in a 1800 × 1200 measurement image).
 import test from 'node:test';
 import assert from 'node:assert/strict';
@@ -41,6 +42,11 @@ test('a missed chart: the page says why; one click near it finds it, so does a r
     const text = await page.textContent(`${PANEL} .detect-text`);
     assert.match(text, /No .*Passport.* found in this image: (no flat region is shaped like a patch|the largest flat regions form no grid)/);
     assert.match(text, /click near the chart on the image, or drag a rough box around it/);
+    // The patch table still holds the samples under the corners from before: marked stale, none "ok".
+    await page.waitForFunction(() => document.querySelector('#step-images .table-box')?.classList.contains('stale'));
+    assert.match(await page.textContent('#step-images .summary'), /No chart found in this image/);
+    const staleFlags = await page.$$eval('#step-images .patch-table td.flags', (tds) => tds.map((td) => td.textContent));
+    assert.ok(staleFlags.length > 0 && staleFlags.every((f) => /stale/.test(f)), staleFlags.join(' | '));
     await screenshot(page, 'detect-help-1-missed');
     // One click a few pixels off the chart.
     const [cx, cy] = await onScreen(page, 1330, 465);
@@ -49,6 +55,10 @@ test('a missed chart: the page says why; one click near it finds it, so does a r
     const found = await corners(page);
     assert.ok(worst(found) < 1, `corners ${found} vs ${TRUTH}`);
     assert.match(await page.textContent(`${PANEL} .detect-text`), /Corners found automatically: .*Passport/);
+    // Sampled again at the found corners: no longer stale.
+    await page.waitForFunction(() => !document.querySelector('#step-images .table-box').classList.contains('stale')
+      && [...document.querySelectorAll('#step-images .patch-table td.flags')].every((td) => !/stale/.test(td.textContent)));
+    assert.match(await page.textContent('#step-images .summary'), /patches sampled/);
     await screenshot(page, 'detect-help-2-found');
     // The help is disarmed once found: a click on the image moves nothing.
     await page.mouse.click(...(await onScreen(page, 300, 300)));

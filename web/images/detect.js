@@ -10,7 +10,9 @@ export const handlers = {
   /// (image pixels): look there (DetectOptions). Throws CHART_NOT_FOUND, saying why, when there is none.
   detect: (T, { layout = { chart: 'passport' }, seed, box }, { state, progress }) => {
     if (!state.raw?.chart) throw coded('no image decoded yet', 'NO_IMAGE');
-    const options = { charts: [layout.chart], seed, box };
+    // A chart cut by the frame is refused here (its reason says so): the page's sampling takes
+    // corners inside the image only; `tristim detect` / `sample` find and sample one.
+    const options = { charts: [layout.chart], seed, box, cut_charts: false };
     if (layout.chart === 'custom') options.custom = layout;
     progress(0, 'finding the chart');
     const found = T.detectCharts(state.raw.chart, options, (stage, fraction) => progress(fraction, `finding the chart: ${STAGES[stage] ?? stage}`));

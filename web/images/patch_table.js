@@ -1,11 +1,13 @@
 // The per-patch table of a sampling: id, mean camera RGB, std, pixel count, saturation, flags.
 import { h, fmt } from '../lib/ui.js';
 
-export function patchTable(s) {
+/// stale: the corners in use were not found on this image (detection missed and they were left
+/// from before), so no row is "ok": each is marked stale.
+export function patchTable(s, { stale = false } = {}) {
   const n = s.ids.length;
   const rows = [];
   for (let i = 0; i < n; i++) {
-    const f = s.flags[i];
+    const f = stale ? [...s.flags[i], 'stale'] : s.flags[i];
     rows.push(h('tr', { class: f.includes('saturated') ? 'flagged saturated' : f.length ? 'flagged' : '', dataset: { id: s.ids[i] } },
       h('th', { scope: 'row' }, s.ids[i]),
       [0, 1, 2].map((k) => h('td', {}, fmt(s.RGB[3 * i + k], 1))),
@@ -15,7 +17,7 @@ export function patchTable(s) {
       h('td', { class: 'flags' }, f.length ? f.join(', ') : 'ok')));
   }
   return h('table', { class: 'patch-table' },
-    h('caption', {}, 'Sampled camera RGB per patch (linear DN, black subtracted, no white balance; mean and σ over the central area). Flags: saturated (left out of fits), dark (near the noise floor), nonuniform (quadrant means differ by > 5 % beyond noise).'),
+    h('caption', {}, 'Sampled camera RGB per patch (linear DN, black subtracted, no white balance; mean and σ over the central area). Flags: saturated (left out of fits), dark (near the noise floor), nonuniform (quadrant means differ by > 5 % beyond noise), stale (the corners were not found on this image).'),
     h('thead', {}, h('tr', {}, ['Patch', 'R', 'G', 'B', 'σR', 'σG', 'σB', 'pixels', 'saturated', 'flags'].map((t) => h('th', { scope: 'col' }, t)))),
     h('tbody', {}, rows));
 }

@@ -71,6 +71,7 @@ export function mount(section, app) {
   const detectProgress = progressBar('Finding the chart');
   const detectPanel = h('div', { class: 'detect-panel', dataset: { state: 'idle' } }, detectText, acceptBtn, againBtn, detectProgress.el);
   let detection = null;  // {candidate, state: 'proposal' | 'in-use' | 'adjusted'}
+  let unconfirmed = false;  // detection missed and the corners are still the ones from before: the table is stale
   // Light trap (Abed 2013 App. C step 1): a black cavity in the scene, marked like a patch; its
   // mean after the dark frame is the flare subtracted per channel before sampling.
   const trapOn = h('input', { type: 'checkbox', checked: !!app.session.lightTrap });
@@ -367,6 +368,7 @@ export function mount(section, app) {
           + 'click near the chart on the image, or drag a rough box around it, to look there again — or drag the corners onto it.'
         : 'Chart detection failed; the corners were left where they were.');
       if (missed) editor.askWhereTheChartIs((where) => detect({ apply: true, help: where }));
+      if (missed) { unconfirmed = true; if (app.derived.sample) renderTable(app.derived.sample); }
       showError(againBtn, e, 'Chart detection');
       return null;
     } finally {
@@ -387,6 +389,7 @@ export function mount(section, app) {
   let sampleSeq = 0;
   let timer = null;
   function cornersChanged(c, final) {
+    unconfirmed = false;
     if (detection?.state === 'in-use' && !sameCorners(c, detection.candidate.corners)) setDetection(detection.candidate, 'adjusted');
     clearTimeout(timer);
     timer = setTimeout(() => { app.save('corners', Array.from(c)); resample(); }, final ? 0 : 120);
@@ -444,10 +447,12 @@ export function mount(section, app) {
   }
 
   function renderTable(s) {
-    tableBox.classList.remove('stale');
+    tableBox.classList.toggle('stale', unconfirmed);
     const flagged = s.flags.filter((f) => f.length).length;
-    sampleSummary.textContent = `${s.ids.length} patches sampled; ${flagged} flagged.`;
-    tableBox.replaceChildren(patchTable(s));
+    sampleSummary.textContent = unconfirmed
+      ? 'No chart found in this image: the table shows the patches under the corners left from before, which may not lie on the chart.'
+      : `${s.ids.length} patches sampled; ${flagged} flagged.`;
+    tableBox.replaceChildren(patchTable(s, { stale: unconfirmed }));
   }
 
   /// Restores the session's files and corners (or the example on a first visit). The chart's own
