@@ -16,11 +16,9 @@
 #include "types.hpp"
 
 using namespace tristim;
+using namespace tristim::wasm;  // Conv, def, guard
 using emscripten::val;
 using emscripten::value_object;
-using wasm::Conv;
-using wasm::def;
-using wasm::guard;
 
 template <>
 struct tristim::wasm::Conv<AbsoluteProfile> {  // the profile's JSON text, both ways
