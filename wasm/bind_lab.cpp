@@ -44,6 +44,7 @@ EMSCRIPTEN_BINDINGS(tristim_lab) {
   def<&lab_overfit_exercise>("labOverfit");
   def<&cmf_sensitivities>("cmfSensitivities");
   def<&lab_chart_ids>("listLabCharts");
+  def<&lab_oecf_ids>("listLabOecfs");
   def<&camera_quality>("cameraQuality");
   def<&camera_quality_ranking>("cameraQualityRanking");
   def<&luther_fit>("lutherFit");

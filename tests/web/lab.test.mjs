@@ -5,8 +5,11 @@
 // best-fit CMF combination. Bad options show a coded error next to the input. No console errors.
 import test from 'node:test';
 import assert from 'node:assert/strict';
-import { screenshot } from './harness.mjs';
-import { openPage, step, errorNear, markCounts } from './journey.mjs';
+import os from 'node:os';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { screenshot, repoRoot } from './harness.mjs';
+import { openPage, step, errorNear, markCounts, CLI } from './journey.mjs';
 
 const S = '#step-lab';
 
@@ -70,7 +73,7 @@ test('lab: render a chart, open it in the journey (sampled = truth), rank the ca
     await page.click(`${S} [data-action="lab-ex1"]`);
     await page.waitForSelector(`${S} table[data-lab="ex1-table"]`);
     assert.equal(await page.$$eval(`${S} table[data-lab="ex1-table"] tbody tr`, (r) => r.length), 6);
-    assert.match(await page.textContent(`${S} [data-lab="ex1"] + pre, ${S} pre.cli >> nth=2`), /tristim reference --chart cc24 --illuminant D65/);
+    assert.match(await page.textContent(`${S} section[aria-labelledby="h-lab-ex1"] pre.cli`), /tristim reference --chart cc24 --illuminant D65/);
     assert.ok((await markCounts(page, 'lab-ex1-C3')).line >= 4);
     // Exercise 2: the 35-term polynomial refused on 24 patches, over-fitting in leave-one-out.
     await page.click(`${S} [data-tab="ex2"]`);
@@ -89,6 +92,41 @@ test('lab: render a chart, open it in the journey (sampled = truth), rank the ca
     await page.click(`${S} [data-action="lab-render"]`);
     const err = await errorNear(page, `${S} [data-action="lab-render"]`);
     assert.equal(err.code, 'INVALID_ARGUMENT');
+    assert.deepEqual(b.problems, []);
+  } finally { await b.close(); }
+});
+
+test('lab: a JPEG through the sRGB OECF under an uploaded SPD, opened in the journey: sampled = stored within 1.5 DN, as the CLI renders it', async () => {
+  const b = await openPage();
+  try {
+    const { page } = b;
+    const spdFile = 'tests/data/colour-science/illuminant_ampas_iso7589_studio_tungsten_380-780_5nm.csv';
+    await step(page, 'lab');
+    await page.selectOption(`${S} select >> nth=0`, 'Nikon_D850');
+    await page.setInputFiles(`${S} input[data-lab="spd"]`, path.join(repoRoot, spdFile));
+    await page.selectOption(`${S} select[data-lab="format"]`, 'jpeg');
+    await page.waitForFunction((s) => [...document.querySelector(s).options].some((o) => o.value === 'sRGB'), `${S} select[data-lab="oecf"]`);
+    await page.selectOption(`${S} select[data-lab="oecf"]`, 'sRGB');
+    await page.click(`${S} [data-action="lab-render"]`);
+    await page.waitForFunction(() => window.tristim.derived.labTruth?.jpeg_quality === 95, null, { timeout: 60000 });
+    const truth = await page.evaluate(() => window.tristim.derived.labTruth);
+    assert.equal(truth.illuminant, path.basename(spdFile));
+    assert.match(await page.textContent(`${S} [data-lab="render-cli"]`), /--oecf sRGB --out chart\.jpg$/);
+    const cli = JSON.parse(execFileSync(CLI, ['lab', 'render', '--camera', 'Nikon_D850', '--chart', 'cc24', '--illuminant', path.join(repoRoot, spdFile),
+      '--oecf', 'sRGB', '--out', path.join(os.tmpdir(), `lab-web-${process.pid}.jpg`)]).toString());
+    assert.deepEqual(truth.patches.map((p) => p.stored), cli.patches.map((p) => p.stored));
+    await screenshot(page, 'lab-render-jpeg');
+    await page.click(`${S} [data-action="lab-open"]`);
+    // The JPEG's sample (8-bit values), not the one of the image shown before it.
+    await page.waitForFunction(() => { const s = window.tristim.derived.sample; return s?.patches?.length === 24
+      && window.tristim.derived.image?.width === 900 && s.patches.every((p) => Math.max(...p.mean) <= 255); }, null, { timeout: 60000 });
+    const sample = await page.evaluate(() => window.tristim.derived.sample.patches.map((p) => Array.from(p.mean)));
+    let worst = { e: 0 };
+    sample.forEach((m, k) => m.forEach((v, c) => {
+      const e = Math.abs(v - truth.patches[k].stored[c]);
+      if (e > worst.e) worst = { e, at: `${truth.patches[k].id} ${'RGB'[c]}: sampled ${v}, stored ${truth.patches[k].stored[c]}` };
+    }));
+    assert.ok(worst.e <= 1.5, `tolerance 1.5 DN (JPEG quality 95): ${worst.at}`);
     assert.deepEqual(b.problems, []);
   } finally { await b.close(); }
 });

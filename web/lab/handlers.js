@@ -4,12 +4,15 @@
 import { reply } from '../lib/reply.js';
 
 export const handlers = {
-  /// options: LabRenderOptions fields (camera, chart, illuminant, exposure, shot_gain, …); the
-  /// illuminant's SPD is resolved by the engine from its id.
-  labRender: (T, { options }) => {
-    const out = T.labRender({ ...options, illuminant_spd: T.illuminantSpectrum(options.illuminant ?? 'D65') });
-    return { result: { dng: out.dng, truth: JSON.parse(out.truth) }, transfer: [out.dng.buffer] };
+  /// options: LabRenderOptions fields (camera, chart, illuminant, exposure, shot_gain, oecf, …);
+  /// format: 'dng', 'tiff' or 'jpeg'; the illuminant's SPD is the engine's for its id, or read by
+  /// the engine from an uploaded CSV `spd` {name, text}.
+  labRender: (T, { options, format = 'dng', spd }) => {
+    const L = spd ? T.readIlluminantCsv(spd.text, spd.name) : T.illuminantSpectrum(options.illuminant ?? 'D65');
+    const out = T.labRender({ ...options, illuminant_spd: L }, format);
+    return { result: { dng: out.dng, truth: JSON.parse(out.truth), format }, transfer: [out.dng.buffer] };
   },
+  labOecfs: (T) => reply(T.listLabOecfs()),
   /// Exercise 1: one patch's spectra and its XYZ / Lab / xy under each illuminant and observer.
   labSpectra: (T, { chart, patch, illuminants, observers }) => reply(T.labSpectraToColour(chart, patch, illuminants, observers)),
   /// Exercise 2: models × training charts on training, leave-one-out and the Munsell chips.

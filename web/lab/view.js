@@ -29,13 +29,23 @@ function choose(sel, value) {
 
 const q = (s) => (/^[\w.+-]+$/.test(s) ? s : `"${s}"`);
 
+/// The files the renderer writes: a DNG is linear sensor data; a TIFF or JPEG goes through the OECF.
+const FORMATS = [
+  { value: 'dng', label: 'DNG (linear RAW)', ext: 'dng', type: 'image/x-adobe-dng' },
+  { value: 'tiff', label: 'TIFF, 16 bits through the OECF', ext: 'tiff', type: 'image/tiff' },
+  { value: 'jpeg', label: 'JPEG, 8 bits through the OECF (quality 95)', ext: 'jpg', type: 'image/jpeg' },
+];
+const formatOf = (id) => FORMATS.find((f) => f.value === id) ?? FORMATS[0];
+
 /// The command line that renders the same file.
 export function renderCommand(o) {
-  let s = `tristim lab render --camera ${q(o.camera)} --chart ${o.chart} --illuminant ${o.illuminant} --exposure ${o.exposure}`;
+  let s = `tristim lab render --camera ${q(o.camera)} --chart ${o.chart} --illuminant ${q(o.illuminant)} --exposure ${o.exposure}`;
   if (o.shot_gain > 0 || o.read_noise > 0) s += ` --noise ${o.shot_gain},${o.read_noise} --seed ${o.seed}`;
   if (o.falloff > 0) s += ` --falloff ${o.falloff}`;
   if (o.flare > 0) s += ` --flare ${o.flare}`;
-  return `${s} --out chart.dng`;
+  const f = formatOf(o.format);
+  if (f.value !== 'dng') s += ` --oecf ${o.oecf}`;
+  return `${s} --out chart.${f.ext}`;
 }
 
 export function mount(section, app) {
@@ -48,6 +58,18 @@ export function mount(section, app) {
   const camSel = select(cameras, saved.camera ?? 'Canon_EOS_5D_Mark_II');
   const chartSel = select(CHARTS, saved.chart ?? 'cc24');
   const illumSel = select(illuminants, saved.illuminant ?? 'D65');
+  const formatSel = select(FORMATS, 'dng');
+  const oecfSel = select([{ value: 'linear', label: 'linear' }], 'linear');
+  const spdIn = h('input', { type: 'file', accept: '.csv,.txt', 'data-lab': 'spd', 'aria-label': 'Illuminant SPD (CSV)' });
+  formatSel.dataset.lab = 'format';
+  oecfSel.dataset.lab = 'oecf';
+  let spd = null;   // an uploaded SPD {name, text}: the illuminant instead of the picker's
+  spdIn.addEventListener('change', async () => { const f = spdIn.files[0]; spd = f ? { name: f.name, text: await f.text() } : null; });
+  illumSel.addEventListener('change', () => { spd = null; spdIn.value = ''; });
+  engine.call('labOecfs', {}).then((ids) => {   // the engine's OECF ids
+    oecfSel.replaceChildren(...ids.map((id) => h('option', { value: id }, id)));
+    oecfSel.value = ids.includes('sRGB') ? 'sRGB' : ids[0];
+  }).catch((e) => showError(oecfSel, e, 'OECFs'));
   const num = (name, label, value, attrs = {}) => h('input', { type: 'number', step: 'any', class: 'num', 'data-lab': name, 'aria-label': label, value, ...attrs });
   const inputs = {
     exposure: num('exposure', 'Exposure', saved.exposure ?? 0.5, { min: 0.01, max: 4 }),
@@ -63,7 +85,8 @@ export function mount(section, app) {
   let last = null;
 
   function readOptions() {
-    const o = { camera: camSel.value, chart: chartSel.value, illuminant: illumSel.value };
+    const o = { camera: camSel.value, chart: chartSel.value, illuminant: spd ? spd.name : illumSel.value,
+      format: formatSel.value, oecf: formatSel.value === 'dng' ? 'linear' : oecfSel.value };
     for (const [k, el] of Object.entries(inputs)) o[k] = numberValue(el);
     return o;
   }
@@ -78,7 +101,8 @@ export function mount(section, app) {
     renderBtn.disabled = true;
     renderOut.replaceChildren(h('p', {}, 'Rendering in the engine…'));
     try {
-      last = await engine.call('labRender', { options: o });
+      const { format, ...options } = o;
+      last = await engine.call('labRender', { options, format, spd });
     } catch (e) {
       renderOut.replaceChildren();
       showError(renderBtn, e, 'Render');
@@ -89,25 +113,33 @@ export function mount(section, app) {
     return last;
   }
 
-  function show({ dng, truth }) {
-    const name = `lab-${truth.chart}-${truth.camera.replace(/[^\w.-]+/g, '_')}-${truth.illuminant}.dng`;
+  function show({ dng, truth, format }) {
+    const f = formatOf(format);
+    const name = `lab-${truth.chart}-${truth.camera.replace(/[^\w.-]+/g, '_')}-${truth.illuminant.replace(/[^\w.-]+/g, '_')}.${f.ext}`;
     const openBtn = h('button', { type: 'button', 'data-action': 'lab-open' }, 'Open in the journey (Images step)');
-    const saveBtn = h('button', { type: 'button', 'data-action': 'lab-download' }, 'Download the DNG');
+    const saveBtn = h('button', { type: 'button', 'data-action': 'lab-download' }, `Download the ${f.ext.toUpperCase()}`);
     const truthBtn = h('button', { type: 'button', 'data-action': 'lab-truth' }, 'Download the truth (JSON)');
     openBtn.addEventListener('click', () => openInJourney(name));
-    saveBtn.addEventListener('click', () => download(name, dng, 'image/x-adobe-dng'));
-    truthBtn.addEventListener('click', () => download(name.replace(/\.dng$/, '.json'), JSON.stringify(truth, null, 1), 'application/json'));
+    saveBtn.addEventListener('click', () => download(name, dng, f.type));
+    truthBtn.addEventListener('click', () => download(name.replace(/\.\w+$/, '.json'), JSON.stringify(truth, null, 1), 'application/json'));
+    const stored = truth.patches[0]?.stored !== undefined;
     const rows = truth.patches.map((p) => h('tr', {},
       h('th', { scope: 'row' }, p.id), ...p.rgb.map((v) => h('td', { class: 'num' }, String(v))),
-      ...p.XYZ.map((v) => h('td', { class: 'num' }, fmt(v, 2)))));
+      ...p.XYZ.map((v) => h('td', { class: 'num' }, fmt(v, 2))),
+      ...(stored ? p.stored.map((v) => h('td', { class: 'num' }, String(v))) : [])));
+    const what = f.value === 'dng'
+      ? `A ${truth.sensor_width} × ${truth.sensor_height} ${truth.cfa} DNG (${(dng.length / 1e6).toFixed(1)} MB, black ${truth.black}, white ${truth.white_level}): `
+      : `A ${truth.width} × ${truth.height} RGB ${f.value === 'jpeg' ? `JPEG (quality ${truth.jpeg_quality}, 8 bits` : 'TIFF (16 bits'}, `
+        + `${(dng.length / 1e6).toFixed(2)} MB) through the OECF ${truth.oecf}; the stored columns are its encoded values (full scale ${truth.full_scale})`
+        + `${f.value === 'jpeg' ? ' before compression' : ''}: `;
     renderOut.replaceChildren(
-      h('p', { class: 'summary', 'data-lab': 'summary' },
-        `A ${truth.sensor_width} × ${truth.sensor_height} ${truth.cfa} DNG (${(dng.length / 1e6).toFixed(1)} MB, black ${truth.black}, white ${truth.white_level}): `
+      h('p', { class: 'summary', 'data-lab': 'summary' }, what
         + `the white diffuser's G at ${fmt(truth.white[1], 0)} DN. The table is the truth: the camera RGB (DN above black) that sampling the patches `
         + 'recovers exactly when noise and fall-off are off, and the reference XYZ of the same patches.'),
       h('p', { class: 'actions' }, openBtn, ' ', saveBtn, ' ', truthBtn),
       h('div', { class: 'table-scroll' }, h('table', { class: 'data', 'data-lab': 'truth' },
-        h('thead', {}, h('tr', {}, ...['patch', 'R', 'G', 'B', 'X', 'Y', 'Z'].map((t) => h('th', { scope: 'col' }, t)))),
+        h('thead', {}, h('tr', {}, ...['patch', 'R', 'G', 'B', 'X', 'Y', 'Z', ...(stored ? ['stored R', 'stored G', 'stored B'] : [])]
+          .map((t) => h('th', { scope: 'col' }, t)))),
         h('tbody', {}, ...rows))));
   }
 
@@ -120,7 +152,7 @@ export function mount(section, app) {
     choose(app.views.reference?.controls?.illumSel, truth.illuminant);
     choose(document.querySelector('#step-images select[data-role="layout"]'), truth.chart);
     app.goto('images', { focus: true });
-    await app.views.images.setFile('chart', new File([last.dng], name, { type: 'image/x-adobe-dng' }));
+    await app.views.images.setFile('chart', new File([last.dng], name, { type: formatOf(last.format).type }));
   }
 
   renderBtn.addEventListener('click', render);
@@ -128,12 +160,15 @@ export function mount(section, app) {
     h('h3', { id: 'h-lab-render' }, 'Render a chart photograph'),
     h('p', { class: 'explain' },
       'The chart\'s measured reflectances, lit by the illuminant, seen through the camera\'s measured spectral sensitivities '
-      + '(u = Σ SSF · S · R, the virtual camera), drawn head-on into a 14-bit Bayer sensor and written as a real DNG. '
+      + '(u = Σ SSF · S · R, the virtual camera), drawn head-on into a 14-bit Bayer sensor and written as a real DNG — or, '
+      + 'through an OECF (x = DN / saturation; sRGB, or x^(1/γ)), as a 16-bit TIFF or an 8-bit JPEG. The illuminant: a built-in '
+      + 'one, or your own SPD (CSV: wavelength, value). '
       + 'Exposure: the white diffuser\'s G as a fraction of saturation. Noise: variance = gain · DN + read². '
       + 'Fall-off: 1 − a·r² (r = 1 at the corners). Flare: a veil of that fraction of the white.'),
     h('div', { class: 'controls' },
       field('Camera', camSel, 'One of the 52 cameras with measured sensitivities'),
-      field('Chart', chartSel), field('Illuminant', illumSel),
+      field('Chart', chartSel), field('Illuminant', illumSel), field('or an SPD (CSV)', spdIn),
+      field('File', formatSel), field('OECF (TIFF, JPEG)', oecfSel),
       field('Exposure', inputs.exposure), field('Shot-noise gain', inputs.shot_gain), field('Read noise (DN)', inputs.read_noise),
       field('Fall-off', inputs.falloff), field('Flare', inputs.flare), field('Noise seed', inputs.seed)),
     h('p', {}, renderBtn), errorSlot(renderBtn),

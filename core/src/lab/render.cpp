@@ -101,6 +101,8 @@ LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::stri
   return {lab_render_dng(r), lab_render_json(r).dump(1)};
 }
 
+std::vector<std::string> lab_oecf_ids() { return {"linear", "sRGB", "gamma=1.8", "gamma=2.2"}; }
+
 std::vector<std::string> lab_chart_ids() { return {"cc24", "passport", "sg140"}; }
 
 double lab_encode(const LabRenderOptions& o, double dn, double saturation) {

@@ -294,3 +294,13 @@ TEST_CASE("lab render: a JPEG through the sRGB OECF, detected and sampled, gives
   test::require_code([&] { lab_render_files(o, "jpeg"); }, ErrorCode::InvalidArgument);
   test::require_code([&] { lab_render_files(o, "png"); }, ErrorCode::InvalidArgument);
 }
+
+TEST_CASE("lab render: every OECF the page offers is one lab_encode knows, 0 and saturation map to 0 and 1", "[lab]") {
+  LabRenderOptions o;
+  for (const auto& id : lab_oecf_ids()) {
+    INFO(id);
+    o.oecf = id;
+    CHECK(lab_encode(o, 0, 1000) == 0);
+    CHECK(std::abs(lab_encode(o, 1000, 1000) - 1) < 1e-15);
+  }
+}

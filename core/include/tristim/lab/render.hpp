@@ -113,6 +113,10 @@ struct LabRenderFiles {
 /// "jpeg_quality").
 LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::string& format = "dng");
 
+/// OECFs offered for TIFF and JPEG output (lab_encode accepts any gamma=<0.2..5>): "linear",
+/// "sRGB", "gamma=1.8", "gamma=2.2".
+std::vector<std::string> lab_oecf_ids();
+
 /// Chart ids lab rendering draws ("cc24", "passport", "sg140").
 std::vector<std::string> lab_chart_ids();
 
