@@ -50,7 +50,7 @@ std::string base_name(const std::string& path) {
 /// The training set of `recipe` from --raw or --rgb (and --xyz), as `tristim fit --recipe` reads them.
 TrainingSet share_inputs(const Args& args, const Profile& profile, Recipe& recipe, std::vector<ShareSource>& sources,
                          std::string& raw_bytes) {
-  const bool builtin = recipe.reference.chart != "file";
+  const bool builtin = !share_inline_reference(recipe);
   if (!args.has("raw") && !args.has("rgb") && !args.has("xyz") && profile.has_training_data) {
     // The profile's own training patches (characterise() keeps them): camera RGB as sampled,
     // the reference by chart id, or inline when it was a file.

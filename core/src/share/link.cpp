@@ -85,6 +85,8 @@ double get_f64(std::string_view in, std::size_t at) {
 
 [[noreturn]] void bad(const std::string& message) { throw Error(ErrorCode::ParseError, "share payload: " + message); }
 
+bool inline_reference(const Recipe& recipe) { return share_inline_reference(recipe); }
+
 // ---- results as text lines -------------------------------------------------------------------
 
 /// A value's text: numbers to `digits` significant digits (printf %.*g, correctly rounded in both
@@ -275,7 +277,7 @@ SharePayload share_payload(const Characterisation& c, const TrainingSet& trainin
   p.recipe = c.recipe;
   p.labels = training.labels;
   p.camera_RGB = training.camera_RGB;
-  if (c.recipe.reference.chart == "file") p.reference_XYZ = training.reference_XYZ;
+  if (inline_reference(c.recipe)) p.reference_XYZ = training.reference_XYZ;
   p.sources = sources;
   p.expected = share_results(c.profile);
   return p;
@@ -356,7 +358,7 @@ SharePayload share_payload_from_json(const json::Value& o) {
       p.labels.push_back(id.as_string());
     }
     p.camera_RGB = rows_of(field(patches, "RGB", "patches"), "patches.RGB", p.labels.size());
-    const bool builtin = p.recipe.reference.chart != "file";
+    const bool builtin = !inline_reference(p.recipe);
     if (const json::Value* xyz = patches.find("XYZ")) {
       if (builtin) bad("patches.XYZ is only for a recipe whose reference is a file (this one names chart '" +
                        p.recipe.reference.chart + "')");
@@ -584,7 +586,7 @@ constexpr int kMantissaHighPlanes = 4, kDoubleHighPlanes = 2;  ///< the compress
 /// A relative payload's patches in the order of its built-in chart: the labels a link leaves out.
 /// The writer (`writing`) keeps the ids when the chart cannot be made; the reader says why.
 std::vector<std::string> chart_labels(const Recipe& recipe, bool writing) {
-  if (recipe.reference.chart == "file") return {};
+  if (inline_reference(recipe)) return {};
   try {
     return recipe_reference(recipe).labels;
   } catch (const Error&) {
@@ -688,11 +690,11 @@ json::Value link_json_v2(const std::string& content) {
       if (!given->is_array()) bad("ids must be an array of strings");
       ids = *given;
     } else {
-      if (r.reference.chart == "file") bad("\"ids\" missing: the recipe's reference is a file, so the link must name its patches");
+      if (inline_reference(r)) bad("\"ids\" missing: the recipe's reference is a file (or several images), so the link must name its patches");
       for (const auto& label : chart_labels(r, false)) ids.push(label);
     }
     patches = ids.as_array().size();
-    doubles = 3 * patches * (r.reference.chart == "file" ? 2 : 1);
+    doubles = 3 * patches * (inline_reference(r) ? 2 : 1);
   } else {
     if (o.find("ids")) bad("only a relative payload has \"ids\"");
     out.set("recipe", recipe);
@@ -790,6 +792,8 @@ std::string link_text(int version, const std::string& content, std::string_view 
 
 const std::string& share_link_dictionary() { return dictionary_v2(); }
 
+bool share_inline_reference(const Recipe& recipe) { return recipe.reference.chart == "file" || !recipe.images.empty(); }
+
 std::string encode_share_payload_v1(const SharePayload& payload) { return link_text(1, link_content(payload), {}); }
 
 std::string encode_share_payload(const SharePayload& payload) {
@@ -843,7 +847,7 @@ std::string share_link(const std::string& base, const std::string& payload) {
 
 TrainingSet share_training(const SharePayload& p) {
   if (p.kind != "relative") throw Error(ErrorCode::InvalidArgument, "an absolute payload has no relative training set");
-  if (p.recipe.reference.chart == "file") return training_set(p.recipe, p.labels, p.camera_RGB, p.reference_XYZ);
+  if (inline_reference(p.recipe)) return training_set(p.recipe, p.labels, p.camera_RGB, p.reference_XYZ);
   const ReferenceChart ref = recipe_reference(p.recipe);
   std::map<std::string, std::size_t> row;
   for (std::size_t i = 0; i < ref.ids.size(); ++i) row[ref.ids[i]] = i;
@@ -885,7 +889,7 @@ TrainingSet sample_training(Recipe& recipe, const RawImage& image, const Referen
 bool can_resample(const SharePayload& p) {
   const auto& c = p.recipe.sampling.corners;
   const CaptureStage& cap = p.recipe.capture;
-  return p.kind == "relative" && std::any_of(c.begin(), c.end(), [](double v) { return v != 0; }) && cap.dark_frames == 0 &&
+  return p.kind == "relative" && p.recipe.images.empty() && std::any_of(c.begin(), c.end(), [](double v) { return v != 0; }) && cap.dark_frames == 0 &&
          !cap.flat_field && !cap.falloff;
 }
 

@@ -187,6 +187,27 @@ TEST_CASE("an inline reference travels in the link", "[share]") {
   CHECK(reproduce_share(back).verdict == "reproduced");
 }
 
+TEST_CASE("a recipe with several chart images travels in a link, its union's reference inline", "[share]") {
+  const Planted p = planted();
+  Recipe r = p.recipe;
+  for (const char* name : {"a.dng", "b.dng"}) {
+    RecipeImage e;
+    e.name = name;
+    e.reference = r.reference;
+    e.sampling.layout.chart = "cc24";
+    r.images.push_back(e);
+  }
+  TrainingSet second = p.training;
+  second.camera_RGB *= 1.01;  // another shot: each colour once, the mean of both
+  const TrainingSet u = training_union(r, {{"a.dng", p.training}, {"b.dng", second}});
+  const Characterisation c = characterise(r, u);
+  const SharePayload back = decode_share_payload(encode_share_payload(share_payload(c, u)));
+  CHECK(back.recipe.images.size() == 2);
+  CHECK(back.labels == u.labels);
+  CHECK(back.reference_XYZ == u.reference_XYZ);
+  CHECK(reproduce_share(back).verdict == "reproduced");
+}
+
 TEST_CASE("damaged links are refused with their codes", "[share]") {
   const std::string payload = payload_of(planted());
   const std::size_t dot1 = payload.find('.'), dot2 = payload.rfind('.');

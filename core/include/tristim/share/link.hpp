@@ -118,6 +118,10 @@ SharePayload decode_share_payload(std::string_view text);
 /// base + "#tristim=" + payload (base's own fragment, if any, replaced).
 std::string share_link(const std::string& base, const std::string& payload);
 
+/// Whether a relative payload carries its reference XYZ inline: a user's reference ("file"), or a
+/// recipe with several chart images (issue 48: the union of several references' patches).
+bool share_inline_reference(const Recipe& recipe);
+
 /// The training set a relative payload carries (reference XYZ from the built-in chart by id, or
 /// inline). Error(PatchMismatch) when a patch is not in the recipe's chart.
 TrainingSet share_training(const SharePayload& payload);
