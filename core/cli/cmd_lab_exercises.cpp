@@ -72,7 +72,6 @@ int run_shen(const Args& args, std::ostream& out) {
   o.seeds = static_cast<int>(args.get_double("seeds", o.seeds));
   o.seed = seed_arg(args);
   if (which == "L") o.sigmas.clear();  // only the table's rows
-  else o.J_table = std::max(1, o.J_table);
   const ShenExercise e = lab_shen_exercise(lab_camera_arg(args, "Canon_EOS_5D_Mark_II"), o);
   print_table(args, which == "L" ? shen_l_table(e) : shen_j_table(e), out);
   return 0;
