@@ -98,6 +98,17 @@ int run_sensitivities(const Args& args, std::ostream& out) {
        {"components", e.components}, {"basis_cameras", e.basis_cameras}, {"residual", fields::write(e.residual)},
        {"residual_rms", e.residual_rms}, {"areas", fields::write(e.areas)}, {"area_ratio_R_G", e.areas[0] / e.areas[1]},
        {"area_ratio_B_G", e.areas[2] / e.areas[1]}, {"clipped_samples", e.clipped}});
+  // How sure the areas are (leave-one-camera-out bases, K ± 1) and whether the camera is unlike the basis.
+  const SensitivityUncertainty u =
+      sensitivity_uncertainty(e.paired_RGB, e.paired_reflectances, illuminant_arg(args.get("illuminant")), o, e);
+  s.set("uncertainty", fields::object({{"area_ratio_R_G", u.u[0]}, {"area_ratio_B_G", u.u[1]}, {"coverage", u.coverage},
+                                       {"loo_R_G", u.u_loo[0]}, {"loo_B_G", u.u_loo[1]}, {"K_R_G", u.u_K[0]},
+                                       {"K_B_G", u.u_K[1]}, {"loo_bases", u.loo_bases},
+                                       {"nearest_camera", u.nearest_camera}, {"nearest_distance", u.nearest_distance}}));
+  s.set("warnings", fields::write(u.warnings));
+  std::cerr << "tristim sensitivities: A_R/A_G " << e.areas[0] / e.areas[1] << " ± " << 100 * u.u[0] << " %, A_B/A_G "
+            << e.areas[2] / e.areas[1] << " ± " << 100 * u.u[1] << " % (k = " << u.coverage << ")\n";
+  if (!u.message.empty()) std::cerr << "tristim sensitivities: warning: " << u.message << "\n";
   if (args.has("compare")) {
     const SpectralData truth = camera_ssf(args.get("compare"));
     const auto A = channel_areas(truth);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "tristim/absolute/normalisation.hpp"
 #include "tristim/error.hpp"
@@ -148,8 +149,80 @@ SensitivityEstimate estimate_sensitivities_by_id(const std::vector<std::string>&
                                               (ids.empty() ? std::string("no patches") : "e.g. '" + ids[0] + "'") + ")");
   SensitivityEstimate e = estimate_sensitivities_Jiang2013(camera_RGB, paired, illuminant, o);
   e.ids = paired.names;
+  e.paired_reflectances = paired;
+  e.paired_RGB = camera_RGB;
   e.unpaired = static_cast<int>(ids.size() - camera_RGB.size());
   return e;
+}
+
+SensitivityUncertainty sensitivity_uncertainty(const std::vector<Vec3>& rgb, const SpectralData& reflectances,
+                                               const SpectralData& illuminant, const SensitivityOptions& options,
+                                               const SensitivityEstimate& e, const SensitivityUncertaintyOptions& uo) {
+  SensitivityUncertainty u;
+  u.coverage = uo.coverage;
+  u.residual_limit = uo.residual_limit;
+  u.distance_limit = uo.distance_limit;
+  const auto ratios = [](const std::array<double, 3>& A) { return std::array<double, 2>{A[0] / A[1], A[2] / A[1]}; };
+  u.ratio = ratios(e.areas);
+  // Leave-one-camera-out bases: every basis camera left out in turn (jackknife).
+  std::vector<std::string> basis_cameras;
+  for (const auto& name : camera_names()) {
+    bool out = false;
+    for (const auto& x : options.exclude_cameras) out = out || fold(x) == fold(name);
+    if (!out) basis_cameras.push_back(name);
+  }
+  std::vector<std::array<double, 2>> loo;
+  for (const auto& cam : basis_cameras) {
+    SensitivityOptions o = options;
+    o.exclude_cameras.push_back(cam);
+    if (static_cast<int>(basis_cameras.size()) - 1 < o.components) break;
+    loo.push_back(ratios(estimate_sensitivities_Jiang2013(rgb, reflectances, illuminant, o).areas));
+  }
+  u.loo_bases = static_cast<int>(loo.size());
+  // Basis size: K − 1, K, K + 1 where the patches and the basis allow.
+  std::vector<std::array<double, 2>> byK;
+  for (int K = options.components - 1; K <= options.components + 1; ++K) {
+    if (K < 1 || K > 12 || K > static_cast<int>(rgb.size()) || K > static_cast<int>(basis_cameras.size())) continue;
+    SensitivityOptions o = options;
+    o.components = K;
+    byK.push_back(K == options.components ? u.ratio : ratios(estimate_sensitivities_Jiang2013(rgb, reflectances, illuminant, o).areas));
+    u.components_tried.push_back(K);
+  }
+  for (int r = 0; r < 2; ++r) {
+    const double n = static_cast<double>(loo.size());
+    if (n > 1) {
+      double mean = 0, ss = 0;
+      for (const auto& v : loo) mean += v[r] / n;
+      for (const auto& v : loo) ss += (v[r] - mean) * (v[r] - mean);
+      u.u_loo[r] = std::sqrt((n - 1) / n * ss) / u.ratio[r];
+    }
+    double lo = u.ratio[r], hi = u.ratio[r];
+    for (const auto& v : byK) lo = std::min(lo, v[r]), hi = std::max(hi, v[r]);
+    u.u_K[r] = 0.5 * (hi - lo) / u.ratio[r];
+    u.u[r] = u.coverage * std::hypot(u.u_loo[r], u.u_K[r]);
+  }
+  // Distance to the nearest basis camera.
+  u.nearest_distance = std::numeric_limits<double>::infinity();
+  for (const auto& cam : basis_cameras) {
+    const double d = sensitivity_rms(e.ssf, camera_ssf(cam));
+    if (d < u.nearest_distance) u.nearest_distance = d, u.nearest_camera = cam;
+  }
+  char line[256];
+  if (e.residual_rms > uo.residual_limit) {
+    u.warnings.push_back("OUTSIDE_BASIS_RESIDUAL");
+    std::snprintf(line, sizeof line, "the basis reproduces the camera's responses only to %.1f %% RMS (limit %.1f %%): "
+                  "the camera is unlike the %d basis cameras, its areas may be off by more than stated",
+                  100 * e.residual_rms, 100 * uo.residual_limit, static_cast<int>(basis_cameras.size()));
+    u.message += (u.message.empty() ? "" : "; ") + std::string(line);
+  }
+  if (u.nearest_distance > uo.distance_limit) {
+    u.warnings.push_back("OUTSIDE_BASIS_DISTANCE");
+    std::snprintf(line, sizeof line, "the estimate is %.3f (RMS, peak 1) from the nearest basis camera (%s; limit %.3f): "
+                  "the camera is unlike the basis cameras, its areas may be off by more than stated",
+                  u.nearest_distance, u.nearest_camera.c_str(), uo.distance_limit);
+    u.message += (u.message.empty() ? "" : "; ") + std::string(line);
+  }
+  return u;
 }
 
 double sensitivity_rms(const SpectralData& a, const SpectralData& b) {

@@ -111,3 +111,49 @@ TEST_CASE("absolute: sensitivities paired by patch id (rows in any order, extra 
   test::require_code([&] { estimate_sensitivities_by_id({"A1"}, rows, refl, d65); }, ErrorCode::PatchMismatch);
   test::require_code([&] { estimate_sensitivities_by_id({"Z98", "Z99"}, {rows[0], rows[1]}, refl, d65); }, ErrorCode::PatchMismatch);
 }
+
+TEST_CASE("absolute: the sensitivity estimate states its areas' uncertainty — a held-out camera lies within it", "[absolute][sensitivities]") {
+  // Canon EOS 5D Mark II held out of the basis (as a camera unlike the 52 would be), noise-free
+  // ColorChecker under D65: the true A_R/A_G and A_B/A_G lie within the stated ±u (coverage 3),
+  // u is not vanishingly small, and nothing warns.
+  const SpectralData refl = chart_reflectances("cc24"), d65 = illuminant_spd("D65");
+  const std::string cam = "Canon_EOS_5D_Mark_II";
+  const SpectralData truth = camera_ssf(cam);
+  const auto rgb = simulate_camera_RGB(truth, refl, d65);
+  SensitivityOptions o;
+  o.exclude_cameras = {cam};
+  const SensitivityEstimate e = estimate_sensitivities_Jiang2013(rgb, refl, d65, o);
+  const SensitivityUncertainty u = sensitivity_uncertainty(rgb, refl, d65, o, e);
+  const auto A = channel_areas(truth);
+  const double err[2] = {u.ratio[0] / (A[0] / A[1]) - 1, u.ratio[1] / (A[2] / A[1]) - 1};
+  CHECK(u.loo_bases == 51);
+  CHECK(u.components_tried == std::vector<int>{3, 4, 5});
+  for (int r = 0; r < 2; ++r) {
+    INFO("ratio " << r << ": error " << err[r] << ", stated ±" << u.u[r] << " (LOO " << u.u_loo[r] << ", K " << u.u_K[r] << ")");
+    CHECK(std::fabs(err[r]) <= u.u[r]);
+    CHECK(u.u[r] > 0.0005);
+    CHECK(u.u[r] == Approx(3 * std::hypot(u.u_loo[r], u.u_K[r])));
+  }
+  CHECK(u.warnings.empty());
+  CHECK(u.message.empty());
+  CHECK(u.nearest_distance < u.distance_limit);
+}
+
+TEST_CASE("absolute: a camera without an IR-cut filter is flagged as outside the basis", "[absolute][sensitivities]") {
+  // A synthetic sensor without an IR-cut filter: a built-in camera's curves with the silicon's
+  // near-infrared response added beyond 650 nm in every channel (rising to 0.6 of the peak at
+  // 780 nm). The 52 cameras all cut the infrared, so the basis cannot follow it.
+  const SpectralData refl = chart_reflectances("cc24"), d65 = illuminant_spd("D65");
+  SpectralData ssf = camera_ssf("Canon_EOS_5D_Mark_II");
+  double peak = 0;
+  for (const auto& v : ssf.values) peak = std::max(peak, *std::max_element(v.begin(), v.end()));
+  for (auto& v : ssf.values)
+    for (size_t i = 0; i < ssf.wavelengths.size(); ++i)
+      if (ssf.wavelengths[i] > 650) v[i] += 0.6 * peak * (ssf.wavelengths[i] - 650) / 130;
+  const auto rgb = simulate_camera_RGB(ssf, refl, d65);
+  const SensitivityEstimate e = estimate_sensitivities_Jiang2013(rgb, refl, d65);
+  const SensitivityUncertainty u = sensitivity_uncertainty(rgb, refl, d65, {}, e);
+  INFO("residual " << e.residual_rms << ", nearest " << u.nearest_camera << " at " << u.nearest_distance << ": " << u.message);
+  CHECK(!u.warnings.empty());
+  CHECK(u.message.find("unlike the") != std::string::npos);
+}

@@ -38,6 +38,10 @@ struct SensitivityEstimate {
   int clipped = 0;             ///< samples set to 0 because the solve went negative
   std::vector<std::string> ids;  ///< the patches used, in order (estimate_sensitivities_by_id)
   int unpaired = 0;            ///< camera RGB rows without a reflectance of the same id (by_id)
+  /// estimate_sensitivities_by_id: the paired reflectances (columns in the order of `ids`) and
+  /// camera RGB, so the uncertainty can be computed from the same pairs.
+  SpectralData paired_reflectances;
+  std::vector<Vec3> paired_RGB;
 };
 
 /// Estimates the sensitivities from linear camera RGB (N patches, black-subtracted, no white
@@ -60,6 +64,44 @@ SensitivityEstimate estimate_sensitivities_by_id(const std::vector<std::string>&
                                                  const SpectralData& reflectances,
                                                  const SpectralData& illuminant,
                                                  const SensitivityOptions& options = {});
+
+/// How sure an estimate's channel areas are, and whether the camera looks like the basis cameras.
+/// Eq (7) uses the areas' ratios, so the uncertainty is stated for A_R/A_G and A_B/A_G:
+///   u_LOO: jackknife standard deviation over the leave-one-camera-out bases (the estimate made
+///          again with each basis camera left out in turn: sqrt((n−1)/n · Σ(θ_i − θ̄)²));
+///   u_K:   half the range of the ratio over K − 1, K, K + 1 components (those the patches allow);
+///   u = coverage · sqrt(u_LOO² + u_K²), relative to the ratio (coverage 3 by default; the study
+///   in examples/sensitivity_uncertainty checks how often the truth lies within ±u).
+/// Warnings (codes): "OUTSIDE_BASIS_RESIDUAL" when residual_rms exceeds residual_limit (the
+/// basis cannot reproduce the camera's responses), "OUTSIDE_BASIS_DISTANCE" when the estimate's
+/// sensitivity_rms to the nearest basis camera exceeds distance_limit. The limits are above every
+/// one of the 52 cameras estimated with itself left out (ColorChecker, D65: the same study).
+struct SensitivityUncertainty {
+  std::array<double, 2> ratio{};          ///< A_R/A_G, A_B/A_G of the estimate
+  std::array<double, 2> u_loo{}, u_K{};   ///< relative standard uncertainties (fractions of the ratio)
+  std::array<double, 2> u{};              ///< coverage · combined, relative
+  double coverage = 3;
+  int loo_bases = 0;                      ///< estimates over leave-one-camera-out bases
+  std::vector<int> components_tried;      ///< the K values of u_K
+  std::string nearest_camera;             ///< the basis camera closest to the estimate
+  double nearest_distance = 0;            ///< sensitivity_rms to it
+  double residual_limit = 0, distance_limit = 0;
+  std::vector<std::string> warnings;      ///< codes (above), empty when the camera looks like the basis
+  std::string message;                    ///< one line per warning, "" when none
+};
+struct SensitivityUncertaintyOptions {
+  double coverage = 3;            ///< the study: k = 3 holds about 95 % of the 52 held-out cameras' ratios (k = 2: 84 %)
+  double residual_limit = 0.02;   ///< residual_rms above this: outside the basis (the 52 held out: at most 0.73 %)
+  double distance_limit = 0.10;   ///< distance to the nearest basis camera above this (the 52 held out: at most 0.088)
+};
+
+/// The uncertainty of `estimate` (made by estimate_sensitivities_Jiang2013 from these inputs and
+/// `options`): re-estimates over the leave-one-camera-out bases and over K ± 1 (about 55
+/// solves). Errors: those of estimate_sensitivities_Jiang2013.
+SensitivityUncertainty sensitivity_uncertainty(const std::vector<Vec3>& camera_RGB, const SpectralData& reflectances,
+                                               const SpectralData& illuminant, const SensitivityOptions& options,
+                                               const SensitivityEstimate& estimate,
+                                               const SensitivityUncertaintyOptions& u = {});
 
 /// RMS difference of two sets of sensitivities with each channel scaled to peak 1, over the
 /// common 5 nm grid of `a` (b interpolated): how well the shapes agree.
