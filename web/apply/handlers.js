@@ -1,5 +1,6 @@
 // Worker handlers of step 5: a profile applied to a decoded RAW (the XYZ image stays here,
-// state.xyz) rendered for display, and the values of one pixel.
+// state.xyz) rendered for display, and the values of one pixel; the scene RAW's own dark frames,
+// flat field and light trap (Abed 2013 App. C step 8), set on it as step 2 sets the chart's.
 import { reply, coded } from '../lib/reply.js';
 import { renderXYZ, encodingTable, ySample } from './render.js';
 
@@ -33,4 +34,28 @@ export const handlers = {
     return { result: { XYZ, xy: s > 0 ? [XYZ[0] / s, XYZ[1] / s] : [NaN, NaN], Lab: Array.from(T.XYZToLab(XYZ, img.white)) } };
   },
 
+  /// Calibrates the scene RAW with its own frames: `darks` (RAW bytes, averaged), `flat` (RAW
+  /// bytes; `flatMode` 'pixel' or 'radial'), `lightTrap` (8 numbers: its corners, whose mean is the
+  /// flare subtracted). Replaces what was set before; nothing given: none. Returns what was set.
+  sceneFrames: (T, { darks = [], flat = null, flatMode = 'pixel', lightTrap = null }, { state }) => {
+    const raw = state.raw?.scene;
+    if (!raw) throw coded('no scene RAW decoded yet', 'NO_IMAGE');
+    raw.clearDark(); raw.clearFlat(); raw.clearLightTrap();
+    const decoded = [];
+    try {
+      for (const b of darks) decoded.push(T.decodeRaw(new Uint8Array(b)));
+      const flatRaw = flat ? T.decodeRaw(new Uint8Array(flat)) : null;
+      if (flatRaw) decoded.push(flatRaw);
+      const out = { dark: null, flat: null, lightTrap: null };
+      if (darks.length) out.dark = raw.setDark(decoded.slice(0, darks.length));
+      if (flatRaw) out.flat = raw.setFlat(flatRaw, flatMode);
+      if (lightTrap) out.lightTrap = raw.setLightTrap(lightTrap);
+      return reply({ dark: out.dark && { frames: out.dark.frames }, flat: !!out.flat, lightTrap: out.lightTrap && { mean: Array.from(out.lightTrap.mean), n: out.lightTrap.n } });
+    } catch (e) {
+      raw.clearDark(); raw.clearFlat(); raw.clearLightTrap();
+      throw e;
+    } finally {
+      for (const d of decoded) d.delete();
+    }
+  },
 };

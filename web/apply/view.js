@@ -15,6 +15,23 @@ export function mount(section, app) {
   const sceneInput = h('input', { type: 'file' });
   const sceneField = field('Scene RAW', sceneInput, 'Decoded in the worker; the profile is applied to its linear camera RGB');
   sceneField.hidden = true;
+  // The scene's own frames (Abed 2013 App. C step 8): what `tristim apply --dark --flat --light-trap` takes.
+  const darkInput = h('input', { type: 'file', multiple: true, dataset: { frame: 'dark' } });
+  const flatInput = h('input', { type: 'file', dataset: { frame: 'flat' } });
+  // The flat field's modes as the engine lists them (per pixel, or a radial fall-off fitted to it).
+  const flatModes = app.catalog.flatFieldModes.map((m, i) => {
+    const r = h('input', { type: 'radio', name: 'apply-flat-mode', value: m.id, checked: i === 0, dataset: { flatMode: m.id } });
+    r.id = `apply-flat-mode-${m.id}`;
+    return h('div', { class: 'check', title: m.reference ?? '' }, r, h('label', { for: r.id }, m.label));
+  });
+  const flatMode = () => flatModes.map((d) => d.querySelector('input')).find((r) => r.checked)?.value ?? app.catalog.flatFieldModes[0]?.id;
+  const trapInput = h('input', { type: 'text', placeholder: 'x1,y1,x2,y2,x3,y3,x4,y4', dataset: { frame: 'light-trap' } });
+  const framesNote = h('p', { class: 'summary frames-note', 'aria-live': 'polite' });
+  const frames = h('fieldset', { class: 'scene-frames', hidden: true }, h('legend', {}, 'This image\'s own frames (Abed 2013 App. C step 8)'),
+    h('p', { class: 'hint' }, 'Dark frames, a flat field and a light trap of this scene calibrate it before the profile, the same way step 2 calibrates the chart (tristim apply … --dark … --flat … --light-trap …).'),
+    h('div', { class: 'controls' }, field('Dark frames (RAW, averaged)', darkInput), field('Flat field (RAW)', flatInput), h('fieldset', { class: 'flat-mode' }, h('legend', {}, 'Flat-field mode (--flat-mode)'), ...flatModes),
+      field('Light trap corners (pixels of the decoded image)', trapInput, 'Four corners of a black light trap in the scene, typed as x,y pairs; its mean is the flare subtracted from every pixel')),
+    framesNote);
   const mapSel = select(Object.entries(MAPS).map(([value, m]) => ({ value, label: m.label })), app.session.colourMap ?? 'viridis');
   const applyBtn = h('button', { type: 'button', class: 'primary' }, 'Apply the selected profile');
   const which = h('p', { class: 'summary', 'aria-live': 'polite' });
@@ -28,6 +45,7 @@ export function mount(section, app) {
     h('figure', {}, srgbCanvas, h('figcaption', {}, 'XYZ → sRGB (display; D65-adapted, clipped)')),
     h('figure', {}, yCanvas, h('figcaption', {}, 'Luminance Y (relative, white = 100)'), legend));
   section.append(h('div', { class: 'controls' }, field('Apply to', sourceSel), sceneField, field('Colour map for Y', mapSel, 'Perceptually uniform and readable with colour-vision deficiencies'), applyBtn),
+    frames,
     which, warning, progress.el, readout, images);
   applyBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true, id: 'apply-error' });
   applyBtn.setAttribute('aria-describedby', 'apply-error');
@@ -37,7 +55,7 @@ export function mount(section, app) {
   let sceneMeta = null;
   let sceneGen = -1;
   let shown = null;
-  sourceSel.addEventListener('change', () => { sceneField.hidden = sourceSel.value !== 'scene'; app.save('applySource', sourceSel.value); });
+  sourceSel.addEventListener('change', () => { sceneField.hidden = frames.hidden = sourceSel.value !== 'scene'; app.save('applySource', sourceSel.value); });
   // Restore: the scene file kept in the session, the source choice, and (when the step is
   // visited) the last applied image.
   const savedScene = app.session['files.scene'];
@@ -45,7 +63,7 @@ export function mount(section, app) {
     sceneBytes = { name: savedScene.name, bytes: new Uint8Array(savedScene.bytes) };
     sceneField.append(h('span', { class: 'file-state' }, `Kept from before: ${savedScene.name}`));
   }
-  if (app.session.applySource === 'scene' && savedScene) { sourceSel.value = 'scene'; sceneField.hidden = false; }
+  if (app.session.applySource === 'scene' && savedScene) { sourceSel.value = 'scene'; sceneField.hidden = frames.hidden = false; }
   let restoreApplied = !!app.session.applied;
   mapSel.addEventListener('change', () => { app.save('colourMap', mapSel.value); if (shown) run(); });
   let sceneLoading = null;   // reading + decoding a newly chosen scene file
@@ -87,6 +105,31 @@ export function mount(section, app) {
     return scenePromise;
   }
 
+  /// Sets the scene's own frames in the worker (each apply: the inputs as they are now).
+  async function setFrames() {
+    clearError(trapInput);
+    let lightTrap = null;
+    if (trapInput.value.trim()) {
+      lightTrap = trapInput.value.split(',').map((t) => Number(t.trim()));
+      if (lightTrap.length !== 8 || !lightTrap.every(Number.isFinite)) {
+        showError(trapInput, Object.assign(new Error(`the light trap needs 8 numbers (x1,y1,…,x4,y4), got '${trapInput.value}'`), { code: 'INVALID_ARGUMENT' }), 'Light trap');
+        return false;
+      }
+    }
+    const darks = await Promise.all([...darkInput.files].map(async (f) => (await fileBytes(f)).buffer));
+    const flat = flatInput.files[0] ? (await fileBytes(flatInput.files[0])).buffer : null;
+    try {
+      const set = await engine.call('sceneFrames', { darks, flat, flatMode: flatMode(), lightTrap }, { transfer: [...darks, ...(flat ? [flat] : [])] });
+      framesNote.textContent = [set.dark ? `dark: ${set.dark.frames} frame(s) averaged` : null, set.flat ? `flat field (${flatMode()})` : null,
+        set.lightTrap ? `light trap: flare R ${fmt(set.lightTrap.mean[0])}, G ${fmt(set.lightTrap.mean[1])}, B ${fmt(set.lightTrap.mean[2])} subtracted (${set.lightTrap.n} pixels)` : null]
+        .filter(Boolean).join('; ') || 'No frames: the scene is used as decoded.';
+      return true;
+    } catch (e) {
+      showError(e.code === 'INVALID_ARGUMENT' && lightTrap ? trapInput : applyBtn, e, 'Frames');
+      return false;
+    }
+  }
+
   function selected() {
     const rs = app.session.results ?? [];
     return rs.find((r) => r.key === app.session.selected) ?? rs[0];
@@ -122,6 +165,7 @@ export function mount(section, app) {
       await sceneLoading;
       if (!sceneBytes) { showError(sceneInput, Object.assign(new Error('choose a RAW file first'), { code: 'NO_IMAGE' }), 'Apply'); return null; }
       if (!(await decodeScene())) return null;
+      if (!(await setFrames())) return null;
     } else if (!(await app.views.images.ensureDecoded())) {
       showError(applyBtn, Object.assign(new Error('no chart RAW decoded (step 2)'), { code: 'NO_IMAGE' }), 'Apply'); return null;
     }
@@ -201,5 +245,5 @@ export function mount(section, app) {
     c.addEventListener('focus', () => { if (shown && !cursor.x && !cursor.y) { cursor.x = shown.fullWidth / 2; cursor.y = shown.fullHeight / 2; read(cursor.x, cursor.y); } });
   }
   describe();
-  return { run, sourceSel, sceneInput, applyBtn };
+  return { run, sourceSel, sceneInput, applyBtn, darkInput, flatInput, trapInput };
 }
