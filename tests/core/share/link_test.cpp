@@ -128,7 +128,7 @@ TEST_CASE("a planted fit reproduces from its link and recovers the planted matri
 
 TEST_CASE("a version 1 link is still read and reproduces, and version 2 carries the same payload, shorter", "[share]") {
   // A link made before version 2 (tests/fuzz/corpus/share_payload/passport-link.txt: "L" + link).
-  std::string v1 = tristim::test::slurp(tristim::test::test_file_path("tests/fuzz/corpus/share_payload/passport-link.txt")).substr(1);
+  std::string v1 = tristim::test::read_test_file("tests/fuzz/corpus/share_payload/passport-link.txt").substr(1);
   REQUIRE(v1.find("#tristim=1.") != std::string::npos);
   const SharePayload old = decode_share_payload(v1);
   CHECK(reproduce_share(old).verdict == "reproduced");
