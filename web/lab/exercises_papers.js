@@ -84,7 +84,7 @@ export function shenPanel(app) {
   }
   btn.addEventListener('click', run);
   const panel = panelShell('ex3', 'Exercise 3 · Shen et al. 2008: the OECF without grey samples (J and L sweeps)',
-    [field('Camera', camSel), field('Chart', chartSel)], btn, cli, out);
+    [field('Camera', camSel), field('Training chart', chartSel)], btn, cli, out);
   return { panel, run, params: { camera: camSel, chart: chartSel } };
 }
 
