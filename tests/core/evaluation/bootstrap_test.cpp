@@ -106,12 +106,12 @@ TEST_CASE("bootstrap: progress, cancellation and refusals", "[evaluation][bootst
 }
 
 TEST_CASE("bootstrap: a run stepped in chunks gives bootstrap_fit's result, with xy and a*b* ellipses", "[evaluation][bootstrap]") {
-  Simulation sim{11};
-  PatchMatrix rgb, xyz;
-  simulate_chart(sim, rgb, xyz, 0.5);
   BootstrapOptions b;
   b.resamples = 120;
   b.level = 0.9;
+  Simulation sim{11};
+  PatchMatrix rgb, xyz;
+  simulate_chart(sim, rgb, xyz, 0.5);
   const BootstrapResult whole = bootstrap_fit("matrix-3x3", rgb, xyz, FitOptions{}, b);
   BootstrapRun run("matrix-3x3", rgb, xyz, FitOptions{}, b);
   CHECK(run.step(50) == 50);
