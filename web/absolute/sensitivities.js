@@ -15,6 +15,19 @@ const fold = (s) => String(s).toLowerCase().replace(/[\s_-]+/g, ' ').trim();
 const ratio = (a) => `${(a[0] / a[1]).toFixed(4)} / ${(a[2] / a[1]).toFixed(4)}`;
 
 /// onChoice(which): called with 'upload' | 'estimate' when a set becomes available.
+/// The areas' uncertainty as eq (7) uses them (ratios to A_G) and the engine's outside-the-basis warning.
+function uncertaintyNote(u) {
+  if (!u) return '';
+  const pct = (v) => `${(100 * v).toFixed(2)} %`;
+  return h('div', {},
+    h('p', { 'data-role': 'abs-ssf-uncertainty', dataset: { uRG: u.u[0], uBG: u.u[1] } },
+      `Uncertainty of the areas (k = ${u.coverage}, from ${u.loo_bases} leave-one-camera-out bases and K = ${u.components_tried.join(', ')}): `
+      + `A_R/A_G ${u.ratio[0].toFixed(4)} ± ${pct(u.u[0])}, A_B/A_G ${u.ratio[1].toFixed(4)} ± ${pct(u.u[1])}. `
+      + `Nearest basis camera: ${u.nearest_camera} (RMS ${u.nearest_distance.toFixed(3)}).`),
+    u.warnings.length ? h('p', { class: 'warning', role: 'alert', 'data-role': 'abs-ssf-outside', dataset: { codes: u.warnings.join(' ') } },
+      `Outside the basis (${u.warnings.join(', ')}): ${u.message}.`) : '');
+}
+
 export function mountSensitivities(app, { onChoice }) {
   const { engine } = app;
   const cameras = (app.catalog?.cameras ?? []).map((c) => ({ value: c.id, label: c.name }));
@@ -187,7 +200,8 @@ export function mountSensitivities(app, { onChoice }) {
           `${e.patches} patches from ${from}${left ? ` (${left} saturated left out)` : ''}${e.unpaired ? `, ${e.unpaired} without a reflectance in ${named(chartSel, 'reflectances')}` : ''}; `,
           `K = ${e.components} components from ${e.basis_cameras} cameras${blindBox.checked ? ` (${compareSel.selectedOptions[0]?.textContent} left out)` : ''}. Residual (RMS of predicted − measured RGB over RMS measured): ${(100 * e.residual_rms).toFixed(2)} % (${res})`,
           e.clipped ? `; ${e.clipped} negative samples set to 0.` : '.'),
-        e.residual_rms > 0.05 ? h('p', { class: 'unavailable' }, 'The residual is large: are the RGB values linear and black-subtracted, the chart and illuminant the ones photographed, and no patch clipped?') : '');
+        e.residual_rms > 0.05 ? h('p', { class: 'unavailable' }, 'The residual is large: are the RGB values linear and black-subtracted, the chart and illuminant the ones photographed, and no patch clipped?') : '',
+        uncertaintyNote(e.uncertainty));
       csv = e.csv;
       csvBtn.hidden = false;
       await got('estimate', { label: e.label, ssf: e.ssf, areas: e.areas });
