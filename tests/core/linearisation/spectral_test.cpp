@@ -26,18 +26,35 @@ struct Planted {
   Linearisation lin;
 };
 
-Planted planted() {
-  Planted p;
-  const std::vector<double> wl = wavelength_grid(400, 700, 10);
-  const size_t N = wl.size();
-  Eigen::MatrixXd basis(N, 3), m(3, N);
+/// A 3-dimensional reflectance span `basis` (N × 3, its first column flat) on 400-700 nm at 10 nm
+/// and a camera's responsivities m (3 × N, Gaussian R, G, B), scaled to keep linear values below 1.
+struct SpanCamera {
+  std::vector<double> wl;
+  Eigen::MatrixXd basis, m;
+};
+
+SpanCamera span_camera() {
+  SpanCamera s;
+  s.wl = wavelength_grid(400, 700, 10);
+  const size_t N = s.wl.size();
+  s.basis.resize(N, 3);
+  s.m.resize(3, N);
   for (size_t i = 0; i < N; ++i) {
-    const double t = (wl[i] - 400) / 300;
-    basis.row(i) << 0.5, t - 0.5, std::cos(3 * t);
-    m.col(i) << std::exp(-std::pow((t - 0.8) / 0.2, 2)), std::exp(-std::pow((t - 0.5) / 0.2, 2)),
+    const double t = (s.wl[i] - 400) / 300;
+    s.basis.row(i) << 0.5, t - 0.5, std::cos(3 * t);
+    s.m.col(i) << std::exp(-std::pow((t - 0.8) / 0.2, 2)), std::exp(-std::pow((t - 0.5) / 0.2, 2)),
         std::exp(-std::pow((t - 0.2) / 0.2, 2));
   }
-  m /= (m * basis.col(0)).maxCoeff() * 2.5;  // keeps linear values below 1
+  s.m /= (s.m * s.basis.col(0)).maxCoeff() * 2.5;
+  return s;
+}
+
+Planted planted() {
+  Planted p;
+  const SpanCamera s = span_camera();
+  const std::vector<double>& wl = s.wl;
+  const size_t N = wl.size();
+  const Eigen::MatrixXd &basis = s.basis, &m = s.m;
   p.reflectances.wavelengths = wl;
   const int Q = 20;
   p.stored.resize(Q, 3);
@@ -145,16 +162,10 @@ struct PlantedGreys {
 
 PlantedGreys planted_with_greys() {
   PlantedGreys p;
-  const std::vector<double> wl = wavelength_grid(400, 700, 10);
+  const SpanCamera s = span_camera();
+  const std::vector<double>& wl = s.wl;
   const size_t N = wl.size();
-  Eigen::MatrixXd B(N, 3), m(3, N);
-  for (size_t i = 0; i < N; ++i) {
-    const double t = (wl[i] - 400) / 300;
-    B.row(i) << 0.5, t - 0.5, std::cos(3 * t);
-    m.col(i) << std::exp(-std::pow((t - 0.8) / 0.2, 2)), std::exp(-std::pow((t - 0.5) / 0.2, 2)),
-        std::exp(-std::pow((t - 0.2) / 0.2, 2));
-  }
-  m /= (m * B.col(0)).maxCoeff() * 2.5;
+  const Eigen::MatrixXd &B = s.basis, &m = s.m;
   p.W = B * (m * B).inverse();
   p.reflectances.wavelengths = wl;
   LinearisationData d;
