@@ -8,18 +8,6 @@ namespace tristim {
 
 namespace {
 
-OptionSpec number(const std::string& name, const std::string& label, double def, double lo, double hi,
-                  const std::string& description, const std::string& type = "number") {
-  OptionSpec o;
-  o.name = name;
-  o.type = type;
-  o.label = label;
-  o.default_number = def;
-  o.min = lo;
-  o.max = hi;
-  o.description = description;
-  return o;
-}
 
 std::vector<ObjectiveMethod> build_table() {
   const PatternSearchOptions psm;
@@ -30,11 +18,11 @@ std::vector<ObjectiveMethod> build_table() {
                Objective::LeastSquares});
   t.push_back({{"psm", "Pattern search: median + mean + max of the L1 XYZ error",
                 std::string(citation::kGuarnera2018) + ", eqs (11)-(12), Algorithm 2",
-                {number("initial_step", "Initial step Δ₀", psm.initial_step, 1e-9, 1e6, "first mesh size, relative to each output channel's scale"),
-                 number("expansion", "Expansion α", psm.expansion, 1, 100, "mesh growth after a successful poll (α > 1)"),
-                 number("contraction", "Contraction β", psm.contraction, 1e-6, 1, "mesh shrink after a failed poll (β < 1)"),
-                 number("step_threshold", "Step threshold", psm.step_threshold, 1e-15, 1, "stop when the mesh is smaller"),
-                 number("max_iterations", "Max iterations (0: 100 × variables)", psm.max_iterations, 0, 1e8,
+                {number_option("initial_step", "Initial step Δ₀", psm.initial_step, 1e-9, 1e6, "first mesh size, relative to each output channel's scale"),
+                 number_option("expansion", "Expansion α", psm.expansion, 1, 100, "mesh growth after a successful poll (α > 1)"),
+                 number_option("contraction", "Contraction β", psm.contraction, 1e-6, 1, "mesh shrink after a failed poll (β < 1)"),
+                 number_option("step_threshold", "Step threshold", psm.step_threshold, 1e-15, 1, "stop when the mesh is smaller"),
+                 number_option("max_iterations", "Max iterations (0: 100 × variables)", psm.max_iterations, 0, 1e8,
                         "iteration limit", "integer")}},
                Objective::PatternSearch});
   OptionSpec alg;
@@ -46,13 +34,13 @@ std::vector<ObjectiveMethod> build_table() {
   alg.description = "auto: Levenberg-Marquardt for the RMS loss, reweighted Levenberg-Marquardt (irls) for the mean";
   t.push_back({{"de2000", "CIEDE2000, mean or RMS (reweighted / plain Levenberg-Marquardt)", "CIEDE2000 under the stated white (CIE 142-2001)",
                 {alg,
-                 number("rms", "Minimise the RMS instead of the mean", de.rms ? 1 : 0, 0, 1,
+                 number_option("rms", "Minimise the RMS instead of the mean", de.rms ? 1 : 0, 0, 1,
                         "the loss OpenCV's ccm minimises", "boolean"),
-                 number("xtol_rel", "Relative x tolerance", de.xtol_rel, 0, 1, "stop when coefficients change less"),
-                 number("ftol_rel", "Relative f tolerance", de.ftol_rel, 0, 1, "stop when the loss changes less"),
-                 number("max_evaluations", "Max evaluations (0: 200 × variables)", de.max_evaluations, 0, 1e8,
+                 number_option("xtol_rel", "Relative x tolerance", de.xtol_rel, 0, 1, "stop when coefficients change less"),
+                 number_option("ftol_rel", "Relative f tolerance", de.ftol_rel, 0, 1, "stop when the loss changes less"),
+                 number_option("max_evaluations", "Max evaluations (0: 200 × variables)", de.max_evaluations, 0, 1e8,
                         "evaluation limit", "integer"),
-                 number("initial_step", "Initial step", de.initial_step, 1e-9, 1e3, "first step, relative to each output channel's scale")}},
+                 number_option("initial_step", "Initial step", de.initial_step, 1e-9, 1e3, "first step, relative to each output channel's scale")}},
                Objective::DeltaE2000});
   return t;
 }

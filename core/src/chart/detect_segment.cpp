@@ -7,19 +7,12 @@
 #include "tristim/chart/detect.hpp"
 #include "tristim/error.hpp"
 #include "../detmath.hpp"
+#include "../capture/percentile.hpp"
 #include "../large_buffer.hpp"
 
 namespace tristim {
 
 namespace {
-
-// p-th percentile (0..1) of v (reorders v).
-float percentile(std::vector<float>& v, double p) {
-  if (v.empty()) return 0.f;
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1)));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
 
 using Point = Eigen::Vector2d;
 

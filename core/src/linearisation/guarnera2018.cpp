@@ -225,17 +225,6 @@ double inverse_row(const Linearisation& l, int c, double linear) {
   return k.forward(linear * r.exposure) / r.area_ratio[c] * (r.S - r.n) + r.n;
 }
 
-OptionSpec number_option(const char* name, const char* label, double def, double min, double max, const char* what) {
-  OptionSpec o;
-  o.name = name;
-  o.type = "number";
-  o.label = label;
-  o.default_number = def;
-  o.min = min;
-  o.max = max;
-  o.description = what;
-  return o;
-}
 
 }  // namespace
 
