@@ -227,17 +227,7 @@ void add_bootstrap(const Args& args, const Characterisation& c, const TrainingSe
   BootstrapOptions b = bootstrap_options(args, "fit", args.has("rgb") ? args.get("rgb") : "", training.ids, linear);
   if (c.evaluation.has_loo) b.loo_dE00 = c.evaluation.loo.patches.dE00;
   const BootstrapResult r = bootstrap_fit(c.recipe.characterisation.model, c.linear_RGB, c.reference_XYZ, options, b);
-  json::Value metrics = *p.find("metrics");
-  const auto put = [&](const char* set, const Interval& ci) {
-    if (!metrics.find(set)) return;
-    json::Value m = *metrics.find(set);
-    m.set("dE00", with_ci(*m.find("dE00"), ci));
-    metrics.set(set, m);
-  };
-  put("training", r.train_dE00_mean);
-  if (r.has_loo) put("loo", r.loo_dE00_mean);
-  p.set("metrics", metrics);
-  p.set("bootstrap", bootstrap_json(r, c.profile.model));
+  add_bootstrap_to_profile(p, r, c.profile.model);
   std::cerr << "tristim fit: bootstrap (" << r.resamples << " resamples, " << (r.pixels ? "patches and pixels" : "patches")
             << "): training mean dE00 " << fmt(r.level * 100, 0) << " % interval [" << fmt(r.train_dE00_mean.lo) << ", "
             << fmt(r.train_dE00_mean.hi) << "]";
@@ -271,6 +261,8 @@ int run_fit(const Args& args, std::ostream& out) {
   }
   for (const auto& e : training.excluded) std::cerr << "tristim fit: left out " << e << "\n";
   const Characterisation c = characterise(recipe, training);
+  if (!c.linearisation.message.empty())  // e.g. Shen2008 extrapolated: the profile's "extrapolated"
+    std::cerr << "tristim fit: warning: " << c.linearisation.message << "\n";
   const ModelEvaluation& ev = c.evaluation;
   std::string text = profile_to_json(c.profile);
   const std::vector<ChartFigures> charts = chart_figures(c, training);  // several charts: each one's figures
