@@ -101,6 +101,15 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     'lab/Chart': { owned: 'the charts the renderer draws, named by the page (ids checked below)' },
     'lab/Illuminant': rows(T.listIlluminants()),
     'lab/ColorChecker patch': { owned: 'the patches of the CC24 (exercise 1)' },
+    'lab/File': { owned: 'the file kinds the renderer writes (DNG, TIFF, JPEG: a UI choice)' },
+    'lab/OECF (TIFF, JPEG)': { owned: 'the renderer\'s OECFs, labelled by their ids (checked below)' },
+    'lab/First light (match)': rows(T.listIlluminants()),
+    'lab/Second light': rows(T.listIlluminants()),
+    'lab/Observer': rows(T.listObservers()),
+    'lab/Match for': { owned: 'which viewer the constructed metamer matches for (a UI choice)' },
+    'lab/Munsell chip': { owned: 'the engine\'s Munsell ids, loaded when the picker opens (checked below)' },
+    'lab/Training chart': { owned: 'the charts the exercise trains on, named by their role in the paper (ids checked below)' },
+    'lab/Light on the scene': rows(T.listExampleLights()),
   };
   const b = await openPage();
   try {
@@ -154,6 +163,12 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     for (const s of found.filter((x) => x.step === 'lab' && x.name === 'Chart')) {
       if (JSON.stringify(s.options.map((o) => o.value)) !== JSON.stringify([...T.listLabCharts()])) wrong.push(`lab chart: ${s.options.map((o) => o.value)}, the renderer draws ${[...T.listLabCharts()]}`);
     }
+    // The Lab's OECFs are the renderer's; the exercise charts are ones it draws; the chips are Munsell ids.
+    const oecfs = found.find((x) => x.step === 'lab' && x.name === 'OECF (TIFF, JPEG)')?.options.map((o) => o.value);
+    if (JSON.stringify(oecfs) !== JSON.stringify([...T.listLabOecfs()])) wrong.push(`lab OECF: ${oecfs}, the renderer has ${[...T.listLabOecfs()]}`);
+    for (const o of byKey['lab/Training chart'] ?? []) if (![...T.listLabCharts()].includes(o.value)) wrong.push(`lab training chart ${o.value}: not a chart the renderer draws`);
+    const munsell = new Set([...T.listMunsell()]);
+    for (const o of byKey['lab/Munsell chip'] ?? []) if (!munsell.has(o.value)) wrong.push(`lab Munsell chip ${o.value}: not in the engine's set`);
     // The flat-field modes cite their table row (the option's title).
     for (const o of byKey['images/Flat-field correction'] ?? []) {
       const m = T.listFlatFieldModes().find((x) => x.id === o.value);
