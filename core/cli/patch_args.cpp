@@ -191,8 +191,7 @@ int patch_index(const std::vector<std::string>& ids, const std::string& id) {
 }
 
 std::string fit_methods_help() {
-  std::vector<MethodInfo> objectives;
-  for (const auto& o : objective_table()) objectives.push_back(o.info);
+  const std::vector<MethodInfo> objectives = method_infos(objective_table());
   return models_help() + "\n" + methods_help("Objectives (--objective, --objectives)", objectives) + "\n" +
          linearisations_help();
 }
