@@ -8,6 +8,7 @@
 #include "tristim/error.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/evaluation/evaluation.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/profile/recipe.hpp"
 
 namespace tristim {
@@ -270,30 +271,19 @@ void add_bootstrap_to_profile(json::Value& p, const BootstrapResult& r, const Mo
 }
 
 json::Value interval_json(const Interval& interval) {
-  json::Value o = json::Value::object();
-  o.set("level", interval.level);
-  o.set("lo", interval.lo);
-  o.set("hi", interval.hi);
-  return o;
+  return fields::object({{"level", interval.level}, {"lo", interval.lo}, {"hi", interval.hi}});
 }
 
 json::Value bootstrap_json(const BootstrapResult& r, const Model& fitted) {
-  json::Value o = json::Value::object();
-  o.set("resamples", r.resamples);
-  o.set("failed", r.failed);
-  o.set("cancelled", r.cancelled);
-  o.set("seed", static_cast<double>(r.seed));
-  o.set("level", r.level);
-  o.set("resampling", r.pixels ? "patches+pixels" : "patches");
-  o.set("inflation", r.inflation);
+  json::Value o = fields::object({{"resamples", r.resamples}, {"failed", r.failed}, {"cancelled", r.cancelled},
+                                  {"seed", static_cast<double>(r.seed)}, {"level", r.level},
+                                  {"resampling", r.pixels ? "patches+pixels" : "patches"}, {"inflation", r.inflation}});
   json::Value rows = json::Value::array();
   for (Eigen::Index c = 0; c < r.coefficients_lo.rows(); ++c) {
     json::Value row = json::Value::array();
     for (Eigen::Index t = 0; t < r.coefficients_lo.cols(); ++t) {
-      json::Value k = json::Value::object();
-      k.set("value", fitted.coefficients(c, t));
-      k.set("ci", interval_json({r.level, r.coefficients_lo(c, t), r.coefficients_hi(c, t)}));
-      row.push(k);
+      row.push(fields::object({{"value", fitted.coefficients(c, t)},
+                               {"ci", interval_json({r.level, r.coefficients_lo(c, t), r.coefficients_hi(c, t)})}}));
     }
     rows.push(row);
   }

@@ -11,6 +11,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 #include "tristim/surface/surface.hpp"
@@ -298,27 +299,14 @@ std::vector<std::uint8_t> lab_render_dng(const LabRender& r) {
 json::Value lab_render_json(const LabRender& r, double full_scale) {
   const LabRenderOptions& o = r.options;
   auto arr = [](const double* v, size_t n) { return json::Value(std::vector<double>(v, v + n)); };
-  json::Value j = json::Value::object();
-  j.set("camera", o.camera);
-  j.set("chart", o.chart);
-  j.set("illuminant", o.illuminant);
-  j.set("surface", surface_choice_text(o.surface.method == "none" ? surface_choice("none", {}) : o.surface));
-  j.set("width", r.width);
-  j.set("height", r.height);
-  j.set("sensor_width", 2 * r.width);
-  j.set("sensor_height", 2 * r.height);
-  j.set("cfa", o.cfa);
-  j.set("black", o.black);
-  j.set("white_level", (1 << o.bits) - 1);
-  j.set("saturation", r.saturation);
-  j.set("exposure", o.exposure);
-  j.set("falloff", o.falloff);
-  j.set("flare", o.flare);
-  json::Value noise = json::Value::object();
-  noise.set("shot_gain", o.shot_gain);
-  noise.set("read_noise", o.read_noise);
-  noise.set("seed", static_cast<double>(o.seed));
-  j.set("noise", noise);
+  json::Value j = fields::object(
+      {{"camera", o.camera}, {"chart", o.chart}, {"illuminant", o.illuminant},
+       {"surface", surface_choice_text(o.surface.method == "none" ? surface_choice("none", {}) : o.surface)},
+       {"width", r.width}, {"height", r.height}, {"sensor_width", 2 * r.width}, {"sensor_height", 2 * r.height},
+       {"cfa", o.cfa}, {"black", o.black}, {"white_level", (1 << o.bits) - 1}, {"saturation", r.saturation},
+       {"exposure", o.exposure}, {"falloff", o.falloff}, {"flare", o.flare},
+       {"noise", fields::object({{"shot_gain", o.shot_gain}, {"read_noise", o.read_noise},
+                                 {"seed", static_cast<double>(o.seed)}})}});
   if (full_scale > 0) {
     j.set("oecf", o.oecf);
     j.set("full_scale", full_scale);
@@ -328,11 +316,8 @@ json::Value lab_render_json(const LabRender& r, double full_scale) {
   j.set("color_matrix", arr(r.dng.color_matrix.data(), 9));
   json::Value patches = json::Value::array();
   for (const auto& p : r.patches) {
-    json::Value q = json::Value::object();
-    q.set("id", p.id);
-    q.set("rgb", arr(p.rgb.data(), 3));
-    q.set("linear", arr(p.linear.data(), 3));
-    q.set("XYZ", arr(p.XYZ.data(), 3));
+    json::Value q = fields::object({{"id", p.id}, {"rgb", arr(p.rgb.data(), 3)}, {"linear", arr(p.linear.data(), 3)},
+                                    {"XYZ", arr(p.XYZ.data(), 3)}});
     if (full_scale > 0) {
       std::array<double, 3> stored{};
       for (size_t c = 0; c < 3; ++c) stored[c] = std::round(full_scale * lab_encode(o, p.rgb[c], r.saturation));

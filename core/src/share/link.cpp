@@ -14,6 +14,7 @@
 #include "tristim/chart/light_trap.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/profile/profile.hpp"
 #include "tristim/share/sha256.hpp"
@@ -302,35 +303,22 @@ SharePayload share_payload(const AbsoluteCharacterisation& c) {
 }
 
 json::Value share_payload_json(const SharePayload& p) {
-  json::Value o = json::Value::object();
-  o.set("format", "tristim-link");
-  o.set("version", p.version);
-  o.set("tristim_version", p.tristim_version);
-  o.set("kind", p.kind);
+  json::Value o = fields::object({{"format", "tristim-link"}, {"version", p.version},
+                                  {"tristim_version", p.tristim_version}, {"kind", p.kind}});
   if (p.kind == "absolute") {
     o.set("recipe", absolute_recipe_json(p.absolute));
   } else {
     o.set("recipe", recipe_json(p.recipe));
-    json::Value patches = json::Value::object();
     json::Value ids = json::Value::array();
     for (const auto& id : p.labels) ids.push(id);
-    patches.set("ids", ids);
-    patches.set("RGB", json::Value(flat(p.camera_RGB)));
+    json::Value patches = fields::object({{"ids", ids}, {"RGB", json::Value(flat(p.camera_RGB))}});
     if (p.reference_XYZ.rows() > 0) patches.set("XYZ", json::Value(flat(p.reference_XYZ)));
     o.set("patches", patches);
   }
   json::Value sources = json::Value::array();
-  for (const auto& s : p.sources) {
-    json::Value e = json::Value::object();
-    e.set("name", s.name);
-    e.set("sha256", s.sha256);
-    sources.push(e);
-  }
+  for (const auto& s : p.sources) sources.push(fields::object({{"name", s.name}, {"sha256", s.sha256}}));
   o.set("sources", sources);
-  json::Value expected = json::Value::object();
-  expected.set("digest", p.expected.digest);
-  expected.set("results", p.expected.text);
-  o.set("expected", expected);
+  o.set("expected", fields::object({{"digest", p.expected.digest}, {"results", p.expected.text}}));
   return o;
 }
 
@@ -406,9 +394,7 @@ std::string link_content(const SharePayload& p) {
     if (k == "recipe") {
       o.set(k, merge_diff(json::parse(kBaseRecipeV1), v));
     } else if (k == "patches") {
-      json::Value ids = json::Value::object();
-      ids.set("ids", v.at("ids"));
-      o.set(k, ids);
+      o.set(k, fields::object({{"ids", v.at("ids")}}));
       for (const char* m : {"RGB", "XYZ"})
         if (const json::Value* a = v.find(m))
           for (const auto& e : a->as_array()) put_f64(values, e.as_number());
@@ -463,8 +449,7 @@ json::Value link_json(const std::string& content) {
   if (nul == std::string::npos || values.size() != 8 * count)
     bad("the patch values hold " + std::to_string(values.size()) + " bytes, not " + std::to_string(8 * count) +
         " (3 doubles per patch" + (inline_XYZ ? " for RGB and for XYZ)" : ")"));
-  json::Value p = json::Value::object();
-  p.set("ids", ids);
+  json::Value p = fields::object({{"ids", ids}});
   for (int part = 0; part < (inline_XYZ ? 2 : 1); ++part) {
     json::Value a = json::Value::array();
     for (std::size_t i = 0; i < 3 * n; ++i) a.push(get_f64(values, 8 * (part * 3 * n + i)));
@@ -604,10 +589,8 @@ std::string hex_bytes(std::string_view hex) {
 /// Version 2 content: JSON NUL binary (docs/link-format.md). `tail`: where its incompressible part
 /// (the SHA-256s and the values' low bytes) starts.
 std::string link_content_v2(const SharePayload& p, std::size_t& tail) {
-  json::Value o = json::Value::object();
+  json::Value o = fields::object({{"tristim_version", p.tristim_version}, {"kind", p.kind}});
   std::string bin;
-  o.set("tristim_version", p.tristim_version);
-  o.set("kind", p.kind);
   if (p.kind == "absolute") {
     o.set("recipe", absolute_recipe_json(p.absolute));
   } else {
@@ -674,11 +657,8 @@ json::Value link_json_v2(const std::string& content) {
   if (!o.is_object()) bad("must be a JSON object");
   json::reject_unknown(o, {"tristim_version", "kind", "recipe", "ids", "sources", "results"}, "share payload", ErrorCode::ParseError);
   const std::string& kind = text_field(o, "kind", "payload");
-  json::Value out = json::Value::object();
-  out.set("format", "tristim-link");
-  out.set("version", kPayloadVersion);
-  out.set("tristim_version", field(o, "tristim_version", "payload"));
-  out.set("kind", kind);
+  json::Value out = fields::object({{"format", "tristim-link"}, {"version", kPayloadVersion},
+                                    {"tristim_version", field(o, "tristim_version", "payload")}, {"kind", kind}});
   const json::Value& recipe = field(o, "recipe", "payload");
   std::size_t patches = 0, doubles = 0;
   json::Value ids = json::Value::array();
@@ -723,16 +703,13 @@ json::Value link_json_v2(const std::string& content) {
   json::Value sources = json::Value::array();
   for (const auto& name : names.as_array()) {
     if (!name.is_string()) bad("sources must be an array of names");
-    json::Value s = json::Value::object();
-    s.set("name", name);
     std::string hex;
     for (char c : in.take(32, "the sources' SHA-256")) {
       char b[3];
       std::snprintf(b, sizeof b, "%02x", static_cast<unsigned>(static_cast<std::uint8_t>(c)));
       hex += b;
     }
-    s.set("sha256", hex);
-    sources.push(s);
+    sources.push(fields::object({{"name", name}, {"sha256", hex}}));
   }
   unplane(mantissas, in.take(n * (8 - kMantissaHighPlanes), "the results' numbers"), kMantissaHighPlanes, 8);
   const std::size_t left = in.bytes.size() - in.at;
@@ -751,8 +728,7 @@ json::Value link_json_v2(const std::string& content) {
     if (text.size() > kMaxLinkInflatedBytes) throw Error(ErrorCode::LimitExceeded, "share payload: results text beyond 1 MiB");
   }
   if (kind == "relative") {
-    json::Value patch_values = json::Value::object();
-    patch_values.set("ids", ids);
+    json::Value patch_values = fields::object({{"ids", ids}});
     for (std::size_t part = 0; 3 * patches * part < doubles; ++part) {
       json::Value a = json::Value::array();
       for (std::size_t i = 0; i < 3 * patches; ++i) {
@@ -765,10 +741,7 @@ json::Value link_json_v2(const std::string& content) {
     out.set("patches", patch_values);
   }
   out.set("sources", sources);
-  json::Value expected = json::Value::object();
-  expected.set("digest", "sha256:" + sha256_hex(text));
-  expected.set("results", text);
-  out.set("expected", expected);
+  out.set("expected", fields::object({{"digest", "sha256:" + sha256_hex(text)}, {"results", text}}));
   return out;
 }
 
@@ -966,32 +939,17 @@ Reproduction reproduce_share(const SharePayload& p) {
 
 json::Value reproduction_json(const Reproduction& r) {
   auto results = [](const ShareResults& s) {
-    json::Value o = json::Value::object(), values = json::Value::object();
-    o.set("digest", s.digest);
+    json::Value values = json::Value::object();
     for (const auto& [name, value] : result_lines(s.text)) values.set(name, value);
-    o.set("results", values);
-    return o;
+    return fields::object({{"digest", s.digest}, {"results", values}});
   };
-  json::Value o = json::Value::object();
-  o.set("verdict", r.verdict);
-  o.set("kind", r.kind);
-  json::Value versions = json::Value::object();
-  versions.set("link", r.expected_version);
-  versions.set("this", r.actual_version);
-  o.set("tristim_version", versions);
-  o.set("expected", results(r.expected));
-  o.set("actual", results(r.actual));
   json::Value diffs = json::Value::array();
-  for (const auto& d : r.differences) {
-    json::Value e = json::Value::object();
-    e.set("name", d.name);
-    e.set("expected", d.expected);
-    e.set("actual", d.actual);
-    diffs.push(e);
-  }
-  o.set("differences", diffs);
-  o.set("resampled", r.resampled);
-  return o;
+  for (const auto& d : r.differences)
+    diffs.push(fields::object({{"name", d.name}, {"expected", d.expected}, {"actual", d.actual}}));
+  return fields::object({{"verdict", r.verdict}, {"kind", r.kind},
+                         {"tristim_version", fields::object({{"link", r.expected_version}, {"this", r.actual_version}})},
+                         {"expected", results(r.expected)}, {"actual", results(r.actual)}, {"differences", diffs},
+                         {"resampled", r.resampled}});
 }
 
 // ---- base64url and deflate-raw -------------------------------------------------------------------
@@ -1108,23 +1066,16 @@ constexpr std::string_view kProjectPrefix = "TRISTIM-PROJECT ";
 bool is_project_file(std::string_view bytes) { return bytes.substr(0, kProjectPrefix.size()) == kProjectPrefix; }
 
 std::string project_to_bytes(const Project& project) {
-  json::Value header = json::Value::object();
-  header.set("format", "tristim-project");
-  header.set("version", kProjectVersion);
-  header.set("payload", share_payload_json(project.payload));
   json::Value images = json::Value::array();
   std::size_t offset = 0;
   for (const auto& im : project.images) {
-    json::Value e = json::Value::object();
-    e.set("name", im.name);
-    e.set("sha256", sha256_hex(im.bytes.data(), im.bytes.size()));
-    e.set("offset", static_cast<double>(offset));
-    e.set("size", static_cast<double>(im.bytes.size()));
+    images.push(fields::object({{"name", im.name}, {"sha256", sha256_hex(im.bytes.data(), im.bytes.size())},
+                                {"offset", static_cast<double>(offset)}, {"size", static_cast<double>(im.bytes.size())}}));
     offset += im.bytes.size();
-    images.push(e);
   }
-  header.set("images", images);
-  header.set("session", project.session.is_object() ? project.session : json::Value::object());
+  const json::Value header = fields::object(
+      {{"format", "tristim-project"}, {"version", kProjectVersion}, {"payload", share_payload_json(project.payload)},
+       {"images", images}, {"session", project.session.is_object() ? project.session : json::Value::object()}});
   const std::string text = header.dump();
   std::string out(kProjectMagic);
   out += std::to_string(text.size()) + "\n" + text;
