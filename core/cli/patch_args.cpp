@@ -68,7 +68,7 @@ PatchMatrix to_matrix(const std::vector<Vec3>& v) {
 }
 
 // Pairs camera RGB with reference XYZ (or L*a*b*, converted with ref_white) by patch id.
-PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, const Vec3& ref_white) {
+PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, const Vec3& ref_white, bool subset) {
   const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);
   const PatchTable ref = read_patch_file(read_file(xyz_path), xyz_path);
   if (!rgb.has_RGB) throw Error(ErrorCode::MissingColumn, rgb_path + ": needs R, G, B columns");
@@ -80,17 +80,24 @@ PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, c
   } else {
     throw Error(ErrorCode::MissingColumn, xyz_path + ": needs X, Y, Z or L, a, b columns");
   }
-  if (rgb.ids.size() != ref.ids.size())
+  if (!subset && rgb.ids.size() != ref.ids.size())
     throw Error(ErrorCode::PatchMismatch, rgb_path + " has " + std::to_string(rgb.ids.size()) + " patches but " +
                                               xyz_path + " has " + std::to_string(ref.ids.size()));
-  const PatchPairs pairs = pair_by_id(ref.ids, ref_xyz, rgb.ids, rgb.RGB);
-  if (!pairs.missing_in_measured.empty())
+  PatchPairs pairs;
+  try {
+    pairs = pair_by_id(ref.ids, ref_xyz, rgb.ids, rgb.RGB);
+  } catch (const Error& e) {  // no id shared: once the lengths may differ, this is where the files part
+    if (!subset) throw;
+    throw Error(e.code(), rgb_path + " and " + xyz_path + ": " + e.what());
+  }
+  if (!subset && !pairs.missing_in_measured.empty())
     throw Error(ErrorCode::PatchMismatch, "patch '" + patch_labels(ref, {pairs.missing_in_measured.front()}).front() +
                                               "' of " + xyz_path + " is not in " + rgb_path);
   if (!pairs.missing_in_reference.empty())
     throw Error(ErrorCode::PatchMismatch, "patch '" + patch_labels(rgb, {pairs.missing_in_reference.front()}).front() +
                                               "' of " + rgb_path + " is not in " + xyz_path);
   PatchData d;
+  d.without_rgb = patch_labels(ref, pairs.missing_in_measured);
   d.ids = pairs.ids;
   d.labels = patch_labels(rgb, pairs.ids);
   d.rgb = to_matrix(pairs.measured);
@@ -98,18 +105,19 @@ PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, c
   return d;
 }
 
-PatchData load_pairs(const Args& args, const Vec3& ref_white) {
+PatchData load_pairs(const Args& args, const Vec3& ref_white, bool subset) {
   const std::vector<std::string> rgb = args.all("rgb"), xyz = args.all("xyz");
   if (rgb.size() != xyz.size())
     throw Error(ErrorCode::InvalidArgument, "--rgb and --xyz: " + std::to_string(rgb.size()) + " camera tables but " +
                                                 std::to_string(xyz.size()) +
                                                 " reference tables (one --xyz per --rgb, in the same order)");
-  if (rgb.size() <= 1) return load_pairs(args.get("rgb"), args.get("xyz"), ref_white);
+  if (rgb.size() <= 1) return load_pairs(args.get("rgb"), args.get("xyz"), ref_white, subset);
   PatchData d;
   std::vector<Vec3> all_rgb, all_xyz;
   for (size_t k = 0; k < rgb.size(); ++k) {
-    const PatchData one = load_pairs(rgb[k], xyz[k], ref_white);
+    const PatchData one = load_pairs(rgb[k], xyz[k], ref_white, subset);
     const std::string prefix = std::to_string(k + 1) + ":";
+    for (const auto& id : one.without_rgb) d.without_rgb.push_back(prefix + id);
     for (size_t i = 0; i < one.ids.size(); ++i) {
       d.ids.push_back(prefix + one.ids[i]);
       d.labels.push_back(prefix + one.labels[i]);

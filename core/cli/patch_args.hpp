@@ -21,18 +21,24 @@ struct PatchData {
   std::vector<std::string> ids;     // keys (normalise_patch_id): for pairing, lookups and digests
   std::vector<std::string> labels;  // the same patches as the RGB file spells them: for outputs
   PatchMatrix rgb, xyz;
+  /// Reference patches with no RGB (load_pairs with `subset`), as the reference file spells them.
+  std::vector<std::string> without_rgb;
 };
 PatchMatrix to_matrix(const std::vector<Vec3>& v);
 /// Reads both tables (CSV or CGATS) and pairs them strictly by id: every patch of one file must
 /// be in the other (PatchMismatch). Reference L*a*b* is converted with ref_white. Labels: the
 /// RGB file's own spelling of each id ("A01" paired with the reference's "A1" stays "A01").
-PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, const Vec3& ref_white);
+/// `subset`: the RGB file may lack some of the reference's patches (a chart cut by the frame:
+/// `tristim sample` writes only the visible ones) — every RGB patch must still be in the
+/// reference; the pairs are the patches of both and PatchData::without_rgb lists the others.
+PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, const Vec3& ref_white,
+                     bool subset = false);
 /// Every --rgb with the --xyz at the same position (issue 48: several charts in one fit). One pair:
 /// load_pairs of the two. Several: the union of their patches in the order given, each chart's ids
 /// prefixed with its number ("2:A1"), so ids stay distinct and say which chart they come from; a
 /// fit on them is the fit on one table holding the same rows. InvalidArgument when the counts of
-/// --rgb and --xyz differ.
-PatchData load_pairs(const Args& args, const Vec3& ref_white);
+/// --rgb and --xyz differ. `subset`: as above, for each pair (without_rgb prefixed like the ids).
+PatchData load_pairs(const Args& args, const Vec3& ref_white, bool subset = false);
 /// The bytes of every file of `paths`, one after the other (the data digest of several --xyz; one
 /// file: its bytes).
 std::string read_files(const std::vector<std::string>& paths);
