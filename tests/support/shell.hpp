@@ -3,6 +3,7 @@
 #pragma once
 #ifndef __EMSCRIPTEN__
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -38,6 +39,20 @@ inline std::string run_shell(const std::string& cmd, bool must_succeed = true,
   if (must_succeed) REQUIRE(rc == 0);
   return out;
 }
+
+/// A fresh folder for one test's files (`d`, ending in '/'), in the working directory (the build's
+/// test folder), removed with its contents when the test ends, also when a REQUIRE stops it.
+struct ScratchDir {
+  std::string d;
+  explicit ScratchDir(const std::string& name) {
+    std::string folder = "tristim_" + name + "_XXXXXX";
+    REQUIRE(mkdtemp(folder.data()) != nullptr);
+    d = folder + "/";
+  }
+  ~ScratchDir() { std::system(("rm -rf '" + d + "'").c_str()); }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+};
 
 }  // namespace tristim::test
 #endif

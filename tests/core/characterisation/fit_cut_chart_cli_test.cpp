@@ -16,15 +16,12 @@ using namespace tristim;
 using namespace tristim::test;
 
 namespace {
-struct Dir {
-  std::string d = "tristim_fit_cut_chart_" + std::to_string(getpid()) + "/";
-  Dir() {
-    std::system(("mkdir -p " + d).c_str());
+struct Dir : ScratchDir {
+  Dir() : ScratchDir("fit_cut_chart") {
     const std::string cli = TRISTIM_CLI;
     run_shell(cli + " simulate --camera Nikon_D850 --reflectances cc24 --illuminant D65 > " + d + "rgb.csv");
     run_shell(cli + " reference --chart cc24 --illuminant D65 > " + d + "xyz.csv");
   }
-  ~Dir() { std::system(("rm -rf " + d).c_str()); }
   /// `from` without the rows of the patches `ids` (a header line, then one row per patch).
   void drop(const std::string& from, const std::string& to, const std::vector<std::string>& ids) const {
     std::istringstream in(slurp(d + from));

@@ -137,8 +137,8 @@ TEST_CASE("CLI on a cut chart: detect names the missing patches, sample and fit 
     }
   DngWriteOptions o;
   o.white = 16383;
-  const std::string d = "tristim_detect_cut_" + std::to_string(getpid()) + "/";
-  REQUIRE(std::system(("mkdir -p " + d).c_str()) == 0);
+  const test::ScratchDir scratch("detect_cut");
+  const std::string& d = scratch.d;
   const auto bytes = write_dng(cfa, im.width * 2, im.height * 2, o);
   test::spit(d + "cut.dng", std::string(bytes.begin(), bytes.end()));
   const std::string cli = TRISTIM_CLI;
@@ -171,6 +171,5 @@ TEST_CASE("CLI on a cut chart: detect names the missing patches, sample and fit 
   test::spit(d + "xyz.csv", kept);
   const json::Value fit = json::parse(test::run_shell(cli + " fit --rgb " + d + "rgb.csv --xyz " + d + "xyz.csv --model matrix-3x3 2>/dev/null"));
   CHECK(fit.at("training").at("patches").as_number() == double(truth.patches.size()));
-  std::system(("rm -rf " + d).c_str());
 }
 #endif

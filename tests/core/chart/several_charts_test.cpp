@@ -41,9 +41,9 @@ std::string without_file_digest(const std::string& profile) {
 
 TEST_CASE("two charts in one fit: the fit of their concatenated tables, to the bit, with figures per chart",
           "[several-charts]") {
-  char tmpl[] = "/tmp/tristim-charts-XXXXXX";
-  REQUIRE(mkdtemp(tmpl) != nullptr);
-  const std::string d = std::string(tmpl) + "/", cli = TRISTIM_CLI;
+  const tristim::test::ScratchDir scratch("charts");
+  const std::string& d = scratch.d;
+  const std::string cli = TRISTIM_CLI;
   const std::string cam = " --camera Canon_EOS_5D_Mark_II --illuminant D50 --noise 0.002";
   run_shell(cli + " simulate" + cam + " --reflectances cc24 --seed 3 > " + d + "a.csv");
   run_shell(cli + " simulate" + cam + " --reflectances sg140 --seed 4 > " + d + "b.csv");
@@ -76,6 +76,5 @@ TEST_CASE("two charts in one fit: the fit of their concatenated tables, to the b
                                             "ra.csv --model matrix-3x3 2>&1; echo rc=$?", false);
   CHECK(refused.find("INVALID_ARGUMENT: --rgb and --xyz: 2 camera tables but 1 reference tables") != std::string::npos);
   CHECK(refused.find("rc=1") != std::string::npos);
-  std::system(("rm -rf '" + std::string(tmpl) + "'").c_str());
 }
 #endif

@@ -14,15 +14,12 @@ using namespace tristim;
 using namespace tristim::test;
 
 namespace {
-struct Dir {
-  std::string d = "tristim_bootstrap_cli_" + std::to_string(getpid()) + "/";
-  Dir() {
-    std::system(("mkdir -p " + d).c_str());
+struct Dir : ScratchDir {
+  Dir() : ScratchDir("bootstrap_cli") {
     const std::string cli = TRISTIM_CLI, dng = std::string(TRISTIM_SOURCE_DIR) + "/examples/web/passport.dng";
     run_shell(cli + " sample " + dng + " --chart passport --corners 335,291,649,285,649,486,328,488 > " + d + "patches.csv");
     run_shell(cli + " reference --chart passport --illuminant D50 > " + d + "reference.csv");
   }
-  ~Dir() { std::system(("rm -rf " + d).c_str()); }
   /// `tristim compare` on the example patches with `options`, its JSON.
   json::Value compare(const std::string& options) const {
     return json::parse(run_shell(std::string(TRISTIM_CLI) + " compare --rgb " + d + "patches.csv --xyz " + d + "reference.csv " +

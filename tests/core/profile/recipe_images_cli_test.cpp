@@ -63,9 +63,9 @@ std::string ordered_like(const std::string& ref_csv, const std::string& rgb_csv)
 
 TEST_CASE("fit --recipe with two images: the fit of the concatenated tables, to the bit, with figures per chart",
           "[recipe][images][cli]") {
-  char tmpl[] = "/tmp/tristim-images-XXXXXX";
-  REQUIRE(mkdtemp(tmpl) != nullptr);
-  const std::string d = std::string(tmpl) + "/", cli = TRISTIM_CLI;
+  const tristim::test::ScratchDir scratch("images");
+  const std::string& d = scratch.d;
+  const std::string cli = TRISTIM_CLI;
   const std::string cam = " --camera Canon_EOS_5D_Mark_II --illuminant D65";
   const std::string ta = run_shell(cli + " lab render" + cam + " --chart cc24 --size 600x400 --out " + d + "a.dng");
   const std::string tb = run_shell(cli + " lab render" + cam + " --chart sg140 --size 600x400 --out " + d + "b.dng");
@@ -142,6 +142,5 @@ TEST_CASE("fit --recipe with two images: the fit of the concatenated tables, to 
   spit(d + "bad.json", text);
   e = refused(d + "bad.json --raw " + d + "a.dng --raw " + d + "b.dng");
   CHECK(e.find("UNKNOWN_ID: recipe: images[1] ('sg140.dng'): ") != std::string::npos);
-  std::system(("rm -rf '" + std::string(tmpl) + "'").c_str());
 }
 #endif
