@@ -1,6 +1,9 @@
 // Declarations: the Recipe (every stage of a characterisation as a value) and the one data path
 // from a recipe and its inputs to a profile (profile/characterise.hpp). A Recipe argument may be
 // given as its JSON text; MethodChoice members as "id:name=value,...".
+// Several chart images (issue 48, docs/multi-image.md), as `tristim fit --recipe` with an `images`
+// list: trainingSet(imageRecipe(recipe, recipe.images[k]), sample_k, reference_k) per chart, then
+// fitTraining(recipe, trainingUnion(recipe, [{name, training}, …])) — its `charts` the per-chart figures.
 #include "tristim/profile/characterise.hpp"
 #include "types.hpp"
 
@@ -21,11 +24,12 @@ struct FitOutcome {
   std::string profile;
   MethodChoice surface;          // the correction the reference went through (Phase II: the fitted one)
   std::string surface_status;
+  std::vector<ChartFigures> charts;  // several charts: each one's training / leave-one-out / held-out figures
 };
 FitOutcome outcome(const Recipe& recipe, const TrainingSet& training) {
   const Characterisation c = characterise(recipe, training);
   return {c.recipe, training.ids, training.labels, training.excluded, c.linear_RGB, c.reference_XYZ, c.evaluation, profile_to_json(c.profile),
-          c.surface, c.surface_status};
+          c.surface, c.surface_status, chart_figures(c, training)};
 }
 /// fitSample(recipe, sample, reference): a chart sample paired with a reference by patch id.
 FitOutcome fit_sample(const Recipe& recipe, const ChartSample& sample, const ReferenceChart& reference) {
@@ -34,6 +38,10 @@ FitOutcome fit_sample(const Recipe& recipe, const ChartSample& sample, const Ref
 /// fitTables(recipe, ids, rgb, xyz): patch tables already paired row by row.
 FitOutcome fit_tables(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& rgb, const PatchMatrix& xyz) {
   return outcome(recipe, training_set(recipe, ids, rgb, xyz));
+}
+
+TrainingSet sample_training_set(const Recipe& recipe, const ChartSample& sample, const ReferenceChart& reference) {
+  return training_set(recipe, sample, reference);
 }
 
 }  // namespace
@@ -47,13 +55,24 @@ EMSCRIPTEN_BINDINGS(tristim_recipe) {
   { using S = CharacterisationStage; value_object<S>("CharacterisationStage") FIELD(model) FIELD(objective) FIELD(white_patch)
       FIELD(lab_white); }
   { using S = EvaluationStage; value_object<S>("EvaluationStage") FIELD(leave_one_out) FIELD(held_out_digest); }
+  { using S = RecipeImage; value_object<S>("RecipeImage") FIELD(name) FIELD(sha256) FIELD(reference) FIELD(capture) FIELD(sampling)
+      FIELD(candidate); }
   { using S = Recipe; value_object<S>("Recipe") FIELD(version) FIELD(reference) FIELD(capture) FIELD(sampling)
-      FIELD(linearisation) FIELD(surface) FIELD(characterisation) FIELD(evaluation); }
+      FIELD(linearisation) FIELD(surface) FIELD(characterisation) FIELD(evaluation) FIELD(images) FIELD(duplicates); }
+  { using S = TrainingSet; value_object<S>("TrainingSet") FIELD(ids) FIELD(labels) FIELD(camera_RGB) FIELD(reference_XYZ)
+      FIELD(excluded) FIELD(chart_names) FIELD(chart_rows); }
+  { using S = ChartPart; value_object<S>("ChartPart") FIELD(name) FIELD(training); }
+  { using S = ChartFigures; value_object<S>("ChartFigures") FIELD(name) FIELD(patches) FIELD(training_dE00) FIELD(has_loo)
+      FIELD(loo_dE00) FIELD(has_held_out) FIELD(held_out_dE00) FIELD(held_out_error); }
   { using S = FitOutcome; value_object<S>("FitOutcome") FIELD(recipe) FIELD(ids) FIELD(labels) FIELD(excluded) FIELD(linear_RGB)
-      FIELD(reference_XYZ) FIELD(evaluation) FIELD(profile) FIELD(surface) FIELD(surface_status); }
+      FIELD(reference_XYZ) FIELD(evaluation) FIELD(profile) FIELD(surface) FIELD(surface_status) FIELD(charts); }
 
   def<&fit_sample>("fitSample");
   def<&fit_tables>("fitTables");
+  def<&outcome>("fitTraining");
+  def<&sample_training_set>("trainingSet");
+  def<&image_recipe>("imageRecipe");
+  def<&training_union>("trainingUnion");
   def<&recipe_reference>("recipeReference");
   def<&complete_recipe>("completeRecipe");
   def<&recipe_to_json>("recipeToJson");
