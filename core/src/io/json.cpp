@@ -11,6 +11,7 @@
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
 #include "tristim/number.hpp"
+#include "../text_escape.hpp"
 
 namespace tristim::json {
 
@@ -123,25 +124,23 @@ std::string number_text(double d) {
   return buf;
 }
 
+// JSON's short escapes, for the writer and the reader alike. The writer spells the other control
+// characters (\b and \f included) as \u00XX and leaves '/' as it is.
+constexpr CharEscape kEscapes[] = {{'"', "\\\"", true},  {'\\', "\\\\", true}, {'/', "\\/", false},
+                                   {'\b', "\\b", false}, {'\f', "\\f", false},   {'\n', "\\n", true},
+                                   {'\r', "\\r", true},  {'\t', "\\t", true}};
+
 static void escape(std::string& out, const std::string& s) {
   out += '"';
-  for (unsigned char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (c < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += static_cast<char>(c);
-        }
+  append_escaped(out, s, kEscapes, [](std::string& o, char c) {
+    if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned char>(c));
+      o += buf;
+    } else {
+      o += c;
     }
-  }
+  });
   out += '"';
 }
 
@@ -316,27 +315,20 @@ struct Parser {
       }
       if (i >= s.size()) fail("unterminated string");
       const char e = s[i++];
-      switch (e) {
-        case '"': out += '"'; break;
-        case '\\': out += '\\'; break;
-        case '/': out += '/'; break;
-        case 'b': out += '\b'; break;
-        case 'f': out += '\f'; break;
-        case 'n': out += '\n'; break;
-        case 'r': out += '\r'; break;
-        case 't': out += '\t'; break;
-        case 'u': {
-          unsigned cp = hex4();
-          if (cp >= 0xD800 && cp < 0xDC00 && i + 1 < s.size() && s[i] == '\\' && s[i + 1] == 'u') {
-            i += 2;
-            const unsigned lo = hex4();
-            cp = 0x10000 + ((cp - 0xD800) << 10) + (lo - 0xDC00);
-          }
-          utf8(out, cp);
-          break;
-        }
-        default: fail("bad escape");
+      if (e != 'u') {
+        const char spelled[2] = {'\\', e};
+        const CharEscape* row = escape_named(std::string_view(spelled, 2), kEscapes);
+        if (!row) fail("bad escape");
+        out += row->raw;
+        continue;
       }
+      unsigned cp = hex4();  // \uXXXX, a surrogate pair as one code point
+      if (cp >= 0xD800 && cp < 0xDC00 && i + 1 < s.size() && s[i] == '\\' && s[i + 1] == 'u') {
+        i += 2;
+        const unsigned lo = hex4();
+        cp = 0x10000 + ((cp - 0xD800) << 10) + (lo - 0xDC00);
+      }
+      utf8(out, cp);
     }
     return out;
   }

@@ -13,6 +13,7 @@
 #include "tristim/profile/clf.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 #include "tristim/version.hpp"
+#include "../text_escape.hpp"
 
 namespace tristim {
 
@@ -26,20 +27,16 @@ std::string num(double v) {
   return b;
 }
 
+// XML's predefined entities, for the writer (escape) and the reader (Reader::unescape) alike.
+constexpr CharEscape kEntities[] = {
+    {'<', "&lt;"}, {'>', "&gt;"}, {'&', "&amp;"}, {'"', "&quot;"}, {'\'', "&apos;"}};
+
 std::string escape(std::string_view s) {
   std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '&': o += "&amp;"; break;
-      case '"': o += "&quot;"; break;
-      case '\'': o += "&apos;"; break;
-      default:
-        // Control characters other than tab/newline are not allowed in XML 1.0.
-        o += (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') ? ' ' : c;
-    }
-  }
+  append_escaped(o, s, kEntities, [](std::string& out, char c) {
+    // Control characters other than tab/newline are not allowed in XML 1.0.
+    out += (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') ? ' ' : c;
+  });
   return o;
 }
 
@@ -115,13 +112,9 @@ class XmlReader {
       }
       const std::size_t e = s.find(';', i);
       if (e == std::string_view::npos) fail("unterminated entity");
-      const std::string_view ent = s.substr(i + 1, e - i - 1);
-      if (ent == "lt") o += '<';
-      else if (ent == "gt") o += '>';
-      else if (ent == "amp") o += '&';
-      else if (ent == "quot") o += '"';
-      else if (ent == "apos") o += '\'';
-      else fail("unknown entity '&" + std::string(ent.substr(0, 16)) + ";'");
+      const CharEscape* row = escape_named(s.substr(i, e - i + 1), kEntities);
+      if (!row) fail("unknown entity '&" + std::string(s.substr(i + 1, e - i - 1).substr(0, 16)) + ";'");
+      o += row->raw;
       i = e;
     }
     return o;
