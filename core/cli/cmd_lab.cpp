@@ -19,8 +19,8 @@ int run_lab_exercise(const std::string& sub, const Args& args, std::ostream& out
 namespace {
 
 int run_render(const Args& args, std::ostream& out) {
-  args.allow_only({"camera", "sensitivities", "chart", "illuminant", "oecf", "noise", "seed", "exposure", "surface",
-                   "falloff", "flare", "corners", "size", "bits", "black", "cfa", "quality", "out"});
+  args.allow_only({"camera", "sensitivities", "chart", "reflectances", "illuminant", "oecf", "noise", "seed", "exposure",
+                   "surface", "falloff", "flare", "corners", "size", "bits", "black", "cfa", "quality", "out"});
   LabRenderOptions o;
   o.camera = args.get("camera", o.camera);
   if (args.has("sensitivities")) {
@@ -29,6 +29,12 @@ int run_render(const Args& args, std::ostream& out) {
     if (!args.has("camera")) o.camera = path;
   }
   o.chart = args.get("chart", o.chart);
+  if (args.has("reflectances")) {  // a chart of one's own, drawn as a generated grid
+    if (args.has("chart")) throw Error(ErrorCode::InvalidArgument, "give --chart or --reflectances, not both");
+    o.chart = args.get("reflectances");
+    o.reflectances = reflectances_arg(o.chart);
+    o.reflectances.names = reflectance_labels(o.chart, o.reflectances.names);  // the file's own spelling
+  }
   o.illuminant = args.get("illuminant", o.illuminant);
   o.illuminant_spd = illuminant_arg(o.illuminant);
   if (args.has("surface")) o.surface = parse_choice(args.get("surface"));
@@ -176,6 +182,7 @@ int run_lab(const Args& args, std::ostream& out) {
 CommandRegistration reg_lab(
     {"lab", "the colorimetry lab: render a chart photograph (DNG/TIFF); camera quality (SMI, mu); exercises",
      "tristim lab render --camera \"<one of the 52>\" --chart cc24|sg140|passport --illuminant D65 --out chart.dng\n"
+     "                   [--chart munsell:5R4/14,10YR6/10,5PB|--reflectances my.csv]\n"
      "                   [--sensitivities ssf.csv] [--exposure 0.5] [--noise shot,read] [--seed 1]\n"
      "                   [--surface <method>:<name>=<value>,...] [--falloff 0] [--flare 0]\n"
      "                   [--corners x1,y1,...,x4,y4] [--size 900x600] [--bits 14] [--black 512] [--cfa RGGB]\n"
@@ -189,6 +196,10 @@ CommandRegistration reg_lab(
      "  --falloff a: 1 - a*r^2 light fall-off (r = 1 at the corners); --flare f: veiling flare, a fraction of\n"
      "  the white. Prints the truth as JSON: corners, white, DNG colour matrix, and per patch the camera RGB\n"
      "  `rgb` (DN above black) that sampling recovers exactly with noise and fall-off off, and the XYZ.\n"
+     "  --chart munsell:<chips>: Munsell matte chips (ids such as 5R4/14, or a hue page such as 5R: all its\n"
+     "  chips); --reflectances: a spectral CSV/CGATS of your own (or a chart id). Both are drawn as a grid of\n"
+     "  columns = ceil(sqrt(1.5 N)) x rows, gap 0, ids from the file; the truth's \"sample_args\" are the\n"
+     "  `tristim sample` options (--chart custom --rows --columns --corners) that sample it, \"cell\" per patch.\n"
      "  --out .tiff: an RGB image (one pixel per 2x2 sensor block, no CFA) encoded by --oecf (x = DN/saturation;\n"
      "  gamma=g stores x^(1/g)) in 16 bits; the truth adds `stored` per patch (what sampling the TIFF recovers).\n"
      "tristim lab render ... --oecf sRGB [--quality 95] --out chart.jpg\n"

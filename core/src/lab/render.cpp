@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
@@ -13,6 +14,7 @@
 #include "tristim/error.hpp"
 #include "tristim/io/fields.hpp"
 #include "tristim/io/patch_files.hpp"
+#include "tristim/linearisation/oecf_Shen2008.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 #include "tristim/surface/surface.hpp"
 
@@ -106,6 +108,50 @@ std::vector<std::string> lab_oecf_ids() { return {"linear", "sRGB", "gamma=1.8",
 
 std::vector<std::string> lab_chart_ids() { return {"cc24", "passport", "sg140"}; }
 
+std::array<int, 2> lab_grid_shape(int n) {
+  if (n < 1) throw Error(ErrorCode::InvalidArgument, "lab render: a chart needs at least one patch");
+  const int columns = static_cast<int>(std::ceil(std::sqrt(1.5 * n) - 1e-9));
+  return {(n + columns - 1) / columns, columns};
+}
+
+SpectralData lab_munsell_selection(const std::string& selection) {
+  const std::string text = selection.compare(0, 8, "munsell:") == 0 ? selection.substr(8) : selection;
+  const SpectralData& all = munsell_reflectances();
+  // A chip's hue page: its id up to the value ("5R" of "5R4/14", "10YR" of "10YR6/10").
+  auto hue_of = [](const std::string& id) {
+    size_t i = id.size();
+    while (i > 0 && !std::isalpha(static_cast<unsigned char>(id[i - 1]))) --i;
+    return id.substr(0, i);
+  };
+  SpectralData out;
+  out.wavelengths = all.wavelengths;
+  auto add = [&](size_t k) {
+    if (std::find(out.names.begin(), out.names.end(), all.names[k]) != out.names.end()) return;
+    out.names.push_back(all.names[k]);
+    out.values.push_back(all.values[k]);
+  };
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    const std::string token = text.substr(start, comma - start);
+    start = comma + 1;
+    if (token.empty()) continue;
+    const auto it = std::find(all.names.begin(), all.names.end(), token);
+    if (it != all.names.end()) {
+      add(static_cast<size_t>(it - all.names.begin()));
+      continue;
+    }
+    const size_t before = out.names.size();
+    if (token.find('/') == std::string::npos)
+      for (size_t k = 0; k < all.names.size(); ++k)
+        if (hue_of(all.names[k]) == token) add(k);
+    if (out.names.size() == before)
+      throw Error(ErrorCode::UnknownId, "lab render: '" + token + "' is neither a Munsell chip (e.g. 5R4/14) nor a hue page (e.g. 5R)");
+  }
+  if (out.names.empty()) throw Error(ErrorCode::InvalidArgument, "lab render: 'munsell:' names no chip (e.g. munsell:5R4/14,10YR6/10)");
+  return out;
+}
+
 double lab_encode(const LabRenderOptions& o, double dn, double saturation) {
   const double x = std::min(std::max(dn / saturation, 0.0), 1.0);
   if (o.oecf == "linear") return x;
@@ -148,8 +194,10 @@ std::vector<std::uint8_t> lab_render_jpeg(const LabRender& r) {
 
 LabRender render_lab_chart(const LabRenderOptions& o) {
   const auto ids = lab_chart_ids();
-  if (std::find(ids.begin(), ids.end(), o.chart) == ids.end())
-    throw Error(ErrorCode::UnknownId, "lab render: unknown chart '" + o.chart + "' (cc24, passport or sg140)");
+  const bool munsell = o.reflectances.values.empty() && o.chart.compare(0, 8, "munsell:") == 0;
+  const bool generated = munsell || !o.reflectances.values.empty();
+  if (!generated && std::find(ids.begin(), ids.end(), o.chart) == ids.end())
+    throw Error(ErrorCode::UnknownId, "lab render: unknown chart '" + o.chart + "' (cc24, passport, sg140, munsell:<chips> or reflectances)");
   if (o.width < 64 || o.height < 64 || o.width > 4000 || o.height > 4000)
     throw Error(ErrorCode::InvalidArgument, "lab render: --size must be 64..4000 pixels per side (the sensor is twice that)");
   check_range(o.exposure, 1e-6, 4, "exposure");
@@ -165,8 +213,20 @@ LabRender render_lab_chart(const LabRenderOptions& o) {
 
   const SpectralData ssf = o.sensitivities.values.empty() ? camera_ssf(o.camera) : o.sensitivities;
   const SpectralData illum = o.illuminant_spd.values.empty() ? illuminant_spd(o.illuminant) : o.illuminant_spd;
-  SpectralData refl = chart_reflectances(o.chart == "sg140" ? "sg140" : "cc24");
-  for (auto& n : refl.names) n = normalise_patch_id(n);
+  SpectralData refl = munsell ? lab_munsell_selection(o.chart)
+                     : generated ? o.reflectances
+                                 : chart_reflectances(o.chart == "sg140" ? "sg140" : "cc24");
+  if (!generated)
+    for (auto& n : refl.names) n = normalise_patch_id(n);
+  if (generated) {
+    if (refl.names.size() < 3 || refl.names.size() > 2000)
+      throw Error(ErrorCode::InvalidArgument, "lab render: a chart of one's own needs 3..2000 patches, '" + o.chart + "' has " +
+                                                  std::to_string(refl.names.size()));
+    for (size_t i = 0; i < refl.names.size(); ++i)
+      if (std::find(refl.names.begin(), refl.names.begin() + static_cast<std::ptrdiff_t>(i), refl.names[i]) !=
+          refl.names.begin() + static_cast<std::ptrdiff_t>(i))
+        throw Error(ErrorCode::InvalidArgument, "lab render: patch id '" + refl.names[i] + "' appears twice in '" + o.chart + "'");
+  }
   const SpectralData seen = o.surface.method == "none" ? refl : correct_surface(o.surface, refl);
   const std::vector<Vec3> response = simulate_camera_RGB(ssf, seen, illum);  // white's G = 1
   SpectralData flat = refl;
@@ -178,12 +238,21 @@ LabRender render_lab_chart(const LabRenderOptions& o) {
   LayoutOptions lo;
   lo.chart = o.chart;
   if (o.chart == "sg140") lo.gap = kSgGap;
+  if (generated) {  // the custom layout, gap 0, exactly as `tristim sample --chart custom` lays it
+    const auto shape = lab_grid_shape(static_cast<int>(refl.names.size()));
+    lo.chart = "custom";
+    lo.rows = shape[0];
+    lo.columns = shape[1];
+  }
   const ChartLayout layout = chart_layout(lo);
 
   LabRender out;
   out.options = o;
   out.width = o.width;
   out.height = o.height;
+  out.layout = layout.chart;
+  out.rows = layout.rows;
+  out.columns = layout.columns;
   out.saturation = static_cast<double>((1 << o.bits) - 1 - o.black);
   const double s = out.saturation, e = o.exposure;
   for (int c = 0; c < 3; ++c) out.white[static_cast<size_t>(c)] = e * s * w[c];
@@ -195,14 +264,24 @@ LabRender render_lab_chart(const LabRenderOptions& o) {
   check_corners(out.corners, o.width, o.height);
   out.options.corners = out.corners;
 
-  // Per patch: its response in DN (u = e·s·ρ) and the truth.
+  const std::array<double, 3> board = scaled(out.white, kBoard), background = scaled(out.white, kBackground);
+  // Per layout cell: its response in DN (u = e·s·ρ) and the truth; a generated grid's cells past
+  // the last reflectance show the board.
   std::vector<std::array<double, 3>> patch_dn;
-  for (const auto& cell : layout.patches) {
-    const auto it = std::find(refl.names.begin(), refl.names.end(), normalise_patch_id(cell.id));
-    if (it == refl.names.end()) throw Error(ErrorCode::Internal, "lab render: no reflectance for patch " + cell.id);
-    const size_t k = static_cast<size_t>(it - refl.names.begin());
+  for (size_t ci = 0; ci < layout.patches.size(); ++ci) {
+    const PatchCell& cell = layout.patches[ci];
+    size_t k = ci;
+    if (!generated) {
+      const auto it = std::find(refl.names.begin(), refl.names.end(), normalise_patch_id(cell.id));
+      if (it == refl.names.end()) throw Error(ErrorCode::Internal, "lab render: no reflectance for patch " + cell.id);
+      k = static_cast<size_t>(it - refl.names.begin());
+    } else if (ci >= refl.names.size()) {
+      patch_dn.push_back(board);
+      continue;
+    }
     LabPatchTruth t;
-    t.id = cell.id;
+    t.id = generated ? refl.names[k] : cell.id;
+    if (generated) t.cell = cell.id;
     std::array<double, 3> u{};
     for (int c = 0; c < 3; ++c) {
       const size_t ci = static_cast<size_t>(c);
@@ -222,7 +301,6 @@ LabRender render_lab_chart(const LabRenderOptions& o) {
   const Eigen::Matrix3d Hi = H.inverse();
   const PatchCell& p0 = layout.patches[0];
   const double pw = p0.u1 - p0.u0, ph = p0.v1 - p0.v0, margin = 0.4;
-  const std::array<double, 3> board = scaled(out.white, kBoard), background = scaled(out.white, kBackground);
   // Which surface a point of the chart plane shows: -2 background, -1 board, else a patch index.
   auto surface_at = [&](double x, double y) -> int {
     const Eigen::Vector3d q = Hi * Eigen::Vector3d(x, y, 1);
@@ -314,10 +392,19 @@ json::Value lab_render_json(const LabRender& r, double full_scale) {
   j.set("corners", arr(r.corners.data(), 8));
   j.set("white", arr(r.white.data(), 3));
   j.set("color_matrix", arr(r.dng.color_matrix.data(), 9));
+  const bool generated = r.layout == "custom";
+  if (generated) {
+    j.set("layout", fields::object({{"chart", r.layout}, {"rows", r.rows}, {"columns", r.columns}}));
+    std::string corners;
+    for (double c : r.corners) corners += (corners.empty() ? "" : ",") + json::number_text(c);
+    j.set("sample_args", "--chart custom --rows " + std::to_string(r.rows) + " --columns " + std::to_string(r.columns) +
+                             " --corners " + corners);
+  }
   json::Value patches = json::Value::array();
   for (const auto& p : r.patches) {
     json::Value q = fields::object({{"id", p.id}, {"rgb", arr(p.rgb.data(), 3)}, {"linear", arr(p.linear.data(), 3)},
                                     {"XYZ", arr(p.XYZ.data(), 3)}});
+    if (generated) q.set("cell", p.cell);
     if (full_scale > 0) {
       std::array<double, 3> stored{};
       for (size_t c = 0; c < 3; ++c) stored[c] = std::round(full_scale * lab_encode(o, p.rgb[c], r.saturation));

@@ -37,7 +37,14 @@ struct LabRenderOptions {
   std::string camera = "Canon_EOS_5D_Mark_II";  ///< one of the 52 (camera_names()), or a label
                                                 ///< for `sensitivities`
   SpectralData sensitivities;       ///< R, G, B curves to use instead of the built-in camera (empty: built-in)
-  std::string chart = "cc24";       ///< "cc24", "passport" or "sg140"
+  /// "cc24", "passport" or "sg140"; "munsell:<chip>,<chip>,…" (lab_munsell_selection) drawn as a
+  /// generated grid; with `reflectances` given, only a label (e.g. the file's name).
+  std::string chart = "cc24";
+  /// A chart of one's own: reflectances (fractions, one column per patch, names = patch ids) drawn
+  /// as a generated grid of lab_grid_shape(N) patches (the layout `custom`, gap 0: `tristim sample
+  /// --chart custom --rows R --columns C --corners …` samples it; cells past the N-th show the
+  /// board). Empty: the chart `chart`.
+  SpectralData reflectances;
   std::string illuminant = "D65";   ///< id (illuminant_spd) or a label for `illuminant_spd`
   SpectralData illuminant_spd;      ///< the SPD to use (empty: illuminant_spd(illuminant))
   MethodChoice surface{"none", {}, {}};  ///< surface correction applied to the reflectances
@@ -60,6 +67,7 @@ struct LabRenderOptions {
 
 struct LabPatchTruth {
   std::string id;
+  std::string cell;                 ///< a generated grid's cell id (R1C1…, the custom layout's); else empty
   std::array<double, 3> rgb{};      ///< DN above black as sampling recovers it (see header)
   std::array<double, 3> linear{};   ///< the same before rounding and clipping
   std::array<double, 3> XYZ{};      ///< reference: instrument reflectance, CIE 1931 2°, Y_white = 100
@@ -70,6 +78,8 @@ struct LabRender {
   int width = 0, height = 0;        ///< measurement image
   std::vector<std::uint16_t> sensor;  ///< 2·width × 2·height CFA values including the black level
   std::array<double, 8> corners{};
+  std::string layout;               ///< the layout drawn: the chart id, or "custom" for a generated grid
+  int rows = 0, columns = 0;        ///< its grid
   double saturation = 0;            ///< s: clip level above black, DN
   std::array<double, 3> white{};    ///< DN of the white diffuser (e·s·w)
   std::vector<LabPatchTruth> patches;  ///< in the layout's order
@@ -77,8 +87,9 @@ struct LabRender {
   std::vector<double> scene;        ///< width × height × 3: u per pixel (before fall-off, flare, noise)
 };
 
-/// Renders the chart. Errors: UnknownId (camera, chart, illuminant, surface method),
-/// InvalidArgument naming the option out of range, CornersOutside / CornersCrossed for corners.
+/// Renders the chart. Errors: UnknownId (camera, chart, illuminant, surface method, Munsell chip),
+/// InvalidArgument naming the option out of range (a generated grid: 3..2000 patches, unique ids),
+/// CornersOutside / CornersCrossed for corners.
 LabRender render_lab_chart(const LabRenderOptions& options);
 
 /// The rendering as a DNG file (bytes).
@@ -99,7 +110,8 @@ std::vector<std::uint8_t> lab_render_jpeg(const LabRender& render);
 double lab_encode(const LabRenderOptions& options, double dn, double saturation);
 
 /// The truth as JSON: camera, chart, illuminant, sizes, corners, saturation, white, and per patch
-/// {id, rgb, linear, XYZ}; with `full_scale` > 0 (an image through the OECF) also the OECF and
+/// {id, rgb, linear, XYZ}; a generated grid adds "layout" {chart "custom", rows, columns},
+/// "sample_args" (the `tristim sample` options that sample it) and per patch "cell"; with `full_scale` > 0 (an image through the OECF) also the OECF and
 /// per patch `stored`: round(full_scale · encode(rgb)), what sampling the image recovers (noise off).
 json::Value lab_render_json(const LabRender& render, double full_scale = 0);
 
@@ -117,7 +129,18 @@ LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::stri
 /// "sRGB", "gamma=1.8", "gamma=2.2".
 std::vector<std::string> lab_oecf_ids();
 
-/// Chart ids lab rendering draws ("cc24", "passport", "sg140").
+/// Chart ids lab rendering draws ("cc24", "passport", "sg140"); besides them "munsell:…" and
+/// LabRenderOptions::reflectances.
 std::vector<std::string> lab_chart_ids();
+
+/// Rows and columns of the generated grid for n patches: columns = ⌈√(1.5 n)⌉ (a 3:2 chart, as the
+/// ColorChecker's 6×4), rows = ⌈n / columns⌉. InvalidArgument for n < 1.
+std::array<int, 2> lab_grid_shape(int n);
+
+/// Munsell matte chips (munsell_reflectances(), ids as munsell_ids()) chosen by `selection`: a
+/// comma-separated list of chip ids ("5R4/14,10YR6/10") or hue pages ("5R": every chip of that hue,
+/// by value then chroma), optionally after "munsell:". Columns in the order given, no repeats.
+/// Error(UnknownId) naming a token that is neither a chip nor a hue page.
+SpectralData lab_munsell_selection(const std::string& selection);
 
 }  // namespace tristim
