@@ -5,6 +5,7 @@
 #include <cstring>
 #include <map>
 
+#include "tristim/capture/calibration.hpp"
 #include "tristim/capture/image.hpp"
 #include "tristim/chart/detect.hpp"
 #include "tristim/chart/light_trap.hpp"
@@ -155,7 +156,8 @@ TrainingSet training_set(const Recipe& in, const std::vector<std::string>& in_id
 
 // ---- several chart images (issue 48) ------------------------------------------------------
 
-std::vector<ChartSample> sample_recipe_image(RecipeImage& e, size_t index, const std::uint8_t* bytes, size_t size) {
+std::vector<ChartSample> sample_recipe_image(RecipeImage& e, size_t index, const std::uint8_t* bytes, size_t size,
+                                             const RecipeImageFrames& frames) {
   const std::string named = "images[" + std::to_string(index) + "] ('" + e.name + "'): ";
   try {
     e.sha256 = sha256_hex(bytes, size);
@@ -164,8 +166,27 @@ std::vector<ChartSample> sample_recipe_image(RecipeImage& e, size_t index, const
     SampleOptions so;
     so.area = e.sampling.area;
     FrameCalibration cal;
-    if (e.capture.has_light_trap()) {  // Abed 2013 App. C step 1: measured again on this image
-      const LightTrap trap = measure_light_trap(image, e.capture.light_trap, so);
+    if (!frames.darks.empty()) {  // Abed 2013 App. C step 1: this image's own dark frames, averaged
+      std::vector<const RawImage*> darks;
+      for (const RawImage& d : frames.darks) darks.push_back(&d);
+      try {
+        cal = with_dark_frames(cal, image, darks, e.capture.dark_mode);
+      } catch (const Error& x) {
+        throw Error(x.code(), std::string("its dark frames: ") + x.what());
+      }
+      e.capture.dark_frames = static_cast<int>(darks.size());
+    }
+    if (frames.flat.size() > 1) throw Error(ErrorCode::InvalidArgument, "one flat field per image, not " + std::to_string(frames.flat.size()));
+    if (!frames.flat.empty()) {  // App. C step 2 (per pixel) or Guarnera 2018 eq (7) (radial)
+      try {
+        cal = with_flat_frame(cal, image, frames.flat[0], e.capture.falloff ? "radial" : "pixel");
+      } catch (const Error& x) {
+        throw Error(x.code(), std::string("its flat field: ") + x.what());
+      }
+      e.capture.flat_field = !e.capture.falloff;
+    }
+    if (e.capture.has_light_trap()) {  // Abed 2013 App. C step 1: measured again on this image, after its dark frame
+      const LightTrap trap = measure_light_trap(image, e.capture.light_trap, so, &cal);
       e.capture.flare = trap.mean;
       cal = with_light_trap(cal, trap);
     }

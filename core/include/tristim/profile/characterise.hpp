@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tristim/capture/raw.hpp"
 #include "tristim/chart/layout.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/evaluation/evaluation.hpp"
@@ -50,16 +51,29 @@ TrainingSet training_set(const Recipe& recipe, const ChartSample& sample, const 
 TrainingSet training_set(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& camera_RGB,
                          const PatchMatrix& reference_XYZ);
 
+/// The frames of one image of a recipe with several, decoded (Abed 2013 App. C steps 1-2, as
+/// `sample --dark --flat` takes them for one image): dark frames, averaged and subtracted in
+/// entry.capture.dark_mode; at most one flat field, per pixel or, when entry.capture.falloff, as
+/// the radial fall-off fit (Guarnera 2018 eq 7). Empty: the image is used as decoded.
+struct RecipeImageFrames {
+  std::vector<RawImage> darks;
+  std::vector<RawImage> flat;
+};
+
 /// The chart samples of one image of a recipe with several (issue 48). `bytes`: the image file
 /// (RAW, TIFF, PNG, JPEG); its SHA-256 is recorded in entry.sha256 and, for a stored (non-linear)
-/// image, its full scale in entry.capture.saturation when that is 0. The light trap, if any, is
-/// measured again on this image (Abed 2013 App. C step 1; the flare recorded in entry.capture.flare)
-/// and subtracted; then the chart is sampled at entry.sampling.corners, or, when they are all 0,
-/// detected (chart/detect.hpp, looking for the layout's chart) and the candidate(s) entry.candidate
-/// names sampled: the best by default, "all", or one index. Every error names the image
-/// ("images[1] ('b.dng'): …") and keeps its code: a file that does not decode (RawUnsupported, …),
-/// ChartNotFound, InvalidArgument (a candidate index beyond those found), the sampling's codes.
-std::vector<ChartSample> sample_recipe_image(RecipeImage& entry, size_t index, const std::uint8_t* bytes, size_t size);
+/// image, its full scale in entry.capture.saturation when that is 0. `frames`, if any, calibrate
+/// it (entry.capture.dark_frames and flat_field / falloff record what was applied). The light
+/// trap, if any, is measured again on this image after its dark frame (Abed 2013 App. C step 1;
+/// the flare recorded in entry.capture.flare) and subtracted; then the chart is sampled at
+/// entry.sampling.corners, or, when they are all 0, detected (chart/detect.hpp, looking for the
+/// layout's chart) and the candidate(s) entry.candidate names sampled: the best by default, "all",
+/// or one index. Every error names the image ("images[1] ('b.dng'): …") and keeps its code: a
+/// file that does not decode (RawUnsupported, …), FrameMismatch (a frame of another size or
+/// camera), InvalidArgument (two flats; a candidate index beyond those found), ChartNotFound, the
+/// sampling's codes.
+std::vector<ChartSample> sample_recipe_image(RecipeImage& entry, size_t index, const std::uint8_t* bytes, size_t size,
+                                             const RecipeImageFrames& frames = {});
 
 /// The recipe an image entry trains with: `recipe` with the entry's reference, capture and
 /// sampling stages in place of its own (and no images).
