@@ -4,6 +4,15 @@
 // cancel message is taken between two chunks).
 import { reply, displayOf, coded } from '../lib/reply.js';
 
+/// The union of the training sets of a recipe's images (`charts`: their samples and references).
+function unionOf(T, recipe, charts) {
+  if (charts?.length !== recipe.images.length) throw coded(`the recipe lists ${recipe.images.length} images but ${charts?.length ?? 0} samples were given`, 'INVALID_ARGUMENT');
+  return T.trainingUnion(recipe, recipe.images.map((entry, k) => {
+    const own = T.imageRecipe(recipe, entry);
+    return { name: entry.name, training: T.trainingSet(own, charts[k].sample, own.reference.chart === 'file' ? charts[k].reference : T.recipeReference(own)) };
+  }));
+}
+
 export const handlers = {
   /// A measured patch file (CSV/CGATS with R,G,B and maybe X,Y,Z) for a held-out test set.
   parsePatchFile: (T, { text, fileName }) => reply(T.parsePatchFile(text, fileName)),
@@ -12,14 +21,19 @@ export const handlers = {
   /// the held-out set {name, ids, rgb, xyz} when there is one).
   /// `worker_ms`: how long the row ran here (the page's log; timed on the page, a row that waited
   /// in the worker's queue, or whose reply waited for the page's busy thread, read 1 ms or 2×).
-  fit: (T, { recipe, sample, reference, heldOut }, { progress }) => {
+  /// With `recipe.images` (several chart images, issue 48): `charts` [{sample, reference}] one per
+  /// entry, in order; each sample is paired with its entry's reference (a built-in chart's through
+  /// the engine, a file's as given), and the fit trains on the union — `tristim fit --recipe` with
+  /// one --raw per image; `out.charts` holds each chart's figures.
+  fit: (T, { recipe, sample, reference, heldOut, charts }, { progress }) => {
     const t0 = performance.now();
     progress(NaN, `fitting ${recipe.characterisation.model}`);
     if (heldOut) recipe.evaluation.held_out_digest = T.trainingDigest(heldOut.ids, heldOut.rgb, heldOut.xyz);
     // A built-in chart with a surface correction: the reference is the recipe's (the chart's
     // spectra through the surface stage), so the profile is trained on what the recipe records.
     const corrected = recipe.reference.chart !== 'file' && (recipe.surface?.method ?? 'none') !== 'none';
-    const out = T.fitSample(recipe, sample, corrected ? T.recipeReference(recipe) : reference);
+    const out = recipe.images?.length ? T.fitTraining(recipe, unionOf(T, recipe, charts))
+      : T.fitSample(recipe, sample, corrected ? T.recipeReference(recipe) : reference);
     out.display = displayOf(T, out.reference_XYZ, out.evaluation.fit.fitted, out.recipe.characterisation.lab_white);
     out.objective_label = T.objectiveChoiceLabel(recipe.characterisation.objective);   // the loss and optimiser it ran
     if (heldOut) out.held_out = { ...T.evaluateProfile(out.profile, heldOut.rgb, heldOut.xyz, heldOut.ids).metrics, set: heldOut.name };

@@ -6,6 +6,7 @@ import { pairData } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
 import { WorkerPool } from './pool.js';
+import { withImages, chartsOf } from '../images/second.js';
 
 export function mount(section, app) {
   const { engine } = app;
@@ -80,9 +81,11 @@ export function mount(section, app) {
       + (corrected ? ` (the reference corrected for the capture geometry: ${surface.method}, step 1b)` : '')
       + linearisationText(app.session.linearisation, app.derived.image?.metadata)
       + (d.excluded.length ? `; left out as flagged: ${d.excluded.map((e) => e.id).join(', ')}` : '')
-      + (d.missing.length ? `; not in the reference: ${d.missing.join(', ')}` : '') + '.';
+      + (d.missing.length ? `; not in the reference: ${d.missing.join(', ')}` : '')
+      + (app.derived.sample2 ? `; and the ${app.derived.sample2.ids.length} patches of the second chart image (${app.session['files.chart2']?.name}, step 2): one fit on both` : '') + '.';
     return d;
   }
+  app.on('sample2', describeData);
   app.on('sample', describeData);
   app.on('reference', describeData);
   app.on('surface', describeData);
@@ -206,9 +209,9 @@ export function mount(section, app) {
       }), Math.max(0, lastDraw + 250 - performance.now()));
     };
     try {
-      const task = (client, job) => {
-        job.recipe = recipeFor(job.mId, job.obj, ref, data);
-        return client.call('fit', { recipe: job.recipe, sample, reference, heldOut });
+      const task = async (client, job) => {
+        job.recipe = await withImages(app, recipeFor(job.mId, job.obj, ref, data), exclude);   // a second chart image: both
+        return client.call('fit', { recipe: job.recipe, sample, reference, heldOut, charts: chartsOf(app, job.recipe, sample, reference) });
       };
       const onRow = (job, { result: fit, error }) => {
         const { mId, obj, recipe } = job;

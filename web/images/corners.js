@@ -22,7 +22,8 @@ const cornersText = (c) => [0, 1, 2, 3].map((i) => `${c[2 * i]},${c[2 * i + 1]}`
 
 export class CornerEditor {
   /// onChange(corners, final); grid(layout, corners) -> Promise<{layout: ChartLayout, homography}>.
-  constructor({ onChange, grid }) {
+  /// clipId: the id of the image's clip path (unique per editor on the page).
+  constructor({ onChange, grid, clipId = 'image-clip' }) {
     this.onChange = onChange;
     this.gridOf = grid;
     this.width = 0; this.height = 0;
@@ -41,15 +42,15 @@ export class CornerEditor {
     this.canvas = document.createElement('canvas');
     this.canvas.setAttribute('aria-hidden', 'true');
     this.svg = svgEl('svg', { class: 'overlay', role: 'group', 'aria-label': 'Chart corners on the preview' });
-    this.gridLayer = svgEl('g', { class: 'grid', 'clip-path': 'url(#image-clip)' });
-    const clip = svgEl('clipPath', { id: 'image-clip' });
+    this.gridLayer = svgEl('g', { class: 'grid', 'clip-path': `url(#${clipId})` });
+    const clip = svgEl('clipPath', { id: clipId });
     this.clipRect = svgEl('rect', { x: 0, y: 0, width: 1, height: 1 });
     clip.append(this.clipRect);
     const defs = svgEl('defs');
     defs.append(clip);
     this.outline = svgEl('polygon', { class: 'outline' });
     this.handleLayer = svgEl('g', { class: 'handles' });
-    this.detectLayer = svgEl('g', { class: 'detected', 'clip-path': 'url(#image-clip)' });
+    this.detectLayer = svgEl('g', { class: 'detected', 'clip-path': `url(#${clipId})` });
     this.detectLabel = svgEl('text', { class: 'detect-label' });
     this.trapRect = svgEl('rect', { class: 'light-trap' });
     this.trapLabel = svgEl('text', { class: 'light-trap-label' });

@@ -8,14 +8,15 @@ export const handlers = {
   /// detect({layout, seed?, box?}) -> {candidates: [ChartCandidate + grid {layout, homography}]}, best
   /// first, for the chosen layout (a custom grid: its geometry); seed [x, y] or box [x0, y0, x1, y1]
   /// (image pixels): look there (DetectOptions). Throws CHART_NOT_FOUND, saying why, when there is none.
-  detect: (T, { layout = { chart: 'passport' }, seed, box }, { state, progress }) => {
-    if (!state.raw?.chart) throw coded('no image decoded yet', 'NO_IMAGE');
+  /// `slot`: the image to search ('chart', or 'chart2': a second chart image).
+  detect: (T, { slot = 'chart', layout = { chart: 'passport' }, seed, box }, { state, progress }) => {
+    if (!['chart', 'chart2'].includes(slot) || !state.raw?.[slot]) throw coded('no image decoded yet', 'NO_IMAGE');
     // A chart cut by the frame is refused here (its reason says so): the page's sampling takes
     // corners inside the image only; `tristim detect` / `sample` find and sample one.
     const options = { charts: [layout.chart], seed, box, cut_charts: false };
     if (layout.chart === 'custom') options.custom = layout;
     progress(0, 'finding the chart');
-    const found = T.detectCharts(state.raw.chart, options, (stage, fraction) => progress(fraction, `finding the chart: ${STAGES[stage] ?? stage}`));
+    const found = T.detectCharts(state.raw[slot], options, (stage, fraction) => progress(fraction, `finding the chart: ${STAGES[stage] ?? stage}`));
     const grid = T.chartLayout(layout);
     const candidates = found.map((c) => ({ ...c, corners: Array.from(c.corners), grid: { layout: grid, homography: T.homographyUnitSquare(c.corners) } }));
     return reply({ candidates });

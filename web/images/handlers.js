@@ -1,5 +1,5 @@
 // Worker handlers of step 2: decoding RAW files into the worker's slots ('chart', 'dark', 'flat',
-// 'scene'; the images stay here, state.raw[slot]), the chart image's dark/flat calibration,
+// 'scene', 'chart2' — a second chart image, issue 48; the images stay here, state.raw[slot]), the chart image's dark/flat calibration,
 // sampling the chart, the engine's patch grid for the corner editor.
 import { reply, coded } from '../lib/reply.js';
 
@@ -23,6 +23,8 @@ const previewOf = (image, side) => {
   const p = image.preview(side);
   return { ...p, rgba: new Uint8ClampedArray(p.rgba.buffer) };
 };
+/// The slots that hold a chart photograph (previewed, sampled, searched for a chart).
+const CHARTS = new Set(['chart', 'chart2']);
 function freeRaw(raw) {
   if (raw) for (const r of [raw].flat()) r.delete();
 }
@@ -58,13 +60,13 @@ export const handlers = {
     let result;
     try {
       result = { width: first.width(), height: first.height(), metadata: first.metadata() };
-      if (slot === 'chart' && previewSide > 0) result.preview = previewOf(first, previewSide);
+      if (CHARTS.has(slot) && previewSide > 0) result.preview = previewOf(first, previewSide);
     } catch (e) { freeRaw(raw); throw e; }
     // The new image replaces the slot's previous one only once it fits (calibrate below).
     const previous = { raw: state.raw[slot], flatMode: state.flatMode };
     state.raw[slot] = raw;
     if (slot === 'flat') state.flatMode = flatMode;
-    if (slot !== 'scene') {
+    if (slot !== 'scene' && slot !== 'chart2') {
       try {
         result.calibration = calibrate(state);
       } catch (e) {
@@ -87,13 +89,13 @@ export const handlers = {
     return reply(raw ? previewOf([raw].flat()[0], previewSide) : null);
   },
 
-  /// Samples the chart. lightTrap: the four corners of an in-scene light trap (Abed 2013 App. C
+  /// Samples the chart in `slot` ('chart', or 'chart2': a second chart image, no light trap). lightTrap: the four corners of an in-scene light trap (Abed 2013 App. C
   /// step 1) whose mean after the dark frame is subtracted as flare before sampling, or null. A
   /// trap the engine refuses (outside the image, saturated, ...) is not used: the chart is
   /// sampled without it and the reply carries lightTrapError {code, message} for the trap's input.
-  sample: (T, { layout, corners, sampleOptions = {}, lightTrap = null }, { state }) => {
-    const chart = state.raw?.chart;
-    if (!chart) throw coded('no RAW image decoded yet', 'NO_IMAGE');
+  sample: (T, { slot = 'chart', layout, corners, sampleOptions = {}, lightTrap = null }, { state }) => {
+    const chart = CHARTS.has(slot) ? state.raw?.[slot] : null;
+    if (!chart) throw coded(`no ${slot === 'chart2' ? 'second chart image' : 'RAW image'} decoded yet`, 'NO_IMAGE');
     let trap = null, trapError = null;
     if (lightTrap) {
       try { trap = chart.setLightTrap(lightTrap, sampleOptions); } catch (e) { chart.clearLightTrap(); trapError = { code: e.code, message: e.message }; }
@@ -105,6 +107,9 @@ export const handlers = {
   },
   /// The patch grid of a layout placed by four corners (for drawing; the engine's homography).
   grid: (T, { layout, corners }) => reply({ layout: T.chartLayout(layout), homography: T.homographyUnitSquare(corners) }),
+
+  /// The SHA-256 of a file's bytes (a recipe's images[k].sha256).
+  digest: (T, { bytes }) => ({ result: T.sha256(new Uint8Array(bytes)) }),
 
   forget: (T, { slot }, { state }) => {
     freeRaw(state.raw?.[slot]);

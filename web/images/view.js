@@ -8,6 +8,7 @@ import { h, field, select, showError, clearError, errorSlot, numberValue, progre
 import { CornerEditor } from './corners.js';
 import { patchTable } from './patch_table.js';
 import { fetchExample } from './example.js';
+import { mountSecond } from './second.js';
 
 const SLOTS = {
   chart: { label: 'Chart image', hint: 'A photograph of the chart, evenly lit: camera RAW (DNG, CR2, NEF, ARW, …), or an 8/16-bit TIFF, 8/16-bit PNG or JPEG (read as stored: then choose a linearisation, step 2b)' },
@@ -134,6 +135,8 @@ export function mount(section, app) {
     h('p', { class: 'hint' }, 'Drag the four corner handles onto the chart\'s outer patch corners (A1 top-left). '
       + 'With the keyboard: Tab to a handle, arrow keys move it 1 pixel (Shift: 10).'),
     h('div', { class: 'images-layout' }, h('div', {}, editor.el, cornerErr, detectPanel, detectErr), h('div', {}, sampleSummary, tableBox)));
+  // "Add another chart image" (issue 48): the fit trains on both charts (second.js).
+  const second = mountSecond(section, app);
 
   // Drag and drop onto the zone (or anywhere on this step) sets the chart RAW.
   for (const ev of ['dragover', 'dragenter']) section.addEventListener(ev, (e) => { e.preventDefault(); drop.classList.add('over'); });
@@ -487,6 +490,7 @@ export function mount(section, app) {
     }
     previewAfter = storeAfter = null;
     await saving;
+    await second.restore();
   }
 
   /// Loads the example into the session; resolves once it is in the session, with a promise of its
@@ -515,5 +519,5 @@ export function mount(section, app) {
   engine.addEventListener('restart', () => { /* decodedGen is now stale; ensureDecoded() re-sends */ });
   syncLayout();
 
-  return { restore, resample, ensureDecoded, setFile, detect, editor, inputs };
+  return { restore, resample, ensureDecoded, setFile, detect, editor, inputs, second };
 }

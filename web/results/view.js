@@ -13,6 +13,7 @@ import { deBarsPlot } from '../plots/de_bars.js';
 import { xyzScatterPlot } from '../plots/xyz_scatter.js';
 import { swatchPairsPlot } from '../plots/swatch_pairs.js';
 import { referenceText } from '../fit/view.js';
+import { chartFiguresTable } from '../fit/charts_table.js';
 
 export function mount(section, app) {
   const tableBox = h('div', { class: 'table-box' });
@@ -125,6 +126,7 @@ export function mount(section, app) {
     parts.push(h('p', { class: 'summary' }, `${rows.length} training patches; mean ΔE00 ${fmt(mean)}; `
       + `condition number ${fmt(result.fit.evaluation.fit.condition_number, 1)}`
       + (result.fit.evaluation.fit.mu ? `; corrected 3×3 white scaling μ = ${fmt(result.fit.evaluation.fit.mu, 4)} (Abed 2013 eq 27)` : '') + '.'));
+    if (result.fit.charts?.length) parts.push(chartFiguresTable(result.fit.charts));   // several chart images (issue 48)
     if (boot) parts.push(bootstrapSummary(result, app.catalog.models));
     parts.push(h('div', { class: 'plots' }, figs));
     // The same numbers as a table, for keyboard and screen-reader users (and copying).
