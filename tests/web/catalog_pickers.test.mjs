@@ -76,6 +76,9 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     'images/Flat-field correction': rows(T.listFlatFieldModes()),
     // The layouts the engine has, named after the built-in charts; 'custom' is named by the page.
     'images/Chart layout': T.listChartLayouts().map((id) => ({ value: id, label: charts.find((c) => c.id === id)?.name ?? null })),
+    // A second chart image (issue 48): the built-in charts that have a layout (layout and reference in one).
+    'images/Its chart (layout and reference)': rows(charts.filter((c) => T.listChartLayouts().includes(c.id))),
+    'images/Patches of the same colour': { owned: 'the recipe\'s two duplicates rules, once and each (docs/multi-image.md)' },
     'linearisation/Linearisation': rows(T.listLinearisations(), (r) => `${r.label} (${r.id})`),
     'linearisation/Patch to plot': { owned: 'the patches of this session\'s chart' },
     'apply/Apply to': { owned: 'where the image comes from (a UI choice)' },
@@ -108,6 +111,7 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     'lab/Observer': rows(T.listObservers()),
     'lab/Match for': { owned: 'which viewer the constructed metamer matches for (a UI choice)' },
     'lab/Munsell chip': { owned: 'the engine\'s Munsell ids, loaded when the picker opens (checked below)' },
+    'lab/or Munsell chips': { owned: 'the engine\'s Munsell ids for a chart of one\'s own, loaded when the picker opens (checked below)' },
     'lab/Training chart': { owned: 'the charts the exercise trains on, named by their role in the paper (ids checked below)' },
     'lab/Light on the scene': rows(T.listExampleLights()),
   };
@@ -169,6 +173,7 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     for (const o of byKey['lab/Training chart'] ?? []) if (![...T.listLabCharts()].includes(o.value)) wrong.push(`lab training chart ${o.value}: not a chart the renderer draws`);
     const munsell = new Set([...T.listMunsell()]);
     for (const o of byKey['lab/Munsell chip'] ?? []) if (!munsell.has(o.value)) wrong.push(`lab Munsell chip ${o.value}: not in the engine's set`);
+    for (const o of byKey['lab/or Munsell chips'] ?? []) if (!munsell.has(o.value)) wrong.push(`lab render Munsell chip ${o.value}: not in the engine's set`);
     // The flat-field modes cite their table row (the option's title).
     for (const o of byKey['images/Flat-field correction'] ?? []) {
       const m = T.listFlatFieldModes().find((x) => x.id === o.value);
