@@ -18,6 +18,21 @@ int run_lab_exercise(const std::string& sub, const Args& args, std::ostream& out
 
 namespace {
 
+// Rows as a JSON array (--json, each by `to_json`) or as CSV: `header`, then `csv_row(row)` per row.
+template <class Row, class ToJson, class CsvRow>
+int print_rows(const Args& args, std::ostream& out, const std::vector<Row>& rows, ToJson to_json, const char* header,
+               CsvRow csv_row) {
+  if (args.has("json")) {
+    json::Value a = json::Value::array();
+    for (const auto& r : rows) a.push(to_json(r));
+    out << a.dump(1) << "\n";
+  } else {
+    out << header << "\n";
+    for (const auto& r : rows) out << csv_row(r) << "\n";
+  }
+  return 0;
+}
+
 int run_render(const Args& args, std::ostream& out) {
   args.allow_only({"camera", "sensitivities", "chart", "reflectances", "illuminant", "oecf", "noise", "seed", "exposure",
                    "surface", "falloff", "flare", "corners", "size", "bits", "black", "cfa", "quality", "out"});
@@ -89,17 +104,9 @@ int run_smi(const Args& args, std::ostream& out) {
   } else {
     rows = camera_quality_ranking(illuminant);
   }
-  if (args.has("json")) {
-    json::Value a = json::Value::array();
-    for (const auto& q : rows) a.push(camera_quality_json(q));
-    out << a.dump(1) << "\n";
-  } else {
-    out << "camera,smi,mu_factor,mean_dE\n";
-    for (const auto& q : rows)
-      out << q.camera << ',' << json::number_text(q.smi) << ',' << json::number_text(q.mu_factor) << ','
-          << json::number_text(q.mean_dE) << "\n";
-  }
-  return 0;
+  return print_rows(args, out, rows, camera_quality_json, "camera,smi,mu_factor,mean_dE", [](const CameraQuality& q) {
+    return q.camera + ',' + json::number_text(q.smi) + ',' + json::number_text(q.mu_factor) + ',' + json::number_text(q.mean_dE);
+  });
 }
 
 int run_overfit(const Args& args, std::ostream& out) {
@@ -113,17 +120,11 @@ int run_overfit(const Args& args, std::ostream& out) {
   o.seed = static_cast<std::uint64_t>(args.get_double("seed", 1));
   const auto rows = lab_overfit_exercise(ssf, illuminant, o);
   auto num = [](double v) { return std::isfinite(v) ? json::number_text(v) : std::string(); };
-  if (args.has("json")) {
-    json::Value a = json::Value::array();
-    for (const auto& r : rows) a.push(overfit_row_json(r));
-    out << a.dump(1) << "\n";
-  } else {
-    out << "model,training,terms,patches,train_dE00,loo_dE00,test_dE00,error\n";
-    for (const auto& r : rows)
-      out << r.model << ',' << r.training << ',' << r.terms << ',' << r.patches << ',' << num(r.train_dE00) << ','
-          << num(r.loo_dE00) << ',' << num(r.test_dE00) << ',' << r.error_code << "\n";
-  }
-  return 0;
+  return print_rows(args, out, rows, overfit_row_json, "model,training,terms,patches,train_dE00,loo_dE00,test_dE00,error",
+                    [&](const OverfitRow& r) {
+                      return r.model + ',' + r.training + ',' + std::to_string(r.terms) + ',' + std::to_string(r.patches) + ',' +
+                             num(r.train_dE00) + ',' + num(r.loo_dE00) + ',' + num(r.test_dE00) + ',' + r.error_code;
+                    });
 }
 
 int run_metamers(const Args& args, std::ostream& out) {
@@ -167,13 +168,13 @@ int run_metamers(const Args& args, std::ostream& out) {
 }
 
 int run_lab(const Args& args, std::ostream& out) {
-  const std::string sub = args.positional.empty() ? "" : args.positional[0];
-  if (args.positional.size() > 1)
-    throw Error(ErrorCode::InvalidArgument, "unexpected argument '" + args.positional[1] + "'");
-  if (sub == "render") return run_render(args, out);
-  if (sub == "smi") return run_smi(args, out);
-  if (sub == "overfit") return run_overfit(args, out);
-  if (sub == "metamers") return run_metamers(args, out);
+  using Run = int (*)(const Args&, std::ostream&);
+  static const std::pair<const char*, Run> subs[] = {
+      {"render", run_render}, {"smi", run_smi}, {"overfit", run_overfit}, {"metamers", run_metamers}};
+  const std::string sub = args.positional.empty() ? "" : args.positional.front();
+  if (args.positional.size() > 1) throw Error(ErrorCode::InvalidArgument, "unexpected argument '" + args.positional[1] + "'");
+  for (const auto& [name, run] : subs)
+    if (sub == name) return run(args, out);
   if (const int rc = run_lab_exercise(sub, args, out); rc >= 0) return rc;
   throw Error(ErrorCode::InvalidArgument,
               "tristim lab needs a subcommand: render, smi, overfit, metamers, shen, table4 or guarnera (got '" + sub + "')");

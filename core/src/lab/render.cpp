@@ -104,6 +104,12 @@ LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::stri
   return {lab_render_dng(r), lab_render_json(r).dump(1)};
 }
 
+LabRenderFiles lab_render_reflectance_files(LabRenderOptions options, const SpectralData& reflectances,
+                                            const std::string& format) {
+  options.reflectances = reflectances;
+  return lab_render_files(options, format);
+}
+
 std::vector<std::string> lab_oecf_ids() { return {"linear", "sRGB", "gamma=1.8", "gamma=2.2"}; }
 
 std::vector<std::string> lab_chart_ids() { return {"cc24", "passport", "sg140"}; }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "refused.hpp"
 #include "test_support.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/lab/metamerism.hpp"
@@ -135,20 +136,13 @@ TEST_CASE("lab metamers: the L-star window search finds exactly the pairs a full
 }
 
 TEST_CASE("lab metamers: bad options are refused with a code") {
-  MetamerOptions o;
-  o.match = "camera";
-  test::require_code([&] { metamer_pairs(o); }, ErrorCode::InvalidArgument);  // no camera
-  o = {};
-  o.match = "eye";
-  test::require_code([&] { metamer_pairs(o); }, ErrorCode::UnknownId);
-  o = {};
-  test::require_code([&] { construct_metamer(o, "99Q5/6"); }, ErrorCode::UnknownId);
-  o.max_match = 0;
-  test::require_code([&] { metamer_pairs(o); }, ErrorCode::InvalidArgument);
-  o = {};
-  o.second = "Z99";
-  test::require_code([&] { metamer_pairs(o); }, ErrorCode::UnknownId);
-  o = {};
-  o.camera = "no such camera";
-  test::require_code([&] { metamer_pairs(o); }, ErrorCode::UnknownId);
+  const auto refused = [](ErrorCode code, auto set) {
+    test::require_refused<MetamerOptions>(code, set, [](const MetamerOptions& o) { return metamer_pairs(o); });
+  };
+  refused(ErrorCode::InvalidArgument, [](auto& o) { o.match = "camera"; });  // no camera
+  refused(ErrorCode::UnknownId, [](auto& o) { o.match = "eye"; });
+  refused(ErrorCode::InvalidArgument, [](auto& o) { o.max_match = 0; });
+  refused(ErrorCode::UnknownId, [](auto& o) { o.second = "Z99"; });
+  refused(ErrorCode::UnknownId, [](auto& o) { o.camera = "no such camera"; });
+  test::require_code([] { construct_metamer(MetamerOptions{}, "99Q5/6"); }, ErrorCode::UnknownId);
 }

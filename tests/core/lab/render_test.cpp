@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "refused.hpp"
 #include "shell.hpp"
 #include "test_support.hpp"
 #include "tristim/capture/image.hpp"
@@ -159,21 +160,12 @@ TEST_CASE("lab render: shot and read noise have the stated variance, fall-off th
 }
 
 TEST_CASE("lab render: bad options give coded errors naming them", "[lab]") {
-  LabRenderOptions o;
-  o.chart = "it8";
-  test::require_code([&] { render_lab_chart(o); }, ErrorCode::UnknownId);
-  o = {};
-  o.camera = "Kodak Brownie";
-  test::require_code([&] { render_lab_chart(o); }, ErrorCode::UnknownId);
-  o = {};
-  o.exposure = 0;
-  test::require_code([&] { render_lab_chart(o); }, ErrorCode::InvalidArgument);
-  o = {};
-  o.cfa = "RGGX";
-  test::require_code([&] { render_lab_chart(o); }, ErrorCode::InvalidArgument);
-  o = {};
-  o.corners = {10, 10, 2000, 10, 2000, 500, 10, 500};
-  test::require_code([&] { render_lab_chart(o); }, ErrorCode::CornersOutside);
+  const auto refused = [](ErrorCode code, auto set) { test::require_refused<LabRenderOptions>(code, set, render_lab_chart); };
+  refused(ErrorCode::UnknownId, [](auto& o) { o.chart = "it8"; });
+  refused(ErrorCode::UnknownId, [](auto& o) { o.camera = "Kodak Brownie"; });
+  refused(ErrorCode::InvalidArgument, [](auto& o) { o.exposure = 0; });
+  refused(ErrorCode::InvalidArgument, [](auto& o) { o.cfa = "RGGX"; });
+  refused(ErrorCode::CornersOutside, [](auto& o) { o.corners = {10, 10, 2000, 10, 2000, 500, 10, 500}; });
 }
 
 #ifndef __EMSCRIPTEN__

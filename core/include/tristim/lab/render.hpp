@@ -125,6 +125,11 @@ struct LabRenderFiles {
 /// "jpeg_quality").
 LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::string& format = "dng");
 
+/// lab_render_files with `reflectances` as the chart of one's own (LabRenderOptions::reflectances;
+/// the page's upload, read by read_reflectance_file); `options.chart` is its label.
+LabRenderFiles lab_render_reflectance_files(LabRenderOptions options, const SpectralData& reflectances,
+                                            const std::string& format = "dng");
+
 /// OECFs offered for TIFF and JPEG output (lab_encode accepts any gamma=<0.2..5>): "linear",
 /// "sRGB", "gamma=1.8", "gamma=2.2".
 std::vector<std::string> lab_oecf_ids();
