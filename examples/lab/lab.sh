@@ -26,6 +26,18 @@ worst = max(abs(float(r[c]) - truth[r["patch"]][i]) for r in csv.DictReader(open
 print(f"worst {worst:g} DN (noise off: 0)")
 sys.exit(0 if worst <= 1e-6 else 1)
 PY
+echo "== a chart of one's own: Munsell chips (two chips and the 5PB hue page) as a grid, sampled as its truth says"
+"$T" lab render --camera "$cam" --chart munsell:5R4/14,10YR6/10,5PB --illuminant D50 --out "$out/chips.dng" > "$out/chips.json"
+# shellcheck disable=SC2046  # the truth's sample_args are several options
+"$T" sample "$out/chips.dng" $(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["sample_args"])' "$out/chips.json") > "$out/chips.csv"
+python3 - "$out/chips.json" "$out/chips.csv" <<'PY'
+import csv, json, sys
+truth = {p["cell"]: p for p in json.load(open(sys.argv[1]))["patches"]}
+rows = [r for r in csv.DictReader(open(sys.argv[2])) if r["patch"] in truth]
+worst = max(abs(float(r[c]) - truth[r["patch"]]["rgb"][i]) for r in rows for i, c in enumerate("RGB"))
+print(f"{len(rows)} chips, worst {worst:g} DN (noise off: 0)")
+sys.exit(0 if worst <= 1e-6 and len(rows) == len(truth) else 1)
+PY
 echo "== camera quality: SMI and mu of this camera, and the best five of the 52"
 "$T" lab smi --camera "$cam" --json
 "$T" lab smi > "$out/smi.csv" && head -6 "$out/smi.csv"
