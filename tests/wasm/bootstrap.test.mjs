@@ -52,7 +52,10 @@ test('bootstrap: chunked in the module = tristim fit --bootstrap (same seed), pr
       assert.deepEqual(train_ci, cli.metrics.training.dE00.ci);
       assert.deepEqual(loo_ci, cli.metrics.loo.dE00.ci);
       assert.equal(b.predicted_xy_covariance.length, order.length);
-      assert.ok(b.ellipse_scale > 2.14 && b.ellipse_scale < 2.15);   // √(−2 ln 0.1)
+      // k² = ν((1 − level)^(−2/ν) − 1), ν = N − 6 (Finlayson2015-2's terms): F(2, ν) at 0.9, above χ²₂'s √(−2 ln 0.1) = 2.146.
+      const nu = order.length - 6;
+      assert.ok(Math.abs(b.ellipse_scale - Math.sqrt(nu * (0.1 ** (-2 / nu) - 1))) < 1e-12);
+      assert.ok(b.ellipse_scale > 2.15);
       assert.equal(run.profileWith(fit.profile), cliText);
     } finally {
       run.delete();

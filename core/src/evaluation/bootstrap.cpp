@@ -91,6 +91,8 @@ BootstrapRun::BootstrapRun(const std::string& model_id, const PatchMatrix& rgb, 
   sum_xx_.assign(n, Mat3::Zero());
   sum_xy_ab_.assign(n, Eigen::Vector4d::Zero());
   sum_xy_ab2_.assign(n, Eigen::Matrix4d::Zero());
+  train_.reserve(static_cast<size_t>(b.resamples));  // no reallocation while stepping
+  if (!b.loo_dE00.empty()) loo_.reserve(static_cast<size_t>(b.resamples));
   for (Eigen::Index i = 0; i < rgb.rows(); ++i) {
     full_xy_.push_back(xy_of(full_.fitted.row(i).transpose()));
     full_ab_.push_back(ab_of(full_.fitted.row(i).transpose(), options.white));
@@ -185,15 +187,28 @@ BootstrapResult BootstrapRun::result() const {
   const Eigen::VectorXd mean = coefficients.rowwise().mean();
   const Eigen::MatrixXd centred = coefficients.colwise() - mean;
   out.covariance = f * f * centred * centred.transpose() / static_cast<double>(m - 1);
+  // The predictions' covariances take the same widening: for a model linear in its coefficients
+  // (every least-squares model here) a patch's prediction is ŷ = J β with J = I₃ ⊗ φ(RGB)ᵀ, so the
+  // refits' covariance of ŷ is exactly J Cov(β) Jᵀ and Cov(ŷ) = J (f² Cov(β)) Jᵀ = f² × it; xy and
+  // a*b* are smooth functions of ŷ, widened by f² to first order (the delta method). The ellipses
+  // then cover the truth at `level` (tests/core/evaluation/bootstrap_test.cpp).
+  const double f2 = f * f;
   for (size_t i = 0; i < static_cast<size_t>(n); ++i) {
     const Eigen::Vector3d mu = sum_x_[i] / m;
-    out.predicted_XYZ_covariance.push_back((sum_xx_[i] - m * mu * mu.transpose()) / (m - 1));
+    out.predicted_XYZ_covariance.push_back(f2 * (sum_xx_[i] - m * mu * mu.transpose()) / (m - 1));
     const Eigen::Vector4d nu = sum_xy_ab_[i] / m;
-    const Eigen::Matrix4d c = (sum_xy_ab2_[i] - m * nu * nu.transpose()) / (m - 1);
+    const Eigen::Matrix4d c = f2 * (sum_xy_ab2_[i] - m * nu * nu.transpose()) / (m - 1);
     out.predicted_xy_covariance.push_back(c.topLeftCorner<2, 2>());
     out.predicted_ab_covariance.push_back(c.bottomRightCorner<2, 2>());
   }
-  out.ellipse_scale = std::sqrt(-2 * detmath::log(1 - b.level));  // χ² with 2 degrees of freedom at `level`
+  // The ellipse's radius k (x'Σ⁻¹x = k²): Σ is estimated from the same N patches, so x'Σ⁻¹x/2 is
+  // Hotelling's F(2, ν) with ν = N − q residual degrees of freedom (not χ²₂/2, which holds for a known
+  // Σ and left 95 % ellipses covering the truth 92 % of the time on 24 patches). F(2, ν)'s quantile
+  // is closed-form, P(F > t) = (1 + 2t/ν)^(−ν/2), so k² = ν((1 − level)^(−2/ν) − 1), which tends to
+  // −2 ln(1 − level) (χ²₂) as ν → ∞; too few patches (ν ≤ 0): the χ²₂ radius.
+  const double nu = static_cast<double>(n) - q_free;
+  out.ellipse_scale = nu > 0 ? std::sqrt(nu * (detmath::exp(-2 / nu * detmath::log(1 - b.level)) - 1))
+                             : std::sqrt(-2 * detmath::log(1 - b.level));
   return out;
 }
 

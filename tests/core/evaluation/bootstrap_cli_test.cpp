@@ -26,6 +26,13 @@ struct Dir : ScratchDir {
                                  options + " --json 2>/dev/null"));
   }
 };
+
+/// The array `key` of a compare JSON `j`, required to hold `size` rows.
+const std::vector<json::Value>& rows_of(const json::Value& j, const char* key, size_t size) {
+  const std::vector<json::Value>& rows = j.at(key).as_array();
+  REQUIRE(rows.size() == size);
+  return rows;
+}
 }  // namespace
 
 TEST_CASE("cli: fit --bootstrap writes ci next to the means and each coefficient", "[evaluation][bootstrap][cli]") {
@@ -64,9 +71,7 @@ TEST_CASE("cli: fit --bootstrap writes ci next to the means and each coefficient
 TEST_CASE("cli: compare --bootstrap --json gives each row's intervals", "[evaluation][bootstrap][cli]") {
   const Dir t;
   const json::Value j = t.compare("--models matrix-3x3,matrix-3x4 --objectives ls --bootstrap 100");
-  const auto& rows = j.at("rows").as_array();
-  REQUIRE(rows.size() == 2);
-  for (const auto& r : rows) {
+  for (const auto& r : rows_of(j, "rows", 2)) {
     CHECK(r.at("bootstrap").at("ok").as_bool());
     const json::Value& loo = r.at("loo_dE00");
     CHECK(loo.at("ci").at("lo").as_number() < loo.at("mean").as_number());
@@ -78,9 +83,7 @@ TEST_CASE("cli: compare --bootstrap --json gives each row's intervals", "[evalua
 TEST_CASE("cli: compare --ridge adds ridge rows no worse held-out than least squares", "[characterisation][ridge][cli]") {
   const Dir t;
   const json::Value j = t.compare("--models matrix-3x3,Finlayson2015-3,Shen2008 --objectives ls --ridge");
-  const auto& ridge = j.at("ridge").as_array();
-  REQUIRE(ridge.size() == 3);
-  for (const auto& r : ridge) {
+  for (const auto& r : rows_of(j, "ridge", 3)) {
     INFO(r.at("model").as_string());
     REQUIRE(r.at("ok").as_bool());
     CHECK(r.at("lambda").as_number() >= 0);

@@ -12,8 +12,10 @@
 //   - the leave-one-out mean CIEDE2000 over the resampled patches, from the per-patch
 //     leave-one-out errors of the full fit (the patch-sampling uncertainty of the held-out mean);
 //   - per patch, the covariance of the predicted XYZ, chromaticity xy and CIELAB a*b* over the
-//     refits (the ellipses of the page's xy and a*b* plots: x'Σ⁻¹x = k², k = √(−2 ln(1 − level)),
-//     the region holding `level` of a two-dimensional normal).
+//     refits, widened by the same f² (Cov(ŷ) = J Cov(β) Jᵀ with the widened Cov(β)): the ellipses
+//     of the page's xy and a*b* plots, x'Σ⁻¹x = k² with k² = ν((1 − level)^(−2/ν) − 1), ν = N − q
+//     (Hotelling's F(2, ν) quantile, Σ being estimated from N patches; → −2 ln(1 − level), the
+//     two-dimensional normal's, for many patches).
 // A run can be stepped in chunks (BootstrapRun: the page's worker takes a cancel between chunks);
 // the result depends only on the seed, never on the chunking.
 // Random numbers: splitmix64 with the seed, uniform indices by multiply-shift and normal
@@ -61,16 +63,16 @@ struct BootstrapResult {
   bool pixels = false;      ///< pixel statistics were resampled too
   double level = 0.95;
   uint64_t seed = 1;
-  double inflation = 1;     ///< √(N/(N − q)) applied to the coefficients' intervals and covariance (bootstrap.cpp)
+  double inflation = 1;     ///< √(N/(N − q)) applied to the coefficients' intervals and covariance, squared to the predictions' (bootstrap.cpp)
   Interval train_dE00_mean;
   bool has_loo = false;
   Interval loo_dE00_mean;
   Eigen::MatrixXd coefficients_lo, coefficients_hi;  ///< 3 × P
   Eigen::MatrixXd covariance;                        ///< 3P × 3P, row-major order of the coefficients
-  std::vector<Mat3> predicted_XYZ_covariance;        ///< per patch (the original patches' RGB)
+  std::vector<Mat3> predicted_XYZ_covariance;        ///< per patch (the original patches' RGB), widened as `covariance`
   std::vector<Eigen::Matrix2d> predicted_xy_covariance;  ///< per patch, chromaticity x, y (CIE 15 eq 7.3)
   std::vector<Eigen::Matrix2d> predicted_ab_covariance;  ///< per patch, CIELAB a*, b* (FitOptions::white)
-  double ellipse_scale = 0;  ///< k = √(−2 ln(1 − level)): the ellipse x'Σ⁻¹x = k² holds `level` of a 2-D normal
+  double ellipse_scale = 0;  ///< k = √(ν((1 − level)^(−2/ν) − 1)), ν = N − q: the ellipse x'Σ⁻¹x = k² (F(2, ν) at `level`)
 };
 
 /// The bootstrap's settings as the page's form shows them and `--bootstrap`, `--seed`, `--level`
