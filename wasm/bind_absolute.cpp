@@ -3,7 +3,9 @@
 // (fitAbsolute -> {recipe, profile JSON text, panels of fig 5, report}), a profile applied to a
 // bracketed series (applyAbsolute -> the AbsoluteMaps handle), and the one report
 // (tristim/absolute/report.hpp), which crosses as the object its JSON is — the same fields, to the
-// bit, that `tristim absolute evaluate --json` prints.
+// bit, that `tristim absolute evaluate --json` prints. The recipe, its stimuli and the summaries
+// cross by their field lists (tristim/absolute/fields.hpp, wasm/types.hpp): the names and forms of
+// the JSON, e.g. an exposure as [t, N, ISO] and a region row's rectangle as region: [x, y, w, h].
 //
 // AbsoluteMaps methods (the handle owns wasm memory: call .delete()): summary(), XYZ() ->
 // Float32Array(3·w·h), source() -> Uint8Array(w·h) (dominant exposure, 255: none),
@@ -25,14 +27,6 @@ struct tristim::wasm::Conv<AbsoluteProfile> {  // the profile's JSON text, both 
   static val to(const AbsoluteProfile& p) { return val(absolute_profile_to_json(p)); }
   static AbsoluteProfile from(const val& v) { return absolute_profile_from_json(Conv<std::string>::from(v)); }
 };
-template <>
-struct tristim::wasm::Conv<AbsoluteRecipe> : StructConv<AbsoluteRecipe> {  // the recipe JSON text, or the declared struct
-  static AbsoluteRecipe from(const val& v) {
-    return v.isString() ? absolute_recipe_from_json(v.as<std::string>()) : StructConv<AbsoluteRecipe>::from(v);
-  }
-};
-template <>
-struct tristim::wasm::Conv<AbsoluteReport> : wasm::JsonOutput<AbsoluteReport, &absolute_report_json> {};
 template <>
 struct tristim::wasm::Conv<AbsoluteProgress> {  // onProgress(fraction, stage), optional
   static val to(const AbsoluteProgress&) { return val::undefined(); }
@@ -62,15 +56,6 @@ val report(const AbsoluteMaps& m, val test, val options) {
 EMSCRIPTEN_BINDINGS(tristim_absolute) {
   using emscripten::class_;
   using emscripten::optional_override;
-  { using S = ExposureSettings; value_object<S>("ExposureSettings") FIELD(exposure_s) FIELD(f_number) FIELD(iso); }
-  { using S = AbsoluteStimulus; value_object<S>("AbsoluteStimulus") FIELD(id) FIELD(set) FIELD(exposure) FIELD(RGB)
-      FIELD(falloff) FIELD(file) FIELD(x) FIELD(y) FIELD(w) FIELD(h) FIELD(XYZ) FIELD(line); }
-  { using S = AbsoluteSensitivities; value_object<S>("AbsoluteSensitivities") FIELD(choice) FIELD(camera) FIELD(source) FIELD(ssf); }
-  { using S = AbsoluteInputs; value_object<S>("AbsoluteInputs") FIELD(stimuli) FIELD(bracket) FIELD(lens_cap) FIELD(flat)
-      FIELD(sensitivities); }
-  { using S = AbsoluteOptions; value_object<S>("AbsoluteOptions") FIELD(transform) FIELD(fusion) FIELD(w) FIELD(noise_floor)
-      FIELD(saturation); }
-  { using S = AbsoluteRecipe; value_object<S>("AbsoluteRecipe") FIELD(version) FIELD(inputs) FIELD(options); }
   { using S = AbsoluteFrames; value_object<S>("AbsoluteFrames") FIELD(bracket) FIELD(lens_cap) FIELD(flat) FIELD(other_names)
       FIELD(others); }
   { using S = OecfPanel; value_object<S>("OecfPanel") FIELD(exposure) FIELD(label) FIELD(factor) FIELD(parallel)
@@ -79,18 +64,13 @@ EMSCRIPTEN_BINDINGS(tristim_absolute) {
   { using S = AbsoluteCharacterisation; value_object<S>("AbsoluteCharacterisation") FIELD(recipe) FIELD(profile) FIELD(panels)
       FIELD(report); }
   { using S = AbsoluteApplyOptions; value_object<S>("AbsoluteApplyOptions") FIELD(mode) FIELD(exposures) FIELD(names); }
-  { using S = AbsoluteMapsSummary; value_object<S>("AbsoluteMapsSummary") FIELD(width) FIELD(height) FIELD(mode)
-      FIELD(exposures) FIELD(labels) FIELD(names) FIELD(dominant_pixels) FIELD(saturated_pixels) FIELD(unreliable_pixels)
-      FIELD(finite_pixels) FIELD(Y) FIELD(Y_p01) FIELD(Y_p99); }
   { using S = AbsoluteReadout; value_object<S>("AbsoluteReadout") FIELD(x) FIELD(y) FIELD(n) FIELD(XYZ) FIELD(L) FIELD(source)
       FIELD(source_label) FIELD(contributors); }
   { using S = AbsoluteEvaluateOptions; value_object<S>("AbsoluteEvaluateOptions") FIELD(white); }
-  { using S = AbsoluteMetrics; value_object<S>("AbsoluteMetrics") FIELD(metrics) FIELD(relative_Y_error)
-      FIELD(median_absolute_error) FIELD(white); }
 
   using M = const AbsoluteMaps&;
   class_<AbsoluteMaps>("AbsoluteMaps")
-      .function("summary", optional_override([](M m) { return guard([&] { return val(absolute_maps_summary(m)); }); }))
+      .function("summary", optional_override([](M m) { return guard([&] { return Conv<AbsoluteMapsSummary>::to(absolute_maps_summary(m)); }); }))
       .function("XYZ", optional_override([](M m) { return Conv<std::vector<float>>::to(m.image.XYZ); }))
       .function("source", optional_override([](M m) { return Conv<std::vector<uint8_t>>::to(m.image.luminance.source); }))
       .function("contributors", optional_override([](M m) {

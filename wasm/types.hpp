@@ -3,10 +3,12 @@
 // "id:name=value" text, a Recipe or a Profile also from its JSON text.
 #pragma once
 #include "boundary.hpp"
+#include "tristim/absolute/fields.hpp"
 #include "tristim/characterisation/fit.hpp"
 #include "tristim/characterisation/models.hpp"
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/methods.hpp"
+#include "tristim/profile/fields.hpp"
 #include "tristim/profile/profile.hpp"
 #include "tristim/profile/recipe.hpp"
 
@@ -28,9 +30,26 @@ inline FitStatus fit_status_of(const std::string& id) {
 template <> struct Conv<FitStatus> : EnumConv<FitStatus, &fit_status_name, &fit_status_of> {};
 
 template <>
-struct Conv<MethodChoice> : StructConv<MethodChoice> {  // "psm:expansion=3" or {method, parameters, settings}
-  static MethodChoice from(const val& v) { return v.isString() ? parse_choice(v.as<std::string>()) : StructConv<MethodChoice>::from(v); }
+struct Conv<MethodChoice> : SchemaConv<MethodChoice> {  // "psm:expansion=3" or {method, parameters, settings}
+  static MethodChoice from(const val& v) { return v.isString() ? parse_choice(v.as<std::string>()) : SchemaConv<MethodChoice>::from(v); }
 };
+// The error summaries keep bind_models.cpp's value_object (NaN crosses as NaN, not null; Metrics'
+// field list has the summaries only, the per-patch errors cross too).
+template <> struct Conv<Summary> : StructConv<Summary> {};
+template <> struct Conv<PatchErrors> : StructConv<PatchErrors> {};
+template <> struct Conv<Metrics> : StructConv<Metrics> {};
+// The absolute mode's structs cross by their field lists (tristim/absolute/fields.hpp): an
+// exposure is [t, N, ISO], a region row's rectangle is region: [x, y, w, h].
+template <> struct Conv<ExposureSettings> : SchemaConv<ExposureSettings> {};
+template <> struct ReadCode<AbsoluteRecipe> { static constexpr ErrorCode code = ErrorCode::RecipeInvalid; };
+template <>
+struct Conv<AbsoluteRecipe> : SchemaConv<AbsoluteRecipe> {  // the recipe JSON text, or its object
+  static AbsoluteRecipe from(const val& v) {
+    return v.isString() ? absolute_recipe_from_json(v.as<std::string>()) : SchemaConv<AbsoluteRecipe>::from(v);
+  }
+};
+/// The report as its document (format, reference, then the listed members): what the CLI prints.
+template <> struct Conv<AbsoluteReport> : JsonOutput<AbsoluteReport, &absolute_report_json> {};
 template <>
 struct Conv<Recipe> : StructConv<Recipe> {  // the recipe JSON text, or the declared struct
   static Recipe from(const val& v) { return v.isString() ? recipe_from_json(v.as<std::string>()) : StructConv<Recipe>::from(v); }

@@ -99,6 +99,7 @@ test('applyAbsolute on the bracket: Y within 2.4 %, the read-out, the source exp
     assert.deepEqual(fig.white, Array.from(w));
     assert.equal(fig.white_rule, 'eq16');
     assert.deepEqual(maps.report(test).test.white, fig.white, 'the engine takes the brightest chromatic stimulus, the white patch');
+    assert.deepEqual(maps.summary(), report.maps, 'the maps summary crosses as the report\'s JSON has it');
     // equal-tristimulus cells (the luminance module, eq 9) one by one; the chart's colours, which also
     // go through M trained on projector primaries, on average
     for (const r of fig.regions) {
@@ -189,6 +190,36 @@ test('absolute example under F2 with reflective colour training: SG colours unde
   }
   throwsCode(assert, () => T.absoluteExample({ colour_training: 'printed' }), 'INVALID_ARGUMENT');
   throwsCode(assert, () => T.absoluteExample({ illuminant: 'D1' }), 'UNKNOWN_ID');
+});
+
+// ---- one field list: the recipe, its rows and the summaries cross as their JSON ----------------
+test('absolute: the recipe and its stimuli cross in the form their JSON has (one field list), strictly', async () => {
+  const T = await loadTristim();
+  const rows = T.readAbsoluteStimuli('id,set,exposure_s,f_number,iso,file,x,y,w,h,R,G,B,X,Y,Z\n'
+    + 'p1,luminance,0.01,8,100,,,,,,10,20,30,5,5,5\nr1,,0,0,0,a.dng,4,6,10,12,,,,2,3,4\n', 'rows.csv');
+  // an exposure is [t, N, ISO] and a region [x, y, w, h], as in the recipe's JSON; no member names
+  assert.deepEqual(rows[0].exposure, [0.01, 8, 100]);
+  assert.deepEqual(rows[1].region, [4, 6, 10, 12]);
+  assert.equal(rows[1].file, 'a.dng');
+  assert.deepEqual(Object.keys(rows[0]), ['id', 'set', 'exposure', 'file', 'region', 'RGB', 'falloff', 'XYZ']);
+  assert.equal(rows[1].x, undefined);
+  // the object a JS caller builds is the recipe JSON's inputs/options: the text written from it
+  // holds exactly those rows, and reading the text back gives the same object
+  const recipe = { inputs: { stimuli: rows, bracket: ['a.dng'] }, options: { w: 12 } };
+  const text = T.absoluteRecipeToJson(recipe);
+  const doc = JSON.parse(text);
+  assert.deepEqual(doc.inputs.stimuli, rows);
+  assert.equal(doc.options.w, 12);
+  assert.equal(doc.options.fusion, 'weighted');  // left out: the C++ default
+  assert.deepEqual(T.absoluteRecipeFromJson(text), { inputs: doc.inputs, options: doc.options });
+  assert.deepEqual(T.completeAbsoluteRecipe(recipe).inputs.stimuli, rows);
+  // strict: an unknown member (anywhere), a wrong type or an old member name is refused, coded
+  throwsCode(assert, () => T.absoluteRecipeToJson({ ...recipe, extra: 1 }), 'RECIPE_INVALID');
+  throwsCode(assert, () => T.absoluteRecipeToJson({ ...recipe, options: { zone: 3 } }), 'RECIPE_INVALID');
+  throwsCode(assert, () => T.absoluteRecipeToJson({ ...recipe, options: { w: 'wide' } }), 'RECIPE_INVALID');
+  throwsCode(assert, () => T.absoluteRecipeToJson({ inputs: { stimuli: [{ ...rows[1], x: 4 }] } }), 'RECIPE_INVALID');
+  throwsCode(assert, () => T.absoluteRecipeToJson({ inputs: { stimuli: [{ ...rows[0], exposure: { exposure_s: 0.01 } }] } }), 'RECIPE_INVALID');
+  throwsCode(assert, () => T.absoluteRecipeToJson({ inputs: { sensitivities: { choice: 'given', ssf: {} } } }), 'RECIPE_INVALID');
 });
 
 // ---- the module's report equals `tristim absolute evaluate --json`, to the bit ----------------

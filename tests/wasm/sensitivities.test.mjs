@@ -61,7 +61,7 @@ test('sensitivities: a given set feeds the absolute fit (areas as the built-in c
   try {
     const uploaded = T.readSensitivitiesCsv(T.sensitivitiesToCsv(T.cameraSensitivities(ex.camera)), 'ssf.csv');
     const givenFit = T.fitAbsolute({ inputs: { stimuli, bracket: ex.frame_names, lens_cap: ex.lens_cap_names, flat: ex.flat_name,
-      sensitivities: { choice: 'given', ssf: uploaded, source: 'file:ssf.csv' } } }, { bracket: ex.frames, lens_cap: ex.lens_cap, flat: ex.flat });
+      sensitivities: { choice: 'given', wavelengths: uploaded.wavelengths, R: uploaded.values[0], G: uploaded.values[1], B: uploaded.values[2], source: 'file:ssf.csv' } } }, { bracket: ex.frames, lens_cap: ex.lens_cap, flat: ex.flat });
     const given = givenFit.report.fit;
     const builtIn = fit({ choice: 'camera', camera: ex.camera });
     assert.equal(given.areas_source, 'file:ssf.csv');

@@ -67,8 +67,8 @@ export const handlers = {
     }
   },
 
-  /// Re-checks the series with exposures typed in by the user ([{exposure_s, f_number, iso}], zeros:
-  /// from the metadata).
+  /// Re-checks the series with exposures typed in by the user ([[t, N, ISO], …], zeros: from the
+  /// metadata).
   absExposures: (T, { exposures }, { state }) => ({ result: { frames: checkSeries(T, abs(state), exposures) } }),
 
   /// Lens-cap frames (kind 'lensCap', several) or a flat field (kind 'flat', one).
@@ -85,11 +85,11 @@ export const handlers = {
     const a = abs(state);
     const rows = T.readAbsoluteStimuli(text, name);
     if (kind === 'test') a.test = rows; else a.stimuli = rows;
-    const exposures = new Set(rows.filter((r) => !r.file).map((r) => `${r.exposure.exposure_s}/${r.exposure.f_number}/${r.exposure.iso}`));
+    const exposures = new Set(rows.filter((r) => !r.file).map((r) => r.exposure.join('/')));  // [t, N, ISO]
     return { result: { count: rows.length, luminance: rows.filter((r) => r.set === 'luminance').length, colour: rows.filter((r) => r.set === 'colour').length,
       exposures: exposures.size, regionRows: rows.filter((r) => r.file).length, files: [...new Set(rows.filter((r) => r.file).map((r) => r.file))],
       ids: rows.map((r) => r.id), colourIds: rows.filter((r) => r.set === 'colour').map((r) => r.id),
-      regions: rows.filter((r) => r.file).map(({ id, x, y, w, h }) => ({ id, x, y, w, h })) } };
+      regions: rows.filter((r) => r.file).map(({ id, region: [x, y, w, h] }) => ({ id, x, y, w, h })) } };
   },
 
   /// Forgets the test scene.
@@ -120,7 +120,9 @@ export const handlers = {
     // The sensitivities for A_R, A_G, A_B: an uploaded CSV or an estimate kept here, else a built-in camera.
     const { sensitivities, camera, ...rest } = options;
     const given = chosenSensitivities(state, sensitivities);
-    const choice = given ? { choice: 'given', ssf: given.ssf, source: given.source } : camera ? { choice: 'camera', camera } : { choice: 'none' };
+    // The recipe's form of given curves (its JSON): wavelengths and one array per channel R, G, B.
+    const curves = (ssf) => ({ wavelengths: ssf.wavelengths, R: ssf.values[0], G: ssf.values[1], B: ssf.values[2] });
+    const choice = given ? { choice: 'given', ...curves(given.ssf), source: given.source } : camera ? { choice: 'camera', camera } : { choice: 'none' };
     const recipe = { inputs: { stimuli: a.stimuli, bracket: a.names, lens_cap: a.capNames, flat: a.flat ? a.flatName : '', sensitivities: choice }, options: rest };
     const fit = T.fitAbsolute(recipe, { bracket: a.series, lens_cap: a.lensCap, flat: a.flat });
     a.fit = fit;
@@ -171,7 +173,7 @@ export const handlers = {
     const { width, height } = a.summary;
     if (!(x >= 0 && y >= 0 && x < width && y < height)) return { result: null };
     const r = a.maps.readout(Math.floor(x), Math.floor(y), window);
-    const region = a.test?.find((g) => g.file && x >= g.x && x < g.x + g.w && y >= g.y && y < g.y + g.h);
+    const region = a.test?.find(({ file, region: [gx, gy, gw, gh] = [] }) => file && x >= gx && x < gx + gw && y >= gy && y < gy + gh);
     return { result: { ...r, XYZ: Array.from(r.XYZ), L: Array.from(r.L), region: region ? { id: region.id, XYZ: Array.from(region.XYZ) } : null } };
   },
 };

@@ -199,10 +199,10 @@ export function mount(section, app) {
   function seriesRows(frames) {
     st.frames = frames;
     const inputs = frames.map((f) => {
-      const e = f.exposure ?? { exposure_s: f.exposure_s, f_number: f.f_number, iso: f.iso };
-      const t = settingInput(e.exposure_s, shutterText, `exposure time of ${f.name} (s)`);
-      const n = settingInput(e.f_number, String, `f-number of ${f.name}`);
-      const iso = settingInput(e.iso, String, `ISO of ${f.name}`);
+      const [te, ne, isoe] = f.exposure ?? [f.exposure_s, f.f_number, f.iso];  // the engine's [t, N, ISO]
+      const t = settingInput(te, shutterText, `exposure time of ${f.name} (s)`);
+      const n = settingInput(ne, String, `f-number of ${f.name}`);
+      const iso = settingInput(isoe, String, `ISO of ${f.name}`);
       for (const i of [t, n, iso]) i.addEventListener('change', retypeExposures);
       return { t, n, iso, f };
     });
@@ -214,7 +214,7 @@ export function mount(section, app) {
         h('td', {}, `${f.width}×${f.height}`), h('td', {}, t), h('td', {}, n), h('td', {}, iso))))) : '');
   }
   function typedExposures() {
-    return (st.inputs ?? []).map(({ t, n, iso }) => ({ exposure_s: settingValue(t), f_number: settingValue(n), iso: settingValue(iso) }));
+    return (st.inputs ?? []).map(({ t, n, iso }) => [settingValue(t), settingValue(n), settingValue(iso)]);
   }
   async function retypeExposures() {
     clearError(seriesInput);

@@ -59,7 +59,7 @@ static void read_region(const json::Value& v, AbsoluteStimulus& s, const Context
     c.refuse(e.what());
   }
 }
-TRISTIM_FIELDS(AbsoluteStimulus, member<&AbsoluteStimulus::id>("id"), member<&AbsoluteStimulus::set>("set"),
+TRISTIM_FIELDS_DEFINE(AbsoluteStimulus, member<&AbsoluteStimulus::id>("id"), member<&AbsoluteStimulus::set>("set"),
                member<&AbsoluteStimulus::exposure>("exposure"), member<&AbsoluteStimulus::file>("file"),
                Field<AbsoluteStimulus>{"region", region_json, read_region}, member<&AbsoluteStimulus::RGB>("RGB"),
                member<&AbsoluteStimulus::falloff>("falloff"), member<&AbsoluteStimulus::XYZ>("XYZ"));
@@ -81,22 +81,22 @@ void read_channel(const json::Value& v, AbsoluteSensitivities& a, const Context&
   a.ssf.values.resize(3);
   read(v, a.ssf.values[C], c, path);
 }
-TRISTIM_FIELDS(AbsoluteSensitivities, member<&AbsoluteSensitivities::choice>("choice"),
+TRISTIM_FIELDS_DEFINE(AbsoluteSensitivities, member<&AbsoluteSensitivities::choice>("choice"),
                member<&AbsoluteSensitivities::camera>("camera"), member<&AbsoluteSensitivities::source>("source"),
                Field<AbsoluteSensitivities>{"wavelengths", wavelengths_json, read_wavelengths, nullptr, false},
                Field<AbsoluteSensitivities>{"R", channel_json<0>, read_channel<0>, nullptr, false},
                Field<AbsoluteSensitivities>{"G", channel_json<1>, read_channel<1>, nullptr, false},
                Field<AbsoluteSensitivities>{"B", channel_json<2>, read_channel<2>, nullptr, false});
 
-TRISTIM_FIELDS(AbsoluteInputs, member<&AbsoluteInputs::stimuli>("stimuli"), member<&AbsoluteInputs::bracket>("bracket"),
+TRISTIM_FIELDS_DEFINE(AbsoluteInputs, member<&AbsoluteInputs::stimuli>("stimuli"), member<&AbsoluteInputs::bracket>("bracket"),
                member<&AbsoluteInputs::lens_cap>("lens_cap"), member<&AbsoluteInputs::flat>("flat"),
                member<&AbsoluteInputs::sensitivities>("sensitivities"));
 
-TRISTIM_FIELDS(AbsoluteOptions, member<&AbsoluteOptions::transform>("transform"), member<&AbsoluteOptions::fusion>("fusion"),
+TRISTIM_FIELDS_DEFINE(AbsoluteOptions, member<&AbsoluteOptions::transform>("transform"), member<&AbsoluteOptions::fusion>("fusion"),
                member<&AbsoluteOptions::w>("w"), member<&AbsoluteOptions::noise_floor>("noise_floor"),
                member<&AbsoluteOptions::saturation>("saturation"));
 
-TRISTIM_FIELDS(AbsoluteRecipe, member<&AbsoluteRecipe::inputs>("inputs"), member<&AbsoluteRecipe::options>("options"));
+TRISTIM_FIELDS_DEFINE(AbsoluteRecipe, member<&AbsoluteRecipe::inputs>("inputs"), member<&AbsoluteRecipe::options>("options"));
 
 }  // namespace fields
 

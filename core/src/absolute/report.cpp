@@ -16,6 +16,11 @@ namespace tristim {
 
 namespace fields {
 
+TRISTIM_FIELDS_DEFINE(AbsoluteMetrics, member<&AbsoluteMetrics::metrics>("metrics"),
+               member<&AbsoluteMetrics::relative_Y_error>("relative_Y_error"),
+               member<&AbsoluteMetrics::median_absolute_error>("median_absolute_error"),
+               member<&AbsoluteMetrics::white>("white"));
+
 TRISTIM_FIELDS(AbsoluteChannelFit, member<&AbsoluteChannelFit::k1>("k1"), member<&AbsoluteChannelFit::k2>("k2"),
                member<&AbsoluteChannelFit::k3>("k3"), member<&AbsoluteChannelFit::samples>("samples"),
                member<&AbsoluteChannelFit::rms_relative>("rms_relative"),
@@ -68,14 +73,14 @@ TRISTIM_FIELDS(Test, member<&Test::white_rule>("white_rule"), member<&Test::whit
                member<&Test::figures>("figures"), member<&Test::points>("points"), member<&Test::regions>("regions"));
 
 using Maps = AbsoluteMapsSummary;
-TRISTIM_FIELDS(Maps, member<&Maps::width>("width"), member<&Maps::height>("height"), member<&Maps::mode>("mode"),
+TRISTIM_FIELDS_DEFINE(Maps, member<&Maps::width>("width"), member<&Maps::height>("height"), member<&Maps::mode>("mode"),
                member<&Maps::exposures>("exposures"), member<&Maps::labels>("labels"), member<&Maps::names>("names"),
                member<&Maps::dominant_pixels>("dominant_pixels"), member<&Maps::saturated_pixels>("saturated_pixels"),
                member<&Maps::unreliable_pixels>("unreliable_pixels"), member<&Maps::finite_pixels>("finite_pixels"),
                member<&Maps::Y>("Y"), member<&Maps::Y_p01>("Y_p01"), member<&Maps::Y_p99>("Y_p99"));
 
 using Report = AbsoluteReport;
-TRISTIM_FIELDS(Report, member<&Report::fit>("fit"),
+TRISTIM_FIELDS_DEFINE(Report, member<&Report::fit>("fit"),
                member_or_null<&Report::has_training, &Report::training>("training"),
                member_or_null<&Report::has_test, &Report::test>("test"),
                member_or_null<&Report::has_maps, &Report::maps>("maps"));

@@ -42,6 +42,7 @@ struct Context {
   ErrorCode code = ErrorCode::ProfileInvalid;
   const char* prefix = "";
   bool null_is_nan = false;  ///< a null number reads as NaN (how the writer spells a non-finite figure)
+  bool missing_is_default = false;  ///< a missing required member keeps its C++ default (a JS caller's object)
   [[noreturn]] void refuse(const std::string& what) const { throw Error(code, prefix + what); }
 };
 
@@ -313,7 +314,7 @@ void read_list(const json::Value& o, S& s, const FieldList<S>& list, const Conte
   for (const auto& f : list) {
     const json::Value* v = o.find(f.name);
     if (!v) {
-      if (f.required) c.refuse("missing field '" + join(path, f.name) + "'");
+      if (f.required && !c.missing_is_default) c.refuse("missing field '" + join(path, f.name) + "'");
       continue;
     }
     if (!f.read) c.refuse("'" + join(path, f.name) + "' cannot be read");
@@ -445,4 +446,19 @@ Field<S> section(const char* name) {
       static const FieldList<Type> list = {__VA_ARGS__};      \
       return list;                                            \
     }                                                         \
+  }
+
+/// A field list declared in a public header (so a binding sees `has_schema<Type>`) and defined in
+/// one source file with TRISTIM_FIELDS_DEFINE (inside namespace tristim::fields, at namespace
+/// scope). `name` names the struct in messages.
+#define TRISTIM_FIELDS_DECLARE(Type)                  \
+  template <>                                         \
+  struct Schema<Type> {                               \
+    static constexpr const char* name = #Type;        \
+    static const FieldList<Type>& fields();           \
+  }
+#define TRISTIM_FIELDS_DEFINE(Type, ...)                       \
+  const FieldList<Type>& Schema<Type>::fields() {              \
+    static const FieldList<Type> list = {__VA_ARGS__};         \
+    return list;                                               \
   }
