@@ -3,6 +3,7 @@
 // its legend, and X, Y, Z, x, y, L*a*b* under the pointer.
 import { h, field, select, showError, clearError, progressBar, fmt, fileBytes } from '../lib/ui.js';
 import { cameraOf } from '../fit/view.js';
+import { CornerEditor } from '../images/corners.js';
 
 const MAPS = {
   viridis: { label: 'viridis', interp: () => globalThis.d3.interpolateViridis },
@@ -26,12 +27,22 @@ export function mount(section, app) {
   });
   const flatMode = () => flatModes.map((d) => d.querySelector('input')).find((r) => r.checked)?.value ?? app.catalog.flatFieldModes[0]?.id;
   const trapInput = h('input', { type: 'text', placeholder: 'x1,y1,x2,y2,x3,y3,x4,y4', dataset: { frame: 'light-trap' } });
+  // The light trap drawn on the scene: the corner editor of step 2 (its four handles, no chart grid),
+  // in the same pixels as the typed field, which it keeps in sync both ways.
+  const trapEditor = new CornerEditor({ onChange: (c) => trapFromEditor(c), grid: () => Promise.reject(new Error('no chart grid here')) });
+  trapEditor.el.classList.add('trap-editor');
+  trapEditor.svg.setAttribute('aria-label', 'Light trap corners on the scene');
+  trapEditor.handles.forEach((g, i) => g.setAttribute('aria-label', `Light trap corner ${i + 1}`));
+  const noTrapBtn = h('button', { type: 'button' }, 'No light trap');
+  const trapDraw = h('div', { class: 'trap-draw', hidden: true },
+    h('p', { class: 'hint' }, 'Or drag the four handles onto the light trap (arrow keys move a focused handle; Shift: 10 pixels). The field above follows; an empty field: no light trap.'),
+    trapEditor.el, noTrapBtn);
   const framesNote = h('p', { class: 'summary frames-note', 'aria-live': 'polite' });
   const frames = h('fieldset', { class: 'scene-frames', hidden: true }, h('legend', {}, 'This image\'s own frames (Abed 2013 App. C step 8)'),
     h('p', { class: 'hint' }, 'Dark frames, a flat field and a light trap of this scene calibrate it before the profile, the same way step 2 calibrates the chart (tristim apply … --dark … --flat … --light-trap …).'),
     h('div', { class: 'controls' }, field('Dark frames (RAW, averaged)', darkInput), field('Flat field (RAW)', flatInput), h('fieldset', { class: 'flat-mode' }, h('legend', {}, 'Flat-field mode (--flat-mode)'), ...flatModes),
       field('Light trap corners (pixels of the decoded image)', trapInput, 'Four corners of a black light trap in the scene, typed as x,y pairs; its mean is the flare subtracted from every pixel')),
-    framesNote);
+    trapDraw, framesNote);
   const mapSel = select(Object.entries(MAPS).map(([value, m]) => ({ value, label: m.label })), app.session.colourMap ?? 'viridis');
   const applyBtn = h('button', { type: 'button', class: 'primary' }, 'Apply the selected profile');
   const which = h('p', { class: 'summary', 'aria-live': 'polite' });
@@ -53,6 +64,8 @@ export function mount(section, app) {
 
   let sceneBytes = null;
   let sceneMeta = null;
+  let sceneSize = null;      // {width, height} of the decoded scene (the light trap's pixels)
+  let previewOf = null;      // the sceneBytes whose preview the trap editor shows
   let sceneGen = -1;
   let shown = null;
   sourceSel.addEventListener('change', () => { sceneField.hidden = frames.hidden = sourceSel.value !== 'scene'; app.save('applySource', sourceSel.value); });
@@ -98,12 +111,49 @@ export function mount(section, app) {
         const copy = sceneBytes.bytes.slice();
         const d = await engine.call('decode', { slot: 'scene', bytes: copy.buffer }, { transfer: [copy.buffer] });
         sceneMeta = d.metadata;
+        sceneSize = { width: d.width, height: d.height };
         sceneGen = engine.generation;
+        if (previewOf !== sceneBytes) await showScene();
         return true;
       } catch (e) { showError(sceneInput, e, sceneBytes.name); return false; } finally { progress.done(); scenePromise = null; }
     })();
     return scenePromise;
   }
+
+  /// The typed corners: 8 finite numbers, or null (empty or not 8 numbers).
+  function typedTrap() {
+    const v = trapInput.value.trim() ? trapInput.value.split(',').map((t) => Number(t.trim())) : [];
+    return v.length === 8 && v.every(Number.isFinite) ? v : null;
+  }
+  /// The decoded scene's preview under the trap editor, its handles at the typed corners (or, with
+  /// none typed, a small square near the top-left corner, dimmed until one is moved).
+  async function showScene() {
+    const bytes = sceneBytes;
+    const preview = await engine.call('preview', { slot: 'scene' });
+    if (bytes !== sceneBytes) return;
+    previewOf = bytes;
+    trapEditor.setImage({ ...sceneSize, preview });
+    const typed = typedTrap();
+    if (typed) trapEditor.setCorners(typed);
+    else {
+      const { width: w, height: hh } = sceneSize, x = Math.round(w / 8), y = Math.round(hh / 8), s = Math.round(Math.min(w, hh) / 12);
+      trapEditor.setCorners([x, y, x + s, y, x + s, y + s, x, y + s]);
+    }
+    trapDraw.hidden = false;
+    trapInUse();
+  }
+  function trapInUse() { trapEditor.svg.style.opacity = typedTrap() ? '' : '0.55'; }
+  function trapFromEditor(c) {
+    trapInput.value = Array.from(c).join(',');
+    clearError(trapInput);
+    trapInUse();
+  }
+  trapInput.addEventListener('input', () => {
+    const typed = typedTrap();
+    if (typed && trapEditor.width) trapEditor.setCorners(typed);
+    trapInUse();
+  });
+  noTrapBtn.addEventListener('click', () => { trapInput.value = ''; clearError(trapInput); trapInUse(); });
 
   /// Sets the scene's own frames in the worker (each apply: the inputs as they are now).
   async function setFrames() {
@@ -245,5 +295,5 @@ export function mount(section, app) {
     c.addEventListener('focus', () => { if (shown && !cursor.x && !cursor.y) { cursor.x = shown.fullWidth / 2; cursor.y = shown.fullHeight / 2; read(cursor.x, cursor.y); } });
   }
   describe();
-  return { run, sourceSel, sceneInput, applyBtn, darkInput, flatInput, trapInput };
+  return { run, sourceSel, sceneInput, applyBtn, darkInput, flatInput, trapInput, trapEditor };
 }
