@@ -32,15 +32,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, '..', '..'))
 RGB_FILE = 'tests/data/passport/camera_rgb_dcraw_emu.csv'
 REF_FILE = 'core/data/charts/colorchecker24_xrite_{}_nov2014_Lab_D50.csv'
-D50 = (96.4212, 100.0, 82.5188)
-
-
-def lab_to_xyz(lab, white=D50):
-    L, a, b = lab
-    fy = (L + 16) / 116
-    fx, fz = fy + a / 500, fy - b / 200
-    inv = lambda t: t ** 3 if t > 6 / 29 else 3 * (6 / 29) ** 2 * (t - 4 / 29)
-    return [white[0] * inv(fx), white[1] * inv(fy), white[2] * inv(fz)]
+sys.path.insert(0, os.path.join(REPO, 'tests', 'support'))
+from cie_lab import D50, lab_to_xyz  # noqa: E402  (the independent L*a*b* -> XYZ)
 
 
 def read_csv(path):

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "shen2008_simulation.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/linearisation/linearisation.hpp"
@@ -32,33 +33,12 @@ namespace {
 
 std::string g_camera = "Canon_EOS_5D_Mark_II";
 
+// One realisation of eq (29), rounded to integers as the paper's 8-bit values.
 LinearisationData simulated(const std::string& chart, double sigma, uint64_t seed) {
-  const SpectralData refl = chart_reflectances(chart);
-  const SpectralData d65 = illuminant_spd("D65");
-  const ReferenceChart ref = reference_from_spectra(refl, d65, Observer::CIE1931_2);
-  SimulationOptions o;
-  o.white_level = 80;
-  o.oecf = true;
-  o.noise_sigma = sigma;
-  o.seed = seed;
-  o.clip_max = 255;
-  o.quantise = true;
-  const auto rgb = simulate_camera_RGB(camera_ssf(g_camera), refl, d65, o);
-  LinearisationData d;
-  d.ids = refl.names;
-  d.reflectances = refl;
-  d.full_scale = 255;
-  d.white = ref.white;
-  d.camera_RGB.resize(static_cast<Eigen::Index>(rgb.size()), 3);
-  d.reference_XYZ.resize(static_cast<Eigen::Index>(rgb.size()), 3);
-  for (size_t i = 0; i < rgb.size(); ++i) {
-    d.camera_RGB.row(static_cast<Eigen::Index>(i)) = rgb[i].transpose();
-    d.reference_XYZ.row(static_cast<Eigen::Index>(i)) = ref.XYZ[i].transpose();
-  }
-  return d;
+  return test::shen2008_simulation(chart, sigma, seed, g_camera, true);
 }
 
-std::string greys_of(const std::string& chart) { return chart == "cc24" ? "D1;D2;D3;D4;D5;D6" : ""; }
+std::string greys_of(const std::string& chart) { return test::shen2008_greys(chart); }
 
 struct Result {
   bool ok = false;

@@ -13,6 +13,7 @@
 
 #include "bench_util.hpp"
 #include "dng_writer.hpp"
+#include "synthetic.hpp"
 #include "tristim/absolute/profile.hpp"
 #include "tristim/absolute/virtual_bracket.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -53,12 +54,7 @@ AbsoluteProfile profile(const VirtualSensor& sensor) {
   p.normalisation.areas = channel_areas(sensor.ssf);
   FalloffFit f;
   f.p1 = 0.3;
-  f.width = kW;
-  f.height = kH;
-  f.centre_x = kW / 2.0;
-  f.centre_y = kH / 2.0;
-  f.r_scale = std::hypot(f.centre_x, f.centre_y);
-  p.normalisation.falloff = f;
+  p.normalisation.falloff = test::centred_falloff(f, kW, kH);
   for (int c = 0; c < 3; ++c) p.luminance.curves[c] = {0.0, 4.0, c == 1 ? 1.0 : 1.02};  // k3 ≠ 1: the power path
   p.colour.id = "Guarnera2018-T1";
   p.colour.coefficients = Eigen::MatrixXd::Identity(3, 3);

@@ -91,6 +91,15 @@ void read_passport(PatchMatrix& rgb, PatchMatrix& xyz) {
   }
 }
 
+// The CIEDE2000 objective with the RMS loss, minimised by `algorithm` ("auto": Levenberg-Marquardt).
+FitOptions rms_de2000(const char* algorithm) {
+  FitOptions o;
+  o.objective = Objective::DeltaE2000;
+  o.de2000.rms = true;
+  o.de2000.algorithm = algorithm;
+  return o;
+}
+
 }  // namespace
 
 int main() {
@@ -150,10 +159,7 @@ int main() {
   for (int n : {24, 140})
     for (const char* id : {"matrix-3x3", "matrix-3x4", "Finlayson2015-2"})
       for (const char* alg : {"auto", "bobyqa"}) {
-        FitOptions o;
-        o.objective = Objective::DeltaE2000;
-        o.de2000.rms = true;
-        o.de2000.algorithm = alg;
+        const FitOptions o = rms_de2000(alg);
         FitResult r;
         const PatchMatrix a = rgb.topRows(n), b = xyz.topRows(n);
         const double t = best_ms(5, [&] { r = fit(id, a, b, o); });
@@ -167,10 +173,7 @@ int main() {
     std::printf("\n== Passport DNG patches, matrix-3x3, RMS CIEDE2000 (OpenCV ccm: 3.331), best of 20 ==\n");
     read_passport(prgb, pxyz);
     for (const char* alg : {"auto", "bobyqa"}) {
-        FitOptions o;
-        o.objective = Objective::DeltaE2000;
-        o.de2000.rms = true;
-        o.de2000.algorithm = alg;
+        const FitOptions o = rms_de2000(alg);
         FitResult r;
         const double t = best_ms(20, [&] { r = fit("matrix-3x3", prgb, pxyz, o); });
         const auto& m = r.model.coefficients;

@@ -33,6 +33,7 @@
 #include <string>
 #include <sys/stat.h>
 
+#include "absolute_training_chart.hpp"
 #include "dng_writer.hpp"
 #include "tristim/absolute/example.hpp"
 #include "tristim/absolute/recipe.hpp"
@@ -133,32 +134,10 @@ int main(int argc, char** argv) {
     dng(dir + "flat.dng", s, uniform_scene(W, H, E, 450), bracket[2], 3);
 
     // The training chart: 31 equal-tristimulus patches, then 24 projected ColorChecker colours.
-    const ReferenceChart cc = reference_chart("cc24", "D65");
-    std::vector<Vec3> targets;
-    for (const auto& x : cc.XYZ) targets.push_back(x * 7.0);
-    const SpectralData proj = projector_spectra(targets, cc.ids);
-    VirtualScene train;
-    train.width = W;
-    train.height = H;
-    train.stimuli = E;
-    std::vector<std::string> ids;
-    for (int v = 0; v <= 870; v += 30) train.luminance.push_back(v);
-    train.luminance.push_back(890);
-    for (size_t k = 1; k < train.luminance.size(); ++k) {
-      train.stimuli.values.push_back(E.values[0]);
-      train.stimuli.names.push_back("E");
-    }
-    for (double y : train.luminance) ids.push_back("Y" + std::to_string(static_cast<int>(y)));
-    for (size_t k = 0; k < targets.size(); ++k) {
-      train.stimuli.values.push_back(proj.values[k]);
-      train.stimuli.names.push_back(cc.ids[k]);
-      train.luminance.push_back(targets[k][1]);
-      ids.push_back(cc.ids[k]);
-    }
+    const test::TrainingChart training = test::training_chart(W, H, kCols, kCell);
+    const VirtualScene& train = training.scene;
+    const std::vector<std::string>& ids = training.ids;
     const int n = static_cast<int>(ids.size());
-    train.label.resize(static_cast<size_t>(W) * H);
-    for (int y = 0; y < H; ++y)
-      for (int x = 0; x < W; ++x) train.label[static_cast<size_t>(y) * W + x] = static_cast<std::uint16_t>(std::min(n - 1, (y / kCell) * kCols + x / kCell));
     std::ostringstream csv;
     csv << "id,set,file,x,y,w,h,X,Y,Z\n";
     for (size_t e = 0; e < bracket.size(); ++e) {

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 
 #include "tristim/error.hpp"
@@ -17,3 +18,24 @@
     }                                                                              \
     return 0;                                                                      \
   }
+
+namespace tristim::fuzz {
+
+/// The round trip a writer owes its reader: what `write` makes of `read(input)` must read again
+/// (a coded refusal of the writer's own text is a finding, not a refusal) and write to the same
+/// text. A coded error from `read(input)` itself is the input refused. Returns what was read.
+template <class Read, class Write>
+auto round_trip(const std::string& input, Read read, Write write) {
+  auto value = read(input);
+  const std::string text = write(value);
+  std::string again;
+  try {
+    again = write(read(text));
+  } catch (const tristim::Error&) {
+    std::abort();
+  }
+  if (again != text) std::abort();
+  return value;
+}
+
+}  // namespace tristim::fuzz

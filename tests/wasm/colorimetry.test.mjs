@@ -4,6 +4,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { loadTristim, readText, testFiles, throwsCode, repoRoot } from './load.mjs';
+import { assertPatchArrays } from './patch_arrays.mjs';
 
 const close = (a, b, tol, what) => assert.ok(Math.abs(a - b) <= tol, `${what}: ${a} vs ${b} (tolerance ${tol})`);
 
@@ -22,13 +23,7 @@ test('catalogue: charts, illuminants, cameras', async () => {
 test('referenceChart: shapes and values', async () => {
   const T = await loadTristim();
   const r = T.referenceChart('cc24', 'D65', '1931');
-  assert.equal(r.ids.length, 24);
-  assert.equal(r.ids[0], 'A1');
-  assert.equal(r.ids[23], 'D6');
-  for (const k of ['XYZ', 'Lab', 'sRGB']) {
-    assert.ok(r[k] instanceof Float64Array, k);
-    assert.equal(r[k].length, 72, k);
-  }
+  assertPatchArrays(r, { count: 24, first: 'A1', last: 'D6' }, ['XYZ', 'Lab', 'sRGB']);
   assert.equal(r.white.length, 3);
   close(r.white[1], 100, 1e-9, 'white Y');
   // Native `tristim reference --chart cc24` (D65, 1931), printed to 6 decimals.

@@ -6,6 +6,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { loadTristim, readBytes, testPath, testFiles, throwsCode, repoRoot, assertSampleCsv } from './load.mjs';
+import { assertPatchArrays } from './patch_arrays.mjs';
 
 const PASSPORT = testFiles.passportDng;
 const CR2 = testFiles.canon30dCr2;
@@ -84,13 +85,7 @@ test('sampleChart on the example Passport: 24 patches with ids A1..D6 and typed 
   assert.ok(T.listChartLayouts().includes('passport'));
   withRaw(T, readBytes(PASSPORT), (raw) => {
     const s = T.sampleChart(raw, { chart: passportJson.chart }, new Float64Array(passportJson.corners), { area: 0.5 });
-    assert.equal(s.ids.length, 24);
-    assert.equal(s.ids[0], 'A1');
-    assert.equal(s.ids[23], 'D6');
-    for (const k of ['RGB', 'std', 'saturated_fraction']) {
-      assert.ok(s[k] instanceof Float64Array, k);
-      assert.equal(s[k].length, 72, k);
-    }
+    assertPatchArrays(s, { count: 24, first: 'A1', last: 'D6' }, ['RGB', 'std', 'saturated_fraction']);
     assert.ok(s.n instanceof Int32Array);
     assert.equal(s.flags.length, 24);
     assert.ok(Array.isArray(s.flags[0]));

@@ -9,20 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "absolute_training_chart.hpp"
+#include "synthetic.hpp"
 #include "tristim/absolute/profile.hpp"
 #include "tristim/absolute/virtual_bracket.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
 namespace tristim::test {
-
-/// 0, 30, …, 870 and 890 cd/m² (the paper's luminance training set).
-inline std::vector<double> training_luminances() {
-  std::vector<double> y;
-  for (int v = 0; v <= 870; v += 30) y.push_back(v);
-  y.push_back(890);
-  return y;
-}
 
 /// The bracket: 1/250 … 1/15 s at f/8, ISO 100 (one-stop steps; the paper doubles t).
 inline std::vector<ExposureSettings> default_bracket() {
@@ -85,13 +79,7 @@ inline AbsoluteBench build_bench(const BenchConfig& config) {
   b.saturation = measure_saturation(ptrs);
   b.normalisation = make_normalisation(&b.cap, b.saturation, &b.sensor.ssf, std::nullopt, 10);
   // The flat was 4x the size: rescale its centre and r_scale to the training frames.
-  FalloffFit f = b.falloff;
-  f.width = W;
-  f.height = H;
-  f.centre_x = W / 2.0;
-  f.centre_y = H / 2.0;
-  f.r_scale = std::hypot(f.centre_x, f.centre_y);
-  b.normalisation.falloff = f;
+  b.normalisation.falloff = centred_falloff(b.falloff, W, H);
   for (size_t i = 0; i < frames.size(); ++i) {
     const double Y = meta[i].first;
     b.stimuli.push_back(sample_stimulus(frames[i], W / 2 - 4, H / 2 - 4, 8, 8, b.normalisation,
@@ -130,12 +118,7 @@ inline const AbsoluteBench& bench(const BenchConfig& config = {}) {
 /// f(r) is in relative radius, so only the centre and scale change).
 inline AbsoluteProfile profile_for(const AbsoluteBench& b, int width, int height) {
   AbsoluteProfile p = b.profile;
-  FalloffFit& f = *p.normalisation.falloff;
-  f.width = width;
-  f.height = height;
-  f.centre_x = width / 2.0;
-  f.centre_y = height / 2.0;
-  f.r_scale = std::hypot(f.centre_x, f.centre_y);
+  p.normalisation.falloff = centred_falloff(*p.normalisation.falloff, width, height);
   p.width = width;
   p.height = height;
   return p;

@@ -11,6 +11,7 @@
 
 #include "absolute_bench.hpp"
 #include "test_support.hpp"
+#include "text_edit.hpp"
 #include "tristim/absolute/characterise.hpp"
 #include "tristim/absolute/fit_frames.hpp"
 #include "tristim/absolute/stimuli_file.hpp"
@@ -62,30 +63,10 @@ const Chart& chart() {
       c.cap_names.push_back("cap-" + std::to_string(i + 1) + ".raw");
     }
     c.flat = capture_virtual(c.sensor, uniform_scene(W, H, E, 450), c.bracket[2], seed++);
-    const ReferenceChart cc = reference_chart("cc24", "D65");
-    std::vector<Vec3> targets;
-    for (const auto& x : cc.XYZ) targets.push_back(x * 7.0);
-    const SpectralData proj = projector_spectra(targets, cc.ids);
-    VirtualScene scene;
-    scene.width = W, scene.height = H;
-    scene.stimuli = E;
-    std::vector<std::string> ids;
-    for (double y : test::training_luminances()) {
-      if (!scene.luminance.empty()) scene.stimuli.values.push_back(E.values[0]), scene.stimuli.names.push_back("E");
-      scene.luminance.push_back(y);
-      ids.push_back("Y" + std::to_string(static_cast<int>(y)));
-    }
-    for (size_t k = 0; k < targets.size(); ++k) {
-      scene.stimuli.values.push_back(proj.values[k]);
-      scene.stimuli.names.push_back(cc.ids[k]);
-      scene.luminance.push_back(targets[k][1]);
-      ids.push_back(cc.ids[k]);
-    }
+    const test::TrainingChart training = test::training_chart(W, H, kCols, kCell);
+    const VirtualScene& scene = training.scene;
+    const std::vector<std::string>& ids = training.ids;
     const int n = static_cast<int>(ids.size());
-    scene.label.resize(static_cast<size_t>(W) * H);
-    for (int y = 0; y < H; ++y)
-      for (int x = 0; x < W; ++x)
-        scene.label[static_cast<size_t>(y) * W + x] = static_cast<std::uint16_t>(std::min(n - 1, (y / kCell) * kCols + x / kCell));
     for (size_t e = 0; e < c.bracket.size(); ++e) {
       c.names.push_back("chart-" + std::to_string(e + 1) + ".raw");
       c.frames.push_back(capture_virtual(c.sensor, scene, c.bracket[e], seed++));
@@ -179,12 +160,7 @@ TEST_CASE("absolute recipe: JSON round trip is exact, completion applies the 2 %
 
 TEST_CASE("absolute recipe: strict reading and coded errors", "[absolute][recipe]") {
   const std::string good = absolute_recipe_to_json(full_recipe());
-  auto with = [&](const std::string& from, const std::string& to) {
-    std::string t = good;
-    const auto at = t.find(from);
-    REQUIRE(at != std::string::npos);
-    return t.replace(at, from.size(), to);
-  };
+  auto with = [&](const std::string& from, const std::string& to) { return test::replaced(good, from, to); };
   test::require_code([&] { absolute_recipe_from_json(with("\"version\": 1", "\"version\": 2")); }, ErrorCode::RecipeVersion);
   test::require_code([&] { absolute_recipe_from_json(with("\"options\": {", "\"options\": {\"speed\": 1, ")); }, ErrorCode::RecipeInvalid);
   test::require_code([&] { absolute_recipe_from_json(with("\"falloff\": 1.0625", "\"falloff\": \"1\"")); }, ErrorCode::RecipeInvalid);

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <random>
 
+#include "synthetic.hpp"
 #include "test_support.hpp"
 #include "tristim/capture/calibration.hpp"
 #include "tristim/error.hpp"
@@ -15,16 +16,9 @@ using namespace tristim;
 namespace {
 
 RawImage synthetic(int w, int h, const std::string& model = "Synthetic") {
-  RawImage img;
-  img.width = w;
-  img.height = h;
+  RawImage img = test::blank_raw(w, h, 10000);
   img.meta.make = "tristim";
   img.meta.model = model;
-  img.meta.width = w;
-  img.meta.height = h;
-  img.meta.saturation = {10000, 10000, 10000};
-  img.rgb.assign(size_t(w) * h * 3, 0.f);
-  img.saturated.assign(size_t(w) * h, 0);
   return img;
 }
 
@@ -180,11 +174,7 @@ TEST_CASE("apply_calibration equals FrameCalibration::calibrated pixel by pixel,
   FalloffFit fo;
   fo.p1 = 0.31;
   fo.p2 = -0.07;
-  fo.width = W;
-  fo.height = H;
-  fo.centre_x = W / 2.0;
-  fo.centre_y = H / 2.0;
-  fo.r_scale = std::hypot(fo.centre_x, fo.centre_y);
+  fo = test::centred_falloff(fo, W, H);
   for (int mask = 0; mask < 32; ++mask) {
     FrameCalibration cal;
     if (mask & 1) cal.dark = avg;

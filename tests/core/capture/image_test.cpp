@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
+#include <initializer_list>
 #include <random>
 
 #include "image_writer.hpp"
@@ -365,30 +367,27 @@ TEST_CASE("unsupported image variants are refused with IMAGE_UNSUPPORTED", "[ima
   const TestImage rgb = random_image(16, 8, 3, 8, 2);
   const TestImage grey = random_image(16, 8, 1, 8, 3);
   SECTION("TIFF") {
-    test::TiffWriteOptions alpha;
-    alpha.extra_samples = 1;
-    require_code([&] { decode_any(test::write_tiff(rgba, alpha)); }, ErrorCode::ImageUnsupported);
-    require_code([&] { decode_any(test::write_tiff(rgba)); }, ErrorCode::ImageUnsupported);  // CMYK
-    test::TiffWriteOptions palette;
-    palette.photometric = 3;
-    require_code([&] { decode_any(test::write_tiff(grey, palette)); }, ErrorCode::ImageUnsupported);
-    test::TiffWriteOptions white;
-    white.photometric = 0;
-    require_code([&] { decode_any(test::write_tiff(grey, white)); }, ErrorCode::ImageUnsupported);
+    // `im` written as a TIFF with the options `set` gives; the decoder must refuse it as unsupported.
+    const auto require_unsupported_tiff = [](const TestImage& im, const std::function<void(test::TiffWriteOptions&)>& set) {
+      test::TiffWriteOptions o;
+      set(o);
+      require_code([&] { decode_any(test::write_tiff(im, o)); }, ErrorCode::ImageUnsupported);
+    };
+    const auto as_is = [](test::TiffWriteOptions&) {};
+    require_unsupported_tiff(rgba, [](auto& o) { o.extra_samples = 1; });  // RGB + alpha
+    require_unsupported_tiff(rgba, as_is);                                 // CMYK
+    require_unsupported_tiff(grey, [](auto& o) { o.photometric = 3; });    // palette
+    require_unsupported_tiff(grey, [](auto& o) { o.photometric = 0; });    // min-is-white
     for (int bits : {1, 4, 12, 32}) {
       INFO(bits << "-bit");
       TestImage odd = grey;
       odd.bits = bits;
-      require_code([&] { decode_any(test::write_tiff(odd)); }, ErrorCode::ImageUnsupported);
+      require_unsupported_tiff(odd, as_is);
     }
     TestImage f32 = grey;
     f32.bits = 32;
-    test::TiffWriteOptions fl;
-    fl.sample_format = 3;
-    require_code([&] { decode_any(test::write_tiff(f32, fl)); }, ErrorCode::ImageUnsupported);
-    test::TiffWriteOptions sint;
-    sint.sample_format = 2;
-    require_code([&] { decode_any(test::write_tiff(grey, sint)); }, ErrorCode::ImageUnsupported);
+    require_unsupported_tiff(f32, [](auto& o) { o.sample_format = 3; });   // float
+    require_unsupported_tiff(grey, [](auto& o) { o.sample_format = 2; });  // signed integer
     // Codecs outside the read set (the same natively and in wasm): LZMA, ZSTD, CCITT, old JPEG.
     for (std::uint16_t comp : {34925, 50000, 4, 6}) {
       INFO("compression " << comp);
@@ -426,23 +425,27 @@ TEST_CASE("truncated and corrupt images give IMAGE_CORRUPT, oversized ones LIMIT
     b.resize(static_cast<std::size_t>(b.size() * keep));
     return b;
   };
+  // The file cut to each fraction `keep` of its bytes is refused as corrupt.
+  const auto require_corrupt_when_cut = [&](const std::vector<std::uint8_t>& file, std::initializer_list<double> keeps) {
+    for (double keep : keeps) {
+      INFO("keep " << keep);
+      require_code([&] { decode_any(cut(file, keep)); }, ErrorCode::ImageCorrupt);
+    }
+  };
   SECTION("TIFF") {
     test::TiffWriteOptions o;
     o.compression = 8;
     o.rows_per_strip = 8;
     const auto file = test::write_tiff(im, o);
     // libtiff writes the directory after the strips: a cut file has lost its directory.
-    require_code([&] { decode_any(cut(file, 0.5)); }, ErrorCode::ImageCorrupt);
+    require_corrupt_when_cut(file, {0.5});
     auto bad = file;
     for (std::size_t i = 16; i < 200; ++i) bad[i] ^= 0x5A;  // inside the first Deflate strip
     require_code([&] { decode_any(bad); }, ErrorCode::ImageCorrupt);
   }
   SECTION("PNG") {
     const auto file = test::write_png(im);
-    for (double keep : {0.3, 0.9, 0.999}) {
-      INFO("keep " << keep);
-      require_code([&] { decode_any(cut(file, keep)); }, ErrorCode::ImageCorrupt);
-    }
+    require_corrupt_when_cut(file, {0.3, 0.9, 0.999});
     auto flipped = file;
     flipped[flipped.size() / 2] ^= 0x01;  // IDAT CRC no longer matches
     require_code([&] { decode_any(flipped); }, ErrorCode::ImageCorrupt);
@@ -451,10 +454,7 @@ TEST_CASE("truncated and corrupt images give IMAGE_CORRUPT, oversized ones LIMIT
   }
   SECTION("JPEG") {
     const auto file = test::write_jpeg(im);
-    for (double keep : {0.05, 0.5, 0.95}) {
-      INFO("keep " << keep);
-      require_code([&] { decode_any(cut(file, keep)); }, ErrorCode::ImageCorrupt);
-    }
+    require_corrupt_when_cut(file, {0.05, 0.5, 0.95});
     auto big = file;
     const std::size_t sof = jpeg_sof(big);
     big[sof + 3] = 0xEA;  // height 60000

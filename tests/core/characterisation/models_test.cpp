@@ -9,6 +9,7 @@
 #include <Eigen/QR>
 
 #include "detmath.hpp"
+#include "synthetic.hpp"
 #include "test_support.hpp"
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/error.hpp"
@@ -76,14 +77,7 @@ std::vector<double> flat_rows(const json::Value& rows) {
 }
 
 // Camera RGB of a plausible camera: random reflectances through a fixed mixing, 0..1.
-PatchMatrix random_rgb(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(0.02, 0.95);
-  PatchMatrix m(n, 3);
-  for (int i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) m(i, c) = u(rng);
-  return m;
-}
+PatchMatrix random_rgb(int n, unsigned seed) { return test::random_patches(n, seed, 0.02, 0.95); }
 
 }  // namespace
 

@@ -1,7 +1,7 @@
 // Evaluation: summaries, per-patch differences, NRMSE, leave-one-out, compare, transfer table.
 #include <cmath>
-#include <random>
 
+#include "synthetic.hpp"
 #include "test_support.hpp"
 #include "tristim/error.hpp"
 #include "tristim/evaluation/evaluation.hpp"
@@ -10,14 +10,7 @@ using namespace tristim;
 using tristim::test::require_code;
 
 namespace {
-PatchMatrix rgb_grid(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(0.03, 0.9);
-  PatchMatrix m(n, 3);
-  for (int i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) m(i, c) = u(rng);
-  return m;
-}
+PatchMatrix rgb_grid(int n, unsigned seed) { return test::random_patches(n, seed, 0.03, 0.9); }
 }  // namespace
 
 TEST_CASE("summaries: min, median, mean, p95, max, RMS, std", "[evaluation]") {

@@ -6,6 +6,7 @@
 #include <map>
 #include <random>
 
+#include "shen2008_simulation.hpp"
 #include "test_support.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/evaluation/evaluation.hpp"
@@ -19,37 +20,13 @@ using namespace tristim;
 
 namespace {
 
-/// The paper's simulation (eq 29): ρ = l·u^(1/γ) + n, γ = 1.8, l = 22, ρ in [0, 255], a real
-/// camera under D65; the perfect diffuser's linear G response u = 80 puts white near ρ = 251.
+/// The paper's simulation (eq 29) on a real camera under D65, ρ not rounded.
 LinearisationData simulated(const std::string& chart, double sigma, uint64_t seed,
                             const std::string& camera = "Canon_EOS_5D_Mark_II") {
-  const SpectralData refl = chart_reflectances(chart);
-  const SpectralData d65 = illuminant_spd("D65");
-  const ReferenceChart ref = reference_from_spectra(refl, d65, Observer::CIE1931_2);
-  SimulationOptions o;
-  o.white_level = 80;
-  o.oecf = true;  // defaults γ = 1.8, l = 22
-  o.noise_sigma = sigma;
-  o.seed = seed;
-  o.clip_max = 255;
-  const auto rgb = simulate_camera_RGB(camera_ssf(camera), refl, d65, o);
-  LinearisationData d;
-  d.ids = refl.names;
-  d.reflectances = refl;
-  d.full_scale = 255;
-  d.white = ref.white;
-  d.camera_RGB.resize(static_cast<Eigen::Index>(rgb.size()), 3);
-  d.reference_XYZ.resize(static_cast<Eigen::Index>(rgb.size()), 3);
-  for (size_t i = 0; i < rgb.size(); ++i) {
-    d.camera_RGB.row(static_cast<Eigen::Index>(i)) = rgb[i].transpose();
-    d.reference_XYZ.row(static_cast<Eigen::Index>(i)) = ref.XYZ[i].transpose();
-  }
-  return d;
+  return test::shen2008_simulation(chart, sigma, seed, camera, false);
 }
 
-/// The grey patches as the paper divides the charts: the ColorChecker's six (D1-D6); for the SG
-/// the automatic rule.
-std::string greys_of(const std::string& chart) { return chart.rfind("cc24", 0) == 0 ? "D1;D2;D3;D4;D5;D6" : ""; }
+std::string greys_of(const std::string& chart) { return test::shen2008_greys(chart); }
 
 struct Outcome {
   Vec3 r2;

@@ -20,10 +20,20 @@ namespace {
 /// Reflectances in a 3-dimensional span (so W recovers them exactly), their linear camera RGB
 /// through a responsivity, and stored values through the sRGB curve.
 struct Planted {
-  std::vector<std::string> ids;
+  std::vector<std::string> ids, greys;
   SpectralData reflectances;
   PatchMatrix stored;
   Linearisation lin;
+  Eigen::MatrixXd W;  // N × 3, the planted map (planted_with_greys)
+
+  /// Adds patch `id`: reflectance r, linear camera RGB u, stored as 255 · sRGB_encode(u).
+  void add(const std::string& id, const Eigen::VectorXd& r, const Eigen::Vector3d& u) {
+    ids.push_back(id);
+    reflectances.names.push_back(id);
+    reflectances.values.emplace_back(r.data(), r.data() + r.size());
+    stored.conservativeResize(stored.rows() + 1, 3);
+    for (int c = 0; c < 3; ++c) stored(stored.rows() - 1, c) = 255 * sRGB_encode(u[c]);
+  }
 };
 
 /// A 3-dimensional reflectance span `basis` (N × 3, its first column flat) on 400-700 nm at 10 nm
@@ -49,27 +59,23 @@ SpanCamera span_camera() {
   return s;
 }
 
-Planted planted() {
+/// No patches yet, on the span camera's wavelengths; the linearisation is the sRGB curve.
+Planted start_planted(const SpanCamera& s) {
   Planted p;
-  const SpanCamera s = span_camera();
-  const std::vector<double>& wl = s.wl;
-  const size_t N = wl.size();
-  const Eigen::MatrixXd &basis = s.basis, &m = s.m;
-  p.reflectances.wavelengths = wl;
-  const int Q = 20;
-  p.stored.resize(Q, 3);
+  p.reflectances.wavelengths = s.wl;
   LinearisationData d;
   d.camera_RGB = PatchMatrix::Constant(1, 3, 1);
   d.full_scale = 255;
   p.lin = fit_linearisation(parse_choice("sRGB"), d);
-  for (int q = 0; q < Q; ++q) {
-    const Eigen::Vector3d a(1.0 + 0.03 * q, 0.2 * std::sin(q), 0.1 * std::cos(2 * q));
-    const Eigen::VectorXd r = basis * a;
-    p.ids.push_back("P" + std::to_string(q + 1));
-    p.reflectances.names.push_back(p.ids.back());
-    p.reflectances.values.emplace_back(r.data(), r.data() + N);
-    const Eigen::Vector3d u = m * r;
-    for (int c = 0; c < 3; ++c) p.stored(q, c) = 255 * sRGB_encode(u[c]);
+  return p;
+}
+
+Planted planted() {
+  const SpanCamera s = span_camera();
+  Planted p = start_planted(s);
+  for (int q = 0; q < 20; ++q) {
+    const Eigen::VectorXd r = s.basis * Eigen::Vector3d(1.0 + 0.03 * q, 0.2 * std::sin(q), 0.1 * std::cos(2 * q));
+    p.add("P" + std::to_string(q + 1), r, s.m * r);
   }
   return p;
 }
@@ -152,51 +158,29 @@ namespace {
 /// the planted spectral map is W = B (m B)⁻¹ (r = W u for every reflectance of the span). Six
 /// spectrally flat greys (in the span too) are photographed with flare (u·1.1 + 0.03), so they
 /// do not follow the map: W trained on the non-grey patches must still be the planted one.
-struct PlantedGreys {
-  std::vector<std::string> ids, greys;
-  SpectralData reflectances;
-  PatchMatrix stored;
-  Linearisation lin;
-  Eigen::MatrixXd W;  // N × 3, the planted map
-};
-
-PlantedGreys planted_with_greys() {
-  PlantedGreys p;
+Planted planted_with_greys() {
   const SpanCamera s = span_camera();
-  const std::vector<double>& wl = s.wl;
-  const size_t N = wl.size();
   const Eigen::MatrixXd &B = s.basis, &m = s.m;
+  Planted p = start_planted(s);
   p.W = B * (m * B).inverse();
-  p.reflectances.wavelengths = wl;
-  LinearisationData d;
-  d.camera_RGB = PatchMatrix::Constant(1, 3, 1);
-  d.full_scale = 255;
-  p.lin = fit_linearisation(parse_choice("sRGB"), d);
-  std::vector<Eigen::Vector3d> rgb;
-  auto add = [&](const std::string& id, const Eigen::VectorXd& r, bool flare) {
-    p.ids.push_back(id);
-    p.reflectances.names.push_back(id);
-    p.reflectances.values.emplace_back(r.data(), r.data() + N);
-    Eigen::Vector3d u = m * r;
-    if (flare) u = (u * 1.1).array() + 0.03;
-    rgb.push_back(u);
-  };
-  for (int q = 0; q < 18; ++q)  // chromatic: clearly away from the neutral axis
-    add("C" + std::to_string(q + 1), B * Eigen::Vector3d(1.0 + 0.03 * q, (q % 2 ? 1 : -1) * (0.3 + 0.3 * std::fabs(std::sin(q))), 0.3 * std::cos(2 * q)), false);
-  for (int g = 0; g < 6; ++g) {
-    p.greys.push_back("G" + std::to_string(g + 1));
-    add(p.greys.back(), B.col(0) * (0.15 + 0.3 * g), true);  // flat reflectance 0.075 .. 0.825
+  for (int q = 0; q < 18; ++q) {  // chromatic: clearly away from the neutral axis
+    const Eigen::VectorXd r = B * Eigen::Vector3d(1.0 + 0.03 * q, (q % 2 ? 1 : -1) * (0.3 + 0.3 * std::fabs(std::sin(q))), 0.3 * std::cos(2 * q));
+    p.add("C" + std::to_string(q + 1), r, m * r);
   }
-  p.stored.resize(static_cast<Eigen::Index>(rgb.size()), 3);
-  for (size_t q = 0; q < rgb.size(); ++q)
-    for (int c = 0; c < 3; ++c) p.stored(static_cast<Eigen::Index>(q), c) = 255 * sRGB_encode(rgb[q][c]);
+  for (int g = 0; g < 6; ++g) {
+    const Eigen::VectorXd r = B.col(0) * (0.15 + 0.3 * g);  // flat reflectance 0.075 .. 0.825
+    Eigen::Vector3d u = m * r;
+    u = (u * 1.1).array() + 0.03;  // flare
+    p.greys.push_back("G" + std::to_string(g + 1));
+    p.add(p.greys.back(), r, u);
+  }
   return p;
 }
 
 }  // namespace
 
 TEST_CASE("spectral: W trained on the non-grey patches (the paper's default) recovers the planted map", "[linearisation][spectral]") {
-  const PlantedGreys p = planted_with_greys();
+  const Planted p = planted_with_greys();
   const SpectralModel m = fit_spectral(p.lin, p.ids, p.stored, p.reflectances);
   CHECK(m.training_set == "non-grey");
   CHECK(m.greys == p.greys);  // the flat ones, found by the Shen2008 linearisation's rule
@@ -220,7 +204,7 @@ TEST_CASE("spectral: W trained on the non-grey patches (the paper's default) rec
 TEST_CASE("spectral: the non-grey default changes the training set and nothing else", "[linearisation][spectral]") {
   // The default equals use_greys = 1 on the non-grey rows alone, bit for bit: the same W, the same
   // estimates for every patch (greys included); only the training set differs.
-  const PlantedGreys p = planted_with_greys();
+  const Planted p = planted_with_greys();
   const SpectralModel def = fit_spectral(p.lin, p.ids, p.stored, p.reflectances);
   const std::vector<std::string> chromatic(p.ids.begin(), p.ids.begin() + 18);
   const SpectralModel sub =

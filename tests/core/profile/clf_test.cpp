@@ -8,6 +8,7 @@
 #include <string>
 
 #include "test_support.hpp"
+#include "text_edit.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/profile/clf.hpp"
@@ -79,12 +80,7 @@ TEST_CASE("clf: the IDT's CLF carries the recipe and maps the camera white to AC
 
 TEST_CASE("clf: the reader refuses broken files with coded errors", "[clf]") {
   const std::string good = write_clf(example_clf(true));
-  auto replaced = [&](const std::string& from, const std::string& to) {
-    std::string s = good;
-    const std::size_t i = s.find(from);
-    REQUIRE(i != std::string::npos);
-    return s.replace(i, from.size(), to);
-  };
+  auto replaced = [&](const std::string& from, const std::string& to) { return test::replaced(good, from, to); };
   test::require_code([&] { read_clf(""); }, ErrorCode::ParseError);
   test::require_code([&] { read_clf(good.substr(0, good.size() / 2)); }, ErrorCode::ParseError);
   test::require_code([&] { read_clf(replaced("</Matrix>", "</Matrx>")); }, ErrorCode::ParseError);

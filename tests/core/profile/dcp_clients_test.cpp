@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "shell.hpp"
+#include "synthetic.hpp"
 #include "tristim/capture/image.hpp"
 #include "tristim/capture/raw.hpp"
 #include "tristim/chart/layout.hpp"
@@ -217,16 +218,9 @@ Render render(const std::string& name, const std::string& input, const Vec3& neu
   cmsHPROFILE out = cmsCreateXYZProfile();
   cmsHTRANSFORM xf = cmsCreateTransform(in, TYPE_RGB_16, out, TYPE_XYZ_DBL, INTENT_RELATIVE_COLORIMETRIC, cmsFLAGS_NOCACHE);
   REQUIRE(xf != nullptr);
-  RawImage img;
-  img.width = w;
-  img.height = h;
+  RawImage img = test::blank_raw(w, h, 1e9);
   img.meta.layout = "rgb";
-  img.meta.width = w;
-  img.meta.height = h;
   img.meta.white_level = 1e9;
-  img.meta.saturation = {1e9, 1e9, 1e9};
-  img.rgb.resize(px.size());
-  img.saturated.assign(static_cast<size_t>(w) * h, 0);
   std::vector<double> row(static_cast<size_t>(w) * 3);
   for (int y = 0; y < h; ++y) {
     cmsDoTransform(xf, px.data() + static_cast<size_t>(y) * w * 3, row.data(), static_cast<cmsUInt32Number>(w));

@@ -136,18 +136,8 @@ TEST_CASE("cameras: 52 built in, names matched loosely, SSF CSV, errors", "[simu
   CHECK(camera_ssf("canon-eos-5d-mark-ii").values[0] == camera_ssf("Canon_EOS_5D_Mark_II").values[0]);
   const SpectralData s = read_ssf_csv("wavelength,cam_R,cam_G,cam_B\n400,1,2,3\n500,4,5,6\n", "ssf.csv");
   CHECK(s.values[2] == std::vector<double>{3, 6});
-  try {
-    camera_ssf("Leica M3");
-    FAIL("no error");
-  } catch (const Error& e) {
-    CHECK(e.code() == ErrorCode::UnknownId);
-  }
-  try {
-    read_ssf_csv("wavelength,a,b\n400,1,2\n", "ssf.csv");
-    FAIL("no error");
-  } catch (const Error& e) {
-    CHECK(e.code() == ErrorCode::MissingColumn);
-  }
+  tristim::test::require_code([&] { camera_ssf("Leica M3"); }, ErrorCode::UnknownId);
+  tristim::test::require_code([&] { read_ssf_csv("wavelength,a,b\n400,1,2\n", "ssf.csv"); }, ErrorCode::MissingColumn);
 }
 
 // simulate_camera_RGB pulls the SSF x illuminant weights back onto the reflectance grid

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "test_support.hpp"
 #include "tristim/surface/saunderson.hpp"
@@ -16,6 +17,26 @@ namespace {
 SaundersonGeometry random_geometry(std::mt19937& rng) {
   std::uniform_real_distribution<double> k(0, 0.9), ins(0, 1);
   return {k(rng), k(rng), ins(rng)};
+}
+
+// The worst relative difference |value - truth| / max(1, |truth|) over `trials` random pairs of
+// geometries (measurement m, capture c, drawn by mt19937(seed)) and R = 0, 0.05, …, 1, where
+// make(m, c) gives the function R -> {value, truth}. R whose truth is not finite or larger than
+// `limit` in size are passed over.
+template <class Make>
+double worst_relative_difference(unsigned seed, int trials, double limit, Make make) {
+  std::mt19937 rng(seed);
+  double worst = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    const SaundersonGeometry m = random_geometry(rng), c = random_geometry(rng);
+    const auto value_and_truth = make(m, c);
+    for (int i = 0; i <= 20; ++i) {
+      const auto [value, truth] = value_and_truth(0.05 * i);
+      if (!std::isfinite(truth) || std::fabs(truth) > limit) continue;
+      worst = std::max(worst, std::fabs(value - truth) / std::max(1.0, std::fabs(truth)));
+    }
+  }
+  return worst;
 }
 
 }  // namespace
@@ -46,35 +67,21 @@ TEST_CASE("eq (1) matches hand values", "[surface][saunderson]") {
 }
 
 TEST_CASE("eq (3) equals eq (2) then eq (1) for random coefficients", "[surface][saunderson]") {
-  std::mt19937 rng(3);
-  double worst = 0;
-  for (int trial = 0; trial < 500; ++trial) {
-    const SaundersonGeometry m = random_geometry(rng), c = random_geometry(rng);
-    for (int i = 0; i <= 20; ++i) {
-      const double R = 0.05 * i;
+  const double worst = worst_relative_difference(3, 500, INFINITY, [](const SaundersonGeometry& m, const SaundersonGeometry& c) {
+    return [m, c](double R) {
       const double two_step = saunderson_measured_Abed2013(saunderson_internal_Abed2013(R, m), c);
-      const double eq3 = saunderson_convert_Abed2013(R, m, c);
-      if (!std::isfinite(two_step)) continue;
-      worst = std::max(worst, std::fabs(eq3 - two_step) / std::max(1.0, std::fabs(two_step)));
-    }
-  }
+      return std::pair{saunderson_convert_Abed2013(R, m, c), two_step};
+    };
+  });
   INFO("worst relative difference " << worst);
   CHECK(worst < 1e-12);
 }
 
 TEST_CASE("eq (4) with the Appendix A mapping equals eq (3) for any six coefficients", "[surface][saunderson]") {
-  std::mt19937 rng(4);
-  double worst = 0;
-  for (int trial = 0; trial < 2000; ++trial) {
-    const SaundersonGeometry m = random_geometry(rng), c = random_geometry(rng);
+  const double worst = worst_relative_difference(4, 2000, 1e6, [](const SaundersonGeometry& m, const SaundersonGeometry& c) {
     const ThreeParameter t = three_parameter_Abed2013(m, c);
-    for (int i = 0; i <= 20; ++i) {
-      const double R = 0.05 * i;
-      const double eq3 = saunderson_convert_Abed2013(R, m, c);
-      if (!std::isfinite(eq3) || std::fabs(eq3) > 1e6) continue;
-      worst = std::max(worst, std::fabs(t.apply(R) - eq3) / std::max(1.0, std::fabs(eq3)));
-    }
-  }
+    return [m, c, t](double R) { return std::pair{t.apply(R), saunderson_convert_Abed2013(R, m, c)}; };
+  });
   INFO("worst relative difference " << worst);
   CHECK(worst < 1e-10);
 }
