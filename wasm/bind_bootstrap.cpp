@@ -1,7 +1,9 @@
 // Declarations: the bootstrap of a fit in steps (tristim/evaluation/bootstrap.hpp), for the page's
 // "Uncertainty (bootstrap)": bootstrapRecipe(recipe, ids, linear_RGB, reference_XYZ, loo_dE00,
-// settings) -> a BootstrapRun handle (owns wasm memory: call .delete()) with step(n) -> resamples
-// done, done(), total(), result() -> the object `tristim fit --bootstrap`'s "bootstrap" JSON is,
+// settings, pixels) -> a BootstrapRun handle (owns wasm memory: call .delete()); pixels: null, or
+// {std: 3N, n: N} of the sampled RAW's patches in the order of ids (resampled too under the identity
+// linearisation). The handle: step(n) -> resamples done, done(), total(), result() -> the object
+// `tristim fit --bootstrap`'s "bootstrap" JSON is,
 // plus "train_ci" / "loo_ci" (the "ci" of the two means), and profileWith(profile JSON text) ->
 // the profile text with the bootstrap added. bootstrapOptions(): the settings' table (ranges,
 // defaults) the page's form is built from.
@@ -36,12 +38,15 @@ EMSCRIPTEN_BINDINGS(tristim_bootstrap) {
                   }); }))
       .function("profileWith", optional_override([](const BootstrapRun& r, val profile) {
                   return guard([&] { return profile_with_bootstrap(Conv<std::string>::from(profile), r); }); }));
-  emscripten::function("bootstrapRecipe", optional_override([](val recipe, val ids, val rgb, val xyz, val loo, val settings) {
+  emscripten::function("bootstrapRecipe", optional_override([](val recipe, val ids, val rgb, val xyz, val loo, val settings, val pixels) {
                          return guard([&] {
+                           const bool px = !wasm::absent(pixels);
                            return bootstrap_recipe(Conv<Recipe>::from(recipe), Conv<std::vector<std::string>>::from(ids),
                                                    Conv<PatchMatrix>::from(rgb), Conv<PatchMatrix>::from(xyz),
                                                    wasm::absent(loo) ? std::vector<double>{} : Conv<std::vector<double>>::from(loo),
-                                                   Conv<MethodChoice>::from(settings));
+                                                   Conv<MethodChoice>::from(settings),
+                                                   px ? Conv<PatchMatrix>::from(pixels["std"]) : PatchMatrix(),
+                                                   px ? Conv<std::vector<double>>::from(pixels["n"]) : std::vector<double>{});
                          }); }));
   def<&bootstrap_option_table>("bootstrapOptions");
 }

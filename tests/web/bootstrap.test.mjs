@@ -1,6 +1,6 @@
 // The results step's "Uncertainty (bootstrap)" on the example: progress while it runs, a Cancel
 // that stops it, and for N = 200 the same intervals, to the bit, as `tristim fit --bootstrap` on
-// the same training set and recipe; the intervals in the table and the ellipses on the xy and a*b*
+// the same training set (with the sampled RAW's per-patch σ and pixel count: pixels resampled) and recipe; the intervals in the table and the ellipses on the xy and a*b*
 // plots.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -33,15 +33,22 @@ async function fitOne(page, model = 'matrix-3x3', objective = 'ls') {
 
 /// The selected result's training set as CSVs and its recipe as JSON in test-artifacts/ (values in
 /// JS's shortest round-trip form, so the CLI reads the same doubles).
+/// With the sampled image's pixel statistics (r.std, r.n), the RGB CSV carries them as `tristim
+/// sample` writes them (R_std, G_std, B_std, n), so the CLI resamples the pixels too.
 function writeTraining(r) {
   const row = (id, i, a) => `${id},${a[3 * i]},${a[3 * i + 1]},${a[3 * i + 2]}`;
-  fs.writeFileSync(artifact('bootstrap-rgb.csv'), `patch,R,G,B\n${r.ids.map((id, i) => row(id, i, r.rgb)).join('\n')}\n`);
+  const px = (i) => (r.std ? `,${r.std[3 * i]},${r.std[3 * i + 1]},${r.std[3 * i + 2]},${r.n[i]}` : '');
+  fs.writeFileSync(artifact('bootstrap-rgb.csv'), `patch,R,G,B${r.std ? ',R_std,G_std,B_std,n' : ''}\n${r.ids.map((id, i) => row(id, i, r.rgb) + px(i)).join('\n')}\n`);
   fs.writeFileSync(artifact('bootstrap-xyz.csv'), `patch,X,Y,Z\n${r.ids.map((id, i) => row(id, i, r.xyz)).join('\n')}\n`);
   fs.writeFileSync(artifact('bootstrap-recipe.json'), JSON.stringify(JSON.parse(r.profile).recipe));
 }
+/// The selected result's training set, with the sampled image's σ and pixel count of its patches.
 const training = (page) => page.evaluate(() => {
-  const x = window.tristim.session.results[0];
-  return { ids: Array.from(x.ids), rgb: Array.from(x.rgb), xyz: Array.from(x.xyz), profile: x.fit.profile, bootstrap: x.bootstrap };
+  const x = window.tristim.session.results[0], s = window.tristim.derived.sample;
+  const at = (id) => s.ids.indexOf(id);
+  return { ids: Array.from(x.ids), rgb: Array.from(x.rgb), xyz: Array.from(x.xyz), profile: x.fit.profile, bootstrap: x.bootstrap,
+    std: Array.from(x.ids).flatMap((id) => [0, 1, 2].map((k) => s.std[3 * at(id) + k])), n: Array.from(x.ids).map((id) => s.n[at(id)]),
+    sampledRGB: Array.from(x.ids).flatMap((id) => [0, 1, 2].map((k) => s.RGB[3 * at(id) + k])) };
 });
 
 const setOption = async (page, name, value) => {
@@ -75,7 +82,11 @@ pageTest('bootstrap: progress, cancel, intervals equal the CLI\'s, ellipses draw
   await page.click('#step-results button[data-action="bootstrap"]');
   await page.waitForSelector('#step-results table.coefficients', { timeout: 60000 });
   const r = await training(page);
-  // The same training set and recipe through the CLI.
+  // The sampled RAW's pixels were resampled too; their σ is of the fitted (identity-linearised) values.
+  assert.equal(r.bootstrap.resampling, 'patches+pixels');
+  assert.deepEqual(r.rgb, r.sampledRGB);
+  assert.match(await page.textContent('#step-results .bootstrap-summary p.summary'), /over the patches and each patch's pixels/);
+  // The same training set, pixel statistics and recipe through the CLI.
   writeTraining(r);
   const cli = JSON.parse(execFileSync(CLI, ['fit', '--recipe', artifact('bootstrap-recipe.json'), '--rgb', artifact('bootstrap-rgb.csv'),
     '--xyz', artifact('bootstrap-xyz.csv'), '--bootstrap', '200', '--seed', '3', '--level', '0.9'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] }));

@@ -42,11 +42,12 @@ export const handlers = {
   },
 
   /// Starts the bootstrap of a fitted result (the engine's bootstrapRecipe: the recipe's fit on its
-  /// training set; `settings` a choice of the bootstrapOptions table); a run in progress is dropped.
-  bootstrapStart: (T, { recipe, ids, rgb, xyz, loo, settings }, { state }) => {
+  /// training set; `settings` a choice of the bootstrapOptions table; `pixels` {std, n} of the
+  /// sampled patches, or null: patches only); a run in progress is dropped.
+  bootstrapStart: (T, { recipe, ids, rgb, xyz, loo, settings, pixels }, { state }) => {
     state.bootstrap?.delete();
     state.bootstrap = null;
-    state.bootstrap = T.bootstrapRecipe(recipe, ids, rgb, xyz, loo, settings);
+    state.bootstrap = T.bootstrapRecipe(recipe, ids, rgb, xyz, loo, settings, pixels ?? null);
     return { result: { done: 0, total: state.bootstrap.total() } };
   },
   /// Runs the next `count` resamples of the current run.

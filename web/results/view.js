@@ -159,7 +159,8 @@ const fmtLevel = (level) => `${+(100 * level).toFixed(2)} %`;
 /// What the ellipses are, for the plots' captions (the legend line).
 function ellipseCaption(b) {
   return `ellipses: each patch's predicted ${fmtLevel(b.level)} region over ${b.resamples} bootstrap refits`
-    + ` (covariance of the refits' predictions, ×k = ${b.ellipse_scale.toFixed(3)}, the 2-D normal's ${fmtLevel(b.level)} radius), drawn to scale`;
+    + ` (covariance of the refits' predictions widened by ${(b.inflation * b.inflation).toFixed(4)} as the coefficients' (HC1),`
+    + ` ×k = ${b.ellipse_scale.toFixed(3)}, the ${fmtLevel(b.level)} radius for a covariance estimated from the patches), drawn to scale`;
 }
 
 /// The selected fit's bootstrap: how it ran, its means' intervals and a table of every coefficient
@@ -170,7 +171,8 @@ function bootstrapSummary(result, models) {
   const loo = b.loo_ci ? `; leave-one-out mean ΔE00 ${fmt(metric(result, 'loo', 'mean'))} [${fmt(b.loo_ci.lo)}, ${fmt(b.loo_ci.hi)}]` : '';
   const g = (v) => (Math.abs(v) >= 1e-3 || v === 0 ? v.toFixed(5) : v.toExponential(3));
   return h('div', { class: 'bootstrap-summary' },
-    h('p', { class: 'summary' }, `Uncertainty: ${b.resamples} bootstrap resamples over the ${b.resampling} (seed ${b.seed}`
+    h('p', { class: 'summary' }, `Uncertainty: ${b.resamples} bootstrap resamples over the ${b.resampling === 'patches+pixels'
+      ? "patches and each patch's pixels (the sampled image's σ and pixel count)" : 'patches only'} (seed ${b.seed}`
       + `${b.failed ? `, ${b.failed} refits refused` : ''}), ${fmtLevel(b.level)} intervals: training mean ΔE00 ${fmt(metric(result, 'training', 'mean'))}`
       + ` [${fmt(b.train_ci.lo)}, ${fmt(b.train_ci.hi)}]${loo}. The coefficients' intervals are widened by ${b.inflation.toFixed(4)} (HC1, for the patches the fit spends on them).`),
     h('table', { class: 'coefficients' },
@@ -182,6 +184,19 @@ function bootstrapSummary(result, models) {
 
 /// Number of resamples per call to the worker: between two calls the worker takes the Cancel.
 const CHUNK = 50;
+
+/// The sampled image's pixel statistics of a result's training patches, {std: 3N, n: N} in the
+/// order of `ids` (the engine resamples each patch's pixels from them, as `tristim fit --rgb` does
+/// with `tristim sample`'s σ and n columns), or null — patches only — when a patch has none (a
+/// patch table without σ, a second chart image).
+function pixelStats(app, ids) {
+  const s = app.derived.sample;
+  if (!s?.std || !s?.n || app.derived.sample2) return null;
+  const at = new Map(s.ids.map((id, i) => [id, i]));
+  if (!ids.every((id) => at.has(id))) return null;
+  return { std: Float64Array.from(ids.flatMap((id) => [0, 1, 2].map((k) => s.std[3 * at.get(id) + k]))),
+    n: Float64Array.from(ids.map((id) => s.n[at.get(id)])) };
+}
 
 /// "Uncertainty (bootstrap)": the settings form (the engine's bootstrapOptions table), Run, Cancel
 /// and progress; the result is kept on the selected result (its `bootstrap`, and its profile JSON
@@ -198,7 +213,8 @@ function bootstrapPanel(app, selected, onDone) {
   const note = h('p', { class: 'summary bootstrap-note', role: 'status' });
   const el = h('fieldset', { class: 'uncertainty', hidden: true },
     h('legend', {}, info.label),
-    h('p', { class: 'hint' }, `How sure the selected fit's figures are: the fit is repeated on charts resampled from its own patches; `
+    h('p', { class: 'hint' }, `How sure the selected fit's figures are: the fit is repeated on charts resampled from its own patches `
+      + `(and, for a sampled photograph with a linear stage, from each patch's pixels: its mean redrawn from σ/√n); `
       + `intervals appear next to the means and coefficients, ellipses on the xy and a*b* plots. ${info.reference}.`),
     h('div', { class: 'controls' }, optionsForm(info, choice, () => app.save('bootstrapChoice', JSON.parse(JSON.stringify(choice))))),
     h('div', { class: 'controls' }, runBtn, cancelBtn, runBtn._errorSlot), progress.el, note);
@@ -215,7 +231,7 @@ function bootstrapPanel(app, selected, onDone) {
     let done = 0, total = 0;
     try {
       const ev = r.fit.evaluation;
-      ({ done, total } = await engine.call('bootstrapStart', { recipe: r.fit.recipe, ids: r.ids, rgb: r.rgb, xyz: r.xyz,
+      ({ done, total } = await engine.call('bootstrapStart', { recipe: r.fit.recipe, ids: r.ids, rgb: r.rgb, xyz: r.xyz, pixels: pixelStats(app, r.ids),
         loo: ev.has_loo ? ev.loo.patches.dE00 : null, settings: choice }));
       while (done < total && !cancel) {
         ({ done, total } = await engine.call('bootstrapStep', { count: CHUNK }));

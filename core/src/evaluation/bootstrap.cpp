@@ -234,7 +234,8 @@ MethodInfo bootstrap_option_table() {
 }
 
 BootstrapRun bootstrap_recipe(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& rgb,
-                              const PatchMatrix& xyz, const std::vector<double>& loo_dE00, const MethodChoice& settings) {
+                              const PatchMatrix& xyz, const std::vector<double>& loo_dE00, const MethodChoice& settings,
+                              const PatchMatrix& pixel_std, const std::vector<double>& pixel_count) {
   if (ids.size() != static_cast<size_t>(rgb.rows()))
     throw Error(ErrorCode::InvalidArgument, "bootstrap: " + std::to_string(ids.size()) + " patch ids for " +
                                                 std::to_string(rgb.rows()) + " patches");
@@ -247,9 +248,14 @@ BootstrapRun bootstrap_recipe(const Recipe& recipe, const std::vector<std::strin
   b.seed = static_cast<uint64_t>(choice_number(s, "seed"));
   b.level = choice_number(s, "level");
   b.loo_dE00 = loo_dE00;
+  const Recipe complete = complete_recipe(recipe);
+  if (complete.linearisation.method == "identity") {  // checked as any BootstrapOptions' (check())
+    b.pixel_std = pixel_std;
+    b.pixel_count = pixel_count;
+  }
   int white_index = -1;
   const FitOptions options = recipe_fit_options(recipe, ids, rgb, xyz, white_index);
-  return BootstrapRun(complete_recipe(recipe).characterisation.model, rgb, xyz, options, b);
+  return BootstrapRun(complete.characterisation.model, rgb, xyz, options, b);
 }
 
 std::string profile_with_bootstrap(const std::string& profile_json, const BootstrapRun& run) {

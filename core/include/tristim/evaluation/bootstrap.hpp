@@ -117,11 +117,16 @@ class BootstrapRun {
 /// The bootstrap of a recipe's fit as characterise() made it (recipe_fit_options: objective, lab
 /// white, preserved white patch) on its training set (`ids`, camera RGB after linearisation,
 /// reference XYZ), with the fit's per-patch leave-one-out CIEDE2000 (empty: none) and `settings`
-/// a choice of bootstrap_option_table() (missing options take its defaults). Patches only: the
-/// same resamples as `tristim fit --recipe r.json --raw … --bootstrap N --seed S --level L`.
+/// a choice of bootstrap_option_table() (missing options take its defaults). `pixel_std` (N × 3)
+/// and `pixel_count` (N), in the order of `ids`: the sampled pixels' statistics (BootstrapOptions),
+/// resampled too when given and the recipe's linearisation is "identity" (the statistics are of
+/// raw DN, which only the identity leaves as they are), as `tristim fit --recipe r.json --rgb
+/// p.csv --xyz … --bootstrap N --seed S --level L` does when p.csv is `tristim sample`'s (its
+/// R_std, G_std, B_std, n); otherwise patches only, the same resamples as that line without them.
 BootstrapRun bootstrap_recipe(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& camera_RGB,
                               const PatchMatrix& reference_XYZ, const std::vector<double>& loo_dE00,
-                              const MethodChoice& settings);
+                              const MethodChoice& settings, const PatchMatrix& pixel_std = PatchMatrix(),
+                              const std::vector<double>& pixel_count = {});
 
 /// `profile` (a profile JSON object, as profile_to_json writes it) with the bootstrap added: "ci"
 /// next to "mean" of metrics.training.dE00 and metrics.loo.dE00, and "bootstrap": bootstrap_json.
