@@ -15,6 +15,12 @@ async function csvOf(page, action) {
   const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`${S} [data-action="${action}"]`)]);
   return { name: dl.suggestedFilename(), text: fs.readFileSync(await dl.path(), 'utf8') };
 }
+/// Opens the tab of exercise `ex`, runs it, and waits for its table `table` (data-lab="<table>-table").
+async function runExercise(page, ex, table, timeout = 60000) {
+  await page.click(`${S} [data-tab="${ex}"]`);
+  await page.click(`${S} [data-action="lab-${ex}"]`);
+  await page.waitForSelector(`${S} table[data-lab="${table}-table"]`, { timeout });
+}
 const rowsOf = (page, key) => page.$$eval(`${S} table[data-lab="${key}-table"] tbody tr`, (trs) => trs.map((tr) => [...tr.children].map((c) => c.textContent)));
 
 test('lab exercises 3-5: tables beside the papers, CSV downloads, a set-up link opened in a fresh browser', async () => {
@@ -24,9 +30,7 @@ test('lab exercises 3-5: tables beside the papers, CSV downloads, a set-up link 
     const { page } = b;
     await step(page, 'lab');
     // Exercise 3: Tables I-II (grey-based + L = 0..3) and the J sweep.
-    await page.click(`${S} [data-tab="ex3"]`);
-    await page.click(`${S} [data-action="lab-ex3"]`);
-    await page.waitForSelector(`${S} table[data-lab="ex3-L-table"]`, { timeout: 60000 });
+    await runExercise(page, 'ex3', 'ex3-L');
     const L = await rowsOf(page, 'ex3-L');
     assert.equal(L.length, 5);
     assert.deepEqual(L.map((r) => r[1]), ['grey-based', 'Shen2008', 'Shen2008', 'Shen2008', 'Shen2008']);
@@ -41,9 +45,7 @@ test('lab exercises 3-5: tables beside the papers, CSV downloads, a set-up link 
     await screenshot(page, 'lab-exercise3');
 
     // Exercise 4: Table IV, 6 training rows × 5 methods; the Classic disagreement is in the text.
-    await page.click(`${S} [data-tab="ex4"]`);
-    await page.click(`${S} [data-action="lab-ex4"]`);
-    await page.waitForSelector(`${S} table[data-lab="ex4-table"]`, { timeout: 60000 });
+    await runExercise(page, 'ex4', 'ex4');
     const t4 = await rowsOf(page, 'ex4');
     assert.equal(t4.length, 30);
     assert.deepEqual([...new Set(t4.map((r) => r[0]))], ['Classic', 'SG', 'Custom All', 'Custom-Matte', 'Custom-Glossy', 'Total']);

@@ -3,8 +3,9 @@
 //  1. Spectra to colour: a patch's reflectance, the stimulus under three lights, its XYZ, Lab and
 //     xy for the 1931 and 1964 observers.
 //  2. Why a 3×3 is not enough: the Luther condition, training vs leave-one-out, over-fitting.
-import { h, field, select, showError, clearError, errorSlot, numberValue, fmt } from '../lib/ui.js';
+import { h, field, select, showError, clearError, numberValue, fmt } from '../lib/ui.js';
 import { options } from '../lib/catalog.js';
+import { labPanel } from './panel.js';
 import { figure } from '../plots/common.js';
 import { stimulusPlot, overfitPlot } from './plots.js';
 
@@ -36,10 +37,8 @@ export function spectraPanel(app) {
     return e;
   }
   btn.addEventListener('click', run);
-  const panel = h('section', { class: 'lab-panel', 'aria-labelledby': 'h-lab-ex1' },
-    h('h3', { id: 'h-lab-ex1' }, 'Exercise 1 · Spectra to colour: integration, observers, illuminants, adaptation'),
-    h('div', { class: 'controls' }, field('ColorChecker patch', patchSel)), h('p', {}, btn), errorSlot(btn),
-    h('p', { class: 'hint' }, 'The same on the command line (the patch\'s row):'), cli, out);
+  const panel = labPanel({ id: 'ex1', title: 'Exercise 1 · Spectra to colour: integration, observers, illuminants, adaptation',
+    controls: [field('ColorChecker patch', patchSel)], buttons: [btn], cli, hint: 'The same on the command line (the patch\'s row):' }, out);
   return { panel, run, params: { patch: patchSel } };
 }
 
@@ -75,9 +74,7 @@ export function overfitPanel(app) {
     return rows;
   }
   btn.addEventListener('click', run);
-  const panel = h('section', { class: 'lab-panel', 'aria-labelledby': 'h-lab-ex2' },
-    h('h3', { id: 'h-lab-ex2' }, 'Exercise 2 · Why a 3×3 is not enough: the Luther condition and over-fitting'),
-    h('div', { class: 'controls' }, field('Camera', camSel), field('Noise (fraction of white)', noiseIn)), h('p', {}, btn), errorSlot(btn),
-    h('p', { class: 'hint' }, 'The same on the command line:'), cli, out);
+  const panel = labPanel({ id: 'ex2', title: 'Exercise 2 · Why a 3×3 is not enough: the Luther condition and over-fitting',
+    controls: [field('Camera', camSel), field('Noise (fraction of white)', noiseIn)], buttons: [btn], cli }, out);
   return { panel, run, params: { camera: camSel, noise: noiseIn } };
 }

@@ -6,8 +6,9 @@
 //  3. Shen et al. 2008: the OECF without grey samples — the J and L sweeps (Figs 2-3, Tables I-II).
 //  4. Abed et al. 2013: training-chart independence with and without Saunderson (Table IV).
 //  5. Guarnera et al. 2018: exposure invariance, HDR fusion and Algorithm 1, Table 4.
-import { h, field, select, showError, clearError, errorSlot, numberValue, download } from '../lib/ui.js';
+import { h, field, select, showError, clearError, numberValue, download } from '../lib/ui.js';
 import { options } from '../lib/catalog.js';
+import { labPanel } from './panel.js';
 import { figure, getPlot } from '../plots/common.js';
 
 const q = (s) => (/^[\w.+-]+$/.test(s) ? s : `"${s}"`);
@@ -25,12 +26,7 @@ export function resultsTable(t, key) {
       h('tbody', {}, ...t.rows.map((r) => h('tr', {}, ...r.map((c) => h('td', { class: num(c) ? 'num' : null }, c))))))));
 }
 
-function panelShell(id, title, controls, btn, cli, out) {
-  return h('section', { class: 'lab-panel', 'aria-labelledby': `h-lab-${id}` },
-    h('h3', { id: `h-lab-${id}` }, title),
-    h('div', { class: 'controls' }, ...controls), h('p', {}, btn), errorSlot(btn),
-    h('p', { class: 'hint' }, 'The same on the command line:'), cli, out);
-}
+const panelShell = (id, title, controls, btn, cli, out) => labPanel({ id, title, controls, buttons: [btn], cli }, out);
 
 const cameraOptions = (app) => [{ value: 'cmf', label: 'The CIE 1931 CMFs (a Luther camera)' }, ...options(app.catalog.cameras)];
 

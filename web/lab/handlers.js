@@ -7,9 +7,11 @@ export const handlers = {
   /// options: LabRenderOptions fields (camera, chart, illuminant, exposure, shot_gain, oecf, …);
   /// format: 'dng', 'tiff' or 'jpeg'; the illuminant's SPD is the engine's for its id, or read by
   /// the engine from an uploaded CSV `spd` {name, text}.
-  labRender: (T, { options, format = 'dng', spd }) => {
+  /// `refl` {name, text}: uploaded reflectances, read by the engine, drawn as a generated grid.
+  labRender: (T, { options, format = 'dng', spd, refl }) => {
     const L = spd ? T.readIlluminantCsv(spd.text, spd.name) : T.illuminantSpectrum(options.illuminant ?? 'D65');
-    const out = T.labRender({ ...options, illuminant_spd: L }, format);
+    const o = { ...options, illuminant_spd: L };
+    const out = refl ? T.labRenderReflectances(o, T.readReflectanceFile(refl.text, refl.name), format) : T.labRender(o, format);
     return { result: { dng: out.dng, truth: JSON.parse(out.truth), format }, transfer: [out.dng.buffer] };
   },
   labOecfs: (T) => reply(T.listLabOecfs()),

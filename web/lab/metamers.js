@@ -2,10 +2,12 @@
 // that match under one light and not under another, or a metamer of one chip constructed with a
 // metameric black; for the CIE observer and, optionally, a camera of the 52. A table of pairs, a
 // plot of both spectra of the chosen pair and its ΔE00 under each light, the CLI equivalent.
-import { h, field, select, showError, clearError, errorSlot, numberValue, fmt } from '../lib/ui.js';
+import { h, field, select, showError, clearError, numberValue, fmt } from '../lib/ui.js';
 import { options } from '../lib/catalog.js';
+import { labPanel } from './panel.js';
 import { figure } from '../plots/common.js';
 import { metamerPlot } from './plots.js';
+import { fillChips } from './chips.js';
 
 const q = (s) => (/^[\w.+/-]+$/.test(s) ? s : `"${s}"`);
 
@@ -34,18 +36,10 @@ export function metamersPanel(app) {
   const summary = h('p', { class: 'summary', 'data-lab': 'met-summary' });
   const tableBox = h('div', { class: 'table-scroll' });
   const plotBox = h('div', { class: 'plot-box', 'data-lab': 'met-plot' });
-  let chipsLoaded = false;
   for (const [el, name] of [[ill1, 'met-ill1'], [ill2, 'met-ill2'], [obsSel, 'met-observer'], [camSel, 'met-camera'],
     [matchSel, 'met-match'], [chipSel, 'met-chip']]) el.dataset.lab = name;
 
-  async function loadChips() {
-    if (chipsLoaded) return;
-    const ids = await app.engine.call('labMunsell', {});
-    const keep = chipSel.value;
-    chipSel.replaceChildren(...ids.map((id) => h('option', { value: id }, id)));
-    chipSel.value = ids.includes(keep) ? keep : ids[0];
-    chipsLoaded = true;
-  }
+  const loadChips = () => fillChips(app, chipSel);
 
   function readOptions() {
     return { illuminant: ill1.value, second: ill2.value, observer: obsSel.value, camera: camSel.value, match: matchSel.value,
@@ -106,18 +100,15 @@ export function metamersPanel(app) {
   searchBtn.addEventListener('click', () => run(false));
   constructBtn.addEventListener('click', () => run(true));
   chipSel.addEventListener('focus', () => loadChips().catch((e) => showError(constructBtn, e, 'Munsell chips')));
-  const panel = h('section', { class: 'lab-panel', 'aria-labelledby': 'h-lab-metamers' },
-    h('h3', { id: 'h-lab-metamers' }, 'Metamerism explorer'),
-    h('p', { class: 'explain' },
+  const panel = labPanel({ id: 'metamers', title: 'Metamerism explorer',
+    explain:
       'Two surfaces are metamers when they match under one light and not under another. Search the 1269 Munsell matte '
       + 'chips for pairs that match under the first light and differ most under the second, or construct a metamer of a '
       + 'chip: add to its reflectance a metameric black (Wyszecki 1958), a spectrum the viewer does not see under the '
-      + 'first light. With a camera, its numbers are shown too (and the pair can be made to match for the camera).'),
-    h('div', { class: 'controls' },
-      field('First light (match)', ill1), field('Second light', ill2), field('Observer', obsSel),
+      + 'first light. With a camera, its numbers are shown too (and the pair can be made to match for the camera).',
+    controls: [field('First light (match)', ill1), field('Second light', ill2), field('Observer', obsSel),
       field('Camera', camSel), field('Match for', matchSel),
-      field('Largest ΔE00 under the first light', maxIn), field('Pairs shown', topIn), field('Munsell chip', chipSel)),
-    h('p', {}, searchBtn, ' ', constructBtn), errorSlot(searchBtn), errorSlot(constructBtn),
-    h('p', { class: 'hint' }, 'The same on the command line:'), cli, summary, tableBox, plotBox);
+      field('Largest ΔE00 under the first light', maxIn), field('Pairs shown', topIn), field('Munsell chip', chipSel)],
+    buttons: [searchBtn, constructBtn], cli }, summary, tableBox, plotBox);
   return { panel, run: (construct = false) => loadChips().then(() => run(construct)), loadChips };
 }

@@ -5,14 +5,16 @@
 // (Images step) with one click. (2) Camera quality as a colorimeter: the ISO 17321-1 SMI and the
 // Vora–Trussell μ-factor of the 52 cameras, ranked, and one camera's curves beside the best-fit
 // combination of the CIE colour-matching functions. Every panel names its CLI equivalent.
-import { h, field, select, showError, clearError, errorSlot, numberValue, fmt, download } from '../lib/ui.js';
+import { h, field, select, showError, clearError, numberValue, fmt, download } from '../lib/ui.js';
 import { options } from '../lib/catalog.js';
+import { labPanel } from './panel.js';
 import { figure } from '../plots/common.js';
 import { lutherPlot } from './plots.js';
 import { spectraPanel, overfitPanel } from './exercises.js';
 import { shenPanel, table4Panel, guarneraPanel } from './exercises_papers.js';
 import { wireLabLinks } from './exercises_link.js';
 import { metamersPanel } from './metamers.js';
+import { fillChips } from './chips.js';
 
 const CHARTS = [
   { value: 'cc24', label: 'ColorChecker Classic (24)' },
@@ -29,6 +31,25 @@ function choose(sel, value) {
 
 const q = (s) => (/^[\w.+-]+$/.test(s) ? s : `"${s}"`);
 
+/// One extra choice a picker shows for what the person gave instead of its list (an uploaded file,
+/// a selection of chips): `show(value, text)` adds and selects it, `clear()` removes it and returns
+/// to the listed choice shown before; picking a listed choice removes it too.
+function extraChoice(sel) {
+  const opt = document.createElement('option');
+  opt.dataset.lab = 'extra';
+  let before = sel.value;
+  sel.addEventListener('change', () => { if (sel.value !== opt.value) opt.remove(); });
+  return {
+    show(value, text) {
+      if (!opt.isConnected) { before = sel.value; sel.append(opt); }
+      opt.value = value;
+      opt.textContent = text;
+      sel.value = value;
+    },
+    clear() { if (opt.isConnected) { opt.remove(); sel.value = before; } },
+  };
+}
+
 /// The files the renderer writes: a DNG is linear sensor data; a TIFF or JPEG goes through the OECF.
 const FORMATS = [
   { value: 'dng', label: 'DNG (linear RAW)', ext: 'dng', type: 'image/x-adobe-dng' },
@@ -39,7 +60,8 @@ const formatOf = (id) => FORMATS.find((f) => f.value === id) ?? FORMATS[0];
 
 /// The command line that renders the same file.
 export function renderCommand(o) {
-  let s = `tristim lab render --camera ${q(o.camera)} --chart ${o.chart} --illuminant ${q(o.illuminant)} --exposure ${o.exposure}`;
+  const chart = o.reflectances ? `--reflectances ${q(o.reflectances)}` : `--chart ${q(o.chart)}`;
+  let s = `tristim lab render --camera ${q(o.camera)} ${chart} --illuminant ${q(o.illuminant)} --exposure ${o.exposure}`;
   if (o.shot_gain > 0 || o.read_noise > 0) s += ` --noise ${o.shot_gain},${o.read_noise} --seed ${o.seed}`;
   if (o.falloff > 0) s += ` --falloff ${o.falloff}`;
   if (o.flare > 0) s += ` --flare ${o.flare}`;
@@ -63,9 +85,40 @@ export function mount(section, app) {
   const spdIn = h('input', { type: 'file', accept: '.csv,.txt', 'data-lab': 'spd', 'aria-label': 'Illuminant SPD (CSV)' });
   formatSel.dataset.lab = 'format';
   oecfSel.dataset.lab = 'oecf';
+  const reflIn = h('input', { type: 'file', accept: '.csv,.txt,.cgats,.cie', 'data-lab': 'reflectances', 'aria-label': 'Reflectances (CSV)' });
+  const chipsSel = h('select', { multiple: true, size: 6, 'data-lab': 'munsell-chips' });
+  const illumChoice = extraChoice(illumSel), chartChoice = extraChoice(chartSel);
   let spd = null;   // an uploaded SPD {name, text}: the illuminant instead of the picker's
-  spdIn.addEventListener('change', async () => { const f = spdIn.files[0]; spd = f ? { name: f.name, text: await f.text() } : null; });
+  let refl = null;  // uploaded reflectances {name, text}: the chart instead of the picker's
+  spdIn.addEventListener('change', async () => {
+    const f = spdIn.files[0];
+    spd = f ? { name: f.name, text: await f.text() } : null;
+    if (spd) illumChoice.show(`uploaded:${spd.name}`, `uploaded: ${spd.name}`); else illumChoice.clear();
+  });
   illumSel.addEventListener('change', () => { spd = null; spdIn.value = ''; });
+  // A chart of one's own: chips of the engine's Munsell set, or uploaded reflectances, drawn as a grid.
+  const loadChips = () => fillChips(app, chipsSel)
+    .catch((e) => showError(chipsSel, e, 'Munsell chips'));
+  chipsSel.addEventListener('focus', loadChips);
+  chipsSel.addEventListener('change', () => {
+    const ids = [...chipsSel.selectedOptions].map((o) => o.value);
+    refl = null;
+    reflIn.value = '';
+    if (ids.length) chartChoice.show(`munsell:${ids.join(',')}`, `Munsell: ${ids.length} chips`); else chartChoice.clear();
+  });
+  const clearChips = () => { for (const o of [...chipsSel.selectedOptions]) o.selected = false; };
+  reflIn.addEventListener('change', async () => {
+    const f = reflIn.files[0];
+    refl = f ? { name: f.name, text: await f.text() } : null;
+    clearChips();
+    if (refl) chartChoice.show(`uploaded:${refl.name}`, `uploaded: ${refl.name}`); else chartChoice.clear();
+  });
+  chartSel.addEventListener('change', () => {
+    if (chartSel.value.startsWith('munsell:')) return;
+    refl = null;
+    reflIn.value = '';
+    clearChips();
+  });
   engine.call('labOecfs', {}).then((ids) => {   // the engine's OECF ids
     oecfSel.replaceChildren(...ids.map((id) => h('option', { value: id }, id)));
     oecfSel.value = ids.includes('sRGB') ? 'sRGB' : ids[0];
@@ -85,8 +138,9 @@ export function mount(section, app) {
   let last = null;
 
   function readOptions() {
-    const o = { camera: camSel.value, chart: chartSel.value, illuminant: spd ? spd.name : illumSel.value,
+    const o = { camera: camSel.value, chart: refl ? refl.name : chartSel.value, illuminant: spd ? spd.name : illumSel.value,
       format: formatSel.value, oecf: formatSel.value === 'dng' ? 'linear' : oecfSel.value };
+    if (refl) o.reflectances = refl.name;
     for (const [k, el] of Object.entries(inputs)) o[k] = numberValue(el);
     return o;
   }
@@ -101,8 +155,8 @@ export function mount(section, app) {
     renderBtn.disabled = true;
     renderOut.replaceChildren(h('p', {}, 'Rendering in the engine…'));
     try {
-      const { format, ...options } = o;
-      last = await engine.call('labRender', { options, format, spd });
+      const { format, reflectances, ...options } = o;
+      last = await engine.call('labRender', { options, format, spd, refl: reflectances ? refl : null });
     } catch (e) {
       renderOut.replaceChildren();
       showError(renderBtn, e, 'Render');
@@ -115,7 +169,7 @@ export function mount(section, app) {
 
   function show({ dng, truth, format }) {
     const f = formatOf(format);
-    const name = `lab-${truth.chart}-${truth.camera.replace(/[^\w.-]+/g, '_')}-${truth.illuminant.replace(/[^\w.-]+/g, '_')}.${f.ext}`;
+    const name = `lab-${truth.layout ? 'grid' : truth.chart}-${truth.camera.replace(/[^\w.-]+/g, '_')}-${truth.illuminant.replace(/[^\w.-]+/g, '_')}.${f.ext}`;
     const openBtn = h('button', { type: 'button', 'data-action': 'lab-open' }, 'Open in the journey (Images step)');
     const saveBtn = h('button', { type: 'button', 'data-action': 'lab-download' }, `Download the ${f.ext.toUpperCase()}`);
     const truthBtn = h('button', { type: 'button', 'data-action': 'lab-truth' }, 'Download the truth (JSON)');
@@ -124,7 +178,7 @@ export function mount(section, app) {
     truthBtn.addEventListener('click', () => download(name.replace(/\.\w+$/, '.json'), JSON.stringify(truth, null, 1), 'application/json'));
     const stored = truth.patches[0]?.stored !== undefined;
     const rows = truth.patches.map((p) => h('tr', {},
-      h('th', { scope: 'row' }, p.id), ...p.rgb.map((v) => h('td', { class: 'num' }, String(v))),
+      h('th', { scope: 'row', title: p.cell ?? '' }, p.id), ...p.rgb.map((v) => h('td', { class: 'num' }, String(v))),
       ...p.XYZ.map((v) => h('td', { class: 'num' }, fmt(v, 2))),
       ...(stored ? p.stored.map((v) => h('td', { class: 'num' }, String(v))) : [])));
     const what = f.value === 'dng'
@@ -135,7 +189,9 @@ export function mount(section, app) {
     renderOut.replaceChildren(
       h('p', { class: 'summary', 'data-lab': 'summary' }, what
         + `the white diffuser's G at ${fmt(truth.white[1], 0)} DN. The table is the truth: the camera RGB (DN above black) that sampling the patches `
-        + 'recovers exactly when noise and fall-off are off, and the reference XYZ of the same patches.'),
+        + 'recovers exactly when noise and fall-off are off, and the reference XYZ of the same patches.'
+        + (truth.layout ? ` A chart of your own is drawn as a ${truth.layout.rows} × ${truth.layout.columns} grid that detection does not `
+          + `know: sample it with tristim sample <file> ${truth.sample_args} (cells R1C1… in the patches\' order).` : '')),
       h('p', { class: 'actions' }, openBtn, ' ', saveBtn, ' ', truthBtn),
       h('div', { class: 'table-scroll' }, h('table', { class: 'data', 'data-lab': 'truth' },
         h('thead', {}, h('tr', {}, ...['patch', 'R', 'G', 'B', 'X', 'Y', 'Z', ...(stored ? ['stored R', 'stored G', 'stored B'] : [])]
@@ -156,23 +212,23 @@ export function mount(section, app) {
   }
 
   renderBtn.addEventListener('click', render);
-  const renderPanel = h('section', { class: 'lab-panel', 'aria-labelledby': 'h-lab-render' },
-    h('h3', { id: 'h-lab-render' }, 'Render a chart photograph'),
-    h('p', { class: 'explain' },
+  const renderPanel = labPanel({ id: 'render', title: 'Render a chart photograph',
+    explain:
       'The chart\'s measured reflectances, lit by the illuminant, seen through the camera\'s measured spectral sensitivities '
       + '(u = Σ SSF · S · R, the virtual camera), drawn head-on into a 14-bit Bayer sensor and written as a real DNG — or, '
       + 'through an OECF (x = DN / saturation; sRGB, or x^(1/γ)), as a 16-bit TIFF or an 8-bit JPEG. The illuminant: a built-in '
       + 'one, or your own SPD (CSV: wavelength, value). '
       + 'Exposure: the white diffuser\'s G as a fraction of saturation. Noise: variance = gain · DN + read². '
-      + 'Fall-off: 1 − a·r² (r = 1 at the corners). Flare: a veil of that fraction of the white.'),
-    h('div', { class: 'controls' },
+      + 'Fall-off: 1 − a·r² (r = 1 at the corners). Flare: a veil of that fraction of the white.',
+    controls: [
       field('Camera', camSel, 'One of the 52 cameras with measured sensitivities'),
       field('Chart', chartSel), field('Illuminant', illumSel), field('or an SPD (CSV)', spdIn),
+      field('or Munsell chips', chipsSel, 'The engine\'s 1269 matte chips: Ctrl/Shift-click several; drawn as a grid'),
+      field('or reflectances (CSV)', reflIn, 'Spectra of your own (id, then one column per wavelength); drawn as a grid'),
       field('File', formatSel), field('OECF (TIFF, JPEG)', oecfSel),
       field('Exposure', inputs.exposure), field('Shot-noise gain', inputs.shot_gain), field('Read noise (DN)', inputs.read_noise),
-      field('Fall-off', inputs.falloff), field('Flare', inputs.flare), field('Noise seed', inputs.seed)),
-    h('p', {}, renderBtn), errorSlot(renderBtn),
-    h('p', { class: 'hint' }, 'The same on the command line:'), renderCli, renderOut);
+      field('Fall-off', inputs.falloff), field('Flare', inputs.flare), field('Noise seed', inputs.seed)],
+    buttons: [renderBtn], cli: renderCli }, renderOut);
 
   // ---- (2) camera quality
   const qIllum = select(illuminants, 'D65');
@@ -225,17 +281,13 @@ export function mount(section, app) {
   plotBtn.addEventListener('click', plot);
   qIllum.addEventListener('change', setCli);
   qCam.addEventListener('change', setCli);
-  const qualityPanel = h('section', { class: 'lab-panel', 'aria-labelledby': 'h-lab-quality' },
-    h('h3', { id: 'h-lab-quality' }, 'Camera quality as a colorimeter'),
-    h('p', { class: 'explain' },
+  const qualityPanel = labPanel({ id: 'quality', title: 'Camera quality as a colorimeter',
+    explain:
       'A camera measures colour exactly only if its sensitivities are a linear combination of the colour-matching functions '
       + '(the Luther condition). ISO 17321-1\'s sensitivity metamerism index scores the gap: SMI = 100 − 5.5 × the mean ΔE*ab of '
       + 'ColorChecker patches 1–18 after the best 3×3 matrix (100 = perfect). Vora & Trussell\'s μ-factor measures it in the '
-      + 'spectral domain: 1 when the camera\'s curves span the same space as the CMFs.'),
-    h('div', { class: 'controls' }, field('Illuminant', qIllum), field('Camera', qCam)),
-    h('p', {}, rankBtn, ' ', plotBtn), errorSlot(rankBtn), errorSlot(plotBtn),
-    h('p', { class: 'hint' }, 'The same on the command line:'), qCli,
-    plotBox, rankBox);
+      + 'spectral domain: 1 when the camera\'s curves span the same space as the CMFs.',
+    controls: [field('Illuminant', qIllum), field('Camera', qCam)], buttons: [rankBtn, plotBtn], cli: qCli }, plotBox, rankBox);
 
   // Tabs: one panel shown at a time.
   const ex1 = spectraPanel(app), ex2 = overfitPanel(app), met = metamersPanel(app);
