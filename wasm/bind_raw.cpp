@@ -96,11 +96,11 @@ EMSCRIPTEN_BINDINGS(tristim_raw) {
   { using S = FalloffFit; value_object<S>("FalloffFit") FIELD(p1) FIELD(p2) FIELD(p3) FIELD(centre_x) FIELD(centre_y)
       FIELD(r_scale) FIELD(width) FIELD(height) FIELD(bins) FIELD(rms_residual) FIELD(max_residual); }
   { using S = SampleOptions; value_object<S>("SampleOptions") FIELD(area) FIELD(min_pixels) FIELD(dark_fraction)
-      FIELD(nonuniform_threshold); }
+      FIELD(nonuniform_threshold) FIELD(partial); }
   { using S = PatchSample; value_object<S>("PatchSample") FIELD(id) FIELD(mean) FIELD(std) FIELD(n)
       FIELD(saturated_fraction) FIELD(flags) FIELD(centre) FIELD(quad) FIELD(sample_quad); }
   { using S = LightTrap; value_object<S>("LightTrap") FIELD(mean) FIELD(std) FIELD(n) FIELD(flags) FIELD(sample_quad); }
-  { using S = ChartSample; value_object<S>("ChartSample") FIELD(layout) FIELD(homography) FIELD(patches); }
+  { using S = ChartSample; value_object<S>("ChartSample") FIELD(layout) FIELD(homography) FIELD(patches) FIELD(missing); }
   { using S = Image3f; value_object<S>("Image3f") FIELD(width) FIELD(height) FIELD(pixels); }
 
   class_<RawHandle>("RawImage")

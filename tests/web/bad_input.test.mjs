@@ -70,8 +70,9 @@ pageTest('bad RAW files, corners and calibration frames: coded errors next to th
   assert.equal(codes.crossed, 'CORNERS_CROSSED');
   assert.equal(await page.getAttribute('#step-images .corner-editor', 'aria-describedby'), 'corners-error');
   await screenshot(page, 'bad-input-crossed-corners');
-  // Corners outside the image: the chart shifted off the left edge.
-  await setCorners([x0 - 400, y0, x1 - 400, y1, x2 - 400, y2, x3 - 400, y3]);
+  // Corners outside the image: the chart shifted off the left edge, every patch outside (a chart
+  // only partly outside is sampled where it is inside: tests/web/cut_chart.test.mjs).
+  await setCorners([x0 - 1000, y0, x1 - 1000, y1, x2 - 1000, y2, x3 - 1000, y3]);
   codes.outside = await cornerCode('CORNERS_CROSSED');
   assert.equal(codes.outside, 'CORNERS_OUTSIDE');
   // Patches smaller than 4 pixels.

@@ -82,6 +82,7 @@ export function mount(section, app) {
       + linearisationText(app.session.linearisation, app.derived.image?.metadata)
       + (d.excluded.length ? `; left out as flagged: ${d.excluded.map((e) => e.id).join(', ')}` : '')
       + (d.missing.length ? `; not in the reference: ${d.missing.join(', ')}` : '')
+      + (s.missing?.length ? `; outside the frame (not sampled): ${s.missing.join(', ')}` : '')
       + (app.derived.sample2 ? `; and the ${app.derived.sample2.ids.length} patches of the second chart image (${app.session['files.chart2']?.name}, step 2): one fit on both` : '') + '.';
     return d;
   }

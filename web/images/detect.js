@@ -11,9 +11,9 @@ export const handlers = {
   /// `slot`: the image to search ('chart', or 'chart2': a second chart image).
   detect: (T, { slot = 'chart', layout = { chart: 'passport' }, seed, box }, { state, progress }) => {
     if (!['chart', 'chart2'].includes(slot) || !state.raw?.[slot]) throw coded('no image decoded yet', 'NO_IMAGE');
-    // A chart cut by the frame is refused here (its reason says so): the page's sampling takes
-    // corners inside the image only; `tristim detect` / `sample` find and sample one.
-    const options = { charts: [layout.chart], seed, box, cut_charts: false };
+    // A chart cut by the frame is found too (its `missing` patches lie outside the image): the
+    // sampling (handlers.js) samples the patches inside, as `tristim sample` does.
+    const options = { charts: [layout.chart], seed, box, cut_charts: true };
     if (layout.chart === 'custom') options.custom = layout;
     progress(0, 'finding the chart');
     const found = T.detectCharts(state.raw[slot], options, (stage, fraction) => progress(fraction, `finding the chart: ${STAGES[stage] ?? stage}`));

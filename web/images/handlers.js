@@ -89,7 +89,9 @@ export const handlers = {
     return reply(raw ? previewOf([raw].flat()[0], previewSide) : null);
   },
 
-  /// Samples the chart in `slot` ('chart', or 'chart2': a second chart image, no light trap). lightTrap: the four corners of an in-scene light trap (Abed 2013 App. C
+  /// Samples the chart in `slot` ('chart', or 'chart2': a second chart image, no light trap). A chart
+  /// cut by the frame is sampled where it is inside (SampleOptions.partial): the patches whose
+  /// sample area leaves the image are named in `missing`; CORNERS_OUTSIDE when every one does. lightTrap: the four corners of an in-scene light trap (Abed 2013 App. C
   /// step 1) whose mean after the dark frame is subtracted as flare before sampling, or null. A
   /// trap the engine refuses (outside the image, saturated, ...) is not used: the chart is
   /// sampled without it and the reply carries lightTrapError {code, message} for the trap's input.
@@ -100,7 +102,7 @@ export const handlers = {
     if (lightTrap) {
       try { trap = chart.setLightTrap(lightTrap, sampleOptions); } catch (e) { chart.clearLightTrap(); trapError = { code: e.code, message: e.message }; }
     } else chart.clearLightTrap();
-    const s = T.sampleChart(chart, layout, corners, sampleOptions);
+    const s = T.sampleChart(chart, layout, corners, { ...sampleOptions, partial: true });
     s.lightTrap = trap;
     s.lightTrapError = trapError;
     return reply(s);

@@ -1,4 +1,5 @@
-// The per-patch table of a sampling: id, mean camera RGB, std, pixel count, saturation, flags.
+// The per-patch table of a sampling: id, mean camera RGB, std, pixel count, saturation, flags; the
+// patches of a chart cut by the frame (the engine's `missing`) as rows "outside the frame".
 import { h, fmt } from '../lib/ui.js';
 
 /// stale: the corners in use were not found on this image (detection missed and they were left
@@ -16,8 +17,12 @@ export function patchTable(s, { stale = false } = {}) {
       h('td', {}, s.saturated_fraction ? `${fmt(100 * maxOf(s.saturated_fraction, i, s.saturated_fraction.length / n), 1)} %` : '–'),
       h('td', { class: 'flags' }, f.length ? f.join(', ') : 'ok')));
   }
+  for (const id of s.missing ?? []) {
+    rows.push(h('tr', { class: 'missing', dataset: { id } }, h('th', { scope: 'row' }, id),
+      h('td', { colspan: 9, class: 'flags' }, 'outside the frame: not sampled, left out of the fit')));
+  }
   return h('table', { class: 'patch-table' },
-    h('caption', {}, 'Sampled camera RGB per patch (linear DN, black subtracted, no white balance; mean and σ over the central area). Flags: saturated (left out of fits), dark (near the noise floor), nonuniform (quadrant means differ by > 5 % beyond noise), stale (the corners were not found on this image).'),
+    h('caption', {}, 'Sampled camera RGB per patch (linear DN, black subtracted, no white balance; mean and σ over the central area). Flags: saturated (left out of fits), dark (near the noise floor), nonuniform (quadrant means differ by > 5 % beyond noise), stale (the corners were not found on this image); outside the frame (a chart cut by the image edge: the patch is not sampled).'),
     h('thead', {}, h('tr', {}, ['Patch', 'R', 'G', 'B', 'σR', 'σG', 'σB', 'pixels', 'saturated', 'flags'].map((t) => h('th', { scope: 'col' }, t)))),
     h('tbody', {}, rows));
 }

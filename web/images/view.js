@@ -179,7 +179,9 @@ export function mount(section, app) {
   // after): the boxes are read again on leaving it.
   for (const el of layoutBoxes) el.addEventListener('blur', () => { if (el.hasAttribute('aria-invalid') || el.validity.badInput) layoutChanged(); });
 
-  async function setFile(slot, file) {
+  /// given: {corners, note} when the caller knows where the chart is (the Lab's own render): those
+  /// corners are used as they are, with no detection, and the note says where they came from.
+  async function setFile(slot, file, given = null) {
     clearError(inputs[slot]);
     let bytes;
     try { bytes = await fileBytes(file); } catch (e) { showError(inputs[slot], e, file.name); return; }
@@ -191,6 +193,14 @@ export function mount(section, app) {
       // A new chart image of another size gets fresh corners; same size keeps them (same set-up).
       const img = app.derived.image;
       const fresh = slot === 'chart' && !(before && img.width === before.width && img.height === before.height && app.session.corners);
+      if (slot === 'chart' && given?.corners) {
+        clearTimeout(timer);
+        editor.setCorners(given.corners);
+        await app.save('corners', Array.from(given.corners));
+        setDetection(null, 'idle', given.note ?? '');
+        await resample();
+        return;
+      }
       if (fresh) {
         await app.save('corners', undefined);
         editor.reset();
@@ -454,7 +464,7 @@ export function mount(section, app) {
     const flagged = s.flags.filter((f) => f.length).length;
     sampleSummary.textContent = unconfirmed
       ? 'No chart found in this image: the table shows the patches under the corners left from before, which may not lie on the chart.'
-      : `${s.ids.length} patches sampled; ${flagged} flagged.`;
+      : `${s.ids.length} patches sampled; ${flagged} flagged${s.missing?.length ? `; ${s.missing.length} outside the frame (${s.missing.join(', ')}): the fit uses the others` : ''}.`;
     tableBox.replaceChildren(patchTable(s, { stale: unconfirmed }));
   }
 
