@@ -149,6 +149,18 @@ void add_message(FitResult& r, const std::string& m) {
   r.message += m;
 }
 
+// An iterative objective's counts and losses into the result; at its limit, the status and `limit_message`.
+void record_outcome(FitResult& r, const Outcome& o, const std::string& limit_message) {
+  r.iterations = o.iterations;
+  r.evaluations = o.evaluations;
+  r.start_objective_value = o.f0;
+  r.objective_value = o.f;
+  if (o.hit_limit) {
+    r.status = FitStatus::IterationLimit;
+    add_message(r, limit_message);
+  }
+}
+
 }  // namespace
 
 FitResult fit_info(const ModelInfo& info, const PatchMatrix& rgb, const PatchMatrix& xyz,
@@ -163,25 +175,11 @@ FitResult fit_info(const ModelInfo& info, const PatchMatrix& rgb, const PatchMat
   r.condition_number = cond;
   if (options.objective == Objective::PatternSearch) {
     const Outcome o = pattern_search(pr, options.psm, z);
-    r.iterations = o.iterations;
-    r.evaluations = o.evaluations;
-    r.start_objective_value = o.f0;
-    r.objective_value = o.f;
-    if (o.hit_limit) {
-      r.status = FitStatus::IterationLimit;
-      add_message(r, "pattern search stopped at its iteration limit (" + std::to_string(o.iterations) + ")");
-    }
+    record_outcome(r, o, "pattern search stopped at its iteration limit (" + std::to_string(o.iterations) + ")");
   } else if (options.objective == Objective::DeltaE2000) {
     const Outcome o = minimise_de2000(pr, options, z);
-    r.iterations = o.iterations;
-    r.evaluations = o.evaluations;
-    r.start_objective_value = o.f0;
-    r.objective_value = o.f;
-    if (o.hit_limit) {
-      r.status = FitStatus::IterationLimit;
-      add_message(r, "CIEDE2000 optimiser stopped at its limit (" + std::to_string(o.iterations) + " iterations, " +
-                         std::to_string(o.evaluations) + " evaluations)");
-    }
+    record_outcome(r, o, "CIEDE2000 optimiser stopped at its limit (" + std::to_string(o.iterations) + " iterations, " +
+                             std::to_string(o.evaluations) + " evaluations)");
   }
   r.model.coefficients = pr.coefficients(z);
   r.fitted = predict(r.model, rgb);

@@ -7,6 +7,7 @@
 
 #include "../detmath.hpp"
 #include "../citations.hpp"
+#include "../table_lookup.hpp"
 #include "tristim/error.hpp"
 
 namespace tristim {
@@ -64,6 +65,17 @@ Terms cheung_terms(int n) {
   }
 }
 
+// R, G, B and the terms of each degree from 2 up to `degree` (1..4), in that order; `what` names
+// the expansion in the error.
+Terms terms_up_to(int degree, const Terms& d2, const Terms& d3, const Terms& d4, const std::string& what) {
+  if (degree < 1 || degree > 4)
+    throw Error(ErrorCode::InvalidArgument, what + ": degree " + std::to_string(degree) + " is not 1..4");
+  const Terms* higher[] = {&d2, &d3, &d4};
+  Terms out = kR_G_B;
+  for (int d = 2; d <= degree; ++d) out.insert(out.end(), higher[d - 2]->begin(), higher[d - 2]->end());
+  return out;
+}
+
 // Finlayson 2015 (colour-science's polynomial_expansion_Finlayson2015 order), per degree.
 Terms finlayson_terms(int degree) {
   const Terms d2 = {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}};
@@ -72,15 +84,7 @@ Terms finlayson_terms(int degree) {
   const Terms d4 = {{4, 0, 0}, {0, 4, 0}, {0, 0, 4}, {3, 1, 0}, {3, 0, 1}, {1, 3, 0},
                     {0, 3, 1}, {1, 0, 3}, {0, 1, 3}, {2, 2, 0}, {0, 2, 2}, {2, 0, 2},
                     {2, 1, 1}, {1, 2, 1}, {1, 1, 2}};
-  switch (degree) {
-    case 1: return kR_G_B;
-    case 2: return cat({kR_G_B, d2});
-    case 3: return cat({kR_G_B, d2, d3});
-    case 4: return cat({kR_G_B, d2, d3, d4});
-    default:
-      throw Error(ErrorCode::InvalidArgument,
-                  "Finlayson 2015 expansion: degree " + std::to_string(degree) + " is not 1..4");
-  }
+  return terms_up_to(degree, d2, d3, d4, "Finlayson 2015 expansion");
 }
 
 // Root-polynomial terms: the distinct roots of the polynomial terms (squares of a single
@@ -90,15 +94,7 @@ Terms finlayson_root_terms(int degree) {
   const Terms d3 = {{1, 2, 0}, {0, 1, 2}, {1, 0, 2}, {2, 1, 0}, {0, 2, 1}, {2, 0, 1}, {1, 1, 1}};
   const Terms d4 = {{3, 1, 0}, {3, 0, 1}, {1, 3, 0}, {0, 3, 1}, {1, 0, 3}, {0, 1, 3},
                     {2, 1, 1}, {1, 2, 1}, {1, 1, 2}};
-  switch (degree) {
-    case 1: return kR_G_B;
-    case 2: return cat({kR_G_B, d2});
-    case 3: return cat({kR_G_B, d2, d3});
-    case 4: return cat({kR_G_B, d2, d3, d4});
-    default:
-      throw Error(ErrorCode::InvalidArgument,
-                  "Finlayson 2015 root-polynomial: degree " + std::to_string(degree) + " is not 1..4");
-  }
+  return terms_up_to(degree, d2, d3, d4, "Finlayson 2015 root-polynomial");
 }
 
 const Terms kShen2008 = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {2, 0, 0}, {0, 2, 0},
@@ -226,18 +222,15 @@ void check_coefficient_shape(const Model& model, const ModelInfo& info) {
 }
 
 const std::vector<ModelInfo>& model_table() {
-  static const std::vector<ModelInfo> table = build_table();
-  return table;
+  return built_once<&build_table>();
 }
 
 const std::vector<ModelFamily>& model_families() {
-  static const std::vector<ModelFamily> families = build_families();
-  return families;
+  return built_once<&build_families>();
 }
 
 const ModelInfo& model_info(const std::string& id) {
-  for (const auto& m : model_table())
-    if (m.id == id) return m;
+  if (const ModelInfo* m = find_row(model_table(), id, [](const ModelInfo& r) { return r.id; })) return *m;
   throw Error(ErrorCode::UnknownId, "unknown model id '" + id + "'");
 }
 

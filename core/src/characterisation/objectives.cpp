@@ -3,6 +3,7 @@
 
 #include "tristim/error.hpp"
 #include "../citations.hpp"
+#include "../table_lookup.hpp"
 
 namespace tristim {
 
@@ -48,14 +49,13 @@ std::vector<ObjectiveMethod> build_table() {
 }  // namespace
 
 const std::vector<ObjectiveMethod>& objective_table() {
-  static const std::vector<ObjectiveMethod> table = build_table();
-  return table;
+  return built_once<&build_table>();
 }
 
 const ObjectiveMethod& objective_method(const std::string& id) {
   const Objective o = objective_from_id(id);
-  for (const auto& m : objective_table())
-    if (m.objective == o) return m;
+  if (const ObjectiveMethod* m = find_row(objective_table(), o, [](const ObjectiveMethod& r) { return r.objective; }))
+    return *m;
   throw Error(ErrorCode::Internal, "objective table misses '" + id + "'");
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rows.hpp"
+#include "../table_lookup.hpp"
 #include "tristim/io/fields.hpp"
 #include "tristim/error.hpp"
 #include "tristim/linearisation/guarnera2018.hpp"
@@ -28,13 +29,12 @@ std::vector<LinearisationMethod> build_table() {
 }  // namespace
 
 const std::vector<LinearisationMethod>& linearisation_table() {
-  static const std::vector<LinearisationMethod> table = build_table();
-  return table;
+  return built_once<&build_table>();
 }
 
 const LinearisationMethod& linearisation_method(const std::string& id) {
-  for (const auto& m : linearisation_table())
-    if (m.info.id == id) return m;
+  const auto id_of = [](const LinearisationMethod& r) { return r.info.id; };
+  if (const LinearisationMethod* m = find_row(linearisation_table(), id, id_of)) return *m;
   throw Error(ErrorCode::UnknownId, "unknown linearisation method '" + id + "'");
 }
 
@@ -59,20 +59,26 @@ Linearisation fit_linearisation(const MethodChoice& choice, const LinearisationD
   return m.fit(data, complete_choice(m.info, choice));
 }
 
-PatchMatrix linearise(const Linearisation& fitted, const PatchMatrix& camera_RGB) {
+namespace {
+
+// out(i, c) = curve(fitted, c, in(i, c)) for every patch and channel; curve: a row's apply or inverse.
+template <class Curve>
+PatchMatrix each_channel(const Linearisation& fitted, const PatchMatrix& in, Curve LinearisationMethod::*curve) {
   const LinearisationMethod& m = linearisation_method(fitted.choice.method);
-  PatchMatrix out(camera_RGB.rows(), 3);
-  for (Eigen::Index i = 0; i < camera_RGB.rows(); ++i)
-    for (int c = 0; c < 3; ++c) out(i, c) = m.apply(fitted, c, camera_RGB(i, c));
+  PatchMatrix out(in.rows(), 3);
+  for (Eigen::Index i = 0; i < in.rows(); ++i)
+    for (int c = 0; c < 3; ++c) out(i, c) = (m.*curve)(fitted, c, in(i, c));
   return out;
 }
 
+}  // namespace
+
+PatchMatrix linearise(const Linearisation& fitted, const PatchMatrix& camera_RGB) {
+  return each_channel(fitted, camera_RGB, &LinearisationMethod::apply);
+}
+
 PatchMatrix delinearise(const Linearisation& fitted, const PatchMatrix& linear_RGB) {
-  const LinearisationMethod& m = linearisation_method(fitted.choice.method);
-  PatchMatrix out(linear_RGB.rows(), 3);
-  for (Eigen::Index i = 0; i < linear_RGB.rows(); ++i)
-    for (int c = 0; c < 3; ++c) out(i, c) = m.inverse(fitted, c, linear_RGB(i, c));
-  return out;
+  return each_channel(fitted, linear_RGB, &LinearisationMethod::inverse);
 }
 
 void linearise_image(const Linearisation& fitted, float* rgb, size_t n_pixels) {

@@ -60,6 +60,19 @@ void check_finite(const std::vector<Vec3>& v, const char* what) {
       throw Error(ErrorCode::NonFinite, std::string(what) + " of sample " + std::to_string(i + 1) + " is not finite");
 }
 
+// What every IDT fit needs of its training pairs: as many camera RGB as reference XYZ rows, at
+// least 3 (the matrix's rank), all finite. `who` starts the messages, `unit` names a row.
+void check_pairs(const std::vector<Vec3>& rgb, const std::vector<Vec3>& xyz, const std::string& who, const char* unit) {
+  if (rgb.size() != xyz.size())
+    throw Error(ErrorCode::InvalidArgument, who + ": " + std::to_string(rgb.size()) + " camera RGB rows but " +
+                                                std::to_string(xyz.size()) + " reference rows");
+  if (rgb.size() < 3)
+    throw Error(ErrorCode::TooFewPatches,
+                who + ": " + std::to_string(rgb.size()) + " " + unit + "; the matrix needs at least 3");
+  check_finite(rgb, "camera RGB");
+  check_finite(xyz, "reference XYZ");
+}
+
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
@@ -109,13 +122,7 @@ struct Objective {
 
 IdtResult fit_idt(const std::vector<Vec3>& rgb, const std::vector<Vec3>& xyz, const Vec3& white_balance,
                   const IdtOptions& options) {
-  if (rgb.size() != xyz.size())
-    throw Error(ErrorCode::InvalidArgument, "IDT fit: " + std::to_string(rgb.size()) + " camera RGB rows but " +
-                                                std::to_string(xyz.size()) + " reference rows");
-  if (rgb.size() < 3)
-    throw Error(ErrorCode::TooFewPatches, "IDT fit: " + std::to_string(rgb.size()) + " samples; the matrix needs at least 3");
-  check_finite(rgb, "camera RGB");
-  check_finite(xyz, "reference XYZ");
+  check_pairs(rgb, xyz, "IDT fit", "samples");
   Objective f{rgb, {}};
   f.lab_target.reserve(xyz.size());
   for (const Vec3& v : xyz) f.lab_target.push_back(XYZ_to_Lab(v, f.white));
@@ -247,13 +254,7 @@ IdtResult idt_from_sensitivities(const SpectralData& ssf, const SpectralData& il
 
 IdtResult idt_from_patches(const std::vector<Vec3>& camera_RGB, const std::vector<Vec3>& reference_XYZ,
                            const Vec3& illuminant_white_XYZ, const IdtOptions& options) {
-  if (camera_RGB.size() != reference_XYZ.size())
-    throw Error(ErrorCode::InvalidArgument, "IDT: " + std::to_string(camera_RGB.size()) + " camera RGB rows but " +
-                                                std::to_string(reference_XYZ.size()) + " reference rows");
-  if (camera_RGB.size() < 3)
-    throw Error(ErrorCode::TooFewPatches, "IDT: " + std::to_string(camera_RGB.size()) + " patches; the matrix needs at least 3");
-  check_finite(camera_RGB, "camera RGB");
-  check_finite(reference_XYZ, "reference XYZ");
+  check_pairs(camera_RGB, reference_XYZ, "IDT", "patches");
   if (!illuminant_white_XYZ.allFinite() || !(illuminant_white_XYZ.minCoeff() > 0))
     throw Error(ErrorCode::InvalidArgument, "IDT: the illuminant's white XYZ must be positive");
   const Vec3 white = illuminant_white_XYZ / illuminant_white_XYZ[1];

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tristim/error.hpp"
+#include "../table_lookup.hpp"
 
 namespace tristim {
 
@@ -56,7 +57,7 @@ std::vector<SaundersonPreset> build_presets() {
                              "(n ≈ 1.5, Saunderson 1942); k2 = 0.4-0.6 for paints (0.6 taken, Table III fits 0.59-0.63); ";
   const std::string t3 = "Abed, Berns & Masaoka 2013, Table III (coefficients optimised in Phase II; relative values, "
                          "not physical constants): ";
-  return {
+  std::vector<SaundersonPreset> presets = {
       {"d8-sci", "d:8, specular included (integrating sphere, SCI)", "measurement", {0.092, 0.6, 1.0},
        k_text + "k_ins = 1: the sphere returns the whole specular component to the detector"},
       {"d8-sce", "d:8, specular excluded (integrating sphere with light trap, SCE)", "measurement", {0.092, 0.6, 0.0},
@@ -66,39 +67,41 @@ std::vector<SaundersonPreset> build_presets() {
       {"diffuse", "diffuse light (booth or sphere), camera at the normal", "capture", {0.092, 0.6, 0.0},
        k_text + "k_ins = 0 as a start: how much of the surface reflection of the booth's walls reaches the "
                 "camera is what the fit finds (Table III: 0.24-1.0)"},
-      {"t3-classic-eye-one", "Table III, ColorChecker Classic, Eye-one 45°:0°", "measurement", {0.04, 0.63, 0.30},
-       t3 + "Classic row, spectrophotometer geometry"},
-      {"t3-classic-diffuse", "Table III, ColorChecker Classic, diffuse camera-taking", "capture", {0.07, 0.61, 0.24},
-       t3 + "Classic row, camera-taking geometry"},
-      {"t3-sg-eye-one", "Table III, ColorChecker SG, Eye-one 45°:0°", "measurement", {0.03, 0.60, 0.27},
-       t3 + "SG row, spectrophotometer geometry"},
-      {"t3-sg-diffuse", "Table III, ColorChecker SG, diffuse camera-taking", "capture", {0.10, 0.59, 0.57},
-       t3 + "SG row, camera-taking geometry"},
-      {"t3-matte-eye-one", "Table III, custom matte patches, Eye-one 45°:0°", "measurement", {0.04, 0.61, 0.29},
-       t3 + "Custom-Matte row, spectrophotometer geometry"},
-      {"t3-matte-diffuse", "Table III, custom matte patches, diffuse camera-taking", "capture", {0.07, 0.59, 0.50},
-       t3 + "Custom-Matte row, camera-taking geometry"},
-      {"t3-glossy-eye-one", "Table III, custom glossy patches, Eye-one 45°:0°", "measurement", {0.07, 0.60, 0.00},
-       t3 + "Custom-Glossy row, spectrophotometer geometry"},
-      {"t3-glossy-diffuse", "Table III, custom glossy patches, diffuse camera-taking", "capture", {0.05, 0.59, 1.00},
-       t3 + "Custom-Glossy row, camera-taking geometry"},
   };
+  // Table III: per chart, the Eye-one (spectrophotometer) row, then the diffuse camera-taking row.
+  struct TableIII {
+    const char* id;
+    const char* chart;
+    const char* row;
+    SaundersonGeometry eye_one, diffuse;
+  };
+  const TableIII table_iii[] = {
+      {"classic", "ColorChecker Classic", "Classic", {0.04, 0.63, 0.30}, {0.07, 0.61, 0.24}},
+      {"sg", "ColorChecker SG", "SG", {0.03, 0.60, 0.27}, {0.10, 0.59, 0.57}},
+      {"matte", "custom matte patches", "Custom-Matte", {0.04, 0.61, 0.29}, {0.07, 0.59, 0.50}},
+      {"glossy", "custom glossy patches", "Custom-Glossy", {0.07, 0.60, 0.00}, {0.05, 0.59, 1.00}},
+  };
+  for (const TableIII& t : table_iii) {
+    const std::string id = std::string("t3-") + t.id, label = std::string("Table III, ") + t.chart;
+    presets.push_back({id + "-eye-one", label + ", Eye-one 45°:0°", "measurement", t.eye_one,
+                       t3 + t.row + " row, spectrophotometer geometry"});
+    presets.push_back({id + "-diffuse", label + ", diffuse camera-taking", "capture", t.diffuse,
+                       t3 + t.row + " row, camera-taking geometry"});
+  }
+  return presets;
 }
 
 }  // namespace
 
 const std::vector<SaundersonPreset>& saunderson_presets() {
-  static const std::vector<SaundersonPreset> presets = build_presets();
-  return presets;
+  return built_once<&build_presets>();
 }
 
 const SaundersonPreset& saunderson_preset(const std::string& id) {
-  std::string ids;
-  for (const auto& p : saunderson_presets()) {
-    if (p.id == id) return p;
-    ids += (ids.empty() ? "" : ", ") + p.id;
-  }
-  throw Error(ErrorCode::UnknownId, "unknown Saunderson preset '" + id + "' (presets: " + ids + ")");
+  const auto id_of = [](const SaundersonPreset& p) { return p.id; };
+  if (const SaundersonPreset* p = find_row(saunderson_presets(), id, id_of)) return *p;
+  throw Error(ErrorCode::UnknownId,
+              "unknown Saunderson preset '" + id + "' (presets: " + row_ids(saunderson_presets(), id_of) + ")");
 }
 
 }  // namespace tristim

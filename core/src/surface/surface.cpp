@@ -8,6 +8,7 @@
 
 #include "correction.hpp"
 #include "../citations.hpp"
+#include "../table_lookup.hpp"
 #include "tristim/error.hpp"
 #include "tristim/number.hpp"
 #include "tristim/surface/saunderson.hpp"
@@ -201,16 +202,14 @@ std::vector<SurfaceListing> surface_listing() {
 }
 
 const std::vector<SurfaceMethod>& surface_table() {
-  static const std::vector<SurfaceMethod> table = build_table();
-  return table;
+  return built_once<&build_table>();
 }
 
 const SurfaceMethod& surface_method(const std::string& id) {
-  for (const auto& m : surface_table())
-    if (m.info.id == id) return m;
-  std::string ids;
-  for (const auto& m : surface_table()) ids += (ids.empty() ? "" : ", ") + m.info.id;
-  throw Error(ErrorCode::UnknownId, "unknown surface correction '" + id + "' (methods: " + ids + ")");
+  const auto id_of = [](const SurfaceMethod& r) { return r.info.id; };
+  if (const SurfaceMethod* m = find_row(surface_table(), id, id_of)) return *m;
+  throw Error(ErrorCode::UnknownId,
+              "unknown surface correction '" + id + "' (methods: " + row_ids(surface_table(), id_of) + ")");
 }
 
 SpectralData correct_surface(const MethodChoice& choice, const SpectralData& reflectances) {
