@@ -21,6 +21,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/fields.hpp"
+#include "tristim/io/named_input.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/profile/export.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -28,12 +29,7 @@
 namespace tristim::cli {
 
 RawImage load_raw_file(const std::string& path) {
-  const std::string bytes = read_file(path);
-  try {
-    return decode_raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
-  } catch (const Error& e) {
-    throw Error(e.code(), "'" + path + "': " + e.what());
-  }
+  return parse_named(path, read_file(path), [](const std::uint8_t* d, std::size_t n) { return decode_raw(d, n); });
 }
 
 std::string dirname_of(const std::string& path) {

@@ -47,13 +47,7 @@ int run_apply(const Args& args, std::ostream&) {
     // A RAW file: LibRaw's linear camera RGB (black subtracted, no white balance, half size for
     // Bayer sensors), the same data the chart patches are sampled from; a TIFF/PNG/JPEG: its
     // values as stored (recognised by its bytes, like `sample`).
-    const std::string bytes = read_file(in_path);
-    RawImage raw;
-    try {
-      raw = decode_any(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
-    } catch (const Error& e) {
-      throw Error(e.code(), "'" + in_path + "': " + e.what());
-    }
+    RawImage raw = load_raw(in_path);
     if (calibrate) raw = apply_calibration(raw, frame_calibration(args, raw, SampleOptions{}));  // App. C steps 1-2, 8
     rgb.width = raw.width;
     rgb.height = raw.height;

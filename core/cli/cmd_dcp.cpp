@@ -11,6 +11,7 @@
 #include "patch_args.hpp"
 #include "tristim/capture/raw.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/named_input.hpp"
 #include "tristim/profile/clf.hpp"
 #include "tristim/profile/dcp.hpp"
 #include "tristim/profile/profile.hpp"
@@ -66,13 +67,8 @@ int run_export_dcp(const Args& args, std::ostream& out) {
   if (args.has("raw")) {
     // The camera as LibRaw names it (make + model), the name RawTherapee's own decoder gives too.
     const std::string path = args.get("raw");
-    const std::string bytes = read_file(path);
-    RawMetadata m;
-    try {
-      m = inspect_raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
-    } catch (const Error& e) {
-      throw Error(e.code(), "'" + path + "': " + e.what());
-    }
+    const RawMetadata m =
+        parse_named(path, read_file(path), [](const std::uint8_t* d, std::size_t n) { return inspect_raw(d, n); });
     if (m.make.empty() && m.model.empty())
       throw Error(ErrorCode::MissingMetadata, "'" + path + "' names no camera make or model: give --camera-model");
     o.camera_model = m.make.empty() ? m.model : m.model.empty() ? m.make : m.make + " " + m.model;
@@ -159,13 +155,8 @@ bool inspect_dcp(const std::string& path, std::ostream& out) {
     char head[4] = {};
     if (!in.read(head, 4) || !is_dcp(reinterpret_cast<const std::uint8_t*>(head), 4)) return false;
   }
-  const std::string bytes = read_file(path);
-  try {
-    const Dcp d = read_dcp(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
-    out << dcp_json(d).dump() << "\n";
-  } catch (const Error& e) {
-    throw Error(e.code(), "'" + path + "': " + e.what());
-  }
+  const Dcp d = parse_named(path, read_file(path), [](const std::uint8_t* b, std::size_t n) { return read_dcp(b, n); });
+  out << dcp_json(d).dump() << "\n";
   return true;
 }
 

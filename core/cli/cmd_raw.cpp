@@ -14,6 +14,7 @@
 #include "tristim/chart/layout.hpp"
 #include "tristim/chart/light_trap.hpp"
 #include "tristim/error.hpp"
+#include "tristim/io/named_input.hpp"
 #include "tristim/capture/image.hpp"
 #include "tristim/capture/raw.hpp"
 #include "tristim/number.hpp"
@@ -21,12 +22,7 @@
 namespace tristim::cli {
 
 RawImage load_raw(const std::string& path) {
-  const std::string bytes = read_file(path);
-  try {
-    return decode_any(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
-  } catch (const Error& e) {
-    throw Error(e.code(), "'" + path + "': " + e.what());
-  }
+  return parse_named(path, read_file(path), [](const std::uint8_t* d, std::size_t n) { return decode_any(d, n); });
 }
 
 std::vector<double> numbers(const std::string& text, const std::string& option) {
