@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "image_common.hpp"
+#include "../host_endian.hpp"
 #include "tristim/error.hpp"
 
 namespace tristim {
@@ -40,13 +41,6 @@ void error_fn(png_structp png, png_const_charp message) {
   png_longjmp(png, 1);
 }
 void warning_fn(png_structp, png_const_charp) {}  // ancillary-chunk problems: silenced
-
-bool host_is_little_endian() {
-  const std::uint16_t one = 1;
-  std::uint8_t first;
-  std::memcpy(&first, &one, 1);
-  return first == 1;
-}
 
 // libpng's error path is a longjmp to the setjmp of the protected_* function running at the time.
 // Each holds one setjmp and libpng calls only, with plain values in and out: no C++ object with a

@@ -14,6 +14,7 @@
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "../detmath.hpp"
+#include "../fixed_text.hpp"
 
 namespace tristim {
 
@@ -46,14 +47,6 @@ PatchMatrix reference_XYZ_of(const LinearisationData& data, Vec3& white, const s
   return xyz;
 }
 
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << v;
-  return s.str();
-}
-
 }  // namespace
 
 GreySelection select_greys(const LinearisationData& data, const std::vector<std::string>& given, double threshold) {
@@ -78,10 +71,10 @@ GreySelection select_greys(const LinearisationData& data, const std::vector<std:
     const double dE = delta_E_CIE2000(Vec3(lab[0], 0, 0), lab);
     if (dE < threshold) {
       g.rows.push_back(static_cast<int>(i));
-      listed += (listed.empty() ? "" : ", ") + (data.ids.empty() ? std::to_string(i + 1) : data.ids[i]) + " " + fixed(dE, 2);
+      listed += (listed.empty() ? "" : ", ") + (data.ids.empty() ? std::to_string(i + 1) : data.ids[i]) + " " + fixed_text(dE, 2);
     }
   }
-  g.reason = "automatic: CIEDE2000 from the neutral of the same L* below " + fixed(threshold, 2) +
+  g.reason = "automatic: CIEDE2000 from the neutral of the same L* below " + fixed_text(threshold, 2) +
              " (OpenCV ccm's rule): " + (listed.empty() ? "none" : listed);
   return g;
 }

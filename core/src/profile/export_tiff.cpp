@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tristim/error.hpp"
+#include "../host_endian.hpp"
 #include "tristim/profile/export.hpp"
 
 namespace tristim {
@@ -67,13 +68,6 @@ int on_error(TIFF*, void* user, const char* module, const char* fmt, va_list ap)
 }
 int on_warning(TIFF*, void*, const char*, const char*, va_list) { return 1; }
 
-bool host_big_endian() {
-  const std::uint16_t one = 1;
-  std::uint8_t first;
-  std::memcpy(&first, &one, 1);
-  return first == 0;
-}
-
 struct OptionsFree {
   void operator()(TIFFOpenOptions* o) const { TIFFOpenOptionsFree(o); }
 };
@@ -120,7 +114,7 @@ std::vector<std::uint8_t> write_float_tiff(const float* pixels, int width, int h
   // writes them as given, so on a big-endian host (none we build for) they are swapped first.
   std::vector<float> swapped;
   const float* strip = pixels;
-  if (ok && TIFFIsBigEndian(t) != host_big_endian()) {
+  if (ok && (TIFFIsBigEndian(t) != 0) == host_is_little_endian()) {
     swapped.assign(pixels, pixels + data_bytes / 4);
     TIFFSwabArrayOfFloat(swapped.data(), static_cast<tmsize_t>(swapped.size()));
     strip = swapped.data();
