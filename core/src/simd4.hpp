@@ -81,32 +81,13 @@ inline void store_bytes(std::uint8_t* out, f4 v) {
   const std::int32_t four = _mm_cvtsi128_si32(b);
   std::memcpy(out, &four, 4);
 }
-/// sign(p)·sqrt(|p|), lane by lane (correctly rounded sqrt).
-inline f4 signed_sqrt(f4 p) {
-  const __m128 sign = _mm_set1_ps(-0.0f);
-  return _mm_or_ps(_mm_sqrt_ps(_mm_andnot_ps(sign, p)), _mm_and_ps(sign, p));
-}
-/// Four interleaved RGB pixels (12 floats) -> planar R, G, B.
-inline void load_rgb(const float* in, f4& R, f4& G, f4& B) {
-  const __m128 a = _mm_loadu_ps(in), b = _mm_loadu_ps(in + 4), c = _mm_loadu_ps(in + 8);
-  const __m128 t0 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(1, 0, 2, 1));  // g0 b0 g1 b1
-  const __m128 t1 = _mm_shuffle_ps(b, c, _MM_SHUFFLE(2, 1, 3, 2));  // r2 g2 r3 g3
-  R = _mm_shuffle_ps(a, t1, _MM_SHUFFLE(2, 0, 3, 0));
-  G = _mm_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 1, 2, 0));
-  B = _mm_shuffle_ps(t0, c, _MM_SHUFFLE(3, 0, 3, 1));
-}
-/// Planar X, Y, Z -> four interleaved pixels (12 floats).
-inline void store_xyz(float* out, f4 X, f4 Y, f4 Z) {
-  const __m128 lo = _mm_unpacklo_ps(X, Y), hi = _mm_unpackhi_ps(X, Y);  // x0 y0 x1 y1 | x2 y2 x3 y3
-  const __m128 a = _mm_shuffle_ps(Z, lo, _MM_SHUFFLE(2, 2, 0, 0));     // z0 z0 x1 x1
-  const __m128 b = _mm_shuffle_ps(lo, Z, _MM_SHUFFLE(1, 1, 3, 3));     // y1 y1 z1 z1
-  const __m128 c = _mm_shuffle_ps(Z, hi, _MM_SHUFFLE(2, 2, 2, 2));     // z2 z2 x3 x3
-  const __m128 d = _mm_shuffle_ps(hi, Z, _MM_SHUFFLE(3, 3, 3, 3));     // y3 y3 z3 z3
-  _mm_storeu_ps(out, _mm_shuffle_ps(lo, a, _MM_SHUFFLE(2, 0, 1, 0)));
-  _mm_storeu_ps(out + 4, _mm_shuffle_ps(b, hi, _MM_SHUFFLE(1, 0, 2, 0)));
-  _mm_storeu_ps(out + 8, _mm_shuffle_ps(c, d, _MM_SHUFFLE(2, 0, 2, 0)));
-}
 
+/// Lanes a[i0] a[i1] b[j0] b[j1] (x86's shufps).
+template <int i0, int i1, int j0, int j1>
+inline f4 shufps(f4 a, f4 b) { return _mm_shuffle_ps(a, b, _MM_SHUFFLE(j1, j0, i1, i0)); }
+/// a0 b0 a1 b1 and a2 b2 a3 b3 (x86's unpcklps, unpckhps).
+inline f4 unpacklo(f4 a, f4 b) { return _mm_unpacklo_ps(a, b); }
+inline f4 unpackhi(f4 a, f4 b) { return _mm_unpackhi_ps(a, b); }
 /// Two-lane doubles (SSE2 / SIMD128 f64x2), for kernels that work in double on float data.
 using d2 = __m128d;
 inline d2 splat2(double v) { return _mm_set1_pd(v); }
@@ -176,31 +157,13 @@ inline void store_bytes(std::uint8_t* out, f4 v) {
   const std::int32_t four = wasm_i32x4_extract_lane(wasm_u8x16_narrow_i16x8(h, h), 0);
   std::memcpy(out, &four, 4);
 }
-inline f4 signed_sqrt(f4 p) {
-  const v128_t sign = wasm_f32x4_splat(-0.0f);
-  return wasm_v128_or(wasm_f32x4_sqrt(wasm_v128_andnot(p, sign)), wasm_v128_and(p, sign));
-}
-// The same shuffles as the SSE2 path, each written as x86's shufps (lanes 0-1 from the first
-// operand, 2-3 from the second) or unpcklps/unpckhps: V8 emits those single instructions for them,
-// where an arbitrary two-operand shuffle costs two pshufb and a por.
-inline void load_rgb(const float* in, f4& R, f4& G, f4& B) {
-  const v128_t a = wasm_v128_load(in), b = wasm_v128_load(in + 4), c = wasm_v128_load(in + 8);
-  const v128_t t0 = wasm_i32x4_shuffle(a, b, 1, 2, 4, 5);  // g0 b0 g1 b1
-  const v128_t t1 = wasm_i32x4_shuffle(b, c, 2, 3, 5, 6);  // r2 g2 r3 g3
-  R = wasm_i32x4_shuffle(a, t1, 0, 3, 4, 6);
-  G = wasm_i32x4_shuffle(t0, t1, 0, 2, 5, 7);
-  B = wasm_i32x4_shuffle(t0, c, 1, 3, 4, 7);
-}
-inline void store_xyz(float* out, f4 X, f4 Y, f4 Z) {
-  const v128_t lo = wasm_i32x4_shuffle(X, Y, 0, 4, 1, 5), hi = wasm_i32x4_shuffle(X, Y, 2, 6, 3, 7);  // x0 y0 x1 y1 | x2 y2 x3 y3
-  const v128_t a = wasm_i32x4_shuffle(Z, lo, 0, 0, 6, 6);  // z0 z0 x1 x1
-  const v128_t b = wasm_i32x4_shuffle(lo, Z, 3, 3, 5, 5);  // y1 y1 z1 z1
-  const v128_t c = wasm_i32x4_shuffle(Z, hi, 2, 2, 6, 6);  // z2 z2 x3 x3
-  const v128_t d = wasm_i32x4_shuffle(hi, Z, 3, 3, 7, 7);  // y3 y3 z3 z3
-  wasm_v128_store(out, wasm_i32x4_shuffle(lo, a, 0, 1, 4, 6));      // x0 y0 z0 x1
-  wasm_v128_store(out + 4, wasm_i32x4_shuffle(b, hi, 0, 2, 4, 5));  // y1 z1 x2 y2
-  wasm_v128_store(out + 8, wasm_i32x4_shuffle(c, d, 0, 2, 4, 6));   // z2 x3 y3 z3
-}
+
+// shufps and unpcklps/unpckhps as the two-operand shuffles V8 emits as those single x86
+// instructions, where an arbitrary two-operand shuffle costs two pshufb and a por.
+template <int i0, int i1, int j0, int j1>
+inline f4 shufps(f4 a, f4 b) { return wasm_i32x4_shuffle(a, b, i0, i1, 4 + j0, 4 + j1); }
+inline f4 unpacklo(f4 a, f4 b) { return wasm_i32x4_shuffle(a, b, 0, 4, 1, 5); }
+inline f4 unpackhi(f4 a, f4 b) { return wasm_i32x4_shuffle(a, b, 2, 6, 3, 7); }
 
 using d2 = v128_t;
 inline d2 splat2(double v) { return wasm_f64x2_splat(v); }
@@ -227,6 +190,35 @@ inline f4 narrow(d2 lo, d2 hi) {
   return wasm_i32x4_shuffle(wasm_f32x4_demote_f64x2_zero(lo), wasm_f32x4_demote_f64x2_zero(hi), 0, 1, 4, 5);
 }
 #endif
+
+// Written once from the operations above (the same instructions on both targets as when each
+// target spelled them out).
+
+/// sign(p)·sqrt(|p|), lane by lane (correctly rounded sqrt).
+inline f4 signed_sqrt(f4 p) {
+  const f4 sign = splat(-0.0f);
+  return bit_or(sqrt(and_not(p, sign)), bit_and(sign, p));
+}
+/// Four interleaved RGB pixels (12 floats) -> planar R, G, B.
+inline void load_rgb(const float* in, f4& R, f4& G, f4& B) {
+  const f4 a = load(in), b = load(in + 4), c = load(in + 8);
+  const f4 t0 = shufps<1, 2, 0, 1>(a, b);  // g0 b0 g1 b1
+  const f4 t1 = shufps<2, 3, 1, 2>(b, c);  // r2 g2 r3 g3
+  R = shufps<0, 3, 0, 2>(a, t1);
+  G = shufps<0, 2, 1, 3>(t0, t1);
+  B = shufps<1, 3, 0, 3>(t0, c);
+}
+/// Planar X, Y, Z -> four interleaved pixels (12 floats).
+inline void store_xyz(float* out, f4 X, f4 Y, f4 Z) {
+  const f4 lo = unpacklo(X, Y), hi = unpackhi(X, Y);  // x0 y0 x1 y1 | x2 y2 x3 y3
+  const f4 a = shufps<0, 0, 2, 2>(Z, lo);             // z0 z0 x1 x1
+  const f4 b = shufps<3, 3, 1, 1>(lo, Z);             // y1 y1 z1 z1
+  const f4 c = shufps<2, 2, 2, 2>(Z, hi);             // z2 z2 x3 x3
+  const f4 d = shufps<3, 3, 3, 3>(hi, Z);             // y3 y3 z3 z3
+  store(out, shufps<0, 1, 0, 2>(lo, a));              // x0 y0 z0 x1
+  store(out + 4, shufps<0, 2, 0, 1>(b, hi));          // y1 z1 x2 y2
+  store(out + 8, shufps<0, 2, 0, 2>(c, d));           // z2 x3 y3 z3
+}
 
 }  // namespace tristim::simd4
 #endif
