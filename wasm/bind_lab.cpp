@@ -6,38 +6,30 @@
 #include "tristim/lab/metamerism.hpp"
 #include "tristim/lab/render.hpp"
 #include "tristim/lab/smi.hpp"
+#include "declare.hpp"
 #include "types.hpp"
 
 using namespace tristim;
-using emscripten::value_object;
 using wasm::def;
 
 EMSCRIPTEN_BINDINGS(tristim_lab) {
-  { using S = LabRenderOptions; value_object<S>("LabRenderOptions") FIELD(camera) FIELD(sensitivities) FIELD(chart)
-      FIELD(illuminant) FIELD(illuminant_spd) FIELD(surface) FIELD(width) FIELD(height) FIELD(corners) FIELD(exposure)
-      FIELD(falloff) FIELD(flare) FIELD(shot_gain) FIELD(read_noise) FIELD(seed) FIELD(bits) FIELD(black) FIELD(cfa)
-      FIELD(oecf) FIELD(jpeg_quality); }
-  { using S = LabRenderFiles; value_object<S>("LabRenderFiles") FIELD(dng) FIELD(truth); }
-  { using S = CameraQuality; value_object<S>("CameraQuality") FIELD(camera) FIELD(smi) FIELD(mu_factor) FIELD(mean_dE)
-      FIELD(matrix) FIELD(dE); }
-  { using S = LutherFit; value_object<S>("LutherFit") FIELD(wavelengths) FIELD(camera) FIELD(fit) FIELD(coefficients); }
+  STRUCT(LabRenderOptions, camera, sensitivities, chart, illuminant, illuminant_spd, surface, width, height, corners,
+           exposure, falloff, flare, shot_gain, read_noise, seed, bits, black, cfa, oecf, jpeg_quality);
+  STRUCT(LabRenderFiles, dng, truth);
+  STRUCT(CameraQuality, camera, smi, mu_factor, mean_dE, matrix, dE);
+  STRUCT(LutherFit, wavelengths, camera, fit, coefficients);
 
-  { using S = ColourRow; value_object<S>("ColourRow") FIELD(illuminant) FIELD(observer) FIELD(XYZ) FIELD(Lab) FIELD(x) FIELD(y); }
-  { using S = SpectraToColour; value_object<S>("SpectraToColour") FIELD(chart) FIELD(patch) FIELD(wavelengths)
-      FIELD(reflectance) FIELD(stimulus) FIELD(illuminants) FIELD(rows); }
-  { using S = OverfitOptions; value_object<S>("OverfitOptions") FIELD(models) FIELD(training) FIELD(noise) FIELD(seed); }
-  { using S = OverfitRow; value_object<S>("OverfitRow") FIELD(model) FIELD(training) FIELD(terms) FIELD(patches) FIELD(ok)
-      FIELD(error_code) FIELD(message) FIELD(train_dE00) FIELD(loo_dE00) FIELD(test_dE00); }
+  STRUCT(ColourRow, illuminant, observer, XYZ, Lab, x, y);
+  STRUCT(SpectraToColour, chart, patch, wavelengths, reflectance, stimulus, illuminants, rows);
+  STRUCT(OverfitOptions, models, training, noise, seed);
+  STRUCT(OverfitRow, model, training, terms, patches, ok, error_code, message, train_dE00, loo_dE00, test_dE00);
 
-  { using S = MetamerOptions; value_object<S>("MetamerOptions") FIELD(illuminant) FIELD(illuminant_spd) FIELD(second)
-      FIELD(second_spd) FIELD(observer) FIELD(camera) FIELD(sensitivities) FIELD(match) FIELD(max_match) FIELD(top); }
-  { using S = MetamerView; value_object<S>("MetamerView") FIELD(viewer) FIELD(XYZ_a1) FIELD(XYZ_b1) FIELD(XYZ_a2) FIELD(XYZ_b2)
-      FIELD(Lab_a1) FIELD(Lab_b1) FIELD(Lab_a2) FIELD(Lab_b2) FIELD(dE00_1) FIELD(dE00_2); }
-  { using S = MetamerPair; value_object<S>("MetamerPair") FIELD(a) FIELD(b) FIELD(reflectance_a) FIELD(reflectance_b)
-      FIELD(alpha) FIELD(views); }
-  { using S = MetamerResult; value_object<S>("MetamerResult") FIELD(wavelengths) FIELD(illuminant) FIELD(second)
-      FIELD(observer) FIELD(camera) FIELD(match) FIELD(camera_matrix) FIELD(max_match) FIELD(compared) FIELD(all_pairs)
-      FIELD(matching) FIELD(pairs); }
+  STRUCT(MetamerOptions, illuminant, illuminant_spd, second, second_spd, observer, camera, sensitivities, match,
+           max_match, top);
+  STRUCT(MetamerView, viewer, XYZ_a1, XYZ_b1, XYZ_a2, XYZ_b2, Lab_a1, Lab_b1, Lab_a2, Lab_b2, dE00_1, dE00_2);
+  STRUCT(MetamerPair, a, b, reflectance_a, reflectance_b, alpha, views);
+  STRUCT(MetamerResult, wavelengths, illuminant, second, observer, camera, match, camera_matrix, max_match, compared,
+           all_pairs, matching, pairs);
 
   def<&lab_render_files>("labRender");
   def<&lab_spectra_to_colour>("labSpectraToColour");

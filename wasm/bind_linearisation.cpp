@@ -5,6 +5,7 @@
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/linearisation/linearisation.hpp"
 #include "tristim/linearisation/spectral.hpp"
+#include "declare.hpp"
 #include "types.hpp"
 
 using namespace tristim;
@@ -34,20 +35,16 @@ std::string spectral_model_text(const SpectralModel& m) { return spectral_model_
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(tristim_linearisation) {
-  { using S = LinearisationListing; value_object<S>("LinearisationListing") FIELD(id) FIELD(label) FIELD(reference) FIELD(needs)
-      FIELD(needs_text) FIELD(options); }
-  { using S = LinearisationData; value_object<S>("LinearisationData") FIELD(camera_RGB) FIELD(ids) FIELD(full_scale)
-      FIELD(reference_XYZ) FIELD(white) FIELD(reflectances) FIELD(basis_reflectances); }
-  { using S = Linearisation; value_object<S>("Linearisation") FIELD(choice) FIELD(coefficients) FIELD(full_scale)
-      FIELD(domain) FIELD(r_squared) FIELD(fitted) FIELD(greys) FIELD(grey_reason) FIELD(grey_coefficients)
-      FIELD(monotonic) FIELD(extrapolated) FIELD(message); }
-  { using S = Extrapolation; value_object<S>("Extrapolation") FIELD(patch) FIELD(channel) FIELD(x) FIELD(bound) FIELD(relative); }
-  { using S = CurveSamples; value_object<S>("CurveSamples") FIELD(x) FIELD(linear) FIELD(grey_based); }
+  STRUCT(LinearisationListing, id, label, reference, needs, needs_text, options);
+  STRUCT(LinearisationData, camera_RGB, ids, full_scale, reference_XYZ, white, reflectances, basis_reflectances);
+  STRUCT(Linearisation, choice, coefficients, full_scale, domain, r_squared, fitted, greys, grey_reason,
+           grey_coefficients, monotonic, extrapolated, message);
+  STRUCT(Extrapolation, patch, channel, x, bound, relative);
+  STRUCT(CurveSamples, x, linear, grey_based);
   { using S = SpectralModel; value_object<S>("SpectralModel") FIELD(linearisation) FIELD(wavelengths)
       .field("W", &spectral_W, &set_spectral_W) FIELD(training_patches) FIELD(training_set) FIELD(training_ids)
       FIELD(greys) FIELD(grey_reason); }
-  { using S = SpectralEvaluation; value_object<S>("SpectralEvaluation") FIELD(ids) FIELD(rms) FIELD(dE00)
-      FIELD(rms_summary) FIELD(dE00_summary); }
+  STRUCT(SpectralEvaluation, ids, rms, dE00, rms_summary, dE00_summary);
 
   def<&linearisation_listing>("listLinearisations");
   def<&fit_linearisation>("fitLinearisation");

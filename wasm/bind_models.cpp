@@ -2,6 +2,7 @@
 // profiles (a Profile argument may be given as the profile JSON text) and their exports.
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/profile/export.hpp"
+#include "declare.hpp"
 #include "types.hpp"
 
 using namespace tristim;
@@ -19,36 +20,26 @@ val loo_of(const ModelEvaluation& e) { return e.has_loo ? Conv<Metrics>::to(e.lo
 
 EMSCRIPTEN_BINDINGS(tristim_models) {
   using wasm::set_field;
-  { using S = PatternSearchOptions; value_object<S>("PatternSearchOptions") FIELD(initial_step) FIELD(expansion)
-      FIELD(contraction) FIELD(step_threshold) FIELD(max_iterations); }
-  { using S = DeltaE2000Options; value_object<S>("DeltaE2000Options") FIELD(algorithm) FIELD(xtol_rel) FIELD(ftol_rel)
-      FIELD(max_evaluations) FIELD(rms) FIELD(initial_step); }
-  { using S = FitOptions; value_object<S>("FitOptions") FIELD(objective) FIELD(white) FIELD(weights) FIELD(preserve_white)
-      FIELD(white_RGB) FIELD(white_XYZ) FIELD(psm) FIELD(de2000) FIELD(warn_condition) FIELD(max_condition); }
-  { using S = Model; value_object<S>("Model") FIELD(id) FIELD(coefficients); }
-  { using S = FitResult; value_object<S>("FitResult") FIELD(model) FIELD(objective) FIELD(status) FIELD(message)
-      FIELD(iterations) FIELD(evaluations) FIELD(condition_number) FIELD(objective_value) FIELD(start_objective_value)
-      FIELD(white_preserved) FIELD(fitted) FIELD(residuals) FIELD(mu); }
-  { using S = Summary; value_object<S>("Summary") FIELD(min) FIELD(median) FIELD(mean) FIELD(p95) FIELD(max) FIELD(rms) FIELD(std); }
-  { using S = PatchErrors; value_object<S>("PatchErrors") FIELD(dE76) FIELD(dE94) FIELD(dE00) FIELD(dL) FIELD(dC) FIELD(dH)
-      FIELD(dE_xyz) FIELD(rel_Y); }
-  { using S = Metrics; value_object<S>("Metrics") FIELD(patches) FIELD(dE76) FIELD(dE94) FIELD(dE00) FIELD(dE_xyz)
-      FIELD(abs_rel_Y) FIELD(NRMSE); }
+  STRUCT(PatternSearchOptions, initial_step, expansion, contraction, step_threshold, max_iterations);
+  STRUCT(DeltaE2000Options, algorithm, xtol_rel, ftol_rel, max_evaluations, rms, initial_step);
+  STRUCT(FitOptions, objective, white, weights, preserve_white, white_RGB, white_XYZ, psm, de2000, warn_condition,
+           max_condition);
+  STRUCT(Model, id, coefficients);
+  STRUCT(FitResult, model, objective, status, message, iterations, evaluations, condition_number, objective_value,
+           start_objective_value, white_preserved, fitted, residuals, mu);
+  STRUCT(Summary, min, median, mean, p95, max, rms, std);
+  STRUCT(PatchErrors, dE76, dE94, dE00, dL, dC, dH, dE_xyz, rel_Y);
+  STRUCT(Metrics, patches, dE76, dE94, dE00, dE_xyz, abs_rel_Y, NRMSE);
   { using S = ModelEvaluation; value_object<S>("ModelEvaluation") FIELD(fit) FIELD(fit_seconds) FIELD(fit_cpu_seconds)
       FIELD(training) FIELD(has_loo) .field("loo", &loo_of, &set_field<&S::loo>) FIELD(loo_XYZ); }
-  { using S = CompareRow; value_object<S>("CompareRow") FIELD(model_id) FIELD(objective) FIELD(n_terms) FIELD(ok)
-      FIELD(error_code) FIELD(message) FIELD(status) FIELD(condition_number) FIELD(seconds) FIELD(cpu_seconds)
-      FIELD(train_dE00) FIELD(loo_dE00) FIELD(train_dE_xyz) FIELD(loo_dE_xyz) FIELD(has_loo); }
-  { using S = StoppingCheck; value_object<S>("StoppingCheck") FIELD(checked) FIELD(flagged) FIELD(loo_mean)
-      FIELD(perturbed_loo_mean); }
-  { using S = RidgeRow; value_object<S>("RidgeRow") FIELD(row) FIELD(lambda); }
-  { using S = Profile; value_object<S>("Profile") FIELD(version) FIELD(tristim_version) FIELD(model) FIELD(objective)
-      FIELD(white) FIELD(illuminant) FIELD(observer) FIELD(white_preserved) FIELD(white_patch) FIELD(white_RGB)
-      FIELD(white_XYZ) FIELD(training_patches) FIELD(training_digest) FIELD(rgb_max) FIELD(status) FIELD(message)
-      FIELD(condition_number) FIELD(iterations) FIELD(objective_value) FIELD(has_recipe) FIELD(recipe)
-      FIELD(has_linearisation) FIELD(linearisation); }
-  { using S = IccOptions; value_object<S>("IccOptions") FIELD(rgb_scale) FIELD(grid_points) FIELD(shaper_gamma)
-      FIELD(description) FIELD(version); }
+  STRUCT(CompareRow, model_id, objective, n_terms, ok, error_code, message, status, condition_number, seconds,
+           cpu_seconds, train_dE00, loo_dE00, train_dE_xyz, loo_dE_xyz, has_loo);
+  STRUCT(StoppingCheck, checked, flagged, loo_mean, perturbed_loo_mean);
+  STRUCT(RidgeRow, row, lambda);
+  STRUCT(Profile, version, tristim_version, model, objective, white, illuminant, observer, white_preserved,
+           white_patch, white_RGB, white_XYZ, training_patches, training_digest, rgb_max, status, message,
+           condition_number, iterations, objective_value, has_recipe, recipe, has_linearisation, linearisation);
+  STRUCT(IccOptions, rgb_scale, grid_points, shaper_gamma, description, version);
 
   def<&evaluate_model>("evaluateModel");
   def<&compare_models>("compareModels");

@@ -8,22 +8,19 @@
 #include "tristim/absolute/sensitivities.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
+#include "declare.hpp"
 #include "types.hpp"
 
 using namespace tristim;
-using emscripten::value_object;
 using wasm::def;
 
 EMSCRIPTEN_BINDINGS(tristim_sensitivities) {
-  { using S = SensitivityOptions; value_object<S>("SensitivityOptions") FIELD(components) FIELD(smoothness) FIELD(exclude_cameras); }
-  { using S = SensitivityEstimate; value_object<S>("SensitivityEstimate") FIELD(ssf) FIELD(residual) FIELD(residual_rms)
-      FIELD(patches) FIELD(components) FIELD(basis_cameras) FIELD(areas) FIELD(clipped) FIELD(ids) FIELD(unpaired)
-      FIELD(paired_reflectances) FIELD(paired_RGB); }
-  { using S = SensitivityUncertainty; value_object<S>("SensitivityUncertainty") FIELD(ratio) FIELD(u_loo) FIELD(u_K) FIELD(u)
-      FIELD(coverage) FIELD(loo_bases) FIELD(components_tried) FIELD(nearest_camera) FIELD(nearest_distance)
-      FIELD(residual_limit) FIELD(distance_limit) FIELD(warnings) FIELD(message); }
-  { using S = SensitivityUncertaintyOptions; value_object<S>("SensitivityUncertaintyOptions") FIELD(coverage)
-      FIELD(residual_limit) FIELD(distance_limit); }
+  STRUCT(SensitivityOptions, components, smoothness, exclude_cameras);
+  STRUCT(SensitivityEstimate, ssf, residual, residual_rms, patches, components, basis_cameras, areas, clipped, ids,
+           unpaired, paired_reflectances, paired_RGB);
+  STRUCT(SensitivityUncertainty, ratio, u_loo, u_K, u, coverage, loo_bases, components_tried, nearest_camera,
+           nearest_distance, residual_limit, distance_limit, warnings, message);
+  STRUCT(SensitivityUncertaintyOptions, coverage, residual_limit, distance_limit);
 
   def<&camera_ssf>("cameraSensitivities");
   def<&read_ssf_csv>("readSensitivitiesCsv");
