@@ -18,6 +18,21 @@ function(tristim_find_src out pattern what)
   set(${out} ${found} PARENT_SCOPE)
 endfunction()
 
+# The sources a package's own build file lists: in ${dir}/${file}, the block matching `block_regex`,
+# the names in it matching `name_regex`, as paths under `dir`. Fewer than `min`: a fatal error
+# naming the file (its format changed), rather than a library missing half its sources.
+function(tristim_read_source_list out dir file block_regex name_regex min what)
+  file(READ ${dir}/${file} text)
+  string(REGEX MATCH "${block_regex}" block "${text}")
+  string(REGEX MATCHALL "${name_regex}" rel "${block}")
+  list(LENGTH rel n)
+  if(n LESS ${min})
+    message(FATAL_ERROR "could not read ${what}'s source list from ${dir}/${file}")
+  endif()
+  list(TRANSFORM rel PREPEND ${dir}/)
+  set(${out} ${rel} PARENT_SCOPE)
+endfunction()
+
 # LibRaw 0.20 as a static library `target` (compiled with the caller's directory-wide options,
 # e.g. the sanitizers of the fuzz build). LibRaw has no CMake build. Sources =
 # lib_libraw_a_SOURCES of Makefile.am (up to the next blank line); libraw_cxx.cpp and *_ph.cpp
@@ -26,14 +41,8 @@ endfunction()
 # thread-local state.
 function(tristim_add_libraw_from_source target)
   tristim_find_src(LIBRAW_DIR "libraw-0*" "LibRaw")
-  file(READ ${LIBRAW_DIR}/Makefile.am am)
-  string(REGEX MATCH "lib_libraw_a_SOURCES =[^\n]*(\n[^\n]+)*" block "${am}")
-  string(REGEX MATCHALL "src/[A-Za-z0-9_/]+\\.cpp" libraw_rel "${block}")
-  list(LENGTH libraw_rel n_libraw)
-  if(n_libraw LESS 60)
-    message(FATAL_ERROR "could not read LibRaw's source list from ${LIBRAW_DIR}/Makefile.am")
-  endif()
-  list(TRANSFORM libraw_rel PREPEND ${LIBRAW_DIR}/ OUTPUT_VARIABLE libraw_src)
+  tristim_read_source_list(libraw_src ${LIBRAW_DIR} Makefile.am "lib_libraw_a_SOURCES =[^\n]*(\n[^\n]+)*"
+                           "src/[A-Za-z0-9_/]+\\.cpp" 60 "LibRaw")
   add_library(${target} STATIC ${libraw_src})
   target_include_directories(${target} PUBLIC ${LIBRAW_DIR})
   if(EMSCRIPTEN OR TRISTIM_FUZZ)

@@ -4,6 +4,22 @@
 
 include(${CMAKE_SOURCE_DIR}/cmake/source_packages.cmake)  # tristim_find_src, LibRaw's source list
 
+# A static library of a package's C sources (its own warnings are not ours to fix), and, given
+# INTERFACE_NAME, the tristim_* target the core links (natively that one wraps Debian's package).
+function(tristim_wasm_library name)
+  cmake_parse_arguments(A "" "INTERFACE_NAME" "SOURCES;INCLUDES;LINKS" ${ARGN})
+  add_library(${name} STATIC ${A_SOURCES})
+  target_include_directories(${name} PUBLIC ${A_INCLUDES})
+  if(A_LINKS)
+    target_link_libraries(${name} PUBLIC ${A_LINKS})
+  endif()
+  target_compile_options(${name} PRIVATE -w -O3)
+  if(A_INTERFACE_NAME)
+    add_library(${A_INTERFACE_NAME} INTERFACE)
+    target_link_libraries(${A_INTERFACE_NAME} INTERFACE ${name})
+  endif()
+endfunction()
+
 # --- LibRaw 0.20 (cmake/source_packages.cmake); exceptions on: LibRaw reports errors by throwing.
 tristim_add_libraw_from_source(libraw_wasm)
 target_compile_options(libraw_wasm PRIVATE -O3 ${TRISTIM_WASM_EXCEPTIONS})
@@ -13,11 +29,7 @@ target_link_libraries(tristim_libraw INTERFACE libraw_wasm)
 # --- lcms2: every C file of src/.
 tristim_find_src(LCMS2_DIR "lcms2-2*" "lcms2")
 file(GLOB lcms2_src ${LCMS2_DIR}/src/*.c)
-add_library(lcms2_wasm STATIC ${lcms2_src})
-target_include_directories(lcms2_wasm PUBLIC ${LCMS2_DIR}/include)
-target_compile_options(lcms2_wasm PRIVATE -w -O3)
-add_library(tristim_lcms2 INTERFACE)
-target_link_libraries(tristim_lcms2 INTERFACE lcms2_wasm)
+tristim_wasm_library(lcms2_wasm INTERFACE_NAME tristim_lcms2 SOURCES ${lcms2_src} INCLUDES ${LCMS2_DIR}/include)
 
 # --- NLopt: cmake/nlopt.cmake, as natively (the same steps in both builds).
 include(${CMAKE_SOURCE_DIR}/cmake/nlopt.cmake)
@@ -34,28 +46,15 @@ set(zlib_src "")
 foreach(f adler32 compress crc32 deflate infback inffast inflate inftrees trees uncompr zutil)
   list(APPEND zlib_src ${ZLIB_DIR}/${f}.c)
 endforeach()
-add_library(zlib_wasm STATIC ${zlib_src})
-target_include_directories(zlib_wasm PUBLIC ${ZLIB_DIR})
-target_compile_options(zlib_wasm PRIVATE -w -O3)
+tristim_wasm_library(zlib_wasm SOURCES ${zlib_src} INCLUDES ${ZLIB_DIR})
 
 # --- libpng 1.6: libpng_sources of its CMakeLists.txt (no hardware-specific files in wasm); the
 # configuration header is the upstream default, scripts/pnglibconf.h.prebuilt.
 tristim_find_src(PNG_DIR "libpng1.6-1*" "libpng")
-file(READ ${PNG_DIR}/CMakeLists.txt png_cmake)
-string(REGEX MATCH "set\\(libpng_sources[^)]*\\)" png_block "${png_cmake}")
-string(REGEX MATCHALL "png[a-z]*\\.c" png_rel "${png_block}")
-list(LENGTH png_rel n_png)
-if(n_png LESS 15)
-  message(FATAL_ERROR "could not read libpng's source list from ${PNG_DIR}/CMakeLists.txt")
-endif()
-list(TRANSFORM png_rel PREPEND ${PNG_DIR}/ OUTPUT_VARIABLE png_src)
+tristim_read_source_list(png_src ${PNG_DIR} CMakeLists.txt "set\\(libpng_sources[^)]*\\)" "png[a-z]*\\.c" 15 "libpng")
 configure_file(${PNG_DIR}/scripts/pnglibconf.h.prebuilt ${CMAKE_BINARY_DIR}/third_party/png/pnglibconf.h COPYONLY)
-add_library(png_wasm STATIC ${png_src})
-target_include_directories(png_wasm PUBLIC ${PNG_DIR} ${CMAKE_BINARY_DIR}/third_party/png)
-target_link_libraries(png_wasm PUBLIC zlib_wasm)
-target_compile_options(png_wasm PRIVATE -w -O3)
-add_library(tristim_png INTERFACE)
-target_link_libraries(tristim_png INTERFACE png_wasm)
+tristim_wasm_library(png_wasm INTERFACE_NAME tristim_png SOURCES ${png_src}
+                     INCLUDES ${PNG_DIR} ${CMAKE_BINARY_DIR}/third_party/png LINKS zlib_wasm)
 
 # --- libjpeg-turbo 2.1: JPEG_SOURCES of its CMakeLists.txt plus arithmetic coding and the
 # no-SIMD stubs; the libjpeg 6b API, as Debian's libjpeg62-turbo. Configuration headers from its
@@ -82,22 +81,12 @@ function(tristim_configure_libjpeg dir out)
   configure_file(${dir}/jconfig.h.in ${out}/jconfig.h)
   configure_file(${dir}/jconfigint.h.in ${out}/jconfigint.h)
   configure_file(${dir}/jversion.h.in ${out}/jversion.h)
-  string(REGEX MATCH "set\\(JPEG_SOURCES [^)]*\\)" block "${jpeg_cmake}")
-  string(REGEX MATCHALL "j[a-z0-9]+\\.c" rel "${block}")
-  list(LENGTH rel n)
-  if(n LESS 40)
-    message(FATAL_ERROR "could not read libjpeg-turbo's source list from ${dir}/CMakeLists.txt")
-  endif()
-  list(APPEND rel jaricom.c jcarith.c jdarith.c jsimd_none.c)
-  list(TRANSFORM rel PREPEND ${dir}/)
-  set(jpeg_src ${rel} PARENT_SCOPE)
+  tristim_read_source_list(listed ${dir} CMakeLists.txt "set\\(JPEG_SOURCES [^)]*\\)" "j[a-z0-9]+\\.c" 40 "libjpeg-turbo")
+  set(jpeg_src ${listed} ${dir}/jaricom.c ${dir}/jcarith.c ${dir}/jdarith.c ${dir}/jsimd_none.c PARENT_SCOPE)
 endfunction()
 tristim_configure_libjpeg(${JPEG_DIR} ${CMAKE_BINARY_DIR}/third_party/jpeg)
-add_library(jpeg_wasm STATIC ${jpeg_src})
-target_include_directories(jpeg_wasm PUBLIC ${CMAKE_BINARY_DIR}/third_party/jpeg ${JPEG_DIR})
-target_compile_options(jpeg_wasm PRIVATE -w -O3)
-add_library(tristim_jpeg INTERFACE)
-target_link_libraries(tristim_jpeg INTERFACE jpeg_wasm)
+tristim_wasm_library(jpeg_wasm INTERFACE_NAME tristim_jpeg SOURCES ${jpeg_src}
+                     INCLUDES ${CMAKE_BINARY_DIR}/third_party/jpeg ${JPEG_DIR})
 
 # --- libtiff 4.5: the core of libtiff/ and the codecs above; tif_config.h and tiffconf.h from
 # its own CMake templates.
@@ -138,9 +127,5 @@ foreach(f aux close codec color compress dir dirinfo dirread dirwrite dumpmode e
           warning write zip)
   list(APPEND tiff_src ${TIFF_DIR}/libtiff/tif_${f}.c)
 endforeach()
-add_library(tiff_wasm STATIC ${tiff_src})
-target_include_directories(tiff_wasm PUBLIC ${CMAKE_BINARY_DIR}/third_party/tiff ${TIFF_DIR}/libtiff)
-target_link_libraries(tiff_wasm PUBLIC jpeg_wasm zlib_wasm)
-target_compile_options(tiff_wasm PRIVATE -w -O3)
-add_library(tristim_tiff INTERFACE)
-target_link_libraries(tristim_tiff INTERFACE tiff_wasm)
+tristim_wasm_library(tiff_wasm INTERFACE_NAME tristim_tiff SOURCES ${tiff_src}
+                     INCLUDES ${CMAKE_BINARY_DIR}/third_party/tiff ${TIFF_DIR}/libtiff LINKS jpeg_wasm zlib_wasm)
