@@ -34,11 +34,13 @@ struct Conv<RawImage> {
   static RawImage from(const val& v) { return Conv<const RawHandle*>::from(v)->image; }
 };
 
-/// f(the image with its dark/flat applied), without a copy when there is no calibration.
+/// f(the image with its calibration applied: dark, light-trap flare, flat, fall-off), without a
+/// copy when there is none. A light trap alone counts (Abed 2013 App. C step 1): `tristim apply
+/// --light-trap` subtracts it with no dark or flat frame either.
 template <class F>
 auto with_calibrated(const RawHandle& h, F f) {
   const auto& c = h.calibration;
-  return c.dark || c.flat || c.falloff ? f(apply_calibration(h.image, c)) : f(h.image);
+  return c.dark || c.flat || c.falloff || c.flare ? f(apply_calibration(h.image, c)) : f(h.image);
 }
 
 }  // namespace tristim::wasm

@@ -2,8 +2,7 @@
 // the corner editor (web/images/corners.js) dragged onto a region of the scene fill the typed
 // corners field; the applied XYZ equal `tristim apply … --light-trap <those corners>` to the bit;
 // typing corners moves the handles to exactly the typed numbers. The scene's flat (itself, radial)
-// is set too: a light trap alone is not applied by the page today (wasm/raw_handle.hpp's
-// with_calibrated calibrates only when a dark frame or flat is set; the flare alone is skipped).
+// is set too, so the trap is measured after a flat; a trap alone: apply_trap_only.test.mjs.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import { execFileSync } from 'node:child_process';
