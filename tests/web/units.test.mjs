@@ -1,4 +1,5 @@
-// Node unit tests of the page's pure functions (pairing, plot data, formats, display, forms).
+// Node unit tests of the page's pure functions (pairing, plot data, display, forms). The .cube and
+// ICC readers are the engine's: tests/wasm/formats.test.mjs.
 // (Chart layouts, the corner homography and crossed corners are the engine's: tests/wasm.)
 import test from 'node:test';
 import assert from 'node:assert/strict';
@@ -7,7 +8,6 @@ import { deSegments } from '../../web/plots/de_bars.js';
 import { xyFromXYZ, cssColours } from '../../web/plots/common.js';
 import { locusData } from '../../web/plots/xy.js';
 import { xyzScatterData } from '../../web/plots/xyz_scatter.js';
-import { readCube, readIccHeader } from '../../web/export/formats.js';
 import { renderXYZ } from '../../web/apply/render.js';
 import { defaultChoice, completeChoice } from '../../web/lib/options_form.js';
 
@@ -48,22 +48,6 @@ test('Y map: the white is at the top of the colour table, half the white in its 
   const r = renderXYZ(Float32Array.from([...d50, ...d50.map((v) => v / 2)]), 2, 1, { matrix, enc, lut, yMax: 100 });
   assert.deepEqual(Array.from(r.ymap.slice(0, 4)), [255, 255, 255, 255]);
   assert.ok(Math.abs(r.ymap[4] - 127.5) <= 0.5, `half white maps to the middle of the table (${r.ymap[4]})`);
-});
-
-test('readers of exports: .cube and ICC header', () => {
-  const cube = 'TITLE "t"\nLUT_3D_SIZE 2\n' + '0 0 0\n'.repeat(8);
-  assert.equal(readCube(cube).size, 2);
-  const shaped = 'LUT_1D_SIZE 3\nLUT_1D_INPUT_RANGE 0 1\nLUT_3D_SIZE 2\n' + '0 0 0\n'.repeat(3 + 8);
-  assert.deepEqual([readCube(shaped).size, readCube(shaped).shaperSize, readCube(shaped).entries], [2, 3, 8]);
-  assert.throws(() => readCube('LUT_3D_SIZE 2\n0 0 0\n'), (e) => e.code === 'PARSE_ERROR');
-  const icc = new Uint8Array(144);
-  new DataView(icc.buffer).setUint32(0, 144);
-  icc.set([0x61, 0x63, 0x73, 0x70], 36);
-  icc.set([...'scnrRGB XYZ '].map((c) => c.charCodeAt(0)), 12);
-  icc[8] = 4; icc[9] = 0x30;
-  const hd = readIccHeader(icc);
-  assert.equal(hd.version, '4.3'); assert.equal(hd.deviceClass, 'scnr'); assert.equal(hd.pcs, 'XYZ');
-  assert.throws(() => readIccHeader(new Uint8Array(10)), (e) => e.code === 'PARSE_ERROR');
 });
 
 test('options forms: a MethodChoice from an OptionSpec table, stored choices completed', () => {

@@ -1,5 +1,5 @@
 // Worker handlers of step 6: the engine's exports (ICC, .cube, DCP, ACES IDT, per-patch CSV), the
-// engine's DCP and CLF readers for a download read back, and the evaluation of a profile loaded back on the current
+// engine's DCP, CLF, .cube and ICC readers for a download read back, and the evaluation of a profile loaded back on the current
 // chart data.
 import { reply, displayOf } from '../lib/reply.js';
 
@@ -25,4 +25,7 @@ export const handlers = {
   idtChart: (T, { rgb, xyz, white, adaptation, rgbName, referenceName, illuminant }) =>
     reply(T.idtChart(rgb, xyz, white, adaptation, rgbName, referenceName, illuminant)),
   readClf: (T, { text }) => reply(T.readClf(text)),
+  // The engine's .cube and ICC header readers (tristim/profile/headers.hpp) for a file read back.
+  readCube: (T, { text, name }) => ({ result: T.readCubeHeader(text, name) }),
+  readIcc: (T, { bytes, name }) => ({ result: T.readIccHeader(bytes, name) }),
 };

@@ -3,7 +3,6 @@
 // evaluated on this chart).
 import { h, field, showError, clearError, download, select, setOptions } from '../lib/ui.js';
 import { options } from '../lib/catalog.js';
-import { readCube, readIccHeader } from './formats.js';
 
 export function mount(section, app) {
   const { engine } = app;
@@ -192,11 +191,11 @@ export function mount(section, app) {
       const ext = f.name.toLowerCase().split('.').pop();
       if (ext === 'json') await importProfile(f);
       else if (ext === 'cube') {
-        const c = readCube(await f.text());
-        imported.append(h('p', {}, `${f.name}: a ${c.size}×${c.size}×${c.size} 3D LUT${c.title ? ` “${c.title}”` : ''}, domain ${c.domainMin.join(' ')} … ${c.domainMax.join(' ')}.`));
+        const c = await engine.call('readCube', { text: await f.text(), name: f.name });
+        imported.append(h('p', {}, `${f.name}: a ${c.size}×${c.size}×${c.size} 3D LUT${c.shaper_size ? ` after a ${c.shaper_size}-row 1D shaper` : ''}${c.title ? ` “${c.title}”` : ''}, domain ${c.domain_min.join(' ')} … ${c.domain_max.join(' ')}.`));
       } else if (ext === 'icc' || ext === 'icm') {
-        const hd = readIccHeader(new Uint8Array(await f.arrayBuffer()));
-        imported.append(h('p', {}, `${f.name}: ICC v${hd.version} ${hd.deviceClass} profile, ${hd.colourSpace} → ${hd.pcs}, ${hd.size} bytes, tags ${hd.tags.join(' ')}.`));
+        const hd = await engine.call('readIcc', { bytes: new Uint8Array(await f.arrayBuffer()), name: f.name });
+        imported.append(h('p', {}, `${f.name}: ICC v${hd.version} ${hd.device_class} profile${hd.description ? ` “${hd.description}”` : ''}, ${hd.colour_space} → ${hd.pcs}, ${hd.size} bytes, tags ${hd.tags.join(' ')}.`));
       } else if (ext === 'dcp') {
         const bytes = new Uint8Array(await f.arrayBuffer());
         imported.append(h('p', {}, dcpText(f.name, bytes.length, await engine.call('readDcp', { bytes }))));
