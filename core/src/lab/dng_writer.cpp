@@ -6,24 +6,16 @@
 #include <cstring>
 
 #include "tristim/error.hpp"
+#include "../tiff_ifd.hpp"
 
 namespace tristim {
 
 namespace {
 
-struct Entry {
-  std::uint16_t tag, type;
-  std::uint32_t count;
-  std::vector<std::uint8_t> data;  // payload, little-endian
-};
+using Entry = tiff::Field;
+using tiff::put16;
+using tiff::put32;
 
-void put16(std::vector<std::uint8_t>& b, std::uint16_t v) {
-  b.push_back(static_cast<std::uint8_t>(v));
-  b.push_back(static_cast<std::uint8_t>(v >> 8));
-}
-void put32(std::vector<std::uint8_t>& b, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) b.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-}
 void set32(std::vector<std::uint8_t>& b, size_t at, std::uint32_t v) {
   for (int i = 0; i < 4; ++i) b[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
 }
@@ -32,12 +24,12 @@ enum : std::uint16_t { BYTE = 1, ASCII = 2, SHORT = 3, LONG = 4, RATIONAL = 5, S
 
 Entry shorts(std::uint16_t tag, std::vector<std::uint16_t> v) {
   Entry e{tag, SHORT, static_cast<std::uint32_t>(v.size()), {}};
-  for (auto x : v) put16(e.data, x);
+  for (auto x : v) put16(e.bytes, x);
   return e;
 }
 Entry longs(std::uint16_t tag, std::vector<std::uint32_t> v) {
   Entry e{tag, LONG, static_cast<std::uint32_t>(v.size()), {}};
-  for (auto x : v) put32(e.data, x);
+  for (auto x : v) put32(e.bytes, x);
   return e;
 }
 Entry bytes(std::uint16_t tag, std::vector<std::uint8_t> v) {
@@ -45,16 +37,16 @@ Entry bytes(std::uint16_t tag, std::vector<std::uint8_t> v) {
 }
 Entry ascii(std::uint16_t tag, const std::string& s) {
   Entry e{tag, ASCII, static_cast<std::uint32_t>(s.size() + 1), {}};
-  e.data.assign(s.begin(), s.end());
-  e.data.push_back(0);
+  e.bytes.assign(s.begin(), s.end());
+  e.bytes.push_back(0);
   return e;
 }
 Entry rationals(std::uint16_t tag, const double* v, size_t n, bool is_signed) {
   Entry e{tag, is_signed ? SRATIONAL : RATIONAL, static_cast<std::uint32_t>(n), {}};
   for (size_t i = 0; i < n; ++i) {
     const std::int32_t num = static_cast<std::int32_t>(std::lround(v[i] * 10000.0));
-    put32(e.data, static_cast<std::uint32_t>(num));
-    put32(e.data, 10000u);
+    put32(e.bytes, static_cast<std::uint32_t>(num));
+    put32(e.bytes, 10000u);
   }
   return e;
 }
@@ -64,11 +56,11 @@ Entry exact_rational(std::uint16_t tag, double v) {
   Entry e{tag, RATIONAL, 1, {}};
   const double inv = 1.0 / v;
   if (v < 1 && std::fabs(inv - std::round(inv)) < 1e-6 * inv) {
-    put32(e.data, 1u);
-    put32(e.data, static_cast<std::uint32_t>(std::lround(inv)));
+    put32(e.bytes, 1u);
+    put32(e.bytes, static_cast<std::uint32_t>(std::lround(inv)));
   } else {
-    put32(e.data, static_cast<std::uint32_t>(std::lround(v * 1e6)));
-    put32(e.data, 1000000u);
+    put32(e.bytes, static_cast<std::uint32_t>(std::lround(v * 1e6)));
+    put32(e.bytes, 1000000u);
   }
   return e;
 }
@@ -78,28 +70,11 @@ Entry exact_rational(std::uint16_t tag, double v) {
 void assemble(const std::vector<Entry>& e, std::vector<std::uint8_t>& out, size_t* strip_field, size_t* exif_field) {
   for (int b : {0x49, 0x49, 42, 0}) out.push_back(static_cast<std::uint8_t>(b));
   put32(out, 8);
-  const size_t ifd_size = 2 + e.size() * 12 + 4;
-  const size_t extra = 8 + ifd_size;  // where out-of-line payloads go
-  std::vector<std::uint8_t> payload;
-  put16(out, static_cast<std::uint16_t>(e.size()));
-  for (const auto& x : e) {
-    put16(out, x.tag);
-    put16(out, x.type);
-    put32(out, x.count);
-    if (x.tag == 273) *strip_field = out.size();
-    if (x.tag == 34665) *exif_field = out.size();
-    if (x.data.size() <= 4) {
-      std::vector<std::uint8_t> inl = x.data;
-      inl.resize(4, 0);
-      out.insert(out.end(), inl.begin(), inl.end());
-    } else {
-      put32(out, static_cast<std::uint32_t>(extra + payload.size()));
-      payload.insert(payload.end(), x.data.begin(), x.data.end());
-      if (payload.size() % 2) payload.push_back(0);
-    }
+  const std::vector<size_t> value_at = tiff::append_ifd(out, e, true, "DNG");
+  for (size_t i = 0; i < e.size(); ++i) {
+    if (e[i].tag == 273) *strip_field = value_at[i];
+    if (e[i].tag == 34665) *exif_field = value_at[i];
   }
-  put32(out, 0);  // no next IFD
-  out.insert(out.end(), payload.begin(), payload.end());
 }
 
 // 16-bit samples after the header, little-endian, at a 16-byte boundary; patches StripOffsets.

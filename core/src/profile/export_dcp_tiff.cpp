@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "export_dcp_internal.hpp"
+#include "../tiff_ifd.hpp"
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/error.hpp"
 #include "tristim/profile/dcp.hpp"
@@ -118,20 +119,9 @@ void dcp_internal::validate(const Dcp& d) {
 
 namespace {
 
-struct Field {
-  std::uint16_t tag, type;
-  std::uint32_t count;
-  std::vector<std::uint8_t> bytes;
-};
-
-void put16(std::vector<std::uint8_t>& b, std::uint32_t v) {
-  b.push_back(static_cast<std::uint8_t>(v));
-  b.push_back(static_cast<std::uint8_t>(v >> 8));
-}
-void put32(std::vector<std::uint8_t>& b, std::uint32_t v) {
-  put16(b, v & 0xffff);
-  put16(b, v >> 16);
-}
+using tiff::Field;
+using tiff::put16;
+using tiff::put32;
 
 Field ascii(std::uint16_t tag, const std::string& s) {
   Field f{tag, kAscii, static_cast<std::uint32_t>(s.size() + 1), {}};
@@ -214,28 +204,7 @@ std::vector<std::uint8_t> write_dcp(const Dcp& d) {
   // §2: values begin on a word boundary).
   std::vector<std::uint8_t> out = {'I', 'I', 'R', 'C'};
   put32(out, 8);
-  const std::size_t ifd_end = 8 + 2 + 12 * fields.size() + 4;
-  std::vector<std::uint8_t> data;
-  put16(out, static_cast<std::uint32_t>(fields.size()));
-  for (const Field& f : fields) {
-    put16(out, f.tag);
-    put16(out, f.type);
-    put32(out, f.count);
-    if (f.bytes.size() <= 4) {
-      std::vector<std::uint8_t> v = f.bytes;
-      v.resize(4, 0);
-      out.insert(out.end(), v.begin(), v.end());
-    } else {
-      if (data.size() % 2) data.push_back(0);
-      const std::size_t at = ifd_end + data.size();
-      if (at + f.bytes.size() > std::numeric_limits<std::uint32_t>::max())
-        throw Error(ErrorCode::ExportFailed, "DCP larger than 4 GB");
-      put32(out, static_cast<std::uint32_t>(at));
-      data.insert(data.end(), f.bytes.begin(), f.bytes.end());
-    }
-  }
-  put32(out, 0);  // no next IFD
-  out.insert(out.end(), data.begin(), data.end());
+  tiff::append_ifd(out, fields, false, "DCP");
   return out;
 }
 
