@@ -21,6 +21,9 @@ namespace tristim::cli {
 struct Args {
   std::vector<std::string> positional;
   std::map<std::string, std::vector<std::string>> options;  // repeated options keep every value
+  /// Every option (key, value) in command-line order: for options that belong to the one before
+  /// them (fit's per-image --dark/--flat after each --raw).
+  std::vector<std::pair<std::string, std::string>> in_order;
   bool has(const std::string& key) const { return options.count(key) > 0; }
   /// The option's last value; throws Error(InvalidArgument) if absent and no default given.
   std::string get(const std::string& key) const;

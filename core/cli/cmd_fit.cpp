@@ -30,9 +30,12 @@ const char* kFitUsage =
     "            [--bootstrap N [--seed 1] [--level 0.95]]\n"
     "tristim fit --recipe recipe.json (--rgb patches.csv | --raw chart.dng) [--xyz reference.csv]\n"
     "            [--out profile.json] [--csv patches_out.csv] [--recipe-out recipe.json]\n"
-    "tristim fit --recipe recipe.json --raw a.dng --raw b.dng [--xyz ra.csv --xyz rb.csv] [--duplicates once|each]\n"
+    "tristim fit --recipe recipe.json --raw a.dng [--dark d.dng ...] [--flat f.dng] --raw b.dng [...]\n"
+    "            [--xyz ra.csv --xyz rb.csv] [--duplicates once|each]\n"
     "            [--out profile.json] [--csv patches_out.csv] [--recipe-out recipe.json]\n"
     "            (a recipe with an \"images\" list: one --raw per image, in its order; docs/multi-image.md)\n"
+    "            --dark (repeatable, averaged) and --flat are the frames of the --raw before them (Abed 2013\n"
+    "            App. C steps 1-2), applied in the image's capture.dark_mode and flat/fall-off choice\n"
     "tristim fit --project p.tristim [--out profile.json]   (a project file: tristim share --project, the page's export)\n"
     "  Fits camera RGB -> XYZ and prints (or writes) the profile JSON with training and\n"
     "  leave-one-out metrics; the profile embeds the recipe it was made with.\n"
@@ -178,9 +181,44 @@ TrainingSet training_from_recipe(const Args& args, Recipe& recipe) {
   return training_set(recipe, d.labels, d.rgb, d.xyz);
 }
 
+/// The frame files of each --raw: every --dark (repeatable) and --flat belongs to the --raw before it
+/// (`--raw a.dng --dark a_d1.dng --dark a_d2.dng --raw b.dng --flat b_flat.dng`).
+struct FramePaths {
+  std::vector<std::string> darks, flats;
+};
+std::vector<FramePaths> frames_of_raws(const Args& args, size_t raws) {
+  std::vector<FramePaths> paths(raws);
+  size_t seen = 0;
+  for (const auto& [key, value] : args.in_order) {
+    if (key == "raw") ++seen;
+    if (key != "dark" && key != "flat") continue;
+    if (seen == 0)
+      throw Error(ErrorCode::InvalidArgument, "--" + key + " '" + value +
+                                                  "' comes before any --raw: give each image's frames after its --raw");
+    (key == "dark" ? paths[seen - 1].darks : paths[seen - 1].flats).push_back(value);
+  }
+  return paths;
+}
+
+/// The decoded frames of one image; a file that does not read or decode is named with its option.
+RecipeImageFrames load_frames(const FramePaths& paths) {
+  RecipeImageFrames frames;
+  const auto load = [](const std::string& option, const std::string& path) {
+    try {
+      return load_raw(path);
+    } catch (const Error& e) {
+      throw Error(e.code(), "--" + option + " '" + path + "': " + e.what());
+    }
+  };
+  for (const auto& d : paths.darks) frames.darks.push_back(load("dark", d));
+  for (const auto& f : paths.flats) frames.flat.push_back(load("flat", f));
+  return frames;
+}
+
 /// The training set of a recipe with an "images" list (issue 48): each --raw sampled with its image
-/// entry (recipe.images[k], which records the file's SHA-256 and the flare measured), paired with
-/// that entry's reference (its built-in chart, or the --xyz at the same position), and the union.
+/// entry (recipe.images[k], which records the file's SHA-256 and the flare measured) and the frames
+/// given after it, paired with that entry's reference (its built-in chart, or the --xyz at the same
+/// position), and the union.
 TrainingSet training_from_images(const Args& args, Recipe& recipe) {
   const std::vector<std::string> raws = args.all("raw"), xyzs = args.all("xyz");
   if (args.has("rgb")) throw Error(ErrorCode::InvalidArgument, "a recipe with images takes --raw (one per image), not --rgb");
@@ -191,6 +229,7 @@ TrainingSet training_from_images(const Args& args, Recipe& recipe) {
     throw Error(ErrorCode::InvalidArgument, "--xyz: give none (built-in references) or one per --raw, not " +
                                                 std::to_string(xyzs.size()));
   if (args.has("duplicates")) recipe.duplicates = args.get("duplicates");
+  const std::vector<FramePaths> frame_paths = frames_of_raws(args, raws.size());
   std::vector<ChartPart> parts;
   for (size_t k = 0; k < raws.size(); ++k) {
     RecipeImage& entry = recipe.images[k];
@@ -201,8 +240,14 @@ TrainingSet training_from_images(const Args& args, Recipe& recipe) {
     } catch (const Error& e) {
       throw Error(e.code(), named + e.what());
     }
+    RecipeImageFrames frames;
+    try {
+      frames = load_frames(frame_paths[k]);
+    } catch (const Error& e) {
+      throw Error(e.code(), named + e.what());
+    }
     const std::vector<ChartSample> samples =
-        sample_recipe_image(entry, k, reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+        sample_recipe_image(entry, k, reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), frames);
     const Recipe own = image_recipe(recipe, entry);
     try {
       if (entry.reference.chart == "file" && xyzs.empty())
@@ -250,8 +295,9 @@ int run_fit(const Args& args, std::ostream& out) {
   if (args.has("recipe")) {
     std::vector<std::string> known{"recipe", "rgb", "raw", "xyz", "ref-white", "out", "csv", "recipe-out", "duplicates"};
     for (const auto& b : bootstrap_option_names()) known.push_back(b);
-    args.allow_only(known);
     recipe = recipe_from_json(read_file(args.get("recipe")));
+    if (!recipe.images.empty()) known.insert(known.end(), {"dark", "flat"});  // per image: after its --raw
+    args.allow_only(known);
     if (args.has("duplicates") && recipe.images.empty())
       throw Error(ErrorCode::InvalidArgument, "--duplicates applies to a recipe with an \"images\" list");
     training = recipe.images.empty() ? training_from_recipe(args, recipe) : training_from_images(args, recipe);

@@ -163,6 +163,7 @@ int main(int argc, char** argv) {
           value = argv[++i];
         }
         args.options[key].push_back(value);
+        args.in_order.emplace_back(key, value);
       } else {
         args.positional.push_back(a);
       }
