@@ -8,7 +8,7 @@ import { h, field, select, showError, clearError, fileBytes, progressBar } from 
 import { CornerEditor } from './corners.js';
 import { patchTable } from './patch_table.js';
 
-/// Mounts the second image's panel in `parent`; returns {restore, resample, editor, input}.
+/// Mounts the second image's panel in `parent`; returns {restore, resample, input, forget, editor}.
 export function mountSecond(parent, app) {
   const { engine } = app;
   // The built-in charts the engine has a layout for (the layout and the reference are the chart's).
@@ -27,7 +27,15 @@ export function mountSecond(parent, app) {
   dupSel.dataset.role = 'duplicates';
   const remove = h('button', { type: 'button', hidden: true, onclick: () => forget() }, 'Remove the second image');
   const progress = progressBar('Decoding the second image');
-  const editor = new CornerEditor({ onChange: (c, final) => cornersChanged(c, final), grid: (layout, corners) => engine.call('grid', { layout, corners }), clipId: 'image-clip-2' });
+  // The corner editor exists while a second image does (the step's own editor stays the only one
+  // otherwise): made at its first decode, dropped by Remove.
+  let editor = null;
+  const editorBox = h('div', { class: 'second-editor' });
+  const newEditor = () => {
+    editor = new CornerEditor({ onChange: (c, final) => cornersChanged(c, final), grid: (layout, corners) => engine.call('grid', { layout, corners }), clipId: 'image-clip-2' });
+    editorBox.replaceChildren(editor.el);
+    return editor;
+  };
   const note = h('p', { class: 'detect-text', 'aria-live': 'polite' });
   const summary = h('p', { class: 'summary', 'aria-live': 'polite' });
   const tableBox = h('div', { class: 'table-box' });
@@ -37,7 +45,7 @@ export function mountSecond(parent, app) {
       field('Second chart image', input, 'Another photograph: the same chart elsewhere in the frame, or another chart (RAW, TIFF, PNG or JPEG)'), fileState, remove),
     field('Its chart (layout and reference)', chartSel, 'The reference is this chart under the illuminant and observer of step 1'),
     field('Patches of the same colour', dupSel)),
-    progress.el, h('div', { class: 'images-layout' }, h('div', {}, editor.el, note), h('div', {}, summary, tableBox)));
+    progress.el, h('div', { class: 'images-layout' }, h('div', {}, editorBox, note), h('div', {}, summary, tableBox)));
   parent.append(panel);
 
   const layout = () => ({ chart: chartSel.value });
@@ -63,7 +71,7 @@ export function mountSecond(parent, app) {
       const r = await engine.call('decode', { slot: 'chart2', bytes: new Uint8Array(file.bytes).slice().buffer });
       decodedGen = engine.generation;
       fileState.textContent = `${file.name} — ${r.width}×${r.height}`;
-      editor.setImage(r);
+      (editor ?? newEditor()).setImage(r);
       editor.setLayout(layout());
       remove.hidden = false;
       panel.dataset.state = 'decoded';
@@ -86,11 +94,12 @@ export function mountSecond(parent, app) {
     note.textContent = 'Looking for the chart…';
     try {
       const { candidates } = await engine.call('detect', { slot: 'chart2', layout: layout() });
+      if (!editor) return;   // removed meanwhile
       const c = candidates[0];
       editor.setCorners(c.corners);
       note.textContent = `Corners found automatically (confidence ${c.confidence.toFixed(2)}). Drag the handles to correct them.`;
     } catch (e) {
-      if (e.code === 'CANCELLED') return;
+      if (e.code === 'CANCELLED' || !editor) return;
       note.textContent = `No ${chartSel.selectedOptions[0]?.textContent ?? 'chart'} found (${e.message}): drag the four corners onto the chart's outer patch corners (A1 first).`;
       editor.reset();
       return;
@@ -132,7 +141,7 @@ export function mountSecond(parent, app) {
   }
 
   chartSel.addEventListener('change', async () => {
-    editor.setLayout(layout());
+    editor?.setLayout(layout());
     await store({ chart: chartSel.value });
     if (app.session['files.chart2']) await detect();
   });
@@ -146,7 +155,8 @@ export function mountSecond(parent, app) {
     input.value = '';
     fileState.textContent = summary.textContent = note.textContent = '';
     tableBox.replaceChildren();
-    editor.el.hidden = true;
+    editorBox.replaceChildren();
+    editor = null;
     remove.hidden = true;
     panel.dataset.state = 'empty';
     try { await engine.call('forget', { slot: 'chart2' }); } catch { /* the worker may have been restarted */ }
@@ -155,6 +165,7 @@ export function mountSecond(parent, app) {
 
   /// A stored second image (a reload): decoded and sampled at its stored corners.
   async function restore() {
+    if (!saved().chart) chartSel.value = firstChart();   // the session's layout is known by now
     const f = app.session['files.chart2'];
     if (!f) return;
     if (await decode(f)) {
@@ -162,7 +173,7 @@ export function mountSecond(parent, app) {
     }
   }
 
-  return { restore, resample, editor, input, forget };
+  return { restore, resample, input, forget, get editor() { return editor; } };
 }
 
 /// The recipe of a fit on the chart image(s) of step 2: `recipe` itself with one image, or with
