@@ -4,6 +4,7 @@
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import { execFileSync } from 'node:child_process';
+import { screenshot } from './harness.mjs';
 import { pageTest, CLI, DNG, artifact, filePath } from './journey.mjs';
 import { readPfm, samePixels, chooseScene, applyScene } from './apply_pfm.mjs';
 
@@ -16,6 +17,7 @@ pageTest('apply: a light trap alone equals tristim apply --light-trap, and diffe
   await page.waitForSelector('#step-apply .trap-draw:not([hidden])', { timeout: 120000 });
   await page.fill('#step-apply input[data-frame="light-trap"]', TRAP);
   const { profile } = await applyScene(page, /light trap: flare R /, 'apply-trap-only');
+  await screenshot(page, 'apply-trap-only');
 
   const cli = (name, extra) => {
     const out = artifact(name);
