@@ -14,6 +14,8 @@
 //                                layout, and a Classic or SG of 3-6 %; both must be reported)
 //                  [--dump]     (every candidate's corners and confidence per scene, one line each:
 //                                to compare two builds of the detector exactly, e.g. with diff)
+//                  [--no-finer] (DetectOptions::finer_pass false: the detector before issue 48's
+//                                finer pass, for before/after figures)
 //                  [--kinds all|k1,k2,…]  (issue 48's failure kinds instead, --count scenes each,
 //                                default 20, 1200 × 800 × --scale: found, orientation, corner error,
 //                                false positives and found after one click, per kind; chart_scene.hpp)
@@ -45,6 +47,17 @@ void dump(int scene, const std::vector<ChartCandidate>& cands) {
   }
 }
 
+// The candidates, or none when detection finds no chart (its reason in *why).
+std::vector<ChartCandidate> detect_or_none(const RawImage& image, const DetectOptions& options, std::string* why) {
+  try {
+    return detect_charts(image, options);
+  } catch (const Error& e) {
+    if (e.code() != ErrorCode::ChartNotFound) throw;
+    *why = e.what();
+  }
+  return {};
+}
+
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return NAN;
   std::sort(v.begin(), v.end());
@@ -74,7 +87,7 @@ void write_ppm(const std::string& path, const ChartScene& s) {
 // Two charts per scene (random_two_chart_scene): every chart must come out as a candidate of its
 // own, in the right orientation. Prints the rates per size and in all; returns the exit status.
 int run_pairs(int count, std::uint64_t seed, double scale, const std::vector<const RawImage*>& photos, bool verbose,
-              bool dumping) {
+              bool dumping, bool finer) {
   const char* larges[3] = {"cc24", "passport", "sg140"};
   const char* smalls[2] = {"sg140", "cc24"};
   const int widths[3] = {900, 1200, 1600};
@@ -91,15 +104,12 @@ int run_pairs(int count, std::uint64_t seed, double scale, const std::vector<con
     }
     ++n;
     DetectOptions options;
+    options.finer_pass = finer;
     options.charts = {large};
     if (small != large) options.charts.push_back(small);
-    std::vector<ChartCandidate> cands;
+    std::string why;
     const auto t0 = std::chrono::steady_clock::now();
-    try {
-      cands = detect_charts(scene.image, options);
-    } catch (const Error& e) {
-      if (e.code() != ErrorCode::ChartNotFound) throw;
-    }
+    const std::vector<ChartCandidate> cands = detect_or_none(scene.image, options, &why);
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     if (dumping) dump(i, cands);
     const ChartScene* truths[2] = {&scene.large, &scene.small};
@@ -151,7 +161,7 @@ int main(int argc, char** argv) {
   bool verbose = false;
   int only = -1;
   double scale = 1;
-  bool pairs = false, dumping = false, count_given = false;
+  bool pairs = false, dumping = false, count_given = false, finer = true;
   std::string kinds;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -165,8 +175,9 @@ int main(int argc, char** argv) {
     else if (a == "--scale" && i + 1 < argc) scale = std::atof(argv[++i]);
     else if (a == "--pairs") pairs = true;
     else if (a == "--dump") dumping = true;
+    else if (a == "--no-finer") finer = false;
     else {
-      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--source CHECKOUT] [--write DIR] [--verbose] [--only i] [--scale k] [--pairs] [--dump] [--kinds all|k1,k2,...]\n");
+      std::fprintf(stderr, "usage: detect_testset [--count 300] [--seed 1] [--source CHECKOUT] [--write DIR] [--verbose] [--only i] [--scale k] [--pairs] [--dump] [--kinds all|k1,k2,...] [--no-finer]\n");
       return 2;
     }
   }
@@ -183,7 +194,7 @@ int main(int argc, char** argv) {
   }
   std::vector<const RawImage*> photo_ptrs;
   for (const auto& p : photos) photo_ptrs.push_back(&p);
-  if (pairs) return run_pairs(count, seed, scale, photo_ptrs, verbose, dumping);
+  if (pairs) return run_pairs(count, seed, scale, photo_ptrs, verbose, dumping, finer);
   if (!kinds.empty()) {
     std::vector<std::string> list;
     for (size_t at = 0; kinds != "all" && at <= kinds.size();) {
@@ -194,7 +205,9 @@ int main(int argc, char** argv) {
     const int width = static_cast<int>(std::lround(1200 * scale));
     std::printf("tristim chart detection, issue 48's failure kinds: %d scenes each, %dx%d (seed %llu)\n",
                 count_given ? count : 20, width, width * 2 / 3, static_cast<unsigned long long>(seed));
-    print_failure_kinds(run_failure_kinds(list, count_given ? count : 20, seed, width, photo_ptrs, verbose));
+    DetectOptions base;
+    base.finer_pass = finer;
+    print_failure_kinds(run_failure_kinds(list, count_given ? count : 20, seed, width, photo_ptrs, verbose, base));
     return 0;
   }
   FILE* truth = nullptr;
@@ -223,14 +236,11 @@ int main(int argc, char** argv) {
     const double gap = chart_layout(layout).gap;
     DetectOptions options;
     options.charts = {chart};
-    std::vector<ChartCandidate> found;
+    options.finer_pass = finer;
+    std::string why;
     const auto t0 = std::chrono::steady_clock::now();
-    try {
-      found = detect_charts(scene.image, options);
-    } catch (const Error& e) {
-      if (e.code() != ErrorCode::ChartNotFound) throw;
-      if (verbose) std::printf("  %3d %-8s not found: %s\n", i, chart.c_str(), e.what());
-    }
+    const std::vector<ChartCandidate> found = detect_or_none(scene.image, options, &why);
+    if (verbose && found.empty()) std::printf("  %3d %-8s not found: %s\n", i, chart.c_str(), why.c_str());
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (dumping) dump(i, found);
     const DetectionScore s = score_detection(scene, found.empty() ? nullptr : &found[0].corners,

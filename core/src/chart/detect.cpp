@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
+#include <exception>
 #include <iterator>
 
 #include "../detmath.hpp"
@@ -103,11 +104,9 @@ std::string grid_size(const GridGroup& g) {
 }
 
 std::string fixed(double v, int digits) {
-  std::ostringstream o;
-  o.setf(std::ios::fixed);
-  o.precision(digits);
-  o << v;
-  return o.str();
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", digits, v);
+  return text;
 }
 
 Point centre_of(const std::array<double, 8>& k) {
@@ -121,6 +120,7 @@ Point centre_of(const std::array<double, 8>& k) {
 struct Frames {
   const RawImage& image;
   const RawImage* stored = nullptr;
+  FlatRegionOptions flat = {};
 };
 
 // One pass of the pipeline on a working image of longer side <= working_side; its progress is
@@ -140,7 +140,7 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
   RawImage stored_scaled;
   if (frames.stored && factor > 1) stored_scaled = working_image(*frames.stored, working_side);
   const RawImage& segmented = !frames.stored ? work : factor > 1 ? stored_scaled : *frames.stored;
-  const RegionLabels regions = flat_regions(segmented);
+  const RegionLabels regions = flat_regions(segmented, frames.flat);
   progress("segment", 0.2);
   const std::vector<PatchQuad> quads = patch_quads(segmented, regions);
   progress("group", 0.3);
@@ -298,8 +298,7 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
       if (std::getenv("TRISTIM_DETECT_DEBUG"))
         std::fprintf(stderr, "CANDIDATE %s residual %.4f score %.4f alternative %.4f runner-up %.4f/%.4f supported %.2f conf %.3f\n",
                      t.id.c_str(), c.residual, final_score, alternative_score, runner_up, chosen->residual, c.supported, c.confidence);
-      const double dx = corners[2] - corners[0], dy = corners[3] - corners[1];
-      c.angle = std::fmod(detmath::atan2(dy, dx) * 180 / kPi + 360.0, 360.0);
+      c.angle = chart_angle(corners);
       c.orientation = static_cast<int>(std::lround(c.angle / 90.0)) % 4 * 90;
       if (c.confidence < options.min_confidence)
         note("a grid of " + grid_size(group) + " found but its colours do not fit the " + t.id + " chart (residual " +
@@ -337,7 +336,60 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
 
 namespace {
 
-// Both passes over the whole of `image`.
+// The image enlarged twice in each direction (bilinear; pixel (x, y) of the result covers
+// [x/2, (x+1)/2) of the input, so coordinates scale by exactly 2), saturation bits copied.
+RawImage upsampled(const RawImage& image) {
+  RawImage out;
+  out.meta = image.meta;
+  out.width = 2 * image.width;
+  out.height = 2 * image.height;
+  out.rgb.resize(size_t(out.width) * out.height * 3);
+  out.saturated.assign(size_t(out.width) * out.height, 0);
+  const bool sat = image.saturated.size() == size_t(image.width) * image.height;
+  for (int y = 0; y < out.height; ++y) {
+    // centre (y + 0.5) / 2 - 0.5 in the input: y0 + 0.25 or 0.75 between rows y0, y0 + 1
+    const int y0 = std::max(0, (y - 1) / 2), y1 = std::min(image.height - 1, (y + 1) / 2);
+    const float wy = y0 == y1 ? 0.f : (y % 2 ? 0.25f : 0.75f);
+    for (int x = 0; x < out.width; ++x) {
+      const int x0 = std::max(0, (x - 1) / 2), x1 = std::min(image.width - 1, (x + 1) / 2);
+      const float wx = x0 == x1 ? 0.f : (x % 2 ? 0.25f : 0.75f);
+      float* o = &out.rgb[(size_t(y) * out.width + x) * 3];
+      for (int c = 0; c < 3; ++c)
+        o[c] = (1 - wy) * ((1 - wx) * image.at(x0, y0, c) + wx * image.at(x1, y0, c)) +
+               wy * ((1 - wx) * image.at(x0, y1, c) + wx * image.at(x1, y1, c));
+      if (sat) out.saturated[size_t(y) * out.width + x] = image.saturated[size_t(y / 2) * image.width + x / 2];
+    }
+  }
+  return out;
+}
+
+// Only the candidates a second look may keep: confident, with a lattice holding at least half of
+// the layout's patches (a chart whose patches are small in the coarse image may show a few cells,
+// and a layout extrapolated from those can sit one cell off).
+// With `edges_suffice`, a lattice of fewer cells will do when the refined grid's edges were seen
+// around most patches (a chart of small patches in the enlarged image: the flat-region test keeps
+// a few of them, the refinement on the image finds the rest).
+void keep_sure(std::vector<ChartCandidate>& out, bool edges_suffice = false) {
+  out.erase(std::remove_if(out.begin(), out.end(),
+                           [&](const ChartCandidate& c) {
+                             const bool lattice = c.coverage >= 0.5 || (edges_suffice && c.supported >= 0.7);
+                             return !lattice || c.confidence < 0.9;
+                           }),
+            out.end());
+}
+
+// A pass that finds nothing: its candidates are none.
+template <class Pass>
+std::vector<ChartCandidate> or_none(Pass pass) {
+  try {
+    return pass();
+  } catch (const Error& e) {
+    if (e.code() != ErrorCode::ChartNotFound) throw;
+  }
+  return {};
+}
+
+// The passes over the whole of `image`.
 std::vector<ChartCandidate> detect_image(const Frames& frames, const std::vector<Target>& wanted,
                                          const DetectOptions& options) {
   const RawImage& image = frames.image;
@@ -347,27 +399,45 @@ std::vector<ChartCandidate> detect_image(const Frames& frames, const std::vector
   // texture, noise or glare at the finer scale can still be flat there (scene 114 of the test
   // set). Either way the corners are refined on the full image. (A coarse pass first was faster
   // but, once it had found a chart, never looked for one too small for it.)
+  // Last, when the first pass worked at full resolution and found nothing (DetectOptions::
+  // finer_pass): a pass on the image enlarged twice. The patches of a chart of a few % of the
+  // frame, ~10 px wide, lose most of their pixels to the flat-region test's smoothing and erosion
+  // (a Digital SG of 2.4 % of 1200 × 800: 16 of its 140 patches kept as quads, no grid). A larger
+  // image is left to the help: a seed's windows are searched at full resolution, then enlarged.
   constexpr int kCoarseSide = 1000;
   const int side = std::max(image.width, image.height), fine = std::max(1, options.working_side);
-  const bool coarse = (side + kCoarseSide - 1) / kCoarseSide > (side + fine - 1) / fine;
-  std::vector<ChartCandidate> out;
+  const int fine_factor = (side + fine - 1) / fine;
+  const bool coarse = (side + kCoarseSide - 1) / kCoarseSide > fine_factor;
+  const bool finer = options.finer_pass && fine_factor == 1;
+  const double first_share = coarse && finer ? 0.4 : coarse ? 0.7 : finer ? 0.5 : 1.0;
+  std::exception_ptr first_miss;
   try {
-    out = detect_pass(frames, wanted, options, fine, 0.0, coarse ? 0.7 : 1.0);
+    return detect_pass(frames, wanted, options, fine, 0.0, first_share);
   } catch (const Error& e) {
-    if (e.code() != ErrorCode::ChartNotFound || !coarse) throw;
-    try {
-      out = detect_pass(frames, wanted, options, kCoarseSide, 0.7, 1.0);
-    } catch (const Error& e2) {
-      if (e2.code() != ErrorCode::ChartNotFound) throw;
-    }
-    // Only confident candidates whose lattice holds at least half of the layout's patches: a
-    // chart whose patches are small in the coarse image may show a few cells, and a layout
-    // extrapolated from those can sit one cell off.
-    out.erase(std::remove_if(out.begin(), out.end(),
-                             [](const ChartCandidate& c) { return c.coverage < 0.5 || c.confidence < 0.9; }),
-              out.end());
-    if (out.empty()) throw;  // the finer pass's reason
+    if (e.code() != ErrorCode::ChartNotFound || (!coarse && !finer)) throw;
+    first_miss = std::current_exception();  // the reason reported when every pass misses
   }
+  std::vector<ChartCandidate> out;
+  if (coarse) {
+    const double to = finer ? 0.6 : 1.0;
+    out = or_none([&] { return detect_pass(frames, wanted, options, kCoarseSide, first_share, to); });
+    keep_sure(out);
+  }
+  if (out.empty() && finer) {
+    const RawImage large = upsampled(image);
+    RawImage stored_large;
+    if (frames.stored) stored_large = upsampled(*frames.stored);
+    Frames enlarged{large, frames.stored ? &stored_large : nullptr};
+    // Bilinear enlargement correlates neighbouring pixels' noise: estimate_noise's second
+    // difference then sees a quarter of its σ (0.31 against 1.22 σ), so the threshold is raised
+    // by as much.
+    enlarged.flat.noise_multiple = 4 * FlatRegionOptions{}.noise_multiple;
+    out = or_none([&] { return detect_pass(enlarged, wanted, options, 2 * side, coarse ? 0.6 : first_share, 1.0); });
+    for (auto& c : out)
+      for (double& v : c.corners) v /= 2;
+    keep_sure(out, true);
+  }
+  if (out.empty()) std::rethrow_exception(first_miss);
   return out;
 }
 
@@ -524,6 +594,13 @@ std::vector<ChartCandidate> detect_charts(const RawImage& stored_or_linear, cons
   }
   if (options.progress) options.progress("done", 1.0);
   return out;
+}
+
+double chart_angle(const std::array<double, 8>& corners) {
+  const double dx = corners[2] - corners[0], dy = corners[3] - corners[1];
+  const double a = std::fmod(detmath::atan2(dy, dx) * 180 / kPi + 360.0, 360.0);
+  // A hair anticlockwise of 0 (e.g. 359.9996) is 0, not "360.00" in the two decimals printed.
+  return a >= 360.0 - 0.005 ? 0.0 : a;
 }
 
 std::string candidates_to_json(const std::vector<ChartCandidate>& candidates) {

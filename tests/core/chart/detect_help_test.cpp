@@ -26,17 +26,9 @@ std::string why_of(const RawImage& image, const DetectOptions& o = {}) {
 SceneSpec tiny_chart() {
   // A Classic of 0.2 % of a 2400 × 1600 frame (patches ~14 px across, ~7 px in the 1600 px
   // working image): too small for the automatic passes.
-  SceneSpec s;
-  s.chart = "cc24";
-  s.width = 2400;
-  s.height = 1600;
-  s.area_fraction = 0.002;
-  s.tilt_deg = 10;
-  s.rotation_deg = 8;
-  s.cx = 0.7;
-  s.cy = 0.35;
-  s.blur_sigma = 0.8;
-  s.seed = 4801;
+  SceneSpec s = plain_scene_spec("cc24", 8, 4801);
+  s.width = 2400, s.height = 1600, s.area_fraction = 0.002;
+  s.tilt_deg = 10, s.tilt_axis_deg = 0, s.cx = 0.7, s.cy = 0.35;
   return s;
 }
 

@@ -189,13 +189,8 @@ TEST_CASE("a large image with a large and a small chart: both are candidates", "
   // progress never goes back.
   SceneSpec large = plain_scene_spec("cc24", 23, 51), small = plain_scene_spec("sg140", 200, 52);
   for (SceneSpec* s : {&large, &small}) s->width = 2400, s->height = 1600;
-  large.area_fraction = 0.2;
-  large.cx = 0.33;
-  small.area_fraction = 0.04;
-  small.gap = 0.2;
-  small.cx = 0.82;
-  small.cy = 0.3;
-  small.tilt_deg = 25;
+  large.area_fraction = 0.2, large.cx = 0.33;
+  small.area_fraction = 0.04, small.gap = 0.2, small.cx = 0.82, small.cy = 0.3, small.tilt_deg = 25;
   const TwoChartScene scene = render_two_chart_scene(large, small);
   REQUIRE(scene.ok);
   DetectOptions o;
@@ -227,6 +222,40 @@ TEST_CASE("without a hint the layout is recognised — a mirrored chart is refus
   // A mirror image has the colours in an order no real chart shows: not a chart.
   const ChartScene cc = render_chart_scene(plain_scene_spec("cc24", 10, 22));
   CHECK(code_of([&] { detect_charts(mirrored(cc.image)); }) == ErrorCode::ChartNotFound);
+}
+
+TEST_CASE("a small Digital SG (~10 px patches) is found by the finer pass, not without it", "[detect]") {
+  // 2.5 % of a 1200 × 800 frame: the pass at full resolution keeps too few patches as quads to
+  // form a lattice; the pass on the image enlarged twice finds the chart (issue 48).
+  SceneSpec spec = plain_scene_spec("sg140", 12, 4808);
+  spec.width = 1200, spec.height = 800, spec.area_fraction = 0.025, spec.gap = 0.2, spec.cx = 0.4, spec.cy = 0.6;
+  const ChartScene scene = render_chart_scene(spec);
+  DetectOptions o;
+  o.charts = {"sg140"};
+  o.finer_pass = false;
+  CHECK(code_of([&] { detect_charts(scene.image, o); }) == ErrorCode::ChartNotFound);
+  o.finer_pass = true;
+  const auto found = detect_charts(scene.image, o);
+  REQUIRE(!found.empty());
+  CHECK(found[0].chart == "sg140");
+  CHECK(found[0].orientation == 0);
+  CHECK(max_corner_error(found[0].corners, scene.corners) < 0.5);
+}
+
+TEST_CASE("angle: a chart a hair anticlockwise of upright is at 0, not 360", "[detect]") {
+  // A1 -> A6 rising by 2e-6 px over 600 px: atan2 gives 359.9999998°, printed "360.00" before.
+  const std::array<double, 8> hair = {100, 100, 700, 100 - 2e-6, 700, 500, 100, 500};
+  CHECK(chart_angle(hair) == 0.0);
+  ChartCandidate c;
+  c.corners = hair;
+  c.angle = chart_angle(hair);
+  const std::string json = candidates_to_json({c});
+  CHECK(json.find("\"angle\":0.00,") != std::string::npos);
+  CHECK(json.find("360") == std::string::npos);
+  // Away from the wrap nothing changes: 0.01° anticlockwise is 359.99, a quarter turn 90.
+  const double t = std::tan(0.01 * 3.14159265358979323846 / 180);
+  CHECK(chart_angle({100, 100, 700, 100 - 600 * t, 700, 500, 100, 500}) == Approx(359.99).margin(1e-9));
+  CHECK(chart_angle({700, 100, 700, 700, 100, 700, 100, 100}) == Approx(90.0).margin(1e-9));
 }
 
 TEST_CASE("bad input: no chart, and two charts", "[detect][bad]") {

@@ -113,13 +113,9 @@ TEST_CASE("sampling recovers planted patch values through a perspective homograp
     LayoutOptions lo;
     lo.chart = chart;
     if (chart == "custom") {
-      lo.rows = 3;
-      lo.columns = 5;
-      lo.margin_left = 0.05;
-      lo.margin_top = 0.1;
-      lo.margin_right = 0.05;
-      lo.margin_bottom = 0.1;
-      lo.gap = 0.2;
+      lo.rows = 3, lo.columns = 5, lo.gap = 0.2;
+      lo.margin_left = lo.margin_right = 0.05;
+      lo.margin_top = lo.margin_bottom = 0.1;
     }
     const std::array<double, 8> corners = {40.2, 30.7, 560.1, 52.3, 540.4, 380.9, 25.5, 350.2};
     std::map<std::string, std::array<double, 3>> planted;

@@ -67,6 +67,12 @@ struct DetectOptions {
   /// Find charts partly outside the frame (ChartCandidate::missing names the patches outside);
   /// false refuses them, as the detector did before (benchmarks compare the two).
   bool cut_charts = true;
+  /// When the passes above find nothing in an image no larger than working_side (worked on at
+  /// full resolution), one more on the image enlarged twice (bilinear), keeping only confident
+  /// candidates whose lattice holds half of the layout or whose refined grid's edges were seen
+  /// around 70 % of the patches: charts of a few % of the frame with ~10 px patches. false: as
+  /// the detector did before (benchmarks compare the two).
+  bool finer_pass = true;
   /// Candidates below this confidence are dropped.
   double min_confidence = 0.5;
   int max_candidates = 8;
@@ -116,6 +122,10 @@ struct ChartCandidate {
 /// id), InvalidArgument (empty image, bad custom geometry or a custom reference of the wrong
 /// length, a seed outside the image, a box holding no 16×16 px of it, both a seed and a box).
 std::vector<ChartCandidate> detect_charts(const RawImage& image, const DetectOptions& options = {});
+
+/// ChartCandidate::angle of corners in the layout convention: the direction A1 -> A6 (corner 1 ->
+/// corner 2), degrees clockwise from +x (y down), in [0, 360); within 0.005° below 360 it is 0.
+double chart_angle(const std::array<double, 8>& corners);
 
 /// Candidates as JSON `{"candidates": [{"chart", "corners": [[x,y]×4], "confidence",
 /// "orientation", "angle", "orientation_resolved", "residual", "gap", "edge_rms", "patches":
