@@ -201,14 +201,38 @@ export function mount(section, app) {
 
   /// The rendered DNG through the normal journey: the reference and the layout follow the chart
   /// and illuminant it was rendered with, then the Images step decodes, detects and samples it.
+  /// A generated grid (Munsell chips, uploaded reflectances) is no chart detection knows: the
+  /// reference is the truth's XYZ per cell (R1C1…: the rendered reflectances under the render's
+  /// illuminant, CIE 1931 2°), the layout goes into the Images step's custom-grid boxes (rows ×
+  /// columns, no gap) and the corners are the render's, so the journey samples it with no hand work.
   async function openInJourney(name) {
     if (!last) return;
     const { truth } = last;
-    choose(app.views.reference?.controls?.chartSel, truth.chart);
-    choose(app.views.reference?.controls?.illumSel, truth.illuminant);
-    choose(document.querySelector('#step-images select[data-role="layout"]'), truth.chart);
+    const file = new File([last.dng], name, { type: formatOf(last.format).type });
+    const ref = app.views.reference;
+    choose(ref?.controls?.illumSel, truth.illuminant);
+    const images = document.getElementById('step-images');
+    const layoutSel = images.querySelector('select[data-role="layout"]');
+    if (!truth.layout) {
+      choose(ref?.controls?.chartSel, truth.chart);
+      choose(layoutSel, truth.chart);
+      app.goto('images', { focus: true });
+      await app.views.images.setFile('chart', file);
+      return;
+    }
+    const { rows, columns } = truth.layout;
+    const cells = new Set(truth.patches.map((p) => p.cell));
+    const empty = Array.from({ length: rows * columns }, (_, k) => `R${Math.floor(k / columns) + 1}C${(k % columns) + 1}`).filter((c) => !cells.has(c));
+    const csv = ['id,X,Y,Z', ...truth.patches.map((p) => [p.cell, ...p.XYZ.map((v) => v.toPrecision(17))].join(','))].join('\n');
+    await ref.useFile({ name: name.replace(/\.\w+$/, '-reference.csv'), text: csv });
+    for (const [k, v] of [['rows', rows], ['columns', columns], ['gap', 0]]) images.querySelector(`input[data-layout="${k}"]`).value = v;
+    layoutSel.value = 'custom';
+    layoutSel.dispatchEvent(new Event('change'));
     app.goto('images', { focus: true });
-    await app.views.images.setFile('chart', new File([last.dng], name, { type: formatOf(last.format).type }));
+    await app.views.images.setFile('chart', file, { corners: truth.corners,
+      note: `Layout and corners from the render: a custom ${rows} × ${columns} grid, no gap, corners ${truth.corners.join(', ')} `
+        + `(tristim sample ${truth.sample_args}); the reference (step 1) is the render's XYZ of each cell.`
+        + (empty.length ? ` Cells ${empty.join(', ')} hold no chip (the background) and have no reference: the fit refuses them.` : '') });
   }
 
   renderBtn.addEventListener('click', render);
