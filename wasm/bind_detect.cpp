@@ -1,5 +1,6 @@
-// Declarations: automatic chart detection (issue 12) on a decoded image (the RawImage handle, its
-// dark/flat applied). detectCharts(raw, options?: DetectOptions, onProgress?: (stage, fraction))
+// Declarations: automatic chart detection (issue 12) on a decoded image (the RawImage handle as
+// decoded: its dark/flat/light trap are not applied, as `tristim sample` and `tristim detect` detect
+// on the decoded file, so the page's corners equal the CLI's). detectCharts(raw, options?: DetectOptions, onProgress?: (stage, fraction))
 // -> ChartCandidate[], best first; CHART_NOT_FOUND when there is none. Corners are in the
 // convention sampleChart takes (A1's outer corner first, clockwise; measurement-image pixels).
 #include "tristim/chart/detect.hpp"
@@ -34,7 +35,7 @@ namespace {
 std::vector<ChartCandidate> detect(const RawHandle* h, DetectOptions options, const ProgressCallback& progress) {
   if (!wasm::absent(progress.fn))
     options.progress = [&](const std::string& stage, double fraction) { progress.fn(val(stage), val(fraction)); };
-  return wasm::with_calibrated(*h, [&](const RawImage& image) { return detect_charts(image, options); });
+  return detect_charts(h->image, options);
 }
 
 }  // namespace
