@@ -240,6 +240,12 @@ LabRender render_lab_chart(const LabRenderOptions& o) {
   flat.values = {std::vector<double>(refl.wavelengths.size(), 1.0)};
   const Vec3 w = simulate_camera_RGB(ssf, flat, illum)[0];
   const std::vector<Vec3> xyz = reflectances_to_XYZ(refl, illum);
+  // The board's reflectance is flat kBoard (as drawn below: kBoard × the white's response), so its
+  // XYZ is that of the flat spectrum under the same light; a generated grid's empty cells carry it.
+  SpectralData board_refl = flat;
+  board_refl.names = {"board"};
+  board_refl.values = {std::vector<double>(refl.wavelengths.size(), kBoard)};
+  const Vec3 board_xyz = reflectances_to_XYZ(board_refl, illum)[0];
 
   LayoutOptions lo;
   lo.chart = o.chart;
@@ -272,7 +278,7 @@ LabRender render_lab_chart(const LabRenderOptions& o) {
 
   const std::array<double, 3> board = scaled(out.white, kBoard), background = scaled(out.white, kBackground);
   // Per layout cell: its response in DN (u = e·s·ρ) and the truth; a generated grid's cells past
-  // the last reflectance show the board.
+  // the last reflectance show the board and are in the truth as board patches (id = the cell's).
   std::vector<std::array<double, 3>> patch_dn;
   for (size_t ci = 0; ci < layout.patches.size(); ++ci) {
     const PatchCell& cell = layout.patches[ci];
@@ -281,20 +287,18 @@ LabRender render_lab_chart(const LabRenderOptions& o) {
       const auto it = std::find(refl.names.begin(), refl.names.end(), normalise_patch_id(cell.id));
       if (it == refl.names.end()) throw Error(ErrorCode::Internal, "lab render: no reflectance for patch " + cell.id);
       k = static_cast<size_t>(it - refl.names.begin());
-    } else if (ci >= refl.names.size()) {
-      patch_dn.push_back(board);
-      continue;
     }
     LabPatchTruth t;
-    t.id = generated ? refl.names[k] : cell.id;
+    t.board = generated && ci >= refl.names.size();
+    t.id = t.board ? cell.id : generated ? refl.names[k] : cell.id;
     if (generated) t.cell = cell.id;
     std::array<double, 3> u{};
     for (int c = 0; c < 3; ++c) {
       const size_t ci = static_cast<size_t>(c);
-      u[ci] = e * s * response[k][c];
+      u[ci] = t.board ? board[ci] : e * s * response[k][c];
       t.linear[ci] = u[ci] * 1.0 + flare[ci];  // the pixel formula with f(r) = 1
       t.rgb[ci] = std::min(std::max(std::round(t.linear[ci]), -static_cast<double>(o.black)), s);
-      t.XYZ[ci] = xyz[k][c];
+      t.XYZ[ci] = t.board ? board_xyz[c] : xyz[k][c];
     }
     patch_dn.push_back(u);
     out.patches.push_back(t);
@@ -411,6 +415,7 @@ json::Value lab_render_json(const LabRender& r, double full_scale) {
     json::Value q = fields::object({{"id", p.id}, {"rgb", arr(p.rgb.data(), 3)}, {"linear", arr(p.linear.data(), 3)},
                                     {"XYZ", arr(p.XYZ.data(), 3)}});
     if (generated) q.set("cell", p.cell);
+    if (p.board) q.set("board", true);
     if (full_scale > 0) {
       std::array<double, 3> stored{};
       for (size_t c = 0; c < 3; ++c) stored[c] = std::round(full_scale * lab_encode(o, p.rgb[c], r.saturation));

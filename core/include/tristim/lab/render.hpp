@@ -71,6 +71,7 @@ struct LabPatchTruth {
   std::array<double, 3> rgb{};      ///< DN above black as sampling recovers it (see header)
   std::array<double, 3> linear{};   ///< the same before rounding and clipping
   std::array<double, 3> XYZ{};      ///< reference: instrument reflectance, CIE 1931 2°, Y_white = 100
+  bool board = false;               ///< a generated grid's cell past the last reflectance: the board (flat ρ = 0.03)
 };
 
 struct LabRender {
@@ -111,7 +112,8 @@ double lab_encode(const LabRenderOptions& options, double dn, double saturation)
 
 /// The truth as JSON: camera, chart, illuminant, sizes, corners, saturation, white, and per patch
 /// {id, rgb, linear, XYZ}; a generated grid adds "layout" {chart "custom", rows, columns},
-/// "sample_args" (the `tristim sample` options that sample it) and per patch "cell"; with `full_scale` > 0 (an image through the OECF) also the OECF and
+/// "sample_args" (the `tristim sample` options that sample it) and per patch "cell" (every cell of the
+/// grid: an empty one as a patch of the board, id = its cell, "board": true); with `full_scale` > 0 (an image through the OECF) also the OECF and
 /// per patch `stored`: round(full_scale · encode(rgb)), what sampling the image recovers (noise off).
 json::Value lab_render_json(const LabRender& render, double full_scale = 0);
 
