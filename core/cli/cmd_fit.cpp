@@ -1,5 +1,7 @@
 // CLI: `tristim fit` — a profile from a recipe (given, or made from the flags) and its inputs.
+#include <algorithm>
 #include <array>
+#include <map>
 #include <iostream>
 
 #include "bootstrap_args.hpp"
@@ -53,8 +55,9 @@ const char* kFitUsage =
     "  reference: the 3x4 without its offset, scaled by mu from that white; mu is printed and written\n"
     "  to the profile as \"corrected_3x3\": {\"mu\": ...}.\n"
     "  --bootstrap N [--seed 1] [--level 0.95]: N resamples over the patches (and over each patch's pixels\n"
-    "  when --rgb has sample's R_std,G_std,B_std,n columns): \"ci\": {\"level\",\"lo\",\"hi\"} next to the\n"
-    "  training and leave-one-out mean dE00, and \"bootstrap\": each coefficient's interval, their covariance.";
+    "  when --rgb has sample's R_std,G_std,B_std,n columns, or a --raw is sampled here): \"ci\":\n"
+    "  {\"level\",\"lo\",\"hi\"} next to the training and leave-one-out mean dE00, and \"bootstrap\": each\n"
+    "  coefficient's interval, their covariance.";
 
 /// A recipe from the flags of the classic form (every stage but characterisation and surface at its
 /// default). `chart`: the built-in chart --xyz names ("" for a file).
@@ -134,7 +137,12 @@ PatchData classic_pairs(const Args& args, const std::string& chart, const Method
 
 /// The training set of a recipe; a TIFF/PNG/JPEG given with --raw also sets the recipe's capture
 /// full scale (255 / 65535) when it has none, so its linearisation reads x = stored / full scale.
-TrainingSet training_from_recipe(const Args& args, Recipe& recipe) {
+/// Each sampled patch's pixel spread and count by patch key, when fit samples a RAW itself (what
+/// `tristim sample`'s R_std, G_std, B_std and n columns carry for --rgb): the bootstrap resamples
+/// the pixels too.
+using PixelStats = std::map<std::string, std::pair<Vec3, double>>;
+
+TrainingSet training_from_recipe(const Args& args, Recipe& recipe, PixelStats& pixels) {
   if (args.has("raw") == args.has("rgb"))
     throw Error(ErrorCode::InvalidArgument, "fit --recipe takes one of --rgb patches.csv or --raw chart image");
   const bool builtin = recipe.reference.chart != "file";
@@ -163,6 +171,8 @@ TrainingSet training_from_recipe(const Args& args, Recipe& recipe) {
       cal = with_light_trap(cal, trap);
     }
     const ChartSample sample = sample_chart(image, recipe.sampling.layout, c, so, &cal);
+    for (const PatchSample& q : sample.patches)
+      pixels[normalise_patch_id(q.id)] = {Vec3(q.std[0], q.std[1], q.std[2]), static_cast<double>(q.n)};
     if (builtin && !args.has("xyz")) return training_set(recipe, sample, recipe_reference(recipe));
     const std::string xyz_path = args.get("xyz");
     const PatchTable t = read_patch_file(read_file(xyz_path), xyz_path);
@@ -273,11 +283,21 @@ TrainingSet training_from_images(const Args& args, Recipe& recipe) {
 /// its profile JSON `p`: "ci" next to the training and leave-one-out mean CIEDE2000 in "metrics",
 /// and a "bootstrap" object with each coefficient's interval, their covariance and each patch's
 /// predicted-XYZ covariance.
-void add_bootstrap(const Args& args, const Characterisation& c, const TrainingSet& training, json::Value& p) {
+void add_bootstrap(const Args& args, const Characterisation& c, const TrainingSet& training, const PixelStats& pixels,
+                   json::Value& p) {
   int white_index = -1;
   const FitOptions options = recipe_fit_options(c.recipe, training.ids, c.linear_RGB, c.reference_XYZ, white_index);
   const bool linear = c.linearisation.choice.method == "identity";
   BootstrapOptions b = bootstrap_options(args, "fit", args.has("rgb") ? args.get("rgb") : "", training.ids, linear);
+  const bool sampled_here = linear && b.pixel_count.empty() && !pixels.empty() &&
+                            std::all_of(training.ids.begin(), training.ids.end(), [&](const std::string& i) { return pixels.count(i) > 0; });
+  if (sampled_here) {  // --raw: the spread of the pixels this run sampled
+    b.pixel_std.resize(static_cast<Eigen::Index>(training.ids.size()), 3);
+    for (size_t i = 0; i < training.ids.size(); ++i) {
+      b.pixel_std.row(static_cast<Eigen::Index>(i)) = pixels.at(training.ids[i]).first.transpose();
+      b.pixel_count.push_back(pixels.at(training.ids[i]).second);
+    }
+  }
   if (c.evaluation.has_loo) b.loo_dE00 = c.evaluation.loo.patches.dE00;
   const BootstrapResult r = bootstrap_fit(c.recipe.characterisation.model, c.linear_RGB, c.reference_XYZ, options, b);
   add_bootstrap_to_profile(p, r, c.profile.model);
@@ -292,6 +312,7 @@ int run_fit(const Args& args, std::ostream& out) {
   if (args.has("project")) return run_fit_project(args, out);  // a .tristim project (cmd_share.cpp)
   TrainingSet training;
   Recipe recipe;
+  PixelStats pixels;  // filled when a single --raw is sampled here
   if (args.has("recipe")) {
     std::vector<std::string> known{"recipe", "rgb", "raw", "xyz", "ref-white", "out", "csv", "recipe-out", "duplicates"};
     for (const auto& b : bootstrap_option_names()) known.push_back(b);
@@ -300,7 +321,7 @@ int run_fit(const Args& args, std::ostream& out) {
     args.allow_only(known);
     if (args.has("duplicates") && recipe.images.empty())
       throw Error(ErrorCode::InvalidArgument, "--duplicates applies to a recipe with an \"images\" list");
-    training = recipe.images.empty() ? training_from_recipe(args, recipe) : training_from_images(args, recipe);
+    training = recipe.images.empty() ? training_from_recipe(args, recipe, pixels) : training_from_images(args, recipe);
   } else {
     std::vector<std::string> known{"rgb", "xyz", "model", "objective", "white", "lab-white", "ref-white", "out", "csv",
                                    "psm-max-iterations", "psm-threshold", "de-algorithm", "de-xtol", "de-ftol",
@@ -330,7 +351,7 @@ int run_fit(const Args& args, std::ostream& out) {
       p.set("corrected_3x3", k);
       std::cerr << "tristim fit: corrected 3x3, white scaling mu = " << fmt(ev.fit.mu, 6) << " (Abed 2013 eq 27)\n";
     }
-    if (args.has("bootstrap")) add_bootstrap(args, c, training, p);
+    if (args.has("bootstrap")) add_bootstrap(args, c, training, pixels, p);
     text = p.dump(2) + "\n";
   }
   if (args.has("recipe-out")) {

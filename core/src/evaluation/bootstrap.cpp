@@ -226,8 +226,8 @@ BootstrapResult bootstrap_fit(const std::string& model_id, const PatchMatrix& rg
 MethodInfo bootstrap_option_table() {
   return {
       "bootstrap", "Uncertainty (bootstrap)",
-      "Efron's pairs bootstrap over the patches (percentile intervals; coefficients widened by the HC1 factor, "
-      "MacKinnon & White 1985)",
+      "Efron's pairs bootstrap over the patches and, where each patch's pixel spread is known, over its pixels "
+      "(percentile intervals; coefficients and predicted colours widened by the HC1 factor, MacKinnon & White 1985)",
       {{"resamples", "integer", "Resamples", 1000, "", 1, 100000, {}, "number of refits on patches drawn with replacement"},
        {"seed", "integer", "Seed", 1, "", 0, 9007199254740992.0, {}, "the random stream's seed: the same seed gives the same intervals"},
        {"level", "number", "Level", 0.95, "", 0, 1, {}, "confidence level of the intervals and ellipses, strictly between 0 and 1"}}};

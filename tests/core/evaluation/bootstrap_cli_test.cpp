@@ -134,4 +134,20 @@ TEST_CASE("cli: fit --model corrected-3x3 --surface reports mu", "[characterisat
   CHECK(run_shell(cli + " fit --rgb " + d + "patches.csv --xyz " + d + "reference.csv --model corrected-3x3 2>&1", false)
             .find("INVALID_ARGUMENT") != std::string::npos);
 }
+
+TEST_CASE("cli: fit --recipe --raw --bootstrap resamples the pixels it sampled", "[evaluation][bootstrap][cli]") {
+  const Dir t;
+  const std::string cli = TRISTIM_CLI, d = t.d, src = TRISTIM_SOURCE_DIR;
+  const std::string recipe = src + "/examples/recipes/passport-rootpoly2-psm.json";
+  // the recipe's corners sample the example DNG: its patches' pixel spread goes into the resampling
+  const json::Value raw = json::parse(run_shell(cli + " fit --recipe " + recipe + " --raw " + src +
+                                                "/examples/web/passport.dng --bootstrap 40 --seed 2 2>/dev/null"));
+  CHECK(raw.at("bootstrap").at("resampling").as_string() == "patches+pixels");
+  // the same patches from a table without the spread columns: over the patches only
+  run_shell("cut -d, -f1-4 " + d + "patches.csv > " + d + "means.csv");
+  const json::Value means = json::parse(run_shell(cli + " fit --recipe " + recipe + " --rgb " + d +
+                                                  "means.csv --bootstrap 40 --seed 2 2>/dev/null"));
+  CHECK(means.at("bootstrap").at("resampling").as_string() == "patches");
+  CHECK(raw.at("bootstrap").at("covariance").dump() != means.at("bootstrap").at("covariance").dump());
+}
 #endif
