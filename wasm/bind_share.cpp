@@ -1,5 +1,6 @@
 // Declarations: share links and project files (tristim/share/link.hpp). The page's Share button
-// (shareSample -> the payload text, shareLink -> the link; shareAbsolute for an absolute recipe of
+// (shareSample -> the payload text, shareLink -> the link; shareTraining for a recipe with several
+// chart images, on the union of their training sets (fitTraining's); shareAbsolute for an absolute recipe of
 // per-patch rows), opening a link (reproduceLink ->
 // Reproduction; with the source image at hand reproduceLinkImage samples it again), project files
 // (projectFile -> Uint8Array, openProject), the SHA-256 of bytes, and version 2's preset deflate
@@ -12,6 +13,14 @@ using namespace tristim;
 using emscripten::value_object;
 using wasm::def;
 
+namespace {
+/// shareTraining(recipe, training, sources): the payload of characterise(recipe, training) — for a
+/// fit on several chart images, `training` is trainingUnion's (as the fit handler's fitTraining).
+std::string share_training_payload(const Recipe& recipe, const TrainingSet& training, const std::vector<ShareSource>& sources) {
+  return encode_share_payload(share_payload(characterise(recipe, training), training, sources));
+}
+}  // namespace
+
 EMSCRIPTEN_BINDINGS(tristim_share) {
   { using S = ShareSource; value_object<S>("ShareSource") FIELD(name) FIELD(sha256); }
   { using S = ShareResults; value_object<S>("ShareResults") FIELD(text) FIELD(digest); }
@@ -22,6 +31,7 @@ EMSCRIPTEN_BINDINGS(tristim_share) {
   { using S = ProjectContents; value_object<S>("ProjectContents") FIELD(payload) FIELD(images) FIELD(session); }
 
   def<&share_sample_payload>("shareSample");
+  def<&share_training_payload>("shareTraining");
   def<&share_absolute_payload>("shareAbsolute");
   def<&share_link>("shareLink");
   def<&share_link_limit>("shareLinkLimit");

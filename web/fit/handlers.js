@@ -4,8 +4,9 @@
 // cancel message is taken between two chunks).
 import { reply, displayOf, coded } from '../lib/reply.js';
 
-/// The union of the training sets of a recipe's images (`charts`: their samples and references).
-function unionOf(T, recipe, charts) {
+/// The union of the training sets of a recipe's images (`charts`: their samples and references);
+/// the Share step's link of such a fit is made on it too (web/share/handlers.js).
+export function unionOf(T, recipe, charts) {
   if (charts?.length !== recipe.images.length) throw coded(`the recipe lists ${recipe.images.length} images but ${charts?.length ?? 0} samples were given`, 'INVALID_ARGUMENT');
   return T.trainingUnion(recipe, recipe.images.map((entry, k) => {
     const own = T.imageRecipe(recipe, entry);

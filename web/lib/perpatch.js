@@ -16,6 +16,7 @@ export function perPatch(result, reference) {
   const disp = result.fit.display;
   const white = result.white;
   const refIndex = new Map(reference?.ids.map((id, i) => [id, i]) ?? []);
+  const refRow = referenceRow(result.recipe, refIndex);
   const refColour = reference ? cssColours(reference.sRGB) : [];
   const estColour = cssColours(disp.estSRGB);
   const num = (a, i) => (a && a[i] != null ? a[i] : NaN);
@@ -31,7 +32,7 @@ export function perPatch(result, reference) {
       X: ref[0], Y: ref[1], Z: ref[2], Xe: est[0], Ye: est[1], Ze: est[2],
       L, a, b, Le, ae, be,
       dE: num(patches.dE00, i), dL: num(patches.dL, i), dC: num(patches.dC, i), dH: num(patches.dH, i),
-      fill: refColour[refIndex.get(id)] ?? '#999', fillEst: estColour[i] ?? '#999',
+      fill: refColour[refRow(id)] ?? '#999', fillEst: estColour[i] ?? '#999',
     };
   });
   for (const r of rows) {
@@ -40,6 +41,20 @@ export function perPatch(result, reference) {
     r.x = r.X / sx; r.y = r.Y / sx; r.xe = r.Xe / se; r.ye = r.Ye / se;
   }
   return { rows, n, white };
+}
+
+/// The row of `reference` (the first image's) that a training id names. A fit on several chart
+/// images (docs/multi-image.md) has ids "k:A1" (or "1+2:A1", one colour shot twice): the k-th
+/// image's chart's A1, which is the reference's A1 when that image has the first image's chart
+/// (another shot of it); another chart's patches have no reference colour here (undefined: grey).
+function referenceRow(recipe, refIndex) {
+  const images = recipe?.images ?? [];
+  if (!images.length) return (id) => refIndex.get(id);
+  const first = images[0].reference.chart;
+  return (id) => {
+    const m = /^(\d+)(?:\+\d+)*:(.*)$/.exec(id);
+    return m && images[m[1] - 1]?.reference.chart === first ? refIndex.get(m[2]) : undefined;
+  };
 }
 
 /// Hover text for a patch row.

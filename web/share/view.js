@@ -7,15 +7,28 @@
 // text, never as HTML.
 import { h, field, showError, clearError, download, fileBytes } from '../lib/ui.js';
 import { encodeSession, decodeSession, resultRows, linkOffer } from './project.js';
+import { chartsOf } from '../images/second.js';
 
 export function mount(section, app) {
   const { engine } = app;
   const selected = () => (app.session.results ?? []).find((r) => r.key === app.session.selected) ?? app.session.results?.[0];
-  const fitInputs = () => {
+  const fitInputs = (recipe) => {
     const { source, settings, data_digest, ...reference } = app.derived.reference ?? {};
     const { layout, homography, patches } = app.derived.sample ?? {};
     if (!app.derived.reference || !patches) throw Object.assign(new Error('no chart sample yet: set the reference and sample the chart first'), { code: 'NO_PROFILE' });
-    return { reference, sample: { layout, homography, patches } };
+    const sample = { layout, homography, patches };
+    return { reference, sample, charts: several(recipe) ? chartsOf(app, recipe, sample, reference) : undefined };
+  };
+  // A fit on several chart images (the recipe's `images`): the link is made on the union of their
+  // patches, so the second image must still be sampled.
+  const several = (recipe) => {
+    if (!recipe.images?.length) return false;
+    if (!app.derived.sample2?.patches) throw Object.assign(new Error('this profile was fitted on two chart images: load and sample the second image in step 2 again'), { code: 'NO_PROFILE' });
+    return true;
+  };
+  const fileOf = (key) => {
+    const file = app.session[key];
+    return file?.bytes ? { name: file.name, bytes: new Uint8Array(file.bytes).slice() } : null;
   };
 
   // --- make a link
@@ -28,11 +41,10 @@ export function mount(section, app) {
     const r = selected();
     try {
       if (!r) throw Object.assign(new Error('no profile yet: fit one in step 3'), { code: 'NO_PROFILE' });
-      const file = app.session['files.chart'];
-      const image = file?.bytes ? { name: file.name, bytes: new Uint8Array(file.bytes).slice() } : null;
+      const images = [fileOf('files.chart'), ...(r.recipe.images?.length ? [fileOf('files.chart2')] : [])];
       makeNote.textContent = 'Making the link (the fit runs again in the worker)…';
       const [{ link }, limit] = await Promise.all([
-        engine.call('shareLink', { recipe: r.recipe, ...fitInputs(), image, base: location.href.split('#')[0] }),
+        engine.call('shareLink', { recipe: r.recipe, ...fitInputs(r.recipe), images, base: location.href.split('#')[0] }),
         engine.call('shareLimit')]);
       const offer = linkOffer(link, limit, r.label ?? r.recipe.characterisation.model);
       linkOut.value = offer.link;
@@ -95,12 +107,16 @@ export function mount(section, app) {
         h('th', { scope: 'row' }, differs ? `${n} ≠` : n), h('td', {}, a || '(absent)'), h('td', {}, b || '(absent)'));
     });
     const sources = (payload.sources ?? []).map((s) => h('li', {}, `${s.name} — SHA-256 ${s.sha256}`));
-    imageField.hidden = !(payload.kind === 'relative' && sources.length);
+    // A fit on several chart images: the link's patches are their union (ids "k:A1"); one source
+    // image cannot be sampled again for it.
+    const charts = (payload.recipe?.images ?? []).map((e, k) => h('li', {}, `${k + 1}: ${e.name}`));
+    imageField.hidden = !(payload.kind === 'relative' && sources.length && !charts.length);
     verdictBox.replaceChildren(
       h('h3', { id: 'share-verdict-title', dataset: { verdict: r.verdict } }, title),
       h('p', { class: 'summary' }, `Made with tristim ${r.expected_version}; recomputed with tristim ${r.actual_version}. `,
         `Digest of the link's results: ${r.expected.digest}; here: ${r.actual.digest}.`),
       sources.length ? h('div', {}, h('p', {}, 'Source images (not in the link):'), h('ul', {}, sources)) : null,
+      charts.length ? h('div', { class: 'share-charts' }, h('p', {}, `Fitted on the union of ${charts.length} chart images' patches:`), h('ol', {}, charts)) : null,
       h('table', { class: 'share-results' },
         h('thead', {}, h('tr', {}, h('th', { scope: 'col' }, 'result'), h('th', { scope: 'col' }, 'in the link'), h('th', { scope: 'col' }, 'recomputed here'))),
         h('tbody', {}, rows)),
@@ -126,7 +142,7 @@ export function mount(section, app) {
       const r = selected();
       if (!r) throw Object.assign(new Error('no profile yet: fit one in step 3'), { code: 'NO_PROFILE' });
       const { json, images } = encodeSession(app.session);
-      const { bytes } = await engine.call('projectExport', { recipe: r.recipe, ...fitInputs(), images, session: json });
+      const { bytes } = await engine.call('projectExport', { recipe: r.recipe, ...fitInputs(r.recipe), images, session: json });
       download('session.tristim', bytes, 'application/octet-stream');
       projectNote.textContent = `Project file: ${bytes.length} bytes (recipe, patch data, reference, ${images.length} image(s) and the page's settings). tristim reproduce session.tristim checks it from the command line.`;
     } catch (e) { showError(exportBtn, e, 'Project'); }

@@ -1,0 +1,60 @@
+// The Share link of a fit on two chart images (issue 48, docs/multi-image.md): the link carries the
+// union of both charts' patches (ids "k:A1", the union's reference XYZ inline) and a recipe listing
+// both images; a fresh browser opening it recomputes the same profile — coefficients equal to the
+// bit — and shows the two images. The Results swatches of such a fit show the reference colours
+// ("k:A1" is the k-th image's chart's A1), not grey.
+import assert from 'node:assert/strict';
+import { openBrowser, screenshot } from './harness.mjs';
+import { pageTest, step, upload, fileBuffer, fitMatrix3x3, waitReady, DNG } from './journey.mjs';
+
+const PANEL = '#step-images fieldset.second-chart';
+const VERDICT = '#share-verdict-title[data-verdict]';
+
+pageTest('two chart images: the link reproduces the two-image profile to the bit; swatches in colour', { timeout: 300000 }, async ({ page }) => {
+  // As tests/web/several_charts.test.mjs: the example's DNG again as the second image.
+  await step(page, 'images');
+  await upload(page, `${PANEL} input[data-slot="chart2"]`, 'second.dng', fileBuffer(DNG));
+  await page.waitForFunction((sel) => document.querySelector(sel)?.dataset.state === 'sampled', PANEL, { timeout: 60000 });
+  await page.selectOption(`${PANEL} select[data-role="duplicates"]`, 'each');
+  await fitMatrix3x3(page);
+  const made = await page.evaluate(() => {
+    const t = window.tristim, r = t.session.results.find((x) => x.key === t.session.selected);
+    return { profile: JSON.parse(r.fit.profile), ids: Array.from(r.ids) };
+  });
+  assert.ok(made.ids.some((id) => id.startsWith('2:')), 'the fit holds the second image\'s patches');
+
+  // Results: every swatch has its reference colour (none of the grey of an unknown id).
+  await step(page, 'results');
+  const grey = await page.evaluate(async () => {
+    const { perPatch } = await import('/lib/perpatch.js');
+    const t = window.tristim, r = t.session.results.find((x) => x.key === t.session.selected);
+    return perPatch(r, t.derived.reference).rows.filter((row) => row.fill === '#999').map((row) => row.id);
+  });
+  assert.deepEqual(grey, [], 'no grey reference swatch');
+
+  await step(page, 'share');
+  await page.click('#share-make');
+  await page.waitForFunction(() => document.getElementById('share-link').value.includes('#tristim='), null, { timeout: 120000 });
+  const link = await page.inputValue('#share-link');
+
+  const b = await openBrowser();
+  try {
+    const fresh = b.page;
+    await fresh.goto(link.replace(/^http:\/\/127\.0\.0\.1:\d+/, b.origin));
+    await waitReady(fresh, 120000);
+    await fresh.waitForSelector(VERDICT, { timeout: 120000 });
+    assert.equal(await fresh.getAttribute(VERDICT, 'data-verdict'), 'reproduced');
+    assert.deepEqual(await fresh.$$eval('#share-verdict .share-charts li', (li) => li.map((x) => x.textContent)), ['1: passport.dng', '2: second.dng']);
+    const again = await fresh.evaluate(async (text) => {
+      const r = await window.tristim.engine.call('openLink', { text });
+      return { profile: JSON.parse(r.profile), payload: JSON.parse(r.payload) };
+    }, link);
+    assert.deepEqual(again.payload.recipe.images.map((e) => e.name), ['passport.dng', 'second.dng'], 'the link\'s recipe lists both images');
+    assert.equal(again.payload.patches.ids.length, made.ids.length, 'the union\'s patches');
+    assert.ok(again.payload.patches.XYZ?.length === 3 * made.ids.length, 'the union\'s reference XYZ inline');
+    assert.deepEqual(again.payload.sources.map((s) => s.name), ['passport.dng', 'second.dng']);
+    assert.deepEqual(again.profile.model.coefficients, made.profile.model.coefficients, 'the two-image coefficients, to the bit');
+    await screenshot(fresh, 'share-several-charts');
+    assert.deepEqual(b.problems, []);
+  } finally { await b.close(); }
+});
