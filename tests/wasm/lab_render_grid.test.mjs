@@ -61,7 +61,8 @@ test('lab render with uploaded reflectances: the page\'s truth is the CLI\'s --r
       illuminant_spd: T.illuminantSpectrum('A') }, T.readReflectanceFile(text, 'mine.csv'), 'dng');
     assert.equal(out.truth + '\n', native.truth);
     const truth = JSON.parse(out.truth);
-    assert.deepEqual(truth.patches.map((p) => p.id), rows.map((r) => r[0]));
+    assert.deepEqual(truth.patches.map((p) => p.id), [...rows.map((r) => r[0]), 'R2C4']);  // the empty cell: the board
+    assert.deepEqual(truth.patches.map((p) => p.board === true), [false, false, false, false, false, false, false, true]);
     assert.deepEqual([truth.layout.rows, truth.layout.columns], [2, 4]);
     assert.ok(sampledBack(T, out.dng, truth) <= 1e-6);
   } finally { fs.rmSync(dir, { recursive: true, force: true }); }

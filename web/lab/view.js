@@ -178,7 +178,7 @@ export function mount(section, app) {
     truthBtn.addEventListener('click', () => download(name.replace(/\.\w+$/, '.json'), JSON.stringify(truth, null, 1), 'application/json'));
     const stored = truth.patches[0]?.stored !== undefined;
     const rows = truth.patches.map((p) => h('tr', {},
-      h('th', { scope: 'row', title: p.cell ?? '' }, p.id), ...p.rgb.map((v) => h('td', { class: 'num' }, String(v))),
+      h('th', { scope: 'row', title: p.cell ?? '' }, p.board ? `${p.id} (board)` : p.id), ...p.rgb.map((v) => h('td', { class: 'num' }, String(v))),
       ...p.XYZ.map((v) => h('td', { class: 'num' }, fmt(v, 2))),
       ...(stored ? p.stored.map((v) => h('td', { class: 'num' }, String(v))) : [])));
     const what = f.value === 'dng'
@@ -191,7 +191,8 @@ export function mount(section, app) {
         + `the white diffuser's G at ${fmt(truth.white[1], 0)} DN. The table is the truth: the camera RGB (DN above black) that sampling the patches `
         + 'recovers exactly when noise and fall-off are off, and the reference XYZ of the same patches.'
         + (truth.layout ? ` A chart of your own is drawn as a ${truth.layout.rows} × ${truth.layout.columns} grid that detection does not `
-          + `know: sample it with tristim sample <file> ${truth.sample_args} (cells R1C1… in the patches\' order).` : '')),
+          + `know: sample it with tristim sample <file> ${truth.sample_args} (cells R1C1… in the patches\' order; cells past the last `
+          + 'patch show the board and are in the table by their cell).' : '')),
       h('p', { class: 'actions' }, openBtn, ' ', saveBtn, ' ', truthBtn),
       h('div', { class: 'table-scroll' }, h('table', { class: 'data', 'data-lab': 'truth' },
         h('thead', {}, h('tr', {}, ...['patch', 'R', 'G', 'B', 'X', 'Y', 'Z', ...(stored ? ['stored R', 'stored G', 'stored B'] : [])]
@@ -221,8 +222,7 @@ export function mount(section, app) {
       return;
     }
     const { rows, columns } = truth.layout;
-    const cells = new Set(truth.patches.map((p) => p.cell));
-    const empty = Array.from({ length: rows * columns }, (_, k) => `R${Math.floor(k / columns) + 1}C${(k % columns) + 1}`).filter((c) => !cells.has(c));
+    const board = truth.patches.filter((p) => p.board).map((p) => p.cell);
     const csv = ['id,X,Y,Z', ...truth.patches.map((p) => [p.cell, ...p.XYZ.map((v) => v.toPrecision(17))].join(','))].join('\n');
     await ref.useFile({ name: name.replace(/\.\w+$/, '-reference.csv'), text: csv });
     for (const [k, v] of [['rows', rows], ['columns', columns], ['gap', 0]]) images.querySelector(`input[data-layout="${k}"]`).value = v;
@@ -232,7 +232,8 @@ export function mount(section, app) {
     await app.views.images.setFile('chart', file, { corners: truth.corners,
       note: `Layout and corners from the render: a custom ${rows} × ${columns} grid, no gap, corners ${truth.corners.join(', ')} `
         + `(tristim sample ${truth.sample_args}); the reference (step 1) is the render's XYZ of each cell.`
-        + (empty.length ? ` Cells ${empty.join(', ')} hold no chip (the background) and have no reference: the fit refuses them.` : '') });
+        + (board.length ? ` Cell${board.length > 1 ? 's' : ''} ${board.join(', ')} hold${board.length > 1 ? '' : 's'} no chip: `
+          + 'the chart\'s board, in the reference and the fit like any patch.' : '') });
   }
 
   renderBtn.addEventListener('click', render);
