@@ -34,7 +34,7 @@ pageTest('lab render: an uploaded SPD is the illuminant picker\'s choice; Munsel
   await page.click(`${S} [data-action="lab-render"]`);
   await page.waitForFunction(() => window.tristim.derived.labTruth?.layout, null, { timeout: 60000 });
   let truth = await page.evaluate(() => window.tristim.derived.labTruth);
-  assert.deepEqual(truth.patches.map((p) => p.id), chips);
+  assert.deepEqual(truth.patches.filter((p) => !p.board).map((p) => p.id), chips);  // then the grid's empty cells: the board
   assert.deepEqual([truth.layout.rows, truth.layout.columns], [2, 3]);  // columns ⌈√(1.5·4)⌉
   const line = await page.textContent(`${S} [data-lab="render-cli"]`);
   assert.match(line, /--chart "munsell:5R4\/14,10YR6\/10,5G5\/8,5PB4\/10" --illuminant D50/);
@@ -53,7 +53,7 @@ pageTest('lab render: an uploaded SPD is the illuminant picker\'s choice; Munsel
   await page.click(`${S} [data-action="lab-render"]`);
   await page.waitForFunction(() => window.tristim.derived.labTruth?.chart === 'mine.csv', null, { timeout: 60000 });
   truth = await page.evaluate(() => window.tristim.derived.labTruth);
-  assert.deepEqual(truth.patches.map((p) => p.id), ['M1', 'M2', 'M3', 'M4', 'M5']);
+  assert.deepEqual(truth.patches.filter((p) => !p.board).map((p) => p.id), ['M1', 'M2', 'M3', 'M4', 'M5']);
   assert.match(await page.textContent(`${S} [data-lab="render-cli"]`), /--reflectances mine\.csv --illuminant D50/);
   // A listed chart again: the upload leaves the picker.
   await page.selectOption(`${S} ${chart}`, 'cc24');

@@ -116,8 +116,7 @@ TEST_CASE("lab render: 7 chips in a 2 x 4 grid: the empty cell R2C4 is a board p
   o.camera = "Nikon_D850";
   o.chart = "munsell:5R4/14,10YR6/10,5Y8/10,5G5/8,5B5/6,5PB4/10,5P4/10";
   o.illuminant = "D50";
-  o.exposure = 0.8;
-  o.flare = 0.01;
+  o.flare = 0.01;  // default exposure
   const LabRender r = render_lab_chart(o);
   REQUIRE(r.rows == 2);
   REQUIRE(r.columns == 4);
