@@ -39,7 +39,6 @@ EMSCRIPTEN_BINDINGS(tristim_linearisation) {
   STRUCT(LinearisationData, camera_RGB, ids, full_scale, reference_XYZ, white, reflectances, basis_reflectances);
   STRUCT(Linearisation, choice, coefficients, full_scale, domain, r_squared, fitted, greys, grey_reason,
            grey_coefficients, monotonic, extrapolated, message);
-  STRUCT(Extrapolation, patch, channel, x, bound, relative);
   STRUCT(CurveSamples, x, linear, grey_based);
   { using S = SpectralModel; value_object<S>("SpectralModel") FIELD(linearisation) FIELD(wavelengths)
       .field("W", &spectral_W, &set_spectral_W) FIELD(training_patches) FIELD(training_set) FIELD(training_ids)

@@ -47,14 +47,12 @@ TrainingSet sample_training_set(const Recipe& recipe, const ChartSample& sample,
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(tristim_recipe) {
-  { using S = ReferenceStage; value_object<S>("ReferenceStage") FIELD(chart) FIELD(data_digest) FIELD(illuminant) FIELD(observer); }
   { using S = CaptureStage; value_object<S>("CaptureStage") FIELD(dark_frames) FIELD(dark_mode) FIELD(flat_field) FIELD(falloff)
       FIELD(saturation) FIELD(noise_floor) FIELD(light_trap) FIELD(flare); }
   { using S = SamplingStage; value_object<S>("SamplingStage") FIELD(layout) FIELD(corners) FIELD(area) FIELD(exclude)
       FIELD(exclude_flagged); }
   { using S = CharacterisationStage; value_object<S>("CharacterisationStage") FIELD(model) FIELD(objective) FIELD(white_patch)
       FIELD(lab_white); }
-  { using S = EvaluationStage; value_object<S>("EvaluationStage") FIELD(leave_one_out) FIELD(held_out_digest); }
   { using S = RecipeImage; value_object<S>("RecipeImage") FIELD(name) FIELD(sha256) FIELD(reference) FIELD(capture) FIELD(sampling)
       FIELD(candidate); }
   { using S = Recipe; value_object<S>("Recipe") FIELD(version) FIELD(reference) FIELD(capture) FIELD(sampling)

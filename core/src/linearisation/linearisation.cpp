@@ -220,7 +220,7 @@ std::array<std::vector<double>, 3> triple_of(const json::Value& o, const std::st
 }  // namespace
 
 namespace fields {
-TRISTIM_FIELDS(Extrapolation, member<&Extrapolation::patch>("patch"), member<&Extrapolation::channel>("channel"),
+TRISTIM_FIELDS_DEFINE(Extrapolation, member<&Extrapolation::patch>("patch"), member<&Extrapolation::channel>("channel"),
                member<&Extrapolation::x>("x"), member<&Extrapolation::bound>("bound"),
                member<&Extrapolation::relative>("relative"));
 }  // namespace fields

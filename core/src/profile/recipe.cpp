@@ -28,7 +28,7 @@ const fields::Document kRecipeDocument{"tristim-recipe", kRecipeVersion, "recipe
 
 namespace fields {
 
-TRISTIM_FIELDS(ReferenceStage, member<&ReferenceStage::chart>("chart"), member<&ReferenceStage::data_digest>("data_digest"),
+TRISTIM_FIELDS_DEFINE(ReferenceStage, member<&ReferenceStage::chart>("chart"), member<&ReferenceStage::data_digest>("data_digest"),
                member<&ReferenceStage::illuminant>("illuminant"), member<&ReferenceStage::observer>("observer"));
 
 static bool has_light_trap(const CaptureStage& c) { return c.has_light_trap(); }
@@ -60,7 +60,7 @@ TRISTIM_FIELDS(CharacterisationStage, member<&CharacterisationStage::model>("mod
                member<&CharacterisationStage::white_patch>("white_patch"),
                member<&CharacterisationStage::lab_white>("lab_white"));
 
-TRISTIM_FIELDS(EvaluationStage, member<&EvaluationStage::leave_one_out>("leave_one_out"),
+TRISTIM_FIELDS_DEFINE(EvaluationStage, member<&EvaluationStage::leave_one_out>("leave_one_out"),
                member<&EvaluationStage::held_out_digest>("held_out_digest"));
 
 // A candidate index is written as a number, "all" as a string; absent: "".

@@ -36,6 +36,7 @@
 
 #include "tristim/characterisation/models.hpp"
 #include "tristim/colorimetry/spectra.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/json.hpp"
 #include "tristim/methods.hpp"
 
@@ -200,3 +201,8 @@ double squared_correlation(const std::vector<double>& a, const std::vector<doubl
 double sRGB_decode(double encoded);
 
 }  // namespace tristim
+
+// Its field list (defined in linearisation.cpp): the JSON and the wasm binding use it.
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(Extrapolation);
+}  // namespace tristim::fields

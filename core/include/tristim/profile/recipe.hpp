@@ -39,6 +39,7 @@
 
 #include "tristim/characterisation/fit.hpp"
 #include "tristim/chart/layout.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/json.hpp"
 #include "tristim/methods.hpp"
 
@@ -152,3 +153,9 @@ FitOptions recipe_fit_options(const Recipe& recipe, const std::vector<std::strin
                               int& white_index);
 
 }  // namespace tristim
+
+// The field lists of stages that cross the wasm boundary as their JSON (defined in recipe.cpp).
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(ReferenceStage);
+TRISTIM_FIELDS_DECLARE(EvaluationStage);
+}  // namespace tristim::fields
