@@ -35,21 +35,13 @@ BootstrapOptions bootstrap_options(const Args& args, const std::string& command,
     const int id = t.find({"patch", "id", "sample_id", "sample_name", "name", "sample"});
     const int c[4] = {t.find({"R_std"}), t.find({"G_std"}), t.find({"B_std"}), t.find({"n"})};
     if (id >= 0 && c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[3] >= 0) {
-      std::map<std::string, std::pair<Vec3, double>> stats;
+      PixelStats stats;
       for (size_t r = 0; r < t.rows.size(); ++r) {
         Vec3 s;
         for (int k = 0; k < 3; ++k) s[k] = parse_cell(t.rows[r][c[k]], rgb_path, t.lines[r], t.header[c[k]]);
         stats[normalise_patch_id(t.rows[r][id])] = {s, parse_cell(t.rows[r][c[3]], rgb_path, t.lines[r], "n")};
       }
-      bool all = true;
-      for (const auto& i : ids) all = all && stats.count(i);
-      if (all) {
-        b.pixel_std.resize(static_cast<Eigen::Index>(ids.size()), 3);
-        for (size_t i = 0; i < ids.size(); ++i) {
-          b.pixel_std.row(static_cast<Eigen::Index>(i)) = stats[ids[i]].first.transpose();
-          b.pixel_count.push_back(stats[ids[i]].second);
-        }
-      }
+      set_pixel_stats(b, ids, stats);
     }
   }
   auto last = std::make_shared<int>(0);  // the last tenth reported
@@ -61,6 +53,17 @@ BootstrapOptions bootstrap_options(const Args& args, const std::string& command,
     return true;
   };
   return b;
+}
+
+void set_pixel_stats(BootstrapOptions& b, const std::vector<std::string>& ids, const PixelStats& stats) {
+  for (const auto& i : ids)
+    if (!stats.count(i)) return;
+  b.pixel_std.resize(static_cast<Eigen::Index>(ids.size()), 3);
+  b.pixel_count.clear();
+  for (size_t i = 0; i < ids.size(); ++i) {
+    b.pixel_std.row(static_cast<Eigen::Index>(i)) = stats.at(ids[i]).first.transpose();
+    b.pixel_count.push_back(stats.at(ids[i]).second);
+  }
 }
 
 json::Value with_ci(const json::Value& summary, const Interval& ci) { return summary_with_ci(summary, ci); }

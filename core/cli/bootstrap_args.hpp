@@ -2,7 +2,9 @@
 // the options, the per-patch pixel statistics of a sampled patch file, progress on stderr, and the
 // "ci" objects written next to each mean (evaluation/bootstrap.hpp).
 #pragma once
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli.hpp"
@@ -21,6 +23,14 @@ const std::vector<std::string>& bootstrap_option_names();  // bootstrap, seed, l
 /// statistics are of the stored values). Progress goes to stderr as "tristim <command>: ...".
 BootstrapOptions bootstrap_options(const Args& args, const std::string& command, const std::string& rgb_path,
                                    const std::vector<std::string>& ids, bool linear);
+
+/// Each patch's pixel spread (R, G, B) and pixel count by patch key: a patch file's R_std, G_std,
+/// B_std and n columns, or the patches `fit --raw` sampled itself.
+using PixelStats = std::map<std::string, std::pair<Vec3, double>>;
+
+/// Sets `b`'s pixel statistics for `ids` from `stats` when every id has them (otherwise `b` keeps
+/// none and the resampling is over the patches only).
+void set_pixel_stats(BootstrapOptions& b, const std::vector<std::string>& ids, const PixelStats& stats);
 
 /// `summary` (a summary_json object) with "ci" set next to its "mean".
 json::Value with_ci(const json::Value& summary, const Interval& ci);

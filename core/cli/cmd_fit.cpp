@@ -1,7 +1,6 @@
 // CLI: `tristim fit` — a profile from a recipe (given, or made from the flags) and its inputs.
 #include <algorithm>
 #include <array>
-#include <map>
 #include <iostream>
 
 #include "bootstrap_args.hpp"
@@ -137,11 +136,6 @@ PatchData classic_pairs(const Args& args, const std::string& chart, const Method
 
 /// The training set of a recipe; a TIFF/PNG/JPEG given with --raw also sets the recipe's capture
 /// full scale (255 / 65535) when it has none, so its linearisation reads x = stored / full scale.
-/// Each sampled patch's pixel spread and count by patch key, when fit samples a RAW itself (what
-/// `tristim sample`'s R_std, G_std, B_std and n columns carry for --rgb): the bootstrap resamples
-/// the pixels too.
-using PixelStats = std::map<std::string, std::pair<Vec3, double>>;
-
 TrainingSet training_from_recipe(const Args& args, Recipe& recipe, PixelStats& pixels) {
   if (args.has("raw") == args.has("rgb"))
     throw Error(ErrorCode::InvalidArgument, "fit --recipe takes one of --rgb patches.csv or --raw chart image");
@@ -289,15 +283,7 @@ void add_bootstrap(const Args& args, const Characterisation& c, const TrainingSe
   const FitOptions options = recipe_fit_options(c.recipe, training.ids, c.linear_RGB, c.reference_XYZ, white_index);
   const bool linear = c.linearisation.choice.method == "identity";
   BootstrapOptions b = bootstrap_options(args, "fit", args.has("rgb") ? args.get("rgb") : "", training.ids, linear);
-  const bool sampled_here = linear && b.pixel_count.empty() && !pixels.empty() &&
-                            std::all_of(training.ids.begin(), training.ids.end(), [&](const std::string& i) { return pixels.count(i) > 0; });
-  if (sampled_here) {  // --raw: the spread of the pixels this run sampled
-    b.pixel_std.resize(static_cast<Eigen::Index>(training.ids.size()), 3);
-    for (size_t i = 0; i < training.ids.size(); ++i) {
-      b.pixel_std.row(static_cast<Eigen::Index>(i)) = pixels.at(training.ids[i]).first.transpose();
-      b.pixel_count.push_back(pixels.at(training.ids[i]).second);
-    }
-  }
+  if (linear && !pixels.empty()) set_pixel_stats(b, training.ids, pixels);  // --raw: the pixels this run sampled
   if (c.evaluation.has_loo) b.loo_dE00 = c.evaluation.loo.patches.dE00;
   const BootstrapResult r = bootstrap_fit(c.recipe.characterisation.model, c.linear_RGB, c.reference_XYZ, options, b);
   add_bootstrap_to_profile(p, r, c.profile.model);
