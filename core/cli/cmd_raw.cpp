@@ -1,5 +1,5 @@
-// CLI: `tristim inspect <file>` and `tristim sample <file> --chart ... --corners ...`: camera RAW,
-// TIFF, PNG or JPEG (capture/image.hpp decode_any: by the file's bytes, not its name).
+// CLI: `tristim sample <file> --chart ... --corners ...`: camera RAW, TIFF, PNG or JPEG
+// (capture/image.hpp decode_any: by the file's bytes, not its name); `tristim inspect`: cmd_inspect.cpp.
 #include <array>
 #include <cmath>
 #include <iostream>
@@ -107,18 +107,6 @@ FrameCalibration frame_calibration(const Args& args, const RawImage& image, cons
 
 namespace {
 
-int run_inspect(const Args& args, std::ostream& out) {
-  args.allow_only({});
-  if (args.positional.size() != 1)
-    throw Error(ErrorCode::InvalidArgument, "inspect takes exactly one RAW, TIFF, PNG or JPEG file (or a DCP)");
-  if (inspect_dcp(args.positional[0], out)) return 0;  // a DNG camera profile (cmd_dcp.cpp)
-  const RawImage img = load_raw(args.positional[0]);
-  std::string json = metadata_to_json(img.meta);
-  json.pop_back();  // add the hash of the linear data to the object
-  out << json << ",\"linear_hash\":\"" << hash_hex(linear_data_hash(img)) << "\"}\n";
-  return 0;
-}
-
 int run_sample(const Args& args, std::ostream& out) {
   args.allow_only({"chart", "corners", "dark", "dark-mode", "flat", "flat-mode", "white-reflectance",
                    "area", "rows", "columns", "margins", "light-trap"});
@@ -158,21 +146,6 @@ int run_sample(const Args& args, std::ostream& out) {
   out << chart_sample_to_csv(s);
   return 0;
 }
-
-const CommandRegistration inspect_cmd{Command{
-    "inspect", "RAW, TIFF, PNG or JPEG file metadata as JSON",
-    "usage: tristim inspect <file>\n"
-    "The file is a camera RAW (LibRaw), an 8/16-bit TIFF, an 8/16-bit PNG or a JPEG, recognised by\n"
-    "its bytes, not its name. Prints one JSON object: format (raw, tiff, png, jpeg), encoding (linear:\n"
-    "black-subtracted RAW data; stored: an image's values as stored, no colour management),\n"
-    "declared_colour (an image's ICC profile / gAMA / sRGB declarations, reported, not applied), make,\n"
-    "model, lens, iso, shutter_s, f_number, timestamp, layout, cfa_pattern, bits, black and white\n"
-    "levels (an image's white_level is its full scale, 255 or 65535), LibRaw's camera matrices\n"
-    "(preview only), the measurement image size (width, height: half resolution for Bayer sensors)\n"
-    "and linear_hash (FNV-1a of the decoded data).\n"
-    "A DNG camera profile (.dcp, recognised by its \"IIRC\" magic) is read strictly instead and its tags printed\n"
-    "(matrices, illuminants, HueSatMap range) with, per illuminant, the camera neutral and what it renders as.",
-    run_inspect}};
 
 const CommandRegistration sample_cmd{Command{
     "sample", "per-patch camera RGB of a chart in a RAW, TIFF, PNG or JPEG file (CSV)",

@@ -8,7 +8,8 @@
 //            patches (a camera-RGB table: the fit step's held-out file), profile (a profile JSON:
 //            the export step's import), recipe (a recipe JSON; in the page embedded in a profile),
 //            corners (chart corners on the example Passport DNG), dcp (a DNG camera profile:
-//            `tristim inspect`, the module's readDcp, the export step's import)
+//            `tristim inspect`, the module's readDcp, the export step's import), clf, cube, icc (a
+//            Common LUT Format file, a .cube 3D LUT, an ICC profile: likewise, read by the file's name)
 //   from     the base file, repo-relative (tests/support/test_files.mjs reads it)
 //   generate a generator name below, applied to the base bytes (or to nothing) with `args`
 //   runners  the runners that take the case (["cli"]: only the CLI reads such a file); absent: all

@@ -13,6 +13,7 @@
 //   link      tristim reproduce <file>     (a file holding a share link; docs/link-format.md)
 //   project   tristim reproduce <file>     (a .tristim project file)
 //   clf       tristim inspect <file.clf>   (a Common LUT Format file, read strictly)
+//   cube, icc tristim inspect <file.cube|.icc>  (a 3D LUT's or an ICC profile's header, by its name)
 //   share     tristim share --profile <file> --payload   (a profile whose training block is fitted again)
 import fs from 'node:fs';
 import os from 'node:os';
@@ -50,6 +51,7 @@ function command(c, file) {
     case 'link': return ['reproduce', file];      // a file holding the link (exit 2 with the code)
     case 'project': return ['reproduce', file];
     case 'clf': return ['inspect', file];
+    case 'cube': case 'icc': return ['inspect', file];
     case 'share': return ['share', '--profile', file, '--payload'];
     default: throw new Error(`${c.id}: unknown kind ${c.kind}`);
   }

@@ -25,6 +25,8 @@ function run(T, c, passport) {
       case 'link': T.reproduceLink(dec.decode(c.bytes)); break;  // what the Share step's Open calls
       case 'project': T.openProject(c.bytes); break;            // the Share step's project import
       case 'clf': T.readClf(dec.decode(c.bytes)); break;  // likewise for a CLF
+      case 'cube': T.readCubeHeader(dec.decode(c.bytes), c.name); break;  // the export step's .cube and ICC import
+      case 'icc': T.readIccHeader(c.bytes, c.name); break;
       case 'corners': T.sampleChart(passport, { chart: 'passport' }, c.corners); break;
       default: throw new Error(`${c.id}: unknown kind ${c.kind}`);
     }

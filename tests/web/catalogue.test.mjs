@@ -18,6 +18,8 @@ const INPUT = {
   recipe: ['export', '#step-export input[type=file]'],
   dcp: ['export', '#step-export input[type=file]'],
   clf: ['export', '#step-export input[type=file]'],
+  cube: ['export', '#step-export input[type=file]'],
+  icc: ['export', '#step-export input[type=file]'],
   project: ['share', '#share-import'],
 };
 const DETECT_AGAIN = '#step-images .detect-panel button:not(.primary)';
