@@ -6,6 +6,7 @@
 // goes through `tristim share --profile` and `tristim reproduce` (native only).
 #ifndef __EMSCRIPTEN__
 #include <cstdlib>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <string>
@@ -142,5 +143,80 @@ TEST_CASE("fit --recipe with two images: the fit of the concatenated tables, to 
   spit(d + "bad.json", text);
   e = refused(d + "bad.json --raw " + d + "a.dng --raw " + d + "b.dng");
   CHECK(e.find("UNKNOWN_ID: recipe: images[1] ('sg140.dng'): ") != std::string::npos);
+}
+
+// Two charts in one image (issue 48): a ColorChecker left (exposure 0.3) and one right (0.2,
+// slightly turned), the halves of two `lab render` TIFFs (linear, one strip) spliced into one file.
+// `detect` finds both; a recipe entry with candidate "all", and a recipe naming the file twice with
+// each candidate's corners, both fit the concatenation of the tables `sample` reads at those
+// corners, to the bit (noise off: every patch is uniform, so its mean does not move with the
+// corners' last printed digit).
+TEST_CASE("fit --recipe: two charts in one image, both used (candidate \"all\", or the file twice), to the bit",
+          "[recipe][images][cli]") {
+  const tristim::test::ScratchDir scratch("one-image");
+  const std::string& d = scratch.d;
+  const std::string cli = TRISTIM_CLI;
+  const std::string render = cli + " lab render --camera Canon_EOS_5D_Mark_II --illuminant D65 --chart cc24 --size 900x600 --oecf linear";
+  run_shell(render + " --exposure 0.3 --corners 40,150,400,150,400,390,40,390 --out " + d + "a.tiff");
+  run_shell(render + " --exposure 0.2 --corners 480,180,860,160,870,420,490,430 --out " + d + "b.tiff");
+  std::string two = slurp(d + "a.tiff");
+  const std::string b = slurp(d + "b.tiff");
+  REQUIRE(two.size() == b.size());
+  const size_t row = 900 * 6, strip = two.size() - 600 * row;  // lab render writes the one strip last
+  for (size_t y = 0; y < 600; ++y) two.replace(strip + y * row + row / 2, row / 2, b, strip + y * row + row / 2, row / 2);
+  spit(d + "two.tiff", two);
+
+  const json::Value found = json::parse(run_shell(cli + " detect " + d + "two.tiff --chart cc24"));
+  const auto& candidates = found.at("candidates").as_array();
+  REQUIRE(candidates.size() == 2);
+  Recipe r;
+  r.reference.chart = "file";
+  r.characterisation.model = "Finlayson2015-2";
+  r.characterisation.objective = MethodChoice{"ls", {}, {}};
+  r.duplicates = kDuplicatesEach;
+  RecipeImage e;
+  e.name = "two.tiff";
+  e.reference.chart = "file";
+  e.sampling.layout.chart = "cc24";
+  e.sampling.area = 0.5;
+  std::string rgb;
+  const auto g17 = [](double v) {
+    std::ostringstream o;
+    o << std::setprecision(17) << v;
+    return o.str();
+  };
+  for (size_t k = 0; k < 2; ++k) {
+    std::string list;
+    size_t i = 0;
+    for (const auto& corner : candidates[k].at("corners").as_array())
+      for (double v : corner.as_numbers()) {
+        e.sampling.corners[i++] = v;
+        list += (list.empty() ? "" : ",") + g17(v);
+      }
+    r.images.push_back(e);
+    const std::string csv = d + "s" + std::to_string(k) + ".csv";
+    run_shell(cli + " sample " + d + "two.tiff --chart cc24 --area 0.5 --corners " + list + " > " + csv);
+    rgb += " --rgb " + csv + " --xyz " + d + "ref.csv";
+  }
+  CHECK(r.images[0].sampling.corners[0] < 450);
+  CHECK(r.images[1].sampling.corners[0] > 450);
+  spit(d + "twice.json", recipe_to_json(r));
+  r.images.resize(1);
+  r.images[0].sampling.corners = {};
+  r.images[0].candidate = "all";
+  spit(d + "all.json", recipe_to_json(r));
+  run_shell(cli + " reference --chart cc24 --illuminant D65 > " + d + "ref.csv");
+
+  run_shell(cli + " fit" + rgb + " --model Finlayson2015-2 --objective ls --out " + d + "tables.json 2>&1");
+  const std::string all = run_shell(cli + " fit --recipe " + d + "all.json --raw " + d + "two.tiff --xyz " + d + "ref.csv --out " +
+                                    d + "all_p.json 2>&1");
+  run_shell(cli + " fit --recipe " + d + "twice.json --raw " + d + "two.tiff --raw " + d + "two.tiff --xyz " + d + "ref.csv --xyz " +
+            d + "ref.csv --out " + d + "twice_p.json 2>&1");
+  const std::string tables = json_array(slurp(d + "tables.json"), "coefficients");
+  CHECK(json_array(slurp(d + "all_p.json"), "coefficients") == tables);
+  CHECK(json_array(slurp(d + "twice_p.json"), "coefficients") == tables);
+  CHECK(slurp(d + "all_p.json").find("\"patches\": 48") != std::string::npos);
+  CHECK(all.find("tristim: chart 1 (two.tiff #1): 24 patches") != std::string::npos);
+  CHECK(all.find("tristim: chart 2 (two.tiff #2): 24 patches") != std::string::npos);
 }
 #endif
