@@ -150,21 +150,13 @@ TrainingSet training_from_recipe(const Args& args, Recipe& recipe, PixelStats& p
     } catch (const Error& e) {
       throw Error(e.code(), "'" + path + "': " + e.what());
     }
-    if (image.meta.encoding == "stored" && recipe.capture.saturation == 0) recipe.capture.saturation = image.meta.white_level;
-    const std::array<double, 8>& c = recipe.sampling.corners;
-    if (std::all_of(c.begin(), c.end(), [](double v) { return v == 0; }))
-      throw Error(ErrorCode::InvalidArgument, "the recipe has no chart corners to sample --raw with");
-    SampleOptions so;
-    so.area = recipe.sampling.area;
-    FrameCalibration cal;
-    if (recipe.capture.has_light_trap()) {  // Abed 2013 App. C step 1: measured again on this image
-      const LightTrap trap = measure_light_trap(image, recipe.capture.light_trap, so);
+    // The page's sampling: a chart cut by the frame is sampled where it is inside (issue 48).
+    LightTrap trap;
+    const ChartSample sample = sample_recipe_chart(recipe, image, &trap);
+    if (recipe.capture.has_light_trap())
       std::cerr << "light trap: flare R=" << trap.mean[0] << " G=" << trap.mean[1] << " B=" << trap.mean[2]
                 << " DN (recipe: " << recipe.capture.flare[0] << " " << recipe.capture.flare[1] << " "
                 << recipe.capture.flare[2] << ")\n";
-      cal = with_light_trap(cal, trap);
-    }
-    const ChartSample sample = sample_chart(image, recipe.sampling.layout, c, so, &cal);
     for (const PatchSample& q : sample.patches)
       pixels[normalise_patch_id(q.id)] = {Vec3(q.std[0], q.std[1], q.std[2]), static_cast<double>(q.n)};
     if (builtin && !args.has("xyz")) return training_set(recipe, sample, recipe_reference(recipe));

@@ -130,6 +130,12 @@ TrainingSet training_set(const Recipe& in, const ChartSample& sample, const Refe
     rgb.emplace_back(p.mean[0], p.mean[1], p.mean[2]);
     xyz.push_back(reference.XYZ[k]);
   }
+  for (const std::string& m : sample.missing) {  // a chart cut by the frame: these were not sampled
+    const std::string id = normalise_patch_id(m);
+    size_t k = 0;
+    while (k < reference.ids.size() && normalise_patch_id(reference.ids[k]) != id) ++k;
+    excluded.push_back((k < reference.ids.size() && labelled ? reference.labels[k] : m) + " (outside the frame)");
+  }
   return finish(std::move(ids), std::move(labels), std::move(rgb), std::move(xyz), std::move(excluded));
 }
 
@@ -154,6 +160,28 @@ TrainingSet training_set(const Recipe& in, const std::vector<std::string>& in_id
   return finish(std::move(ids), std::move(labels), std::move(rgb), std::move(xyz), std::move(excluded));
 }
 
+SampleOptions recipe_sample_options(const SamplingStage& sampling) {
+  SampleOptions so;
+  so.area = sampling.area;
+  so.partial = true;  // a chart cut by the frame: the patches inside it (issue 48)
+  return so;
+}
+
+ChartSample sample_recipe_chart(Recipe& recipe, const RawImage& image, LightTrap* trap) {
+  const std::array<double, 8>& corners = recipe.sampling.corners;
+  if (std::all_of(corners.begin(), corners.end(), [](double v) { return v == 0; }))
+    throw Error(ErrorCode::InvalidArgument, "the recipe has no chart corners to sample the image with");
+  if (image.meta.encoding == "stored" && recipe.capture.saturation == 0) recipe.capture.saturation = image.meta.white_level;
+  const SampleOptions so = recipe_sample_options(recipe.sampling);
+  FrameCalibration cal;
+  if (recipe.capture.has_light_trap()) {  // Abed 2013 App. C step 1: measured again on this image
+    const LightTrap measured = measure_light_trap(image, recipe.capture.light_trap, so);
+    if (trap) *trap = measured;
+    cal = with_light_trap(cal, measured);
+  }
+  return sample_chart(image, recipe.sampling.layout, corners, so, &cal);
+}
+
 // ---- several chart images (issue 48) ------------------------------------------------------
 
 std::vector<ChartSample> sample_recipe_image(RecipeImage& e, size_t index, const std::uint8_t* bytes, size_t size,
@@ -163,8 +191,7 @@ std::vector<ChartSample> sample_recipe_image(RecipeImage& e, size_t index, const
     e.sha256 = sha256_hex(bytes, size);
     const RawImage image = decode_any(bytes, size);
     if (image.meta.encoding == "stored" && e.capture.saturation == 0) e.capture.saturation = image.meta.white_level;
-    SampleOptions so;
-    so.area = e.sampling.area;
+    const SampleOptions so = recipe_sample_options(e.sampling);
     FrameCalibration cal;
     if (!frames.darks.empty()) {  // Abed 2013 App. C step 1: this image's own dark frames, averaged
       std::vector<const RawImage*> darks;

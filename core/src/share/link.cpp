@@ -846,16 +846,7 @@ std::string share_absolute_payload(const AbsoluteRecipe& recipe) {
 }
 
 TrainingSet sample_training(Recipe& recipe, const RawImage& image, const ReferenceChart* reference) {
-  const std::array<double, 8>& corners = recipe.sampling.corners;
-  if (std::all_of(corners.begin(), corners.end(), [](double v) { return v == 0; }))
-    throw Error(ErrorCode::InvalidArgument, "the recipe has no chart corners to sample the image with");
-  if (image.meta.encoding == "stored" && recipe.capture.saturation == 0) recipe.capture.saturation = image.meta.white_level;
-  SampleOptions so;
-  so.area = recipe.sampling.area;
-  FrameCalibration cal;
-  if (recipe.capture.has_light_trap())  // Abed 2013 App. C step 1: measured again on this image
-    cal = with_light_trap(cal, measure_light_trap(image, recipe.capture.light_trap, so));
-  const ChartSample sample = sample_chart(image, recipe.sampling.layout, corners, so, &cal);
+  const ChartSample sample = sample_recipe_chart(recipe, image);  // as fit --recipe --raw (a cut chart too)
   return training_set(recipe, sample, reference ? *reference : recipe_reference(recipe));
 }
 

@@ -21,6 +21,8 @@
 
 namespace tristim {
 
+struct LightTrap;
+
 /// The reference of a recipe whose reference.chart is built in: the chart's reflectances through
 /// the surface stage (surface/surface.hpp), integrated under reference.illuminant and
 /// reference.observer. Error(InvalidArgument) when reference.chart is "file" (read the file and
@@ -42,10 +44,25 @@ struct TrainingSet {
 };
 
 /// Pairs a chart sample with a reference by patch id, leaving out the recipe's sampling.exclude
-/// ids and, with sampling.exclude_flagged, every flagged patch. Error(PatchMismatch) when a
+/// ids and, with sampling.exclude_flagged, every flagged patch; the patches of a chart cut by the
+/// frame (sample.missing) are listed in `excluded` as "D1 (outside the frame)". Error(PatchMismatch) when a
 /// sampled patch is not in the reference; Error(TooFewPatches) when nothing is left. Labels: the
 /// reference's (a user file's own spelling; the layout's ids for a built-in chart).
 TrainingSet training_set(const Recipe& recipe, const ChartSample& sample, const ReferenceChart& reference);
+/// How a recipe's chart is sampled: its sampling stage's area, and a chart cut by the frame
+/// sampled where it is inside (SampleOptions::partial), as the page samples it.
+SampleOptions recipe_sample_options(const SamplingStage& sampling);
+
+/// The chart of a one-image recipe sampled on `image`: the one path of `tristim fit --recipe
+/// --raw` and of a share link sampled again from its image (the page samples with the same
+/// options). The recipe's layout, corners and area; a chart cut by the frame is sampled where it
+/// is inside (ChartSample::missing names the patches whose sample area leaves the image, which
+/// training_set records as left out; CornersOutside when no patch is inside); the recipe's light
+/// trap, if any, measured again on this image (Abed 2013 App. C step 1) and subtracted (`trap`,
+/// when given, receives it). A stored (TIFF/PNG/JPEG) image sets capture.saturation when the
+/// recipe has none. Error(InvalidArgument) when the recipe has no corners.
+ChartSample sample_recipe_chart(Recipe& recipe, const RawImage& image, LightTrap* trap = nullptr);
+
 /// The same from paired tables (rows already matched by id). `ids` as the user's file spells them
 /// (or already normalised): they are the labels, their normalised forms the keys.
 TrainingSet training_set(const Recipe& recipe, const std::vector<std::string>& ids, const PatchMatrix& camera_RGB,
