@@ -1,6 +1,5 @@
 // A chart cut by the frame (issue 48) on the page: the example Passport DNG with its sensor rows
-// below 880 cut off (raw_fixtures.withSize: the header says 880 rows, so the chart's bottom row D
-// lies outside the image). The page samples the patches inside, lists the others as "outside the
+// below 880 cut off (cut_chart_fixture.mjs: the chart's bottom row D lies outside the image). The page samples the patches inside, lists the others as "outside the
 // frame" in the patch table, and fits on the rest — the fit `tristim fit --rgb cut.csv --xyz
 // passport` makes of the page's own sampled rows. Corners that put every patch outside the image
 // are refused with CORNERS_OUTSIDE.
@@ -8,25 +7,14 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import { execFileSync } from 'node:child_process';
 import { screenshot } from './harness.mjs';
-import { pageTest, step, upload, fileBuffer, setCorners, fitMatrix3x3, errorNear, CLI, artifact, DNG } from './journey.mjs';
-import { ifd0, withSize } from './raw_fixtures.mjs';
-import { EXAMPLE } from './image_fixtures.mjs';
-
-const dng = fileBuffer(DNG);
-const { dv, entries } = ifd0(dng);
-const e = entries[256];
-const sensorWidth = e.type === 3 ? dv.getUint16(e.at, true) : dv.getUint32(e.at, true);
-const CUT = withSize(dng, sensorWidth, 880);   // the measurement image: 427 rows (half resolution, less the crop)
+import { pageTest, step, fitMatrix3x3, errorNear, CLI, artifact } from './journey.mjs';
+import { openCutChart } from './cut_chart_fixture.mjs';
 const TABLE = '#step-images .images-layout .patch-table';
 
 pageTest('a chart cut by the frame: the patches inside are sampled, the others named, the fit uses the rest', { timeout: 180000 }, async ({ page }) => {
-  await step(page, 'images');
-  await upload(page, '#step-images input[data-slot="chart"]', 'cut.dng', Buffer.from(CUT));
-  await page.waitForFunction(() => window.tristim.derived.image?.height === 427, null, { timeout: 60000 });
-  // Detection finds the cut chart and names its patches outside the image.
-  await page.waitForFunction(() => window.tristim.derived.sample?.missing?.length === 6, null, { timeout: 60000 });
-  // The example's corners: rows A–C inside the image, row D below its edge.
-  await setCorners(page, EXAMPLE.corners);
+  // Detection finds the cut chart and names its patches outside the image; then the example's
+  // corners: rows A–C inside the image, row D below its edge.
+  await openCutChart(page);
   const s = await page.evaluate(() => { const x = window.tristim.derived.sample; return { ids: x.ids, missing: x.missing, RGB: Array.from(x.RGB), flags: x.flags }; });
   assert.deepEqual(s.missing, ['D1', 'D2', 'D3', 'D4', 'D5', 'D6']);
   assert.equal(s.ids.length, 18);

@@ -3,7 +3,9 @@
 // The grid is the engine's: its chart layout placed by its homography while the corners move,
 // then the sampled areas of the engine's sampling once it belongs to these corners. A detected
 // chart (setDetected) is drawn as a dashed proposal with its own patch grid until it is used,
-// and labelled with its confidence.
+// and labelled with its confidence. Corners outside the image (a chart cut by the frame) are
+// shown in a padded view: the preview is letterboxed in a dark margin that holds every handle,
+// so the handles stay visible and draggable and never spill over what follows the editor.
 
 const NS = 'http://www.w3.org/2000/svg';
 const svgEl = (tag, attrs = {}) => {
@@ -57,7 +59,10 @@ export class CornerEditor {
     this.trapLabel.textContent = 'light trap';
     this.helpRect = svgEl('rect', { class: 'detect-help', fill: 'rgba(80, 160, 255, .12)', stroke: '#4da3ff', 'stroke-width': 2, 'stroke-dasharray': '4 3', 'vector-effect': 'non-scaling-stroke' });
     this.helpRect.style.display = 'none';
-    this.svg.append(defs, this.detectLayer, this.outline, this.gridLayer, this.detectLabel, this.trapRect, this.trapLabel, this.helpRect, this.handleLayer);
+    this.frame = svgEl('rect', { class: 'image-frame', x: 0, y: 0, width: 1, height: 1 });   // the image's edge in a padded view
+    this.view = null;          // [x0, y0, x1, y1]: the area shown (the image, or more when a corner lies outside it)
+    this.dragging = false;     // the view stays put while a handle is dragged (it would move under the pointer)
+    this.svg.append(defs, this.frame, this.detectLayer, this.outline, this.gridLayer, this.detectLabel, this.trapRect, this.trapLabel, this.helpRect, this.handleLayer);
     // Marking a light trap: a drag on the image (not on a handle) draws its rectangle.
     this.svg.addEventListener('pointerdown', (e) => {
       if (!this.onTrapDrawn && this.onHelp && !e.target.closest('.handle')) { this.pointAtChart(e); return; }
@@ -135,11 +140,16 @@ export class CornerEditor {
       e.preventDefault();
       g.setPointerCapture(e.pointerId);
       g.focus();
+      this.dragging = true;
+      this.el.classList.add('dragging');
       const move = (ev) => { const [x, y] = this.toImage(ev); this.moveCorner(i, x, y, false); };
       const up = (ev) => {
         g.releasePointerCapture(ev.pointerId);
         g.removeEventListener('pointermove', move);
         g.removeEventListener('pointerup', up);
+        this.dragging = false;
+        this.el.classList.remove('dragging');
+        this.draw();   // the view takes in where the handle was dropped
         this.onChange(this.corners, true);
       };
       g.addEventListener('pointermove', move);
@@ -174,7 +184,7 @@ export class CornerEditor {
   setImage(r) {
     this.width = r.width; this.height = r.height;
     this.el.hidden = false;
-    this.svg.setAttribute('viewBox', `0 0 ${r.width} ${r.height}`);
+    this.view = null;
     const p = r.preview;
     if (p) {
       this.canvas.width = p.width; this.canvas.height = p.height;
@@ -182,8 +192,29 @@ export class CornerEditor {
     } else {
       this.canvas.width = r.width; this.canvas.height = r.height;
     }
-    this.el.style.aspectRatio = `${r.width} / ${r.height}`;
     this.draw();
+  }
+
+  /// The area shown: the image, padded to hold every handle when a corner lies outside it (or so
+  /// near its edge that the handle would be cut), at most one image size beyond each edge. The
+  /// canvas (the image) is placed inside it in percent; the element's aspect ratio follows.
+  fitView(scale) {
+    const w = this.width, hh = this.height, c = this.corners, r = 12 * scale, pad = 30 * scale;
+    const xs = [0, 1, 2, 3].map((i) => c[2 * i]), ys = [0, 1, 2, 3].map((i) => c[2 * i + 1]);
+    const out = xs.some((x) => x - r < 0 || x + r > w) || ys.some((y) => y - r < 0 || y + r > hh);
+    const clamp = (v, lo, hi) => Math.min(hi, Math.max(lo, v));
+    const v = out ? [clamp(Math.min(0, ...xs.map((x) => x - pad)), -w, 0), clamp(Math.min(0, ...ys.map((y) => y - pad)), -hh, 0),
+      clamp(Math.max(w, ...xs.map((x) => x + pad)), w, 2 * w), clamp(Math.max(hh, ...ys.map((y) => y + pad)), hh, 2 * hh)]
+      : [0, 0, w, hh];
+    if (this.view && v.every((x, i) => x === this.view[i])) return;
+    this.view = v;
+    const [x0, y0, x1, y1] = v, vw = x1 - x0, vh = y1 - y0;
+    this.svg.setAttribute('viewBox', `${x0} ${y0} ${vw} ${vh}`);
+    this.el.style.aspectRatio = `${vw} / ${vh}`;
+    this.el.classList.toggle('padded', out);
+    Object.assign(this.canvas.style, { left: `${(-x0 / vw) * 100}%`, top: `${(-y0 / vh) * 100}%`, width: `${(w / vw) * 100}%`, height: `${(hh / vh) * 100}%` });
+    this.frame.setAttribute('width', w);
+    this.frame.setAttribute('height', hh);
   }
 
   setCorners(c) { this.corners = Float64Array.from(c); this.draw(); }
@@ -261,6 +292,7 @@ export class CornerEditor {
     const s = this.sample && this.sample.corners?.every((v, i) => v === c[i]) ? this.sample : null;
     if (s) s.ids.forEach((id, i) => flagsById.set(id, s.flags[i]));
     const scale = Math.max(1, this.width / 900);
+    if (this.width && !this.dragging) this.fitView(scale);
     this.svg.style.setProperty('--stroke', `${1.2 * scale}px`);
     // The engine's sample areas when they belong to these corners; its placed grid while dragging.
     const key = JSON.stringify([this.layout, Array.from(c)]);
