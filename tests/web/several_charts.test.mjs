@@ -4,10 +4,9 @@
 // `images` list) on the same two files to the bit; the Results step shows each chart's training,
 // leave-one-out and held-out figures; the exported profile records both images.
 import assert from 'node:assert/strict';
-import fs from 'node:fs';
-import { execFileSync } from 'node:child_process';
 import { screenshot } from './harness.mjs';
-import { pageTest, step, upload, fileBuffer, fitMatrix3x3, CLI, artifact, DNG } from './journey.mjs';
+import { pageTest, step, upload, fileBuffer, fitMatrix3x3, DNG } from './journey.mjs';
+import { assertCliEqual } from './several_charts_common.mjs';
 
 const PANEL = '#step-images fieldset.second-chart';
 
@@ -44,10 +43,5 @@ pageTest('a second chart image: one fit on both charts, equal to tristim fit --r
   const profile = JSON.parse(result.profile);
   assert.deepEqual(profile.recipe.images.map((e) => e.name), ['passport.dng', 'second.dng']);
   assert.ok(profile.recipe.images.every((e) => /^[0-9a-f]{64}$/.test(e.sha256)), 'each image recorded with its SHA-256');
-  const recipePath = artifact('several-charts-recipe.json'), out = artifact('several-charts-cli.json');
-  fs.writeFileSync(recipePath, JSON.stringify(profile.recipe));
-  execFileSync(CLI, ['fit', '--recipe', recipePath, '--raw', DNG, '--raw', DNG, '--out', out], { stdio: 'pipe' });
-  const cli = JSON.parse(fs.readFileSync(out, 'utf8'));
-  assert.deepEqual(profile.model.coefficients, cli.model.coefficients, 'the page fits what the CLI fits, to the bit');
-  cli.charts.forEach((c, k) => assert.equal(result.charts[k].training_dE00.mean, c.training.dE00_mean));
+  assertCliEqual(profile, result.charts, ['--raw', DNG, '--raw', DNG], 'several-charts');
 });

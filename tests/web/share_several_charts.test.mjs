@@ -4,11 +4,11 @@
 // bit — and shows the two images. The Results swatches of such a fit show the reference colours
 // ("k:A1" is the k-th image's chart's A1), not grey.
 import assert from 'node:assert/strict';
-import { openBrowser, screenshot } from './harness.mjs';
-import { pageTest, step, upload, fileBuffer, fitMatrix3x3, waitReady, DNG } from './journey.mjs';
+import { screenshot } from './harness.mjs';
+import { pageTest, step, upload, fileBuffer, fitMatrix3x3, DNG } from './journey.mjs';
+import { openShared } from './several_charts_common.mjs';
 
 const PANEL = '#step-images fieldset.second-chart';
-const VERDICT = '#share-verdict-title[data-verdict]';
 
 pageTest('two chart images: the link reproduces the two-image profile to the bit; swatches in colour', { timeout: 300000 }, async ({ page }) => {
   // As tests/web/several_charts.test.mjs: the example's DNG again as the second image.
@@ -37,13 +37,7 @@ pageTest('two chart images: the link reproduces the two-image profile to the bit
   await page.waitForFunction(() => document.getElementById('share-link').value.includes('#tristim='), null, { timeout: 120000 });
   const link = await page.inputValue('#share-link');
 
-  const b = await openBrowser();
-  try {
-    const fresh = b.page;
-    await fresh.goto(link.replace(/^http:\/\/127\.0\.0\.1:\d+/, b.origin));
-    await waitReady(fresh, 120000);
-    await fresh.waitForSelector(VERDICT, { timeout: 120000 });
-    assert.equal(await fresh.getAttribute(VERDICT, 'data-verdict'), 'reproduced');
+  await openShared(link, async (fresh) => {
     assert.deepEqual(await fresh.$$eval('#share-verdict .share-charts li', (li) => li.map((x) => x.textContent)), ['1: passport.dng', '2: second.dng']);
     const again = await fresh.evaluate(async (text) => {
       const r = await window.tristim.engine.call('openLink', { text });
@@ -55,6 +49,5 @@ pageTest('two chart images: the link reproduces the two-image profile to the bit
     assert.deepEqual(again.payload.sources.map((s) => s.name), ['passport.dng', 'second.dng']);
     assert.deepEqual(again.profile.model.coefficients, made.profile.model.coefficients, 'the two-image coefficients, to the bit');
     await screenshot(fresh, 'share-several-charts');
-    assert.deepEqual(b.problems, []);
-  } finally { await b.close(); }
+  });
 });

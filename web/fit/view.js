@@ -6,7 +6,7 @@ import { pairData } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
 import { WorkerPool } from './pool.js';
-import { withImages, chartsOf } from '../images/second.js';
+import { withImages, chartsOf, secondName } from '../images/second.js';
 
 export function mount(section, app) {
   const { engine } = app;
@@ -83,7 +83,7 @@ export function mount(section, app) {
       + (d.excluded.length ? `; left out as flagged: ${d.excluded.map((e) => e.id).join(', ')}` : '')
       + (d.missing.length ? `; not in the reference: ${d.missing.join(', ')}` : '')
       + (s.missing?.length ? `; outside the frame (not sampled): ${s.missing.join(', ')}` : '')
-      + (app.derived.sample2 ? `; and the ${app.derived.sample2.ids.length} patches of the second chart image (${app.session['files.chart2']?.name}, step 2): one fit on both` : '') + '.';
+      + (app.derived.sample2 ? `; and the ${app.derived.sample2.ids.length} patches of the second chart image (${secondName(app)}, step 2): one fit on both` : '') + '.';
     return d;
   }
   app.on('sample2', describeData);

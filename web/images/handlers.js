@@ -1,23 +1,27 @@
 // Worker handlers of step 2: decoding RAW files into the worker's slots ('chart', 'dark', 'flat',
-// 'scene', 'chart2' — a second chart image, issue 48; the images stay here, state.raw[slot]), the chart image's dark/flat calibration,
+// 'scene', 'chart2' — a second chart image, issue 48, with its own 'dark2', 'flat2'; the images stay
+// here, state.raw[slot]), each chart image's dark/flat calibration,
 // sampling the chart, the engine's patch grid for the corner editor.
 import { reply, coded } from '../lib/reply.js';
 
-/// Sets the chart image's dark frame and flat field from the decoded slots (Abed 2013 App. C);
+/// Each chart slot's frame slots and flat-field mode; the chart slot a slot calibrates.
+const FRAMES = { chart: { dark: 'dark', flat: 'flat', mode: 'flatMode' }, chart2: { dark: 'dark2', flat: 'flat2', mode: 'flatMode2' } };
+const TARGET = { chart: 'chart', dark: 'chart', flat: 'chart', chart2: 'chart2', dark2: 'chart2', flat2: 'chart2' };
+/// Sets a chart image's dark frame and flat field from its decoded frame slots (Abed 2013 App. C);
 /// returns what the engine reports. Throws (e.g. FRAME_MISMATCH) when a frame does not fit.
-function calibrate(state) {
-  const chart = state.raw?.chart;
+function calibrate(state, target = 'chart') {
+  const chart = state.raw?.[target], f = FRAMES[target];
   if (!chart) return null;
   const out = {};
-  if (state.raw.dark) out.dark = chart.setDark(state.raw.dark, 'per_pixel'); else chart.clearDark();
-  if (state.raw.flat) {
-    out.flat = chart.setFlat(state.raw.flat, state.flatMode ?? 'pixel');
-    out.flat.mode = state.flatMode ?? 'pixel';
+  if (state.raw[f.dark]) out.dark = chart.setDark(state.raw[f.dark], 'per_pixel'); else chart.clearDark();
+  if (state.raw[f.flat]) {
+    out.flat = chart.setFlat(state.raw[f.flat], state[f.mode] ?? 'pixel');
+    out.flat.mode = state[f.mode] ?? 'pixel';
   } else chart.clearFlat();
   return out;
 }
-function calibrateQuietly(state) {
-  try { return calibrate(state); } catch { state.raw?.chart?.clearDark(); state.raw?.chart?.clearFlat(); return null; }
+function calibrateQuietly(state, target = 'chart') {
+  try { return calibrate(state, target); } catch { state.raw?.[target]?.clearDark(); state.raw?.[target]?.clearFlat(); return null; }
 }
 const previewOf = (image, side) => {
   const p = image.preview(side);
@@ -63,19 +67,20 @@ export const handlers = {
       if (CHARTS.has(slot) && previewSide > 0) result.preview = previewOf(first, previewSide);
     } catch (e) { freeRaw(raw); throw e; }
     // The new image replaces the slot's previous one only once it fits (calibrate below).
-    const previous = { raw: state.raw[slot], flatMode: state.flatMode };
+    const target = TARGET[slot], mode = target && FRAMES[target].mode;
+    const previous = { raw: state.raw[slot], flatMode: mode && state[mode] };
     state.raw[slot] = raw;
-    if (slot === 'flat') state.flatMode = flatMode;
-    if (slot !== 'scene' && slot !== 'chart2') {
+    if (slot === 'flat' || slot === 'flat2') state[mode] = flatMode;
+    if (target) {
       try {
-        result.calibration = calibrate(state);
+        result.calibration = calibrate(state, target);
       } catch (e) {
         // A frame that does not fit (FRAME_MISMATCH, FLAT_FIELD_ZERO, ...) is refused: the slot
         // keeps its previous image, and the calibration that went with it.
         freeRaw(raw);
         if (previous.raw) state.raw[slot] = previous.raw; else delete state.raw[slot];
-        state.flatMode = previous.flatMode;
-        calibrateQuietly(state);
+        state[mode] = previous.flatMode;
+        calibrateQuietly(state, target);
         throw e;
       }
     }
@@ -116,6 +121,6 @@ export const handlers = {
   forget: (T, { slot }, { state }) => {
     freeRaw(state.raw?.[slot]);
     delete state.raw?.[slot];
-    return { result: calibrateQuietly(state) };
+    return { result: calibrateQuietly(state, TARGET[slot] ?? 'chart') };
   },
 };

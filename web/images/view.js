@@ -68,9 +68,12 @@ export function mount(section, app) {
   const detectText = h('p', { class: 'detect-text', 'aria-live': 'polite' });
   const acceptBtn = h('button', { type: 'button', class: 'primary', hidden: true, onclick: () => useDetected() }, 'Use the detected corners');
   const againBtn = h('button', { type: 'button', disabled: true, onclick: () => detect() }, 'Detect again');
+  // Two charts of the layout in this image (issue 48): the second becomes the second chart (second.js).
+  let found = [];   // the last detection's candidates
+  const bothBtn = h('button', { type: 'button', class: 'use-both', hidden: true, onclick: () => useBoth() }, 'Use both charts found');
   const detectErr = errorSlot(againBtn);
   const detectProgress = progressBar('Finding the chart');
-  const detectPanel = h('div', { class: 'detect-panel', dataset: { state: 'idle' } }, detectText, acceptBtn, againBtn, detectProgress.el);
+  const detectPanel = h('div', { class: 'detect-panel', dataset: { state: 'idle' } }, detectText, acceptBtn, bothBtn, againBtn, detectProgress.el);
   let detection = null;  // {candidate, state: 'proposal' | 'in-use' | 'adjusted'}
   let unconfirmed = false;  // detection missed and the corners are still the ones from before: the table is stale
   // Light trap (Abed 2013 App. C step 1): a black cavity in the scene, marked like a patch; its
@@ -136,7 +139,7 @@ export function mount(section, app) {
       + 'With the keyboard: Tab to a handle, arrow keys move it 1 pixel (Shift: 10).'),
     h('div', { class: 'images-layout' }, h('div', {}, editor.el, cornerErr, detectPanel, detectErr), h('div', {}, sampleSummary, tableBox)));
   // "Add another chart image" (issue 48): the fit trains on both charts (second.js).
-  const second = mountSecond(section, app);
+  const second = mountSecond(section, app, { ensureFirst: () => ensureDecoded() });
 
   // Drag and drop onto the zone (or anywhere on this step) sets the chart RAW.
   for (const ev of ['dragover', 'dragenter']) section.addEventListener(ev, (e) => { e.preventDefault(); drop.classList.add('over'); });
@@ -172,6 +175,7 @@ export function mount(section, app) {
     if (detection) setDetection(null, 'idle', 'The layout changed: press “Detect again” to look for it.');
     app.save('layout', layout);
     app.save('sampleOptions', sampling);
+    second.firstChanged();
     resample();
   }
   for (const el of [layoutSel, ...layoutBoxes]) el.addEventListener('change', layoutChanged);
@@ -189,7 +193,7 @@ export function mount(section, app) {
     const ok = await decode(slot, { name: file.name, bytes });
     if (ok) {
       await app.save(`files.${slot}`, { name: file.name, bytes: bytes.buffer });
-      if (slot === 'chart') await app.save('example', undefined);
+      if (slot === 'chart') { await app.save('example', undefined); second.firstChanged(); }
       // A new chart image of another size gets fresh corners; same size keeps them (same set-up).
       const img = app.derived.image;
       const fresh = slot === 'chart' && !(before && img.width === before.width && img.height === before.height && app.session.corners);
@@ -359,6 +363,7 @@ export function mount(section, app) {
     const seq = ++detectSeq;
     clearError(againBtn);
     setDetection(null, 'running');
+    bothBtn.hidden = true;
     if (!(await ensureDecoded())) {
       if (seq === detectSeq) setDetection(null, 'idle');
       return null;
@@ -368,6 +373,9 @@ export function mount(section, app) {
       const { candidates } = await engine.call('detect', { layout: layoutOptions(), ...help }, { onProgress: detectProgress.update });
       if (seq !== detectSeq) return null;
       editor.askWhereTheChartIs(null);
+      found = candidates;
+      bothBtn.hidden = candidates.length < 2 || !!app.session.chart2?.sameImage;   // not while in use
+      bothBtn.textContent = `Use both charts found (${candidates.length} in this image)`;
       const c = candidates[0];
       if (apply || sameCorners(editor.corners, c.corners)) useDetected(c);
       else setDetection(c, 'proposal');
@@ -397,6 +405,14 @@ export function mount(section, app) {
     editor.setCorners(c.corners);
     setDetection(c, 'in-use');
     cornersChanged(editor.corners, true);
+  }
+
+  /// Step 2's chart on a candidate (the one in use, or the best), the next one as the second chart.
+  async function useBoth() {
+    const at = (c) => sameCorners(editor.corners, c.corners);
+    if (!found.some(at)) useDetected(found[0]);
+    const other = found.find((c) => !at(c));
+    if (other && await second.useCandidate(other)) bothBtn.hidden = true;
   }
 
   let sampleSeq = 0;

@@ -19,6 +19,7 @@ export function perPatch(result, reference) {
   const refRow = referenceRow(result.recipe, refIndex);
   const refColour = reference ? cssColours(reference.sRGB) : [];
   const estColour = cssColours(disp.estSRGB);
+  const ownColour = disp.refSRGB ? cssColours(disp.refSRGB) : [];   // the row's own reference XYZ
   const num = (a, i) => (a && a[i] != null ? a[i] : NaN);
   const rows = ids.map((id, i) => {
     const g = (a, k) => (a ? a[3 * i + k] : NaN);
@@ -32,7 +33,7 @@ export function perPatch(result, reference) {
       X: ref[0], Y: ref[1], Z: ref[2], Xe: est[0], Ye: est[1], Ze: est[2],
       L, a, b, Le, ae, be,
       dE: num(patches.dE00, i), dL: num(patches.dL, i), dC: num(patches.dC, i), dH: num(patches.dH, i),
-      fill: refColour[refRow(id)] ?? '#999', fillEst: estColour[i] ?? '#999',
+      fill: refColour[refRow(id)] ?? ownColour[i] ?? '#999', fillEst: estColour[i] ?? '#999',
     };
   });
   for (const r of rows) {
@@ -46,7 +47,8 @@ export function perPatch(result, reference) {
 /// The row of `reference` (the first image's) that a training id names. A fit on several chart
 /// images (docs/multi-image.md) has ids "k:A1" (or "1+2:A1", one colour shot twice): the k-th
 /// image's chart's A1, which is the reference's A1 when that image has the first image's chart
-/// (another shot of it); another chart's patches have no reference colour here (undefined: grey).
+/// (another shot of it); another chart's patches are not in it (undefined: their swatch is drawn
+/// from the row's own reference XYZ, the fit's).
 function referenceRow(recipe, refIndex) {
   const images = recipe?.images ?? [];
   if (!images.length) return (id) => refIndex.get(id);

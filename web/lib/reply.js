@@ -13,8 +13,9 @@ export const reply = (result) => ({ result, transfer: buffers(result) });
 /// A coded error for a request the worker cannot answer yet.
 export const coded = (message, code) => Object.assign(new Error(message), { code });
 
-/// L*a*b* of reference and estimate and display sRGB of the estimate, from the engine (CIE 15
-/// Lab; Bradford to D65 + sRGB for display), for the Lab planes and swatches of the results.
+/// L*a*b* of reference and estimate and display sRGB of both, from the engine (CIE 15 Lab;
+/// Bradford to D65 + sRGB for display), for the Lab planes and swatches of the results.
 export function displayOf(T, refXYZ, estXYZ, white) {
-  return { white: Array.from(white), refLab: T.XYZToLab(refXYZ, white), estLab: T.XYZToLab(estXYZ, white), estSRGB: T.XYZToDisplaySRGB(estXYZ, white) };
+  return { white: Array.from(white), refLab: T.XYZToLab(refXYZ, white), estLab: T.XYZToLab(estXYZ, white), estSRGB: T.XYZToDisplaySRGB(estXYZ, white),
+    refSRGB: T.XYZToDisplaySRGB(refXYZ, white) };
 }

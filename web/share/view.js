@@ -7,7 +7,7 @@
 // text, never as HTML.
 import { h, field, showError, clearError, download, fileBytes } from '../lib/ui.js';
 import { encodeSession, decodeSession, resultRows, linkOffer } from './project.js';
-import { chartsOf } from '../images/second.js';
+import { chartsOf, sourceKeys } from '../images/second.js';
 
 export function mount(section, app) {
   const { engine } = app;
@@ -41,7 +41,7 @@ export function mount(section, app) {
     const r = selected();
     try {
       if (!r) throw Object.assign(new Error('no profile yet: fit one in step 3'), { code: 'NO_PROFILE' });
-      const images = [fileOf('files.chart'), ...(r.recipe.images?.length ? [fileOf('files.chart2')] : [])];
+      const images = sourceKeys(app, r.recipe).map(fileOf);
       makeNote.textContent = 'Making the link (the fit runs again in the worker)…';
       const [{ link }, limit] = await Promise.all([
         engine.call('shareLink', { recipe: r.recipe, ...fitInputs(r.recipe), images, base: location.href.split('#')[0] }),

@@ -1,0 +1,39 @@
+// Helpers of the several-charts browser tests (issue 48): the CLI fit of a profile's recipe, and a
+// Share link opened in a fresh browser.
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { openBrowser } from './harness.mjs';
+import { waitReady, CLI, artifact } from './journey.mjs';
+
+const VERDICT = '#share-verdict-title[data-verdict]';
+
+/// The profile JSON `tristim fit --recipe <recipe> <args>` writes (recipe and output in test-artifacts/<name>*).
+export function cliFit(recipe, args, name) {
+  const r = artifact(`${name}-recipe.json`), out = artifact(`${name}-cli.json`);
+  fs.writeFileSync(r, JSON.stringify(recipe));
+  execFileSync(CLI, ['fit', '--recipe', r, ...args, '--out', out], { stdio: 'pipe' });
+  return JSON.parse(fs.readFileSync(out, 'utf8'));
+}
+
+/// Asserts that the CLI on the page's profile's recipe (with `args`: the --raw files, …) gives its
+/// coefficients to the bit and each chart's training figures (`charts`: the page's ChartFigures).
+export function assertCliEqual(profile, charts, args, name) {
+  const cli = cliFit(profile.recipe, args, name);
+  assert.deepEqual(profile.model.coefficients, cli.model.coefficients, 'the page fits what the CLI fits, to the bit');
+  cli.charts.forEach((c, k) => assert.equal(charts[k].training_dE00.mean, c.training.dE00_mean));
+}
+
+/// Opens `link` in a fresh browser, waits for its verdict ("reproduced" asserted), runs
+/// check(page), then fails on any problem the browser recorded.
+export async function openShared(link, check) {
+  const b = await openBrowser();
+  try {
+    await b.page.goto(link.replace(/^http:\/\/127\.0\.0\.1:\d+/, b.origin));
+    await waitReady(b.page, 120000);
+    await b.page.waitForSelector(VERDICT, { timeout: 120000 });
+    assert.equal(await b.page.getAttribute(VERDICT, 'data-verdict'), 'reproduced');
+    await check(b.page);
+    assert.deepEqual(b.problems, []);
+  } finally { await b.close(); }
+}
