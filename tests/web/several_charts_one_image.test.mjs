@@ -92,4 +92,15 @@ pageTest('two charts in one image: both sampled and fitted, equal to tristim fit
     const again = await fresh.evaluate(async (text) => JSON.parse((await window.tristim.engine.call('openLink', { text })).profile), link);
     assert.deepEqual(again.model.coefficients, profile.model.coefficients, 'the link\'s coefficients, to the bit');
   });
+
+  // A second image file replaces the first image's second chart: its own chart picker and frames.
+  await step(page, 'images');
+  await upload(page, `${PANEL} input[data-slot="chart2"]`, 'left.tiff', fs.readFileSync(artifact('one-image-left.tiff')));
+  await page.waitForFunction((sel) => {
+    const p = document.querySelector(sel), c2 = window.tristim.session.chart2, s2 = window.tristim.derived.sample2;
+    return p?.dataset.state === 'sampled' && p.querySelector('.file-state').textContent.startsWith('left.tiff') && !c2.sameImage
+      && c2.corners && s2 && Array.from(s2.corners).every((v, i) => v === c2.corners[i]);
+  }, PANEL, { timeout: 60000 });
+  assert.equal(await page.isEnabled(`${PANEL} select[data-role="chart2-chart"]`), true);
+  assert.equal(await page.isVisible(`${PANEL} input[data-slot="dark2"]`), true);
 });

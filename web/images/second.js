@@ -77,6 +77,7 @@ export function mountSecond(parent, app, { ensureFirst }) {
     clearError(input);
     let bytes;
     try { bytes = await fileBytes(file); } catch (e) { showError(input, e, file.name); return; }
+    if (same()) await store({ sameImage: undefined, corners: undefined });   // a file replaces the first image's second chart
     if (!(await decode({ name: file.name, bytes }))) return;
     if (!saved().chart) chartSel.value = firstChart();
     await app.save('files.chart2', { name: file.name, bytes: bytes.buffer });
