@@ -66,8 +66,11 @@ struct Growth {
 };
 
 // Refits the lattice -> image map to the members' centres: a homography once both axes have
-// 2+ distinct values and 5+ members (the DLT is then well posed), an affine map before.
-void refit(Growth& g, const std::vector<PatchQuad>& quads) {
+// 3+ distinct values and 6+ members, an affine map before. `two_rows`: a homography already from
+// 6+ members on two rows (or columns) of 3+ — the DLT is well posed there too (no three of four
+// points collinear), and under strong perspective the pitch changes from one cell to the next by
+// more than an affine map can follow (a Classic tilted 49°: a third from one column to the next).
+void refit(Growth& g, const std::vector<PatchQuad>& quads, bool two_rows = false) {
   std::vector<Point> src, dst;
   std::set<int> ps, qs;
   for (const auto& kv : g.cell_quad) {
@@ -77,8 +80,25 @@ void refit(Growth& g, const std::vector<PatchQuad>& quads) {
     qs.insert(kv.first[1]);
   }
   if (ps.size() < 2 || qs.size() < 2) return;
-  if (src.size() >= 6 && ps.size() >= 3 && qs.size() >= 3) g.H = fit_homography(src, dst);
+  if (src.size() >= 6 && ((ps.size() >= 3 && qs.size() >= 3) || (two_rows && (ps.size() >= 3 || qs.size() >= 3))))
+    g.H = fit_homography(src, dst);
   else if (src.size() >= 3) g.H = fit_affine(src, dst);
+}
+
+// Area in the image of the lattice cell centred on `cell` (the parallelogram of the map's
+// derivatives there: a homography's local scale), px².
+double cell_area(const Eigen::Matrix3d& H, const std::array<int, 2>& cell) {
+  const Point c(cell[0], cell[1]);
+  const Point P = apply_homography(H, c + Point(0.5, 0)) - apply_homography(H, c - Point(0.5, 0));
+  const Point Q = apply_homography(H, c + Point(0, 0.5)) - apply_homography(H, c - Point(0, 0.5));
+  return std::abs(P.x() * Q.y() - P.y() * Q.x()) + 1e-12;
+}
+
+// Whether the members lie on exactly two rows or two columns (and 3+ of the other).
+bool on_two_rows(const Growth& g) {
+  std::set<int> ps, qs;
+  for (const auto& kv : g.cell_quad) ps.insert(kv.first[0]), qs.insert(kv.first[1]);
+  return (ps.size() == 2 && qs.size() >= 3) || (qs.size() == 2 && ps.size() >= 3);
 }
 
 // |cos| of the angle between two vectors.
@@ -160,12 +180,25 @@ std::vector<GridGroup> group_grids(const std::vector<PatchQuad>& quads, int min_
     g.cell_quad[{0, 0}] = seed.quad;
     g.H << seed.P.x(), seed.Q.x(), quads[seed.quad].centre.x(), seed.P.y(), seed.Q.y(), quads[seed.quad].centre.y(), 0, 0, 1;
     std::set<int> members = {seed.quad};
+    bool two_rows = false;
+    size_t stalled_at = 0;
+    Eigen::Matrix3d stalled_H = g.H;
     for (int round = 0; round < 400; ++round) {
       const Eigen::Matrix3d Hi = g.H.inverse();
       std::vector<double> areas;
       for (int m : members) areas.push_back(quads[m].area);
       std::nth_element(areas.begin(), areas.begin() + areas.size() / 2, areas.end());
       const double median_area = areas[areas.size() / 2];
+      // On two rows in perspective the patches grow or shrink from cell to cell: a member fills
+      // a fraction of its cell's image (median), and a candidate is held to that fraction of its
+      // own cell's image under the homography.
+      double fill = 0;
+      if (two_rows) {
+        std::vector<double> fills;
+        for (const auto& kv : g.cell_quad) fills.push_back(quads[kv.second].area / cell_area(g.H, kv.first));
+        std::nth_element(fills.begin(), fills.begin() + fills.size() / 2, fills.end());
+        fill = fills[fills.size() / 2];
+      }
       std::map<std::array<int, 2>, std::pair<double, int>> offers;  // cell -> (residual, quad)
       std::set<int> pool;
       for (int m : members)
@@ -197,16 +230,30 @@ std::vector<GridGroup> group_grids(const std::vector<PatchQuad>& quads, int min_
         const double fp = sp.norm() / P.norm(), fq = sq.norm() / Q.norm();
         if (fp < 0.3 || fp > 1.1 || fq < 0.3 || fq > 1.1 || std::max(fp, fq) > 1.5 * std::min(fp, fq)) continue;
         // ... and its size matches the members' (not two patches run together).
-        if (q.area > 1.7 * median_area || q.area < 0.45 * median_area) continue;
+        const double expected = two_rows ? fill * cell_area(g.H, cell) : median_area;
+        if (q.area > 1.7 * expected || q.area < 0.45 * expected) continue;
         auto it = offers.find(cell);
         if (it == offers.end() || res < it->second.first) offers[cell] = {res, j};
       }
-      if (offers.empty()) break;
+      if (offers.empty()) {
+        // Stalled: once more with the homography on two rows, which predicts the next cells of
+        // a lattice in strong perspective (a lattice that reached 3 × 3 has it already). When
+        // that adds no cell either, the lattice keeps the map it had.
+        if (two_rows || !on_two_rows(g)) {
+          if (two_rows && stalled_at == g.cell_quad.size()) g.H = stalled_H;
+          break;
+        }
+        two_rows = true;
+        stalled_at = g.cell_quad.size();
+        stalled_H = g.H;
+        refit(g, quads, true);
+        continue;
+      }
       for (const auto& kv : offers) {
         g.cell_quad[kv.first] = kv.second.second;
         members.insert(kv.second.second);
       }
-      refit(g, quads);
+      refit(g, quads, two_rows);
     }
     std::set<int> ps, qs;
     for (const auto& kv : g.cell_quad) {
