@@ -16,20 +16,14 @@ EMSCRIPTEN_BINDINGS(tristim_lab) {
   STRUCT(LabRenderOptions, camera, sensitivities, chart, illuminant, illuminant_spd, surface, width, height, corners,
            exposure, falloff, flare, shot_gain, read_noise, seed, bits, black, cfa, oecf, jpeg_quality);
   STRUCT(LabRenderFiles, dng, truth);
-  STRUCT(CameraQuality, camera, smi, mu_factor, mean_dE, matrix, dE);
   STRUCT(LutherFit, wavelengths, camera, fit, coefficients);
 
   STRUCT(ColourRow, illuminant, observer, XYZ, Lab, x, y);
   STRUCT(SpectraToColour, chart, patch, wavelengths, reflectance, stimulus, illuminants, rows);
   STRUCT(OverfitOptions, models, training, noise, seed);
-  STRUCT(OverfitRow, model, training, terms, patches, ok, error_code, message, train_dE00, loo_dE00, test_dE00);
 
   STRUCT(MetamerOptions, illuminant, illuminant_spd, second, second_spd, observer, camera, sensitivities, match,
            max_match, top);
-  STRUCT(MetamerView, viewer, XYZ_a1, XYZ_b1, XYZ_a2, XYZ_b2, Lab_a1, Lab_b1, Lab_a2, Lab_b2, dE00_1, dE00_2);
-  STRUCT(MetamerPair, a, b, reflectance_a, reflectance_b, alpha, views);
-  STRUCT(MetamerResult, wavelengths, illuminant, second, observer, camera, match, camera_matrix, max_match, compared,
-           all_pairs, matching, pairs);
 
   def<&lab_render_files>("labRender");
   def<&lab_spectra_to_colour>("labSpectraToColour");

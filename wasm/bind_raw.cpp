@@ -4,11 +4,12 @@
 // calibration set on an image, chart sampling and applying a profile to a decoded RAW.
 //
 // RawImage methods: width(), height() (the measurement image: half resolution for Bayer),
-// metadata() -> RawMetadata, linearHash(), preview(maxSide) -> Preview (display only),
+// metadata() -> RawMetadata (by its field list: the object `tristim inspect` prints, without
+// linear_hash), linearHash(), preview(maxSide) -> Preview (display only),
 // setDark(frames: RawImage | RawImage[], mode 'per_pixel' | 'per_channel' (default per_pixel; the
 // recipe's capture.dark_mode; 'pixel' | 'channel' accepted as aliases)) -> DarkFrame summary,
 // clearDark(), setFlat(flat, mode 'pixel' | 'radial', white_reflectance?: number | [r, g, b])
-// -> FlatField summary or FalloffFit, clearFlat(), saturationMask() -> Uint8Array(w·h),
+// -> FlatField summary or FalloffFit (by its field list), clearFlat(), saturationMask() -> Uint8Array(w·h),
 // linearRGB() -> Float32Array(3·w·h) with the dark/flat set on this image applied,
 // setLightTrap(corners[8], SampleOptions?) -> LightTrap (Abed 2013 App. C step 1: the trap's mean
 // after the dark frame becomes the flare subtracted from every pixel), clearLightTrap().
@@ -47,7 +48,7 @@ val set_flat(RawHandle& h, val flat, val mode, val reflectance) {
     h.calibration = with_flat_frame(h.calibration, h.image, Conv<const RawHandle*>::from(flat)->image, m,
                                     reflectance.isNumber() ? std::vector<double>{reflectance.as<double>()}
                                                            : Conv<std::vector<double>>::from(reflectance));
-    return m == "radial" ? val(*h.calibration.falloff) : val(*h.calibration.flat);
+    return m == "radial" ? Conv<FalloffFit>::to(*h.calibration.falloff) : val(*h.calibration.flat);
   });
 }
 
@@ -83,18 +84,11 @@ Image3f apply_to_raw(const Profile& profile, const RawHandle* h) {
 EMSCRIPTEN_BINDINGS(tristim_raw) {
   using emscripten::class_;
   using emscripten::optional_override;
-  { using S = RawMetadata; value_object<S>("RawMetadata") FIELD(format) FIELD(encoding) FIELD(declared_colour) FIELD(make) FIELD(model) FIELD(lens) FIELD(iso) FIELD(shutter_s)
-      FIELD(f_number) FIELD(timestamp) FIELD(timestamp_iso) FIELD(layout) FIELD(cfa_pattern) FIELD(cfa_width)
-      FIELD(cfa_height) FIELD(block) FIELD(sensor_width) FIELD(sensor_height) FIELD(raw_width) FIELD(raw_height)
-      FIELD(width) FIELD(height) FIELD(bits) FIELD(flip) FIELD(cfa_black) FIELD(black_level) FIELD(white_level)
-      FIELD(saturation) FIELD(rgb_cam) FIELD(cam_xyz) FIELD(as_shot_wb) FIELD(daylight_wb) FIELD(decoder); }
   { using S = Preview; value_object<S>("Preview") FIELD(width) FIELD(height) FIELD(scale) FIELD(rgba); }
   { using S = DarkFrame; value_object<S>("DarkFrame") FIELD(width) FIELD(height) FIELD(frames) FIELD(make) FIELD(model)
       FIELD(mean) FIELD(noise); }
   { using S = FlatField; value_object<S>("FlatField") FIELD(width) FIELD(height) FIELD(make) FIELD(model)
       FIELD(reflectance_units) FIELD(target); }
-  { using S = FalloffFit; value_object<S>("FalloffFit") FIELD(p1) FIELD(p2) FIELD(p3) FIELD(centre_x) FIELD(centre_y)
-      FIELD(r_scale) FIELD(width) FIELD(height) FIELD(bins) FIELD(rms_residual) FIELD(max_residual); }
   { using S = SampleOptions; value_object<S>("SampleOptions") FIELD(area) FIELD(min_pixels) FIELD(dark_fraction)
       FIELD(nonuniform_threshold) FIELD(partial); }
   { using S = PatchSample; value_object<S>("PatchSample") FIELD(id) FIELD(mean) FIELD(std) FIELD(n)
@@ -106,7 +100,7 @@ EMSCRIPTEN_BINDINGS(tristim_raw) {
   class_<RawHandle>("RawImage")
       .function("width", optional_override([](const RawHandle& h) { return h.image.width; }))
       .function("height", optional_override([](const RawHandle& h) { return h.image.height; }))
-      .function("metadata", optional_override([](const RawHandle& h) { return val(h.image.meta); }))
+      .function("metadata", optional_override([](const RawHandle& h) { return Conv<RawMetadata>::to(h.image.meta); }))
       .function("linearHash", optional_override([](const RawHandle& h) { return hash_hex(linear_data_hash(h.image)); }))
       .function("preview", optional_override([](const RawHandle& h, int side) {
                   return guard([&] { return val(render_preview(h.image, side)); }); }))

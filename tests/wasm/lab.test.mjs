@@ -70,6 +70,9 @@ test('lab smi: the ranking of the 52 cameras, and one camera as the CLI prints i
   assert.equal(native.camera, name);
   assert.ok(Math.abs(q.smi - native.smi) < 1e-9, `wasm ${q.smi} native ${native.smi}`);
   assert.ok(Math.abs(q.mu_factor - native.mu_factor) < 1e-12, `wasm ${q.mu_factor} native ${native.mu_factor}`);
+  assert.equal(q.matrix.length, 9);
+  assert.equal(q.dE.length, 18);
+  assert.ok(Math.abs(q.dE.reduce((a, b) => a + b) / 18 - q.mean_dE) < 1e-12, 'mean_dE is the mean of dE');
   const fit = T.lutherFit(T.cameraSensitivities(name), D65);
   assert.equal(fit.camera.length, 3);
   assert.equal(fit.fit[1].length, fit.wavelengths.length);
@@ -98,7 +101,11 @@ test('lab exercises: spectra to colour and the over-fitting table, as the CLI pr
     assert.equal(r.model, native[i].model);
     assert.equal(r.error_code, native[i].error_code);
     if (r.ok) for (const f of ['train_dE00', 'test_dE00']) assert.ok(Math.abs(r[f] - native[i][f]) < 1e-9, `${r.model} ${r.training} ${f}: ${r[f]} vs ${native[i][f]}`);
+    // a figure that is not a number is null in both (the JSON's form), never NaN
+    for (const f of ['train_dE00', 'loo_dE00', 'test_dE00']) assert.equal(r[f] === null, native[i][f] === null, `${r.model} ${r.training} ${f}`);
+    if (!r.ok) assert.ok(r.message.length > 0 && r.train_dE00 === null, `${r.model} ${r.training}: refused with a message`);
   });
+  assert.ok(rows.some((r) => !r.ok), 'a refused row (35 terms on 24 patches)');
 });
 
 test('lab metamers: the search and a constructed metamer as the CLI prints them; coded errors', async () => {

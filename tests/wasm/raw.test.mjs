@@ -42,6 +42,9 @@ test('the three real RAW files decode with the native build\'s linear data', asy
         assert.equal(native.linear_hash, raw.linearHash(), `${c.file}: native CLI vs wasm`);
         assert.equal(native.white_level, m.white_level);
         assert.deepEqual(native.black_level, m.black_level);
+        // one field list: every member, name and form the module gives is what the CLI prints
+        for (const k of Object.keys(m)) assert.deepEqual(m[k], native[k], `${c.file}: metadata.${k}`);
+        assert.ok(Object.keys(m).length >= 33, `${c.file}: ${Object.keys(m).length} members`);
       }
       const rgb = raw.linearRGB();
       assert.ok(rgb instanceof Float32Array);
@@ -120,6 +123,8 @@ test('a dark frame and a flat field change what sampleChart reports; mismatches 
     img.clearDark();
     const r = img.setFlat(same, 'radial');
     assert.equal(r.p3, 1);
+    assert.deepEqual(Object.keys(r), ['p1', 'p2', 'p3', 'centre_x', 'centre_y', 'r_scale', 'width', 'height', 'bins',
+      'rms_residual', 'max_residual']);
     assert.ok(Number.isFinite(r.rms_residual));
     img.clearFlat();
     throwsCode(assert, () => img.setDark(other), 'FRAME_MISMATCH');

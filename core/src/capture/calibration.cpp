@@ -159,6 +159,15 @@ double FalloffFit::factor(double x, double y) const {
   return p1 * r * r + p2 * r + p3;  // eq (7): f(u_p, v_p)
 }
 
+namespace fields {
+TRISTIM_FIELDS_DEFINE(FalloffFit, member<&FalloffFit::p1>("p1"), member<&FalloffFit::p2>("p2"),
+                      member<&FalloffFit::p3>("p3"), member<&FalloffFit::centre_x>("centre_x"),
+                      member<&FalloffFit::centre_y>("centre_y"), member<&FalloffFit::r_scale>("r_scale"),
+                      member<&FalloffFit::width>("width"), member<&FalloffFit::height>("height"),
+                      member<&FalloffFit::bins>("bins"), member<&FalloffFit::rms_residual>("rms_residual"),
+                      member<&FalloffFit::max_residual>("max_residual"));
+}  // namespace fields
+
 FalloffFit fit_falloff_Guarnera2018(const RawImage& flat, const DarkFrame* dark) {
   if (dark) require_same(frame_id(flat), frame_id(*dark), "the dark frame");
   FalloffFit fit;

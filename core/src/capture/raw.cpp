@@ -647,20 +647,22 @@ bool libraw_identifies(const std::uint8_t* data, std::size_t size, int* raw_widt
 
 namespace fields {
 using M = RawMetadata;
-TRISTIM_FIELDS(M, member<&M::format>("format"), member<&M::encoding>("encoding"),
-               member<&M::declared_colour>("declared_colour"), member<&M::make>("make"), member<&M::model>("model"),
-               member<&M::lens>("lens"), member<&M::iso>("iso"), member<&M::shutter_s>("shutter_s"),
-               member<&M::f_number>("f_number"), member<&M::timestamp>("timestamp"),
-               member<&M::timestamp_iso>("timestamp_iso"), member<&M::layout>("layout"),
-               member<&M::cfa_pattern>("cfa_pattern"), member<&M::cfa_width>("cfa_width"),
-               member<&M::cfa_height>("cfa_height"), member<&M::block>("block"), member<&M::sensor_width>("sensor_width"),
-               member<&M::sensor_height>("sensor_height"), member<&M::raw_width>("raw_width"),
-               member<&M::raw_height>("raw_height"), member<&M::width>("width"), member<&M::height>("height"),
-               member<&M::bits>("bits"), member<&M::flip>("flip"), member<&M::cfa_black>("cfa_black"),
-               member<&M::black_level>("black_level"), member<&M::white_level>("white_level"),
-               member<&M::saturation>("saturation"), member<&M::rgb_cam>("rgb_cam"), member<&M::cam_xyz>("cam_xyz"),
-               member<&M::as_shot_wb>("as_shot_wb"), member<&M::daylight_wb>("daylight_wb"),
-               member<&M::decoder>("decoder"));
+TRISTIM_FIELDS_DEFINE(M, member<&M::format>("format"), member<&M::encoding>("encoding"),
+                      member<&M::declared_colour>("declared_colour"), member<&M::make>("make"),
+                      member<&M::model>("model"), member<&M::lens>("lens"), member<&M::iso>("iso"),
+                      member<&M::shutter_s>("shutter_s"), member<&M::f_number>("f_number"),
+                      member<&M::timestamp>("timestamp"), member<&M::timestamp_iso>("timestamp_iso"),
+                      member<&M::layout>("layout"), member<&M::cfa_pattern>("cfa_pattern"),
+                      member<&M::cfa_width>("cfa_width"), member<&M::cfa_height>("cfa_height"),
+                      member<&M::block>("block"), member<&M::sensor_width>("sensor_width"),
+                      member<&M::sensor_height>("sensor_height"), member<&M::raw_width>("raw_width"),
+                      member<&M::raw_height>("raw_height"), member<&M::width>("width"),
+                      member<&M::height>("height"), member<&M::bits>("bits"), member<&M::flip>("flip"),
+                      member<&M::cfa_black>("cfa_black"), member<&M::black_level>("black_level"),
+                      member<&M::white_level>("white_level"), member<&M::saturation>("saturation"),
+                      member<&M::rgb_cam>("rgb_cam"), member<&M::cam_xyz>("cam_xyz"),
+                      member<&M::as_shot_wb>("as_shot_wb"), member<&M::daylight_wb>("daylight_wb"),
+                      member<&M::decoder>("decoder"));
 }  // namespace fields
 
 RawMetadata inspect_raw(const std::uint8_t* data, std::size_t size, const DecodeOptions& options) {

@@ -62,12 +62,16 @@ SpectraToColour lab_spectra_to_colour(const std::string& chart, const std::strin
 
 namespace fields {
 using R = OverfitRow;
-TRISTIM_FIELDS(R, member<&R::model>("model"), member<&R::training>("training"), member<&R::terms>("terms"),
-               member<&R::patches>("patches"), member<&R::ok>("ok"), member<&R::error_code>("error_code"),
-               member<&R::train_dE00>("train_dE00"), member<&R::loo_dE00>("loo_dE00"), member<&R::test_dE00>("test_dE00"));
+TRISTIM_FIELDS_DEFINE(R, member<&R::model>("model"), member<&R::training>("training"), member<&R::terms>("terms"),
+                      member<&R::patches>("patches"), member<&R::ok>("ok"), member<&R::error_code>("error_code"),
+                      member<&R::message>("message"), member<&R::train_dE00>("train_dE00"),
+                      member<&R::loo_dE00>("loo_dE00"), member<&R::test_dE00>("test_dE00"));
 }  // namespace fields
 
-json::Value overfit_row_json(const OverfitRow& row) { return fields::write(row); }
+json::Value overfit_row_json(const OverfitRow& row) {
+  return fields::write_picked(row, {"model", "training", "terms", "patches", "ok", "error_code", "train_dE00",
+                                    "loo_dE00", "test_dE00"});
+}
 
 SpectralData cmf_sensitivities() {
   SpectralData s = align_spectra(cmfs(Observer::CIE1931_2), wavelength_grid(380, 780, 5));

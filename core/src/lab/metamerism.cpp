@@ -233,19 +233,19 @@ MetamerResult construct_metamer_in(const MetamerOptions& o, const SpectralData& 
 
 namespace fields {
 using V = MetamerView;
-TRISTIM_FIELDS(V, member<&V::viewer>("viewer"), member<&V::XYZ_a1>("XYZ_a1"), member<&V::XYZ_b1>("XYZ_b1"),
-               member<&V::XYZ_a2>("XYZ_a2"), member<&V::XYZ_b2>("XYZ_b2"), member<&V::Lab_a1>("Lab_a1"),
-               member<&V::Lab_b1>("Lab_b1"), member<&V::Lab_a2>("Lab_a2"), member<&V::Lab_b2>("Lab_b2"),
-               member<&V::dE00_1>("dE00_1"), member<&V::dE00_2>("dE00_2"));
+TRISTIM_FIELDS_DEFINE(V, member<&V::viewer>("viewer"), member<&V::XYZ_a1>("XYZ_a1"), member<&V::XYZ_b1>("XYZ_b1"),
+                      member<&V::XYZ_a2>("XYZ_a2"), member<&V::XYZ_b2>("XYZ_b2"), member<&V::Lab_a1>("Lab_a1"),
+                      member<&V::Lab_b1>("Lab_b1"), member<&V::Lab_a2>("Lab_a2"), member<&V::Lab_b2>("Lab_b2"),
+                      member<&V::dE00_1>("dE00_1"), member<&V::dE00_2>("dE00_2"));
 using P = MetamerPair;
-TRISTIM_FIELDS(P, member<&P::a>("a"), member<&P::b>("b"), member<&P::alpha>("alpha"),
-               member<&P::reflectance_a>("reflectance_a"), member<&P::reflectance_b>("reflectance_b"),
-               member<&P::views>("views"));
+TRISTIM_FIELDS_DEFINE(P, member<&P::a>("a"), member<&P::b>("b"), member<&P::alpha>("alpha"),
+                      member<&P::reflectance_a>("reflectance_a"), member<&P::reflectance_b>("reflectance_b"),
+                      member<&P::views>("views"));
 using R = MetamerResult;
-TRISTIM_FIELDS(R, member<&R::illuminant>("illuminant"), member<&R::second>("second"), member<&R::observer>("observer"),
-               member<&R::camera>("camera"), member<&R::match>("match"), member<&R::camera_matrix>("camera_matrix"),
-               member<&R::max_match>("max_match"), member<&R::compared>("compared"), member<&R::all_pairs>("all_pairs"),
-               member<&R::matching>("matching"), member<&R::wavelengths>("wavelengths"), member<&R::pairs>("pairs"));
+TRISTIM_FIELDS_DEFINE(R, member<&R::illuminant>("illuminant"), member<&R::second>("second"), member<&R::observer>("observer"),
+                      member<&R::camera>("camera"), member<&R::match>("match"), member<&R::camera_matrix>("camera_matrix"),
+                      member<&R::max_match>("max_match"), member<&R::compared>("compared"), member<&R::all_pairs>("all_pairs"),
+                      member<&R::matching>("matching"), member<&R::wavelengths>("wavelengths"), member<&R::pairs>("pairs"));
 }  // namespace fields
 
 json::Value metamer_result_json(const MetamerResult& result) { return fields::write(result); }

@@ -201,10 +201,12 @@ LutherFit luther_fit(const SpectralData& ssf, const SpectralData& illuminant) {
 
 namespace fields {
 using Q = CameraQuality;
-TRISTIM_FIELDS(Q, member<&Q::camera>("camera"), member<&Q::smi>("smi"), member<&Q::mu_factor>("mu_factor"),
-               member<&Q::mean_dE>("mean_dE"));
+TRISTIM_FIELDS_DEFINE(Q, member<&Q::camera>("camera"), member<&Q::smi>("smi"), member<&Q::mu_factor>("mu_factor"),
+                      member<&Q::mean_dE>("mean_dE"), member<&Q::matrix>("matrix"), member<&Q::dE>("dE"));
 }  // namespace fields
 
-json::Value camera_quality_json(const CameraQuality& q) { return fields::write(q); }
+json::Value camera_quality_json(const CameraQuality& q) {
+  return fields::write_picked(q, {"camera", "smi", "mu_factor", "mean_dE"});
+}
 
 }  // namespace tristim

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "tristim/capture/raw.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/methods.hpp"
 
 namespace tristim {
@@ -130,3 +131,9 @@ FrameCalibration with_flat_frame(FrameCalibration base, const RawImage& image, c
 RawImage apply_calibration(const RawImage& image, const FrameCalibration& calibration);
 
 }  // namespace tristim
+
+// The fall-off fit's field list (defined in calibration.cpp): the absolute profile's JSON and the
+// wasm binding (setFlat(…, 'radial')) use it.
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(FalloffFit);
+}  // namespace tristim::fields

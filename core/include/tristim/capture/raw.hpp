@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "tristim/io/fields.hpp"
+
 namespace tristim {
 
 /// How sensor pixels were combined into one measurement pixel (RawMetadata::layout).
@@ -123,3 +125,9 @@ std::uint64_t linear_data_hash(const RawImage& image);
 std::string hash_hex(std::uint64_t hash);
 
 }  // namespace tristim
+
+// The metadata's field list (defined in raw.cpp): `tristim inspect`'s JSON and the wasm binding
+// (RawImage.metadata()) use it.
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(RawMetadata);
+}  // namespace tristim::fields

@@ -18,6 +18,7 @@
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/evaluation/evaluation.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/json.hpp"
 
 namespace tristim {
@@ -34,7 +35,7 @@ struct OverfitRow {
          test_dE00 = std::numeric_limits<double>::quiet_NaN();
 };
 /// {"model","training","terms","patches","ok","error_code","train_dE00","loo_dE00","test_dE00"}
-/// (NaN as null).
+/// (NaN as null): the CLI's row (the list also has message).
 json::Value overfit_row_json(const OverfitRow& row);
 
 struct OverfitOptions {
@@ -193,3 +194,9 @@ std::vector<GuarneraRow> lab_guarnera_table4(const std::string& camera = "Canon_
 LabTable guarnera_table(const std::vector<GuarneraRow>& rows);
 
 }  // namespace tristim
+
+// The over-fitting row's field list (defined in exercises.cpp): the CLI's rows and the wasm
+// binding use it.
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(OverfitRow);
+}  // namespace tristim::fields

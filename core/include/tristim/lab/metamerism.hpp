@@ -32,6 +32,7 @@
 
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/colorimetry/spectra.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/json.hpp"
 
 namespace tristim {
@@ -95,3 +96,11 @@ std::vector<std::string> munsell_ids();
 json::Value metamer_result_json(const MetamerResult& result);
 
 }  // namespace tristim
+
+// The field lists of the explorer's result (defined in metamerism.cpp): the CLI's JSON and the
+// wasm binding use them.
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(MetamerView);
+TRISTIM_FIELDS_DECLARE(MetamerPair);
+TRISTIM_FIELDS_DECLARE(MetamerResult);
+}  // namespace tristim::fields

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "tristim/colorimetry/spectra.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/json.hpp"
 
 namespace tristim {
@@ -61,7 +62,12 @@ LutherFit luther_fit(const SpectralData& sensitivities, const SpectralData& illu
 /// The ISO 17321-1 ColorChecker reflectances (Ohta), 24 columns; SMI uses the first 18.
 const SpectralData& iso17321_reflectances();
 
-/// {"camera","smi","mu_factor","mean_dE"}.
+/// {"camera","smi","mu_factor","mean_dE"}: the CLI's row (the list also has matrix and dE).
 json::Value camera_quality_json(const CameraQuality& q);
 
 }  // namespace tristim
+
+// Its field list (defined in smi.cpp): the CLI's rows and the wasm binding use it.
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(CameraQuality);
+}  // namespace tristim::fields
