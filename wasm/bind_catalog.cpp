@@ -33,8 +33,6 @@ EMSCRIPTEN_BINDINGS(tristim_catalog) {
   { using S = MethodInfo; value_object<S>("MethodInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(options); }
   { using S = SurfaceListing; value_object<S>("SurfaceListing") FIELD(id) FIELD(label) FIELD(reference) FIELD(options)
       FIELD(coefficients) FIELD(equation) FIELD(geometry); }
-  { using S = LayoutOptions; value_object<S>("LayoutOptions") FIELD(chart) FIELD(rows) FIELD(columns)
-      FIELD(margin_left) FIELD(margin_top) FIELD(margin_right) FIELD(margin_bottom) FIELD(gap); }
   { using S = PatchCell; value_object<S>("PatchCell") FIELD(id) FIELD(row) FIELD(column) FIELD(u0) FIELD(v0) FIELD(u1) FIELD(v1); }
   { using S = ChartLayout; value_object<S>("ChartLayout") FIELD(chart) FIELD(rows) FIELD(columns) FIELD(gap) FIELD(patches); }
 

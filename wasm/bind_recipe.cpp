@@ -1,6 +1,7 @@
 // Declarations: the Recipe (every stage of a characterisation as a value) and the one data path
-// from a recipe and its inputs to a profile (profile/characterise.hpp). A Recipe argument may be
-// given as its JSON text; MethodChoice members as "id:name=value,...".
+// from a recipe and its inputs to a profile (profile/characterise.hpp). A Recipe crosses as the
+// object its JSON is (its field lists, tristim/profile/recipe.hpp; members left out keep their
+// defaults), or as its JSON text.
 // Several chart images (issue 48, docs/multi-image.md), as `tristim fit --recipe` with an `images`
 // list: trainingSet(imageRecipe(recipe, recipe.images[k]), sample_k, reference_k) per chart, then
 // fitTraining(recipe, trainingUnion(recipe, [{name, training}, …])) — its `charts` the per-chart figures.
@@ -47,16 +48,6 @@ TrainingSet sample_training_set(const Recipe& recipe, const ChartSample& sample,
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(tristim_recipe) {
-  { using S = CaptureStage; value_object<S>("CaptureStage") FIELD(dark_frames) FIELD(dark_mode) FIELD(flat_field) FIELD(falloff)
-      FIELD(saturation) FIELD(noise_floor) FIELD(light_trap) FIELD(flare); }
-  { using S = SamplingStage; value_object<S>("SamplingStage") FIELD(layout) FIELD(corners) FIELD(area) FIELD(exclude)
-      FIELD(exclude_flagged); }
-  { using S = CharacterisationStage; value_object<S>("CharacterisationStage") FIELD(model) FIELD(objective) FIELD(white_patch)
-      FIELD(lab_white); }
-  { using S = RecipeImage; value_object<S>("RecipeImage") FIELD(name) FIELD(sha256) FIELD(reference) FIELD(capture) FIELD(sampling)
-      FIELD(candidate); }
-  { using S = Recipe; value_object<S>("Recipe") FIELD(version) FIELD(reference) FIELD(capture) FIELD(sampling)
-      FIELD(linearisation) FIELD(surface) FIELD(characterisation) FIELD(evaluation) FIELD(images) FIELD(duplicates); }
   { using S = TrainingSet; value_object<S>("TrainingSet") FIELD(ids) FIELD(labels) FIELD(camera_RGB) FIELD(reference_XYZ)
       FIELD(excluded) FIELD(chart_names) FIELD(chart_rows); }
   { using S = ChartPart; value_object<S>("ChartPart") FIELD(name) FIELD(training); }

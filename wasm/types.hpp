@@ -51,8 +51,8 @@ struct Conv<AbsoluteRecipe> : SchemaConv<AbsoluteRecipe> {  // the recipe JSON t
 /// The report as its document (format, reference, then the listed members): what the CLI prints.
 template <> struct Conv<AbsoluteReport> : JsonOutput<AbsoluteReport, &absolute_report_json> {};
 template <>
-struct Conv<Recipe> : StructConv<Recipe> {  // the recipe JSON text, or the declared struct
-  static Recipe from(const val& v) { return v.isString() ? recipe_from_json(v.as<std::string>()) : StructConv<Recipe>::from(v); }
+struct Conv<Recipe> : SchemaConv<Recipe> {  // the recipe JSON text, or its object
+  static Recipe from(const val& v) { return v.isString() ? recipe_from_json(v.as<std::string>()) : SchemaConv<Recipe>::from(v); }
 };
 template <>
 struct Conv<Profile> : StructConv<Profile> {  // the profile JSON text, or the declared struct

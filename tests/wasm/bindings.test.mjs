@@ -117,7 +117,7 @@ test('structs: fields left out take the C++ defaults; unknown fields and wrong t
   throwsCode(assert, () => T.evaluateModel('matrix-3x3', rgb.subarray(0, 14), xyz, {}, -1, true), 'INVALID_ARGUMENT');
   const ids = ['A1', 'A2', 'A3', 'A4', 'A5'];
   const fit = (characterisation) => T.fitTables({ characterisation }, ids, rgb, xyz);
-  throwsCode(assert, () => fit({ model: 'matrix-3x3', objective: 'psm:nope=1' }), 'UNKNOWN_ID');
+  throwsCode(assert, () => fit({ model: 'matrix-3x3', objective: { method: 'psm', parameters: { nope: 1 } } }), 'UNKNOWN_ID');
   throwsCode(assert, () => fit({ model: 'matrix-3x3', objective: { method: 'de2000', settings: { algorithm: 'magic' } } }), 'INVALID_ARGUMENT');
   throwsCode(assert, () => fit('matrix-3x3'), 'INVALID_ARGUMENT');
   throwsCode(assert, () => T.fitTables('{"format": "tristim-recipe", "version": 9}', ids, rgb, xyz), 'RECIPE_VERSION');

@@ -59,7 +59,7 @@ test('fitModel: planted 3x3 recovered, profile round-trips through evaluateProfi
     for (let k = 0; k < 3; k++) xyz[3 * i + k] = M[3 * k] * c[0] + M[3 * k + 1] * c[1] + M[3 * k + 2] * c[2];
   }
   for (const objective of ['ls', 'psm', 'de2000']) {
-    const r = fitModel(T, rgb, xyz, numbered(n), { model: 'matrix-3x3', objective });
+    const r = fitModel(T, rgb, xyz, numbered(n), { model: 'matrix-3x3', objective: { method: objective } });
     const coefficients = r.evaluation.fit.model.coefficients;
     assert.ok(coefficients instanceof Float64Array);
     coefficients.forEach((v, i) => assert.ok(Math.abs(v - M[i]) < 1e-9, `${objective} coef ${i}: ${v}`));
@@ -78,14 +78,14 @@ test('fitModel: planted 3x3 recovered, profile round-trips through evaluateProfi
 test('fitModel on the Passport patches: LOO reported, best model beats the 3x3', async () => {
   const T = await loadTristim();
   const { rgb, xyz, ids } = passport();
-  const a = fitModel(T, rgb, xyz, ids, { model: 'matrix-3x3', objective: 'ls' }).evaluation;
-  const b = fitModel(T, rgb, xyz, ids, { model: 'Finlayson2015-2', objective: 'ls' }).evaluation;
+  const a = fitModel(T, rgb, xyz, ids, { model: 'matrix-3x3', objective: { method: 'ls' } }).evaluation;
+  const b = fitModel(T, rgb, xyz, ids, { model: 'Finlayson2015-2', objective: { method: 'ls' } }).evaluation;
   assert.equal(a.fit.status, 'ok');
   assert.equal(a.training.patches.dE00.length, 24);
   assert.equal(a.loo.patches.dE00.length, 24);
   assert.ok(b.loo.dE00.mean < a.loo.dE00.mean);
   assert.ok(a.fit.condition_number > 1 && a.fit.condition_number < 1e3);
-  const w = fitModel(T, rgb, xyz, ids, { model: 'matrix-3x4', objective: 'de2000', white_patch: 'D1' }).evaluation;
+  const w = fitModel(T, rgb, xyz, ids, { model: 'matrix-3x4', objective: { method: 'de2000' }, white_patch: 'D1' }).evaluation;
   const est = w.fit.fitted.slice(18 * 3, 18 * 3 + 3);
   for (let k = 0; k < 3; k++) assert.ok(Math.abs(est[k] - xyz[18 * 3 + k]) < 1e-9);
 });
@@ -143,7 +143,7 @@ test('bad input reaches JS as coded errors', async () => {
   const neg = xyz.slice();
   neg[5] = -1;
   throwsCode(assert, () => fitModel(T, rgb, neg, ids, { model: 'matrix-3x3' }), 'NEGATIVE_VALUE');
-  throwsCode(assert, () => fitModel(T, rgb, xyz, ids, { model: 'matrix-3x3', objective: 'magic' }), 'UNKNOWN_ID');
+  throwsCode(assert, () => fitModel(T, rgb, xyz, ids, { model: 'matrix-3x3', objective: { method: 'magic' } }), 'UNKNOWN_ID');
   const good = fitModel(T, rgb, xyz, ids, { model: 'matrix-3x3' }, { leave_one_out: false }).profile;
   throwsCode(assert, () => T.evaluateProfile(good.replace('"version": 1', '"version": 7'), rgb, xyz, ids), 'PROFILE_VERSION');
   throwsCode(assert, () => T.evaluateProfile('{"format": "tristim-profile", "version": 1}', rgb, xyz, ids), 'PROFILE_INVALID');

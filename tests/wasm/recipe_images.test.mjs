@@ -30,7 +30,7 @@ for (const duplicates of ['each', 'once']) {
     const c1 = EXAMPLE.corners, c2 = c1.map((v, i) => v + (i % 2 ? 1 : -1.5));   // a second placement of the chart
     const reference = { chart: 'passport', illuminant: 'D50', observer: '1931' };
     const entry = (name, corners) => ({ name, sha256: T.sha256(bytes), reference, sampling: { layout: { chart: 'passport' }, corners, area: 0.5 } });
-    const recipe = T.completeRecipe({ reference, sampling: entry('', c1).sampling, characterisation: { model: 'Finlayson2015-2', objective: 'ls' },
+    const recipe = T.completeRecipe({ reference, sampling: entry('', c1).sampling, characterisation: { model: 'Finlayson2015-2', objective: { method: 'ls' } },
       images: [entry('a.dng', c1), entry('b.dng', c2)], duplicates });
     const raw = T.decodeRaw(bytes);
     let out;

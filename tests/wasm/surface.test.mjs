@@ -53,7 +53,7 @@ test('fitSurface (Phase I): planted scaler-offset and Saunderson coefficients ar
 test('fitSurfaceJoint (Phase II): a colorimetric camera, anchored to the white, recovers μ and ρ', async () => {
   const T = await loadTristim();
   const reflectances = T.chartReflectances(SG);
-  const seen = T.recipeReference({ reference: { chart: SG, illuminant: 'D50', observer: '1931' }, surface: 'scaler-offset:mu=1.04,rho=-0.02' });
+  const seen = T.recipeReference({ reference: { chart: SG, illuminant: 'D50', observer: '1931' }, surface: { method: 'scaler-offset', parameters: { mu: 1.04, rho: -0.02 } } });
   // camera RGB = A⁻¹·XYZ for an invertible A (a camera whose sensitivities are CMF combinations)
   const Ainv = [[0.9, 0.2, -0.1], [-0.3, 1.2, 0.1], [0.05, -0.1, 1.1]];
   const cam = (x, y, z) => Ainv.map((r) => r[0] * x + r[1] * y + r[2] * z);

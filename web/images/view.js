@@ -155,8 +155,8 @@ export function mount(section, app) {
   function layoutOptions() {
     const chart = layoutSel.value;
     if (chart !== 'custom') return { chart };
-    const [margin_left, margin_top, margin_right, margin_bottom] = marginIns.map((i) => numberValue(i, 0));
-    return { chart, rows: numberValue(rowsIn), columns: numberValue(colsIn), gap: numberValue(gapIn, 0), margin_left, margin_top, margin_right, margin_bottom };
+    const margins = marginIns.map((i) => numberValue(i, 0));   // read first: a margin's typo is shown even while rows is empty
+    return { chart, rows: numberValue(rowsIn), columns: numberValue(colsIn), margins, gap: numberValue(gapIn, 0) };
   }
   const sampleOptions = () => ({ area: numberValue(areaIn) });
   const layoutBoxes = [rowsIn, colsIn, areaIn, gapIn, ...marginIns];
@@ -497,7 +497,9 @@ export function mount(section, app) {
       if (L.rows) rowsIn.value = L.rows;
       if (L.columns) colsIn.value = L.columns;
       if (L.gap >= 0) gapIn.value = L.gap;
-      ['margin_left', 'margin_top', 'margin_right', 'margin_bottom'].forEach((k, i) => { if (L[k]) marginIns[i].value = L[k]; });
+      (L.margins ?? []).forEach((m, i) => { if (m) marginIns[i].value = m; });
+      // A session saved before the layout crossed as its JSON (margin_left …): kept in that form.
+      if ('margin_left' in L) { ['margin_left', 'margin_top', 'margin_right', 'margin_bottom'].forEach((k, i) => { if (L[k]) marginIns[i].value = L[k]; }); app.save('layout', layoutOptions()); }
     }
     syncLayout();
     previewAfter = previewWait;

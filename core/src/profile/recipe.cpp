@@ -32,7 +32,7 @@ TRISTIM_FIELDS_DEFINE(ReferenceStage, member<&ReferenceStage::chart>("chart"), m
                member<&ReferenceStage::illuminant>("illuminant"), member<&ReferenceStage::observer>("observer"));
 
 static bool has_light_trap(const CaptureStage& c) { return c.has_light_trap(); }
-TRISTIM_FIELDS(CaptureStage, member<&CaptureStage::dark_frames>("dark_frames"), member<&CaptureStage::dark_mode>("dark_mode"),
+TRISTIM_FIELDS_DEFINE(CaptureStage, member<&CaptureStage::dark_frames>("dark_frames"), member<&CaptureStage::dark_mode>("dark_mode"),
                member<&CaptureStage::flat_field>("flat_field"), member<&CaptureStage::falloff>("falloff"),
                member<&CaptureStage::saturation>("saturation"), member<&CaptureStage::noise_floor>("noise_floor"),
                // only recipes with a light trap have these (both, checked in recipe_from_json)
@@ -47,15 +47,15 @@ static void read_margins(const json::Value& v, LayoutOptions& L, const Context& 
   read(v, m, c, path);
   L.margin_left = m[0], L.margin_top = m[1], L.margin_right = m[2], L.margin_bottom = m[3];
 }
-TRISTIM_FIELDS(LayoutOptions, member<&LayoutOptions::chart>("chart"), member<&LayoutOptions::rows>("rows"),
+TRISTIM_FIELDS_DEFINE(LayoutOptions, member<&LayoutOptions::chart>("chart"), member<&LayoutOptions::rows>("rows"),
                member<&LayoutOptions::columns>("columns"), Field<LayoutOptions>{"margins", margins_json, read_margins},
                member<&LayoutOptions::gap>("gap"));
 
-TRISTIM_FIELDS(SamplingStage, member<&SamplingStage::layout>("layout"), member<&SamplingStage::corners>("corners"),
+TRISTIM_FIELDS_DEFINE(SamplingStage, member<&SamplingStage::layout>("layout"), member<&SamplingStage::corners>("corners"),
                member<&SamplingStage::area>("area"), member<&SamplingStage::exclude>("exclude"),
                member<&SamplingStage::exclude_flagged>("exclude_flagged"));
 
-TRISTIM_FIELDS(CharacterisationStage, member<&CharacterisationStage::model>("model"),
+TRISTIM_FIELDS_DEFINE(CharacterisationStage, member<&CharacterisationStage::model>("model"),
                member<&CharacterisationStage::objective>("objective"),
                member<&CharacterisationStage::white_patch>("white_patch"),
                member<&CharacterisationStage::lab_white>("lab_white"));
@@ -80,7 +80,7 @@ static void read_candidate(const json::Value& v, RecipeImage& e, const Context& 
   if (k < 0) c.refuse("'" + path + "' must not be negative");
   e.candidate = std::to_string(k);
 }
-TRISTIM_FIELDS(RecipeImage, member<&RecipeImage::name>("name"), member<&RecipeImage::sha256>("sha256", false),
+TRISTIM_FIELDS_DEFINE(RecipeImage, member<&RecipeImage::name>("name"), member<&RecipeImage::sha256>("sha256", false),
                member<&RecipeImage::reference>("reference", false), member<&RecipeImage::capture>("capture", false),
                member<&RecipeImage::sampling>("sampling", false),
                with_shown(Field<RecipeImage>{"candidate", candidate_json, read_candidate, nullptr, false}, has_candidate));
@@ -111,8 +111,11 @@ static void read_images(const json::Value& v, Recipe& r, const Context& c, const
   }
 }
 
-TRISTIM_FIELDS(Recipe, member<&Recipe::reference>("reference"), member<&Recipe::capture>("capture"),
-               member<&Recipe::sampling>("sampling"), member<&Recipe::linearisation>("linearisation"),
+// `version` is the document's (write_document writes it first, this list the same value again
+// in its place; read_document checks it): listed so that a recipe crossing to JS as its JSON keeps it.
+TRISTIM_FIELDS_DEFINE(Recipe, member<&Recipe::version>("version", false), member<&Recipe::reference>("reference"),
+               member<&Recipe::capture>("capture"), member<&Recipe::sampling>("sampling"),
+               member<&Recipe::linearisation>("linearisation"),
                member<&Recipe::surface>("surface"), member<&Recipe::characterisation>("characterisation"),
                member<&Recipe::evaluation>("evaluation"),
                with_shown(Field<Recipe>{"images", images_json, read_images, nullptr, false}, has_images),

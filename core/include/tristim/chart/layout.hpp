@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tristim/capture/raw.hpp"
+#include "tristim/io/fields.hpp"
 
 namespace tristim {
 
@@ -115,3 +116,9 @@ ChartSample sample_chart(const RawImage& image, const LayoutOptions& layout,
 std::string chart_sample_to_csv(const ChartSample& sample);
 
 }  // namespace tristim
+
+// Its field list (defined in profile/recipe.cpp, beside the recipe's sampling stage that holds it):
+// the JSON, the CLI and the wasm binding use it — the margins as one array [left, top, right, bottom].
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(LayoutOptions);
+}  // namespace tristim::fields

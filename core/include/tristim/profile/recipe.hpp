@@ -154,8 +154,15 @@ FitOptions recipe_fit_options(const Recipe& recipe, const std::vector<std::strin
 
 }  // namespace tristim
 
-// The field lists of stages that cross the wasm boundary as their JSON (defined in recipe.cpp).
+// The field lists of the recipe and its stages (defined in recipe.cpp): the JSON and the wasm
+// binding use them, so JS sees a recipe as its JSON (`version` listed too, `format` not: the
+// document writer adds both, the value is the same).
 namespace tristim::fields {
 TRISTIM_FIELDS_DECLARE(ReferenceStage);
+TRISTIM_FIELDS_DECLARE(CaptureStage);
+TRISTIM_FIELDS_DECLARE(SamplingStage);
+TRISTIM_FIELDS_DECLARE(CharacterisationStage);
 TRISTIM_FIELDS_DECLARE(EvaluationStage);
+TRISTIM_FIELDS_DECLARE(RecipeImage);
+TRISTIM_FIELDS_DECLARE(Recipe);
 }  // namespace tristim::fields
