@@ -37,6 +37,7 @@ const char* kFitUsage =
     "            (a recipe with an \"images\" list: one --raw per image, in its order; docs/multi-image.md)\n"
     "            --dark (repeatable, averaged) and --flat are the frames of the --raw before them (Abed 2013\n"
     "            App. C steps 1-2), applied in the image's capture.dark_mode and flat/fall-off choice\n"
+    "            --xyz: none (built-in charts), one per --raw, or one per image whose reference is a file\n"
     "tristim fit --project p.tristim [--out profile.json]   (a project file: tristim share --project, the page's export)\n"
     "  Fits camera RGB -> XYZ and prints (or writes) the profile JSON with training and\n"
     "  leave-one-out metrics; the profile embeds the recipe it was made with.\n"
@@ -214,16 +215,22 @@ RecipeImageFrames load_frames(const FramePaths& paths) {
 /// The training set of a recipe with an "images" list (issue 48): each --raw sampled with its image
 /// entry (recipe.images[k], which records the file's SHA-256 and the flare measured) and the frames
 /// given after it, paired with that entry's reference (its built-in chart, or the --xyz at the same
-/// position), and the union.
+/// position; or, with one --xyz per image whose reference is a file, that image's in order, the
+/// others their built-in chart), and the union.
 TrainingSet training_from_images(const Args& args, Recipe& recipe) {
   const std::vector<std::string> raws = args.all("raw"), xyzs = args.all("xyz");
   if (args.has("rgb")) throw Error(ErrorCode::InvalidArgument, "a recipe with images takes --raw (one per image), not --rgb");
   if (raws.size() != recipe.images.size())
     throw Error(ErrorCode::InvalidArgument, "the recipe lists " + std::to_string(recipe.images.size()) + " images but " +
                                                 std::to_string(raws.size()) + " --raw were given (one per image, in order)");
-  if (!xyzs.empty() && xyzs.size() != raws.size())
-    throw Error(ErrorCode::InvalidArgument, "--xyz: give none (built-in references) or one per --raw, not " +
+  const size_t files = static_cast<size_t>(std::count_if(recipe.images.begin(), recipe.images.end(),
+                                                         [](const RecipeImage& e) { return e.reference.chart == "file"; }));
+  if (!xyzs.empty() && xyzs.size() != raws.size() && xyzs.size() != files)
+    throw Error(ErrorCode::InvalidArgument, "--xyz: give none (built-in references), one per --raw, or one per image whose "
+                                            "reference is a file (" + std::to_string(files) + "), not " +
                                                 std::to_string(xyzs.size()));
+  const bool per_file = !xyzs.empty() && xyzs.size() != raws.size();  // --xyz only for the file references
+  size_t next_xyz = 0;
   if (args.has("duplicates")) recipe.duplicates = args.get("duplicates");
   const std::vector<FramePaths> frame_paths = frames_of_raws(args, raws.size());
   std::vector<ChartPart> parts;
@@ -249,10 +256,11 @@ TrainingSet training_from_images(const Args& args, Recipe& recipe) {
       if (entry.reference.chart == "file" && xyzs.empty())
         throw Error(ErrorCode::InvalidArgument, "its reference is a file: give one --xyz per --raw");
       ReferenceChart ref;
-      if (xyzs.empty()) {
+      if (xyzs.empty() || (per_file && entry.reference.chart != "file")) {
         ref = recipe_reference(own);
       } else {
-        const PatchTable t = read_patch_file(read_file(xyzs[k]), xyzs[k]);
+        const std::string& path = per_file ? xyzs[next_xyz++] : xyzs[k];
+        const PatchTable t = read_patch_file(read_file(path), path);
         ref = reference_from_table(t, illuminant_spd(own.reference.illuminant), parse_observer(own.reference.observer));
       }
       for (size_t j = 0; j < samples.size(); ++j)

@@ -54,6 +54,15 @@ export function mountSecond(parent, app, { ensureFirst }) {
     frameStates[slot], h('button', { type: 'button', 'aria-label': `Remove ${label.toLowerCase()}`, onclick: () => forgetFrame(slot) }, 'Remove')));
     frameIns[slot].addEventListener('change', () => setFrames(slot, [...frameIns[slot].files]));
   }
+  // Its reference: the chart's built-in data, or a file of the user's (CSV/CGATS, as step 1 takes),
+  // read under step 1's illuminant and observer (app.derived.reference2; the recipe's entry then
+  // has a "file" reference, and `fit --recipe` takes its --xyz).
+  const refIn = h('input', { type: 'file', accept: '.csv,.txt,.cgats,.ti3,.it8', dataset: { role: 'chart2-reference' } });
+  const refState = h('span', { class: 'file-state' });
+  const refClear = h('button', { type: 'button', hidden: true, onclick: () => setReference(null) }, 'Use the built-in reference');
+  framesBox.append(h('div', { class: 'field-group' }, field('Its reference file (optional)', refIn,
+    'Measured colours of this chart (CSV or CGATS: XYZ, L*a*b* or spectra), in place of the built-in ones'), refState, refClear));
+  refIn.addEventListener('change', () => { if (refIn.files[0]) setReference(refIn.files[0]); });
   const note = h('p', { class: 'detect-text', 'aria-live': 'polite' });
   const summary = h('p', { class: 'summary', 'aria-live': 'polite' });
   const tableBox = h('div', { class: 'table-box' });
@@ -189,6 +198,49 @@ export function mountSecond(parent, app, { ensureFirst }) {
     if (again) await resample();
   }
 
+  /// The ReferenceChart (+ data_digest) of reference file f under step 1's illuminant and observer.
+  const parseReference = (f) => {
+    const s = app.derived.reference?.settings ?? {};
+    return engine.call('parseReference', { text: f.text, fileName: f.name, illuminant: s.illuminant ?? 'D50', observer: s.observer ?? '1931' });
+  };
+  const showReference = (f, ref) => {
+    app.derived.reference2 = ref;
+    refState.textContent = `${f.name}: ${ref.ids.length} patches`;
+    refClear.hidden = false;
+  };
+  /// Reads the stored reference file (if any) into app.derived.reference2 (its error next to its input).
+  async function readReference() {
+    const f = saved().referenceFile;
+    clearError(refIn);
+    delete app.derived.reference2;
+    refState.textContent = '';
+    refClear.hidden = !f;
+    if (!f || same()) return;
+    try { showReference(f, await parseReference(f)); } catch (e) { if (e.code !== 'CANCELLED') showError(refIn, e, f.name); }
+  }
+  /// A new reference file (null: back to the built-in chart's); one that does not read is refused
+  /// next to its input and the previous one stays.
+  async function setReference(file) {
+    clearError(refIn);
+    if (file) {
+      try {
+        const f = { name: file.name, text: await file.text() };
+        const ref = await parseReference(f);
+        await store({ referenceFile: f });
+        showReference(f, ref);
+      } catch (e) {
+        if (e.code !== 'CANCELLED') showError(refIn, e, file.name);
+        return;
+      }
+    } else {
+      await store({ referenceFile: undefined });
+      refIn.value = '';
+      await readReference();
+    }
+    app.emit('sample2', app.derived.sample2);
+  }
+  app.on('reference', () => { if (saved().referenceFile) readReference().then(() => app.emit('sample2', app.derived.sample2)); });
+
   /// Looks for the chosen chart; takes its corners, or leaves the handles for the user to drag.
   async function detect() {
     note.textContent = 'Looking for the chart…';
@@ -257,6 +309,10 @@ export function mountSecond(parent, app, { ensureFirst }) {
     await app.save('files.chart2', undefined);
     await app.save('chart2', undefined);
     delete app.derived.sample2;
+    delete app.derived.reference2;
+    refIn.value = refState.textContent = '';
+    refClear.hidden = true;
+    clearError(refIn);
     input.value = '';
     fileState.textContent = summary.textContent = note.textContent = '';
     tableBox.replaceChildren();
@@ -281,6 +337,7 @@ export function mountSecond(parent, app, { ensureFirst }) {
     if (!f) return;
     for (const slot of Object.keys(FRAME_SLOTS)) if (app.session[`files.${slot}`]) frameStates[slot].textContent = app.session[`files.${slot}`].name;
     if (await ensureDecoded()) {
+      await readReference();
       if (saved().corners) { editor.setCorners(saved().corners); await resample(); } else await detect();
     }
   }
@@ -310,7 +367,8 @@ export async function withImages(app, recipe, exclude) {
       c2.sameImage
         ? { name: first.name, sha256: sha.sha256, reference, capture, sampling: { ...sampling, ...own } }
         : { name: app.session['files.chart2'].name, sha256: c2.sha256,
-          reference: { chart: c2.chart, illuminant: reference.illuminant, observer: reference.observer }, ...framesOf(app),
+          reference: { chart: c2.referenceFile ? 'file' : c2.chart, data_digest: c2.referenceFile ? app.derived.reference2?.data_digest ?? '' : '',
+            illuminant: reference.illuminant, observer: reference.observer }, ...framesOf(app),
           sampling: { layout: { chart: c2.chart }, ...own } },
     ],
     duplicates: c2.duplicates ?? 'once',
@@ -330,7 +388,9 @@ function framesOf(app) {
 export function chartsOf(app, recipe, sample, reference) {
   if (!recipe.images?.length) return undefined;
   const { layout, homography, patches } = app.derived.sample2;
-  return [{ sample, reference }, { sample: { layout, homography, patches }, reference: app.session.chart2?.sameImage ? reference : null }];
+  const { data_digest, ...own } = app.derived.reference2 ?? {};   // the second image's reference file, if any
+  const second = app.session.chart2?.sameImage ? reference : (app.session.chart2?.referenceFile && app.derived.reference2 ? own : null);
+  return [{ sample, reference }, { sample: { layout, homography, patches }, reference: second }];
 }
 
 /// What the second chart is called in the page's text: its file, or the first image's second chart.
