@@ -18,6 +18,10 @@ export const handlers = {
   /// A measured patch file (CSV/CGATS with R,G,B and maybe X,Y,Z) for a held-out test set.
   parsePatchFile: (T, { text, fileName }) => reply(T.parsePatchFile(text, fileName)),
 
+  /// A chart sample paired with a reference as the fit pairs it (the engine's trainingSet, with
+  /// the recipe's `sampling` exclusion rules): web/lib/pairs.js is the page's caller.
+  pairSample: (T, { sampling, sample, reference }) => reply(T.trainingSet({ sampling }, sample, reference)),
+
   /// Fits a recipe on the chart sample paired with the reference (and evaluates the profile on
   /// the held-out set {name, ids, rgb, xyz} when there is one).
   /// `worker_ms`: how long the row ran here (the page's log; timed on the page, a row that waited

@@ -2,7 +2,7 @@
 // fit them in a few workers side by side, with progress, a cancel button (which terminates those
 // workers) and the rows streaming into the results as each finishes.
 import { h, field, showError, clearError, progressBar, readText } from '../lib/ui.js';
-import { pairData } from '../lib/pairs.js';
+import { pairData, excludedBy } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
 import { WorkerPool } from './pool.js';
@@ -72,16 +72,28 @@ export function mount(section, app) {
 
   const persist = () => app.save('fitChoice', JSON.parse(JSON.stringify(choice)));
 
-  function describeData() {
+  /// The patches paired as the fit pairs them (the engine's pairing, lib/pairs.js), with `exclude`
+  /// the ids the recipe's sampling.exclude lists; {error} when the engine refuses the pairing.
+  let described = 0;
+  async function describeData() {
+    const mine = ++described;
     const s = app.derived.sample, r = app.derived.reference;
     if (!s || !r) { dataNote.textContent = 'Fitting needs a reference (step 1) and a sampled chart (step 2).'; return null; }
-    const d = pairData(s, r, { exclude });
+    const left = excludedBy(s, exclude);   // the toggles' rule: what "left out as flagged" lists
+    const rule = choice.excludeAllFlagged ? { exclude: [], exclude_flagged: true } : { exclude: left, exclude_flagged: false };
+    let d;
+    try {
+      d = { ...(await pairData(engine, s, r, rule)), exclude: rule.exclude };
+    } catch (error) {
+      if (mine === described) dataNote.textContent = `The sampled chart does not pair with the reference: ${error.message}.`;
+      return { error };
+    }
+    if (mine !== described) return d;
     const surface = app.session.surface, corrected = surface && surface.method !== 'none' && !r.settings.referenceFile;
     dataNote.textContent = `${d.ids.length} patches pair sampled RGB with reference XYZ`
       + (corrected ? ` (the reference corrected for the capture geometry: ${surface.method}, step 1b)` : '')
       + linearisationText(app.session.linearisation, app.derived.image?.metadata)
-      + (d.excluded.length ? `; left out as flagged: ${d.excluded.map((e) => e.id).join(', ')}` : '')
-      + (d.missing.length ? `; not in the reference: ${d.missing.join(', ')}` : '')
+      + (left.length ? `; left out as flagged: ${left.join(', ')}` : '')
       + (s.missing?.length ? `; outside the frame (not sampled): ${s.missing.join(', ')}` : '')
       + (app.derived.sample2 ? `; and the ${app.derived.sample2.ids.length} patches of the second chart image (${secondName(app)}, step 2): one fit on both` : '') + '.';
     return d;
@@ -102,9 +114,8 @@ export function mount(section, app) {
     if (!p.has_XYZ) {
       const ref = app.derived.reference;
       if (!ref) throw Object.assign(new Error('no reference to pair the held-out patches with (step 1)'), { code: 'NO_REFERENCE' });
-      const d = pairData({ ids, RGB: rgb, flags: [] }, ref);
-      if (!d.ids.length) throw Object.assign(new Error(`${file.name}: no patch id in common with the reference`), { code: 'PATCH_MISMATCH' });
-      ({ ids, rgb, xyz } = d);
+      const patches = ids.map((id, i) => ({ id, mean: [rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]] }));
+      ({ ids, rgb, xyz } = await pairData(engine, { patches }, ref).catch((e) => { throw Object.assign(new Error(`${file.name}: ${e.message}`), { code: e.code }); }));
     }
     return { name: file.name, ids, rgb: Float64Array.from(rgb), xyz: Float64Array.from(xyz) };
   }
@@ -154,13 +165,12 @@ export function mount(section, app) {
   /// cancelled, or null.
   async function run({ onFirst, firstOnEngine = false } = {}) {
     clearError(runBtn);
-    const data = describeData();
+    const data = await describeData();
     if (!data) { showError(runBtn, new Error('no paired data yet: set the reference and sample the chart first'), 'Fit'); return null; }
-    if (!data.ids.length && !data.excluded.length) {
+    if (data.error) {
       log.replaceChildren();
-      const s = app.derived.sample, r = app.derived.reference;
-      const some = (ids) => `${ids.slice(0, 3).join(', ')}${ids.length > 3 ? ', …' : ''}`;
-      showError(runBtn, Object.assign(new Error(`no sampled patch id (${some(s.ids)}) is in the reference (${some(r.ids)}): choose the chart layout or reference that belong together`), { code: 'PATCH_MISMATCH' }), 'Fit');
+      const e = data.error, advice = e.code === 'PATCH_MISMATCH' ? ': choose the chart layout or reference that belong together' : '';
+      showError(runBtn, Object.assign(new Error(`${e.message}${advice}`), { code: e.code }), 'Fit');
       return null;
     }
     const objectiveIds = objectives.map((o) => o.id).filter((id) => choice.objectives.includes(id));
@@ -297,7 +307,7 @@ export function mount(section, app) {
         // the light trap of step 2 (Abed 2013 App. C step 1) and the flare it subtracted
         ...(sample.lightTrap ? { light_trap: sample.lightTrapCorners, flare: Array.from(sample.lightTrap.mean) } : {}) },
       sampling: { layout: s.layout ?? { chart: 'passport' }, corners: sample.corners, area: s.sampleOptions?.area ?? 0.5,
-        exclude: choice.excludeAllFlagged ? [] : data.excluded.map((e) => e.id), exclude_flagged: !!choice.excludeAllFlagged },
+        exclude: data.exclude, exclude_flagged: !!choice.excludeAllFlagged },
       // the linearisation step's choice (step 2b): the fit trains on the linearised camera RGB
       linearisation: s.linearisation ?? { method: 'identity' },
       // the surface step's correction of a built-in chart's spectra (an uploaded reference stays as read)

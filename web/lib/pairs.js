@@ -1,15 +1,19 @@
-// Pairs sampled camera RGB with reference XYZ by patch id (the ids are shared by layouts and
-// reference data), leaving out patches whose flags `exclude(flags)` rejects (default: saturated).
-export function pairData(sample, reference, { exclude = (f) => f.includes('saturated') } = {}) {
-  const refIndex = new Map(reference.ids.map((id, i) => [id, i]));
-  const ids = [], rgb = [], xyz = [], excluded = [], missing = [];
-  sample.ids.forEach((id, i) => {
-    const j = refIndex.get(id);
-    if (j === undefined) { missing.push(id); return; }
-    if (exclude(sample.flags?.[i] ?? [])) { excluded.push({ id, flags: sample.flags[i] }); return; }
-    ids.push(id);
-    rgb.push(sample.RGB[3 * i], sample.RGB[3 * i + 1], sample.RGB[3 * i + 2]);
-    xyz.push(reference.XYZ[3 * j], reference.XYZ[3 * j + 1], reference.XYZ[3 * j + 2]);
-  });
-  return { ids, rgb: Float64Array.from(rgb), xyz: Float64Array.from(xyz), excluded, missing };
+// The page's one way to pair sampled camera RGB with reference XYZ: the engine's pairing
+// (trainingSet, profile/characterise.hpp), the one the fit, its leave-one-out and
+// `tristim fit --recipe` train on. In the sample's order; by normalised patch id; leaving out the
+// ids of the recipe's `sampling.exclude` and, with `sampling.exclude_flagged`, every flagged patch.
+
+/// The ids of `sample`'s patches whose flags `rule(flags)` leaves out (the recipe's
+/// sampling.exclude list the page writes for its "leave out saturated" toggle).
+export const excludedBy = (sample, rule) => sample.ids.filter((id, i) => rule(sample.flags?.[i] ?? []));
+
+/// Pairs a ChartSample (`patches`, `missing`) with a ReferenceChart through the engine's worker.
+/// Resolves to {ids, labels, rgb, xyz, excluded} (`excluded`: the engine's "A3 (saturated)" lines);
+/// rejects with its coded error: PATCH_MISMATCH (a sampled patch not in the reference),
+/// TOO_FEW_PATCHES (every patch left out).
+export async function pairData(engine, sample, reference, sampling = {}) {
+  const { layout, homography, patches, missing = [] } = sample;
+  const { source, settings, data_digest, ...ref } = reference;   // the engine's ReferenceChart
+  const t = await engine.call('pairSample', { sampling, sample: { layout, homography, patches, missing }, reference: ref });
+  return { ids: t.ids, labels: t.labels, rgb: t.camera_RGB, xyz: t.reference_XYZ, excluded: t.excluded };
 }

@@ -9,7 +9,7 @@
 // (app.session.linearisation), which the fit step applies.
 import { h, field, select, showError, clearError, fmt, progressBar } from '../lib/ui.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
-import { pairData } from '../lib/pairs.js';
+import { pairData, excludedBy } from '../lib/pairs.js';
 import { figure, cssColours } from '../plots/common.js';
 import { oecfPlot } from '../plots/inverse_oecf.js';
 import { reflectancePlot, patchBarsPlot } from '../plots/reflectance.js';
@@ -96,13 +96,15 @@ export function mount(section, app) {
     advice.textContent = msg;
   }
 
-  /// The paired training patches, as the fit step pairs them (its exclusion rule).
-  function training() {
+  /// The paired training patches, as the fit step pairs them (the engine's pairing with the fit
+  /// step's exclusion rule); `saturated`: the saturated patches that rule leaves out.
+  async function training() {
     const s = app.derived.sample, r = app.derived.reference;
     if (!s || !r) return null;
     const fc = app.session.fitChoice ?? {};
-    const exclude = (f) => (fc.excludeAllFlagged ? f.length > 0 : fc.excludeSaturated !== false && f.includes('saturated'));
-    return { ...pairData(s, r, { exclude }), reference: r };
+    const all = !!fc.excludeAllFlagged, saturated = all || fc.excludeSaturated !== false ? excludedBy(s, (f) => f.includes('saturated')) : [];
+    const rule = all ? { exclude: [], exclude_flagged: true } : { exclude: saturated, exclude_flagged: false };
+    return { ...(await pairData(engine, s, r, rule)), saturated, reference: r };
   }
 
   let seq = 0, stale = true;
@@ -112,7 +114,8 @@ export function mount(section, app) {
     clearError(methodSel);
     for (const i of formBox.querySelectorAll('[data-option]')) clearError(i);
     renderEncoding();
-    const d = training();
+    const d = await training().catch((e) => { showError(methodSel, e, 'Pairing'); return undefined; });
+    if (d === undefined) return null;
     if (!d) { summary.textContent = 'The linearisation is fitted on the chart\'s patches: it needs a reference (step 1) and a sampled chart (step 2).'; return null; }
     const rs = d.reference.settings;
     const builtIn = !rs.referenceFile;
@@ -155,7 +158,7 @@ export function mount(section, app) {
     const warnings = lin.message ? lin.message.split('; ') : [];
     const clipped = warnings.filter((w) => /clipped/.test(w));
     const noted = warnings.filter((w) => !/clipped/.test(w) && !/not increasing/.test(w) && !/^extrapolated /.test(w));
-    const left = d.excluded.filter((e) => e.flags.includes('saturated')).map((e) => e.id);
+    const left = d.saturated;
     summary.dataset.method = lin.choice.method;
     summary.textContent = `${byId[lin.choice.method]?.label ?? lin.choice.method}: `
       + (lin.fitted.length ? `fitted on ${lin.fitted.length} of ${d.ids.length} paired patches` : `a stated curve (nothing fitted), applied to the ${d.ids.length} paired patches`)
