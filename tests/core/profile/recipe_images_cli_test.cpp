@@ -201,6 +201,10 @@ TEST_CASE("fit --recipe: two charts in one image, both used (candidate \"all\", 
   CHECK(r.images[0].sampling.corners[0] < 450);
   CHECK(r.images[1].sampling.corners[0] > 450);
   spit(d + "twice.json", recipe_to_json(r));
+  Recipe mixed = r;  // a built-in reference for the first chart, the file for the second: one --xyz
+  mixed.images[0].reference.chart = "cc24";
+  mixed.images[0].reference.illuminant = "D65";
+  spit(d + "mixed.json", recipe_to_json(mixed));
   r.images.resize(1);
   r.images[0].sampling.corners = {};
   r.images[0].candidate = "all";
@@ -218,5 +222,17 @@ TEST_CASE("fit --recipe: two charts in one image, both used (candidate \"all\", 
   CHECK(slurp(d + "all_p.json").find("\"patches\": 48") != std::string::npos);
   CHECK(all.find("tristim: chart 1 (two.tiff #1): 24 patches") != std::string::npos);
   CHECK(all.find("tristim: chart 2 (two.tiff #2): 24 patches") != std::string::npos);
+  // One --xyz per image whose reference is a file, the others their built-in chart.
+  const std::string mix = d + "mixed.json --raw " + d + "two.tiff --raw " + d + "two.tiff";
+  run_shell(cli + " fit --recipe " + mix + " --xyz " + d + "ref.csv --out " + d + "mixed_p.json 2>&1");
+  CHECK(slurp(d + "mixed_p.json").find("\"patches\": 48") != std::string::npos);
+  const std::string three = run_shell(cli + " fit --recipe " + mix + " --xyz " + d + "ref.csv --xyz " + d + "ref.csv --xyz " + d +
+                          "ref.csv 2>&1; echo rc=$?", false);
+  CHECK(three.find("INVALID_ARGUMENT: --xyz: give none (built-in references), one per --raw, or one per image whose "
+                   "reference is a file (1), not 3") != std::string::npos);
+  CHECK(three.find("rc=1") != std::string::npos);
+  const std::string one = run_shell(cli + " fit --recipe " + d + "twice.json --raw " + d + "two.tiff --raw " + d + "two.tiff --xyz " + d +
+                        "ref.csv 2>&1; echo rc=$?", false);
+  CHECK(one.find("INVALID_ARGUMENT: --xyz:") != std::string::npos);
 }
 #endif
