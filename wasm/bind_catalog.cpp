@@ -1,9 +1,11 @@
 // Declarations: version, built-in data, and every table the page builds its pickers from —
 // charts, illuminants, observers, models and their families, the method tables of each stage
-// (MethodInfo / OptionSpec rows; the flat-field modes too), chart layouts and the corner homography.
+// (MethodInfo / OptionSpec rows; the flat-field modes too), chart layouts, the custom grid's and the
+// sampling's option rows, and the corner homography.
 #include "tristim/capture/calibration.hpp"
 #include "tristim/characterisation/objectives.hpp"
 #include "tristim/chart/layout.hpp"
+#include "tristim/chart/layout_options_table.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/data.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -29,7 +31,7 @@ EMSCRIPTEN_BINDINGS(tristim_catalog) {
       FIELD(term_names) FIELD(terms) FIELD(root) FIELD(linear) FIELD(exposure_invariant) FIELD(duplicate_of) FIELD(family); }
   { using S = ModelFamily; value_object<S>("ModelFamily") FIELD(id) FIELD(label) FIELD(about); }
   { using S = OptionSpec; value_object<S>("OptionSpec") FIELD(name) FIELD(type) FIELD(label) FIELD(default_number)
-      FIELD(default_text) FIELD(min) FIELD(max) FIELD(choices) FIELD(description); }
+      FIELD(default_text) FIELD(min) FIELD(max) FIELD(choices) FIELD(description) FIELD(step) FIELD(unit); }
   { using S = MethodInfo; value_object<S>("MethodInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(options); }
   { using S = SurfaceListing; value_object<S>("SurfaceListing") FIELD(id) FIELD(label) FIELD(reference) FIELD(options)
       FIELD(coefficients) FIELD(equation) FIELD(geometry); }
@@ -53,5 +55,6 @@ EMSCRIPTEN_BINDINGS(tristim_catalog) {
   def<&parse_choice>("parseChoice");
   def<&chart_layout_ids>("listChartLayouts");
   def<&chart_layout>("chartLayout");
+  def<&layout_option_table>("listLayoutOptions");
   def<&homography_unit_square>("homographyUnitSquare");
 }

@@ -12,6 +12,7 @@
 #include "tristim/capture/calibration.hpp"
 #include "tristim/chart/detect.hpp"
 #include "tristim/chart/layout.hpp"
+#include "tristim/chart/layout_options_table.hpp"
 #include "tristim/chart/light_trap.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/named_input.hpp"
@@ -44,6 +45,7 @@ LayoutOptions layout_options(const Args& args) {
   layout.chart = args.get("chart");
   layout.rows = static_cast<int>(args.get_double("rows", 0));
   layout.columns = static_cast<int>(args.get_double("columns", 0));
+  layout.gap = args.get_double("gap", layout.gap);
   if (args.has("margins")) {
     const auto m = numbers(args.get("margins"), "margins");
     if (m.size() != 4) throw Error(ErrorCode::InvalidArgument, "--margins needs 4 numbers: left,top,right,bottom");
@@ -107,9 +109,23 @@ FrameCalibration frame_calibration(const Args& args, const RawImage& image, cons
 
 namespace {
 
+/// The custom grid's and the sampled area's rows (layout_option_table: the page's inputs).
+std::string layout_options_help() {
+  auto num = [](double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
+  std::string s = "Custom grid and sampled area (the options' bounds; --margins gives the four margin_* in order):\n";
+  for (const OptionSpec& o : layout_option_table())
+    s += "  " + o.name + ": " + o.label + (o.unit.empty() ? "" : " (" + o.unit + ")") + ", " + num(o.min) + " to " +
+         num(o.max) + ", default " + num(o.default_number) + " — " + o.description + "\n";
+  return s;
+}
+
 int run_sample(const Args& args, std::ostream& out) {
   args.allow_only({"chart", "corners", "dark", "dark-mode", "flat", "flat-mode", "white-reflectance",
-                   "area", "rows", "columns", "margins", "light-trap"});
+                   "area", "rows", "columns", "gap", "margins", "light-trap"});
   if (args.positional.size() != 1)
     throw Error(ErrorCode::InvalidArgument, "sample takes exactly one RAW, TIFF, PNG or JPEG file");
   const LayoutOptions layout = layout_options(args);
@@ -152,10 +168,11 @@ const CommandRegistration sample_cmd{Command{
     "usage: tristim sample <file> --chart <id> [--corners x1,y1,x2,y2,x3,y3,x4,y4]\n"
     "                      [--dark f ...] [--dark-mode per_pixel|per_channel]\n"
     "                      [--flat f] [--flat-mode pixel|radial] [--white-reflectance r | r,g,b]\n"
-    "                      [--area 0.5] [--rows N --columns M --margins l,t,r,b]\n"
+    "                      [--area 0.5] [--rows N --columns M --gap g --margins l,t,r,b]\n"
     "                      [--light-trap x1,y1,x2,y2,x3,y3,x4,y4]\n"
     "--chart: cc24, cc24-2005, passport, sg140, sg140-2005 or custom (with --rows/--columns,\n"
-    "  optional --margins as fractions of the chart width/height).\n"
+    "  optional --gap as a fraction of the patch size and --margins as fractions of the chart\n"
+    "  width/height; bounds below). --gap also overrides a built-in chart's gap.\n"
     "--corners: the four outer corners of the patch grid, clockwise from the top-left (the\n"
     "  corner at patch A1), in HALF-RESOLUTION image coordinates for Bayer sensors (the\n"
     "  measurement image of `tristim inspect`: width x height; pixel (x, y) covers [x, x+1));\n"
@@ -175,7 +192,7 @@ const CommandRegistration sample_cmd{Command{
     "Output CSV: patch,R,G,B,R_std,G_std,B_std,n,flags — for a RAW, linear, black-subtracted DN (no\n"
     "white balance, no matrix); for a TIFF/PNG/JPEG, the values as stored (0..255 or 0..65535, not\n"
     "linearised: see `tristim inspect`'s format and bits); flags: saturated;dark;nonuniform.",
-    run_sample}};
+    run_sample, layout_options_help}};
 
 }  // namespace
 }  // namespace tristim::cli

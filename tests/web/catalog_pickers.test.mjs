@@ -2,7 +2,8 @@
 // objective checklists, and the options form of every method row — lists what the engine's tables
 // list, with the tables' ids and labels. The expected rows come from the wasm module loaded here in
 // node (tests/wasm/load.mjs), not from the page's copy of the catalog, so a picker whose list,
-// order, labels, option bounds or families drift from the engine fails. A <select> the registry
+// order, labels, option bounds or families drift from the engine fails; so does a number input of
+// the custom grid or the sampled area whose label, unit, bounds, step or default is not the table's. A <select> the registry
 // below does not know fails too: a new picker states where its choices come from.
 import test from 'node:test';
 import assert from 'node:assert/strict';
@@ -178,6 +179,21 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     for (const o of byKey['images/Flat-field correction'] ?? []) {
       const m = T.listFlatFieldModes().find((x) => x.id === o.value);
       if (o.title !== m?.reference) wrong.push(`flat-field ${o.value}: title '${o.title}', the table's reference '${m?.reference}'`);
+    }
+    // Step 2's custom grid and sampled area: one number input per row of the engine's layout option
+    // table (layout_option_table), in its order, labelled "label (unit)", with its bounds, step and default.
+    const layoutInputs = await page.$$eval('#step-images input[data-layout-option]', (els) => els.map((el) => ({
+      name: el.dataset.layoutOption, type: el.type, label: (el.labels?.[0]?.textContent ?? el.getAttribute('aria-label') ?? '').trim(),
+      min: el.getAttribute('min'), max: el.getAttribute('max'), step: el.getAttribute('step'), value: el.getAttribute('value'), title: el.title,
+    })));
+    const layoutTable = T.listLayoutOptions();
+    if (JSON.stringify(layoutInputs.map((i) => i.name)) !== JSON.stringify(layoutTable.map((o) => o.name))) wrong.push(`layout inputs ${layoutInputs.map((i) => i.name)}, the table's ${layoutTable.map((o) => o.name)}`);
+    for (const o of layoutTable) {
+      const i = layoutInputs.find((x) => x.name === o.name);
+      if (!i) continue;
+      const want = { name: o.name, type: 'number', label: o.unit ? `${o.label} (${o.unit})` : o.label, min: String(o.min), max: String(o.max),
+        step: String(o.step || (o.type === 'integer' ? 1 : 'any')), value: String(o.default_number), title: o.description };
+      if (JSON.stringify(i) !== JSON.stringify(want)) wrong.push(`layout input ${o.name}: ${JSON.stringify(i)}, the table ${JSON.stringify(want)}`);
     }
     // The surface presets: every preset of the table (by id, with its label), the page's '' = custom.
     for (const role of ['Measurement geometry', 'Capture geometry']) {

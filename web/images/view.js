@@ -47,14 +47,24 @@ export function mount(section, app) {
   const chartName = (id) => app.catalog.charts.find((c) => c.id === id)?.name ?? (id === 'custom' ? 'Custom grid (rows × columns)' : id);
   const layoutSel = select(Object.keys(app.catalog.layouts).map((value) => ({ value, label: chartName(value) })), app.session.layout?.chart ?? 'passport');
   layoutSel.dataset.role = 'layout';
-  const rowsIn = h('input', { type: 'number', 'data-layout': 'rows', min: 1, max: 30, value: app.session.layout?.rows ?? 4 });
-  const colsIn = h('input', { type: 'number', 'data-layout': 'columns', min: 1, max: 30, value: app.session.layout?.columns ?? 6 });
-  const areaIn = h('input', { type: 'number', 'data-role': 'sample-area', min: 0.05, max: 1, step: 0.05, value: app.session.sampleOptions?.area ?? 0.5 });
-  const gapIn = h('input', { type: 'number', 'data-layout': 'gap', min: 0, max: 2, step: 0.01, value: 0 });
-  const marginIns = ['left', 'top', 'right', 'bottom'].map((side) => h('input', { type: 'number', 'data-layout': `margin_${side}`, min: 0, max: 0.45, step: 0.01, value: 0, 'aria-label': `Margin ${side}` }));
-  const customBox = h('span', { class: 'custom-grid' }, field('Rows', rowsIn), field('Columns', colsIn),
-    field('Gap (× patch size)', gapIn),
-    h('fieldset', { class: 'margins' }, h('legend', {}, 'Margins inside the corners (fraction of width / height: left, top, right, bottom)'), marginIns,
+  // The custom grid's and the sampled area's inputs from the engine's table (layoutOptions:
+  // layout_option_table rows — label, unit, min/max/step/default); the session's values over the defaults.
+  const spec = Object.fromEntries(app.catalog.layoutOptions.map((o) => [o.name, o]));
+  const labelOf = (o) => (o.unit ? `${o.label} (${o.unit})` : o.label);
+  const optionInput = (name, value, attrs = {}) => {
+    const o = spec[name];
+    return h('input', { type: 'number', min: o.min, max: o.max, step: o.step || (o.type === 'integer' ? 1 : 'any'),
+      value: value ?? o.default_number, title: o.description, 'data-layout-option': name, ...attrs });
+  };
+  const rowsIn = optionInput('rows', app.session.layout?.rows, { 'data-layout': 'rows' });
+  const colsIn = optionInput('columns', app.session.layout?.columns, { 'data-layout': 'columns' });
+  const areaIn = optionInput('area', app.session.sampleOptions?.area, { 'data-role': 'sample-area' });
+  const gapIn = optionInput('gap', undefined, { 'data-layout': 'gap' });
+  const marginIns = ['margin_left', 'margin_top', 'margin_right', 'margin_bottom']
+    .map((name) => optionInput(name, undefined, { 'data-layout': name, 'aria-label': labelOf(spec[name]) }));
+  const customBox = h('span', { class: 'custom-grid' }, field(labelOf(spec.rows), rowsIn), field(labelOf(spec.columns), colsIn),
+    field(labelOf(spec.gap), gapIn),
+    h('fieldset', { class: 'margins' }, h('legend', {}, 'Margins inside the corners (left, top, right, bottom)'), marginIns,
       marginIns.map((i) => errorSlot(i))));
   const meta = h('p', { class: 'meta', 'aria-live': 'polite' });
   // A TIFF/PNG/JPEG: its non-linear encoding and what to do about it (the linearisation step).
@@ -133,7 +143,7 @@ export function mount(section, app) {
   section.append(
     fileRow, drop, progress.el, meta, encodingNote,
     h('div', { class: 'controls' }, field('Chart layout', layoutSel), customBox,
-      field('Sampled area per patch', areaIn, 'Fraction of each patch averaged (Abed et al.: central 50 %)'), resetCorners),
+      field(labelOf(spec.area), areaIn, spec.area.description), resetCorners),
     h('div', { class: 'controls' }, trapBox),
     h('p', { class: 'hint' }, 'Drag the four corner handles onto the chart\'s outer patch corners (A1 top-left). '
       + 'With the keyboard: Tab to a handle, arrow keys move it 1 pixel (Shift: 10).'),

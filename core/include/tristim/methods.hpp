@@ -24,6 +24,8 @@ struct OptionSpec {
   double min = 0, max = 0;        ///< inclusive bounds of number/integer (min == max: unbounded)
   std::vector<std::string> choices;
   std::string description;  ///< one sentence: what it does, units
+  double step = 0;          ///< a form's increment for number options (0: any value; integers step 1)
+  std::string unit = {};    ///< the unit a form shows after the label ("" when none, or in the label)
 };
 
 /// One row of a stage's method table.
