@@ -1,10 +1,10 @@
-// Helpers of the several-charts browser tests (issue 48): the CLI fit of a profile's recipe, and a
-// Share link opened in a fresh browser.
+// Helpers of the several-charts browser tests (issue 48): the CLI fit of a profile's recipe, the
+// Results swatches without a colour, and a Share link opened in a fresh browser.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import { execFileSync } from 'node:child_process';
 import { openBrowser } from './harness.mjs';
-import { waitReady, CLI, artifact } from './journey.mjs';
+import { waitReady, step, CLI, artifact } from './journey.mjs';
 
 const VERDICT = '#share-verdict-title[data-verdict]';
 
@@ -22,6 +22,16 @@ export function assertCliEqual(profile, charts, args, name) {
   const cli = cliFit(profile.recipe, args, name);
   assert.deepEqual(profile.model.coefficients, cli.model.coefficients, 'the page fits what the CLI fits, to the bit');
   cli.charts.forEach((c, k) => assert.equal(charts[k].training_dE00.mean, c.training.dE00_mean));
+}
+
+/// The ids of the selected result's Results swatches drawn grey (no reference colour), on the Results step.
+export async function greySwatches(page) {
+  await step(page, 'results');
+  return page.evaluate(async () => {
+    const { perPatch } = await import('/lib/perpatch.js');
+    const t = window.tristim, r = t.session.results.find((x) => x.key === t.session.selected);
+    return perPatch(r, t.derived.reference).rows.filter((row) => row.fill === '#999').map((row) => row.id);
+  });
 }
 
 /// Opens `link` in a fresh browser, waits for its verdict ("reproduced" asserted), runs

@@ -11,7 +11,7 @@ import fs from 'node:fs';
 import { execFileSync } from 'node:child_process';
 import { screenshot } from './harness.mjs';
 import { pageTest, step, upload, fitMatrix3x3, CLI, artifact, DNG } from './journey.mjs';
-import { cliFit } from './several_charts_common.mjs';
+import { cliFit, greySwatches } from './several_charts_common.mjs';
 
 const PANEL = '#step-images fieldset.second-chart';
 
@@ -68,12 +68,7 @@ pageTest('the second image\'s own dark frames, flat field and reference file: eq
   assert.equal(profile.recipe.images[0].capture.dark_frames, 0, 'the first image has none');
   assert.equal(profile.recipe.images[1].reference.chart, 'file');
   assert.match(profile.recipe.images[1].reference.data_digest, /^fnv1a64:/);
-  await step(page, 'results');
-  const grey = await page.evaluate(async () => {
-    const { perPatch } = await import('/lib/perpatch.js');
-    const t = window.tristim, r = t.session.results.find((x) => x.key === t.session.selected);
-    return perPatch(r, t.derived.reference).rows.filter((row) => row.fill === '#999').map((row) => row.id);
-  });
+  const grey = await greySwatches(page);
   assert.deepEqual(grey, [], 'the second chart (a ColorChecker beside the Passport): its swatches in colour');
 
   const fit = (recipe, extra, name) => cliFit(recipe, ['--raw', DNG, '--raw', files.chart, ...extra, '--xyz', files.reference], name).model.coefficients;

@@ -6,7 +6,7 @@
 import assert from 'node:assert/strict';
 import { screenshot } from './harness.mjs';
 import { pageTest, step, upload, fileBuffer, fitMatrix3x3, DNG } from './journey.mjs';
-import { openShared } from './several_charts_common.mjs';
+import { openShared, greySwatches } from './several_charts_common.mjs';
 
 const PANEL = '#step-images fieldset.second-chart';
 
@@ -24,12 +24,7 @@ pageTest('two chart images: the link reproduces the two-image profile to the bit
   assert.ok(made.ids.some((id) => id.startsWith('2:')), 'the fit holds the second image\'s patches');
 
   // Results: every swatch has its reference colour (none of the grey of an unknown id).
-  await step(page, 'results');
-  const grey = await page.evaluate(async () => {
-    const { perPatch } = await import('/lib/perpatch.js');
-    const t = window.tristim, r = t.session.results.find((x) => x.key === t.session.selected);
-    return perPatch(r, t.derived.reference).rows.filter((row) => row.fill === '#999').map((row) => row.id);
-  });
+  const grey = await greySwatches(page);
   assert.deepEqual(grey, [], 'no grey reference swatch');
 
   await step(page, 'share');
