@@ -70,7 +70,7 @@ export function mountSecond(parent, app, { ensureFirst }) {
     h('legend', {}, 'Add another chart image (optional): the fit trains on both charts\' patches'),
     h('div', { class: 'controls' }, h('div', { class: 'field-group' },
       field('Second chart image', input, 'Another photograph: the same chart elsewhere in the frame, or another chart (RAW, TIFF, PNG or JPEG)'), fileState, remove),
-    field('Its chart (layout and reference)', chartSel, 'The reference is this chart under the illuminant and observer of step 1'),
+    field('Its chart (layout and reference)', chartSel, 'The reference is this chart under the illuminant and observer of step 1, unless a reference file is given below'),
     field('Patches of the same colour', dupSel)), framesBox,
     progress.el, h('div', { class: 'images-layout' }, h('div', {}, editorBox, note), h('div', {}, summary, tableBox)));
   parent.append(panel);
