@@ -78,7 +78,7 @@ bool contains(const std::array<double, 8>& k, const Point& p) {
 // maps the grid onto itself (180°, the two mirrors; and 90°/270° for a square grid). `cells`:
 // the layout index (row-major) of each colour in rgb (a chart cut by the frame shows some).
 double symmetric_alternatives(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref, const std::vector<int>& cells,
-                              const std::vector<Point>& where, int R, int C) {
+                              const std::vector<Point>& where, const std::vector<bool>& unreliable, int R, int C) {
   double best = 1e9;
   for (int t = 1; t < 8; ++t) {
     if (t % 2 == 1 && R != C) continue;  // 90° and 270° (and their mirrors) need a square grid
@@ -92,7 +92,7 @@ double symmetric_alternatives(const std::vector<Vec3>& rgb, const std::vector<Ve
       if (t % 4 == 3) rr = C - 1 - mc, cc = r;          // three quarters (square grids)
       permuted.push_back(ref[size_t(rr) * C + cc]);
     }
-    best = std::min(best, reference_fit_score(rgb, permuted, where));
+    best = std::min(best, reference_fit_score(rgb, permuted, where, unreliable));
   }
   return best;
 }
@@ -247,28 +247,33 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
         lo.gap = ref.gap;
         SampleOptions so;
         so.partial = cut;
+        so.nonuniform_threshold = reference_fit_nonuniform;  // flags for the fit (below)
         const ChartSample s = sample_chart(image, lo, corners, so);
         c.missing = s.missing;
         if (!t.reference.empty()) {
           if (s.patches.size() < 6) throw Error(ErrorCode::CornersOutside, "fewer than 6 patches inside the image");
           // The visible patches (layout order) and their reference colours and places.
           std::vector<Vec3> rgb, ref_visible;
+          std::vector<bool> unreliable;  // clipped or not uniform: glare, a shadow's edge
           std::vector<int> cells;
           std::vector<Point> where;
           size_t next = 0;
           for (size_t k = 0; k < t.grid.patches.size() && next < s.patches.size(); ++k) {
             const auto& cell = t.grid.patches[k];
             if (s.patches[next].id != cell.id) continue;
-            const auto& m = s.patches[next++].mean;
-            rgb.emplace_back(m[0], m[1], m[2]);
+            const PatchSample& ps = s.patches[next++];
+            rgb.emplace_back(ps.mean[0], ps.mean[1], ps.mean[2]);
+            unreliable.push_back(std::any_of(ps.flags.begin(), ps.flags.end(), [](const std::string& f) {
+              return f == "saturated" || f == "nonuniform";
+            }));
             ref_visible.push_back(t.reference[k]);
             cells.push_back(static_cast<int>(k));
             where.emplace_back(t.grid.columns > 1 ? cell.column / (t.grid.columns - 1.0) : 0.5,
                                t.grid.rows > 1 ? cell.row / (t.grid.rows - 1.0) : 0.5);
           }
-          final_score = reference_fit_score(rgb, ref_visible, where);
-          alternative_score = symmetric_alternatives(rgb, t.reference, cells, where, t.grid.rows, t.grid.columns);
-          const std::vector<double> e = reference_fit_residuals(rgb, ref_visible, where);
+          final_score = reference_fit_score(rgb, ref_visible, where, unreliable);
+          alternative_score = symmetric_alternatives(rgb, t.reference, cells, where, unreliable, t.grid.rows, t.grid.columns);
+          const std::vector<double> e = reference_fit_residuals(rgb, ref_visible, where, unreliable);
           for (size_t k = 0; k < e.size(); ++k) c.patches.push_back({s.patches[k].id, e[k]});
           std::vector<double> sorted = e;
           std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());

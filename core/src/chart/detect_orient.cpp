@@ -1,5 +1,6 @@
 // Chart detection, steps 5 and 7: placing the layout on a lattice (rotation, mirror, offset) by
-// the residual of a quick 3×3 fit to the reference colours (detect.hpp).
+// the residual of a quick 3×3 fit to the reference colours (detect.hpp), robust to glare and a
+// cast shadow (docs/detection.md, "The colour fit under glare and shadow").
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -17,6 +18,9 @@ using Point = Eigen::Vector2d;
 namespace {
 
 constexpr double kLn2 = 0x1.62e42fefa39efp-1;  // ln 2 rounded to double
+constexpr double kLn10 = 2.302585092994045684;
+constexpr double kStep = 0.22314355131420976;  // ln 1.25
+constexpr double kPi = 3.14159265358979323846;
 
 // Weighted least squares M (3×3) with camera ≈ M · reference, weights per pair.
 // The sums of w·ref·refᵀ and w·ref·rgbᵀ are kept in scalars: each term is (w·ref_i)·x_j, added in
@@ -50,6 +54,92 @@ std::vector<double> relative_residuals(const std::vector<Vec3>& rgb, const std::
   return e;
 }
 
+// The patches left out of the fit: the unreliable ones, when they are at most a third of the
+// pairs and 6 others remain (else none: more is no longer glare or a shadow's edge, and a fit
+// on the rest could make a wrong placement fit — a lattice half on another grid).
+std::vector<bool> usable_flags(const std::vector<bool>& unreliable, size_t n) {
+  size_t bad = 0;
+  for (bool u : unreliable) bad += u;
+  if (unreliable.empty() || 3 * bad > n || n - bad < 6) return std::vector<bool>(n, false);
+  return unreliable;
+}
+
+// The terms of the smooth light at a chart position (u, v in 0..1): 1, u, v, u², v², uv.
+std::array<double, 6> light_terms(const Eigen::Vector2d& at) {
+  const double u = at.x() - 0.5, v = at.y() - 0.5;
+  return {1, u, v, u * u, v * v, u * v};
+}
+
+// A cast shadow's step in the light, fitted with the smooth light: log L = β·φ(u, v) + δ·s,
+// s = 1 on one side of a straight line across the chart and 0 on the other, by least squares on
+// `rho` (each patch's log light, where `ok`). Every line in 12 directions that splits the ok
+// patches with 4 or more on each side is tried; for a split s the joint fit's error is that of
+// the smooth fit less (sᵀr)² / (sᵀPs), r = Pρ, P the projection away from the smooth terms
+// (O(terms²) per split from running sums). The best split is kept when it halves the smooth
+// fit's error and |δ| > ln 1.25 (a step of 20 %): then `step` holds δ (within ln 10) on its side
+// and 0 elsewhere, for every patch, `beta` the smooth terms, and the result is true.
+bool shadow_step(const std::vector<Eigen::Vector2d>& positions, const std::vector<double>& rho,
+                 const std::vector<char>& ok, int terms, std::vector<double>& step, Eigen::VectorXd& beta) {
+  const size_t n = rho.size(), side = 4;
+  std::fill(step.begin(), step.end(), 0.0);
+  std::vector<size_t> idx;
+  for (size_t k = 0; k < n; ++k)
+    if (ok[k]) idx.push_back(k);
+  const size_t m = idx.size();
+  // With the step, the smooth light is linear: a quadratic could bend into a step where a row
+  // of patches at the shadow's edge is left out, and would then be clamped.
+  const Eigen::Index p = std::min(terms, 3);
+  if (m < 2 * side + static_cast<size_t>(p)) return false;
+  Eigen::MatrixXd Phi(static_cast<Eigen::Index>(m), p);
+  Eigen::VectorXd y(static_cast<Eigen::Index>(m));
+  for (size_t i = 0; i < m; ++i) {
+    const auto phi = light_terms(positions[idx[i]]);
+    for (Eigen::Index j = 0; j < p; ++j) Phi(static_cast<Eigen::Index>(i), j) = phi[size_t(j)];
+    y(static_cast<Eigen::Index>(i)) = rho[idx[i]];
+  }
+  Eigen::MatrixXd G = Phi.transpose() * Phi;
+  G += 1e-12 * G.trace() * Eigen::MatrixXd::Identity(p, p);
+  const Eigen::LDLT<Eigen::MatrixXd> solver(G);
+  const Eigen::MatrixXd Gi = solver.solve(Eigen::MatrixXd::Identity(p, p));
+  const Eigen::VectorXd r = y - Phi * solver.solve(Phi.transpose() * y);  // r = Pρ
+  const double sse0 = r.squaredNorm();
+  double best = 0.5 * sse0, best_delta = 0;
+  std::vector<char> best_side;
+  std::vector<std::pair<double, size_t>> order(m);
+  for (int d = 0; d < 12; ++d) {
+    const double th = kPi * d / 12, cs = detmath::cos(th), sn = detmath::sin(th);
+    for (size_t i = 0; i < m; ++i)
+      order[i] = {(positions[idx[i]].x() - 0.5) * cs + (positions[idx[i]].y() - 0.5) * sn, i};
+    std::sort(order.begin(), order.end());
+    double sr = 0;
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(p);  // Φᵀs
+    for (size_t i = 0; i + 1 < m; ++i) {
+      const size_t row = order[i].second;
+      sr += r(static_cast<Eigen::Index>(row));
+      g += Phi.row(static_cast<Eigen::Index>(row)).transpose();
+      const size_t nl = i + 1;
+      if (nl < side || m - nl < side || !(order[i + 1].first - order[i].first > 1e-9)) continue;
+      const double q = double(nl) - g.dot(Gi * g);  // sᵀPs
+      if (!(q > 1e-6 * double(nl))) continue;
+      const double sse = sse0 - sr * sr / q, delta = sr / q;
+      if (sse < best && std::abs(delta) > kStep) {
+        best = sse, best_delta = delta;
+        best_side.assign(n, 0);
+        const double cut = (order[i].first + order[i + 1].first) / 2;
+        for (size_t k = 0; k < n; ++k)
+          best_side[k] = (positions[k].x() - 0.5) * cs + (positions[k].y() - 0.5) * sn < cut;
+      }
+    }
+  }
+  if (best_side.empty()) return false;
+  best_delta = std::min(kLn10, std::max(-kLn10, best_delta));
+  for (size_t k = 0; k < n; ++k) step[k] = best_side[k] ? best_delta : 0.0;
+  for (size_t i = 0; i < m; ++i) y(static_cast<Eigen::Index>(i)) -= step[idx[i]];
+  beta = Eigen::VectorXd::Zero(terms);
+  beta.head(p) = solver.solve(Phi.transpose() * y);
+  return true;
+}
+
 // Mean of the smallest 75 % of the residuals.
 double trimmed_mean(std::vector<double> e) {
   const size_t keep = std::max<size_t>(1, static_cast<size_t>(std::ceil(0.75 * e.size())));
@@ -70,63 +160,93 @@ std::array<int, 2> dihedral(int t, int c, int r) {
   }
 }
 
+// A lattice cell's sample in place_layout: its mean, and whether it is clipped or not uniform.
+struct CellSample {
+  bool inside = false;
+  Vec3 mean = Vec3::Zero();
+  bool unreliable = false;
+};
+
 }  // namespace
 
 std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
-                                            const std::vector<Eigen::Vector2d>& positions) {
+                                            const std::vector<Eigen::Vector2d>& positions,
+                                            const std::vector<bool>& unreliable) {
   const size_t n = rgb.size();
-  if (ref.size() != n || n < 4 || (!positions.empty() && positions.size() != n))
+  if (ref.size() != n || n < 4 || (!positions.empty() && positions.size() != n) ||
+      (!unreliable.empty() && unreliable.size() != n))
     throw Error(ErrorCode::InvalidArgument, "the 3x3 reference fit needs 4 or more camera/reference pairs");
+  const std::vector<bool> left_out = usable_flags(unreliable, n);
   // Relative errors: weight 1/|ref|² (the camera scale is unknown, the reference sets the level).
   double brightest = 0;
   for (const auto& r : ref) brightest = std::max(brightest, r.squaredNorm());
   std::vector<double> w0(n), w(n);
-  for (size_t k = 0; k < n; ++k) w0[k] = w[k] = 1.0 / (ref[k].squaredNorm() + 4e-4 * brightest + 1e-30);
+  for (size_t k = 0; k < n; ++k)
+    w0[k] = w[k] = left_out[k] ? 0.0 : 1.0 / (ref[k].squaredNorm() + 4e-4 * brightest + 1e-30);
   // Light across the chart: log L = β · (1, u, v[, u², v², uv]) (linear from 12 patches,
-  // quadratic from 24), each factor within 0.5..2 of 1.
+  // quadratic from 24), each factor within 0.5..2 of 1; and from 12 patches a step δ beyond a
+  // straight line (a cast shadow).
   const int terms = positions.empty() || n < 12 ? 0 : n < 24 ? 3 : 6;
-  std::vector<double> light(n, 1.0);
+  std::vector<double> light(n, 1.0), step(n, 0.0), rho(n, 0.0);
+  std::vector<char> lit_ok(n, 0);
   std::vector<Vec3> lit = ref;
   std::vector<double> e, sorted;
-  const int iterations = terms ? 4 : 2;
+  const int iterations = terms ? 5 : 2;
   for (int it = 0; it < iterations; ++it) {
     for (size_t k = 0; k < n; ++k) lit[k] = light[k] * ref[k];
     const Mat3 M = fit_matrix(rgb, lit, w);
     e = relative_residuals(rgb, lit, M);
     if (it == iterations - 1) break;  // the weights and light below would only serve a next fit
-    // Refit without the worst 25 % (glare, a shadow, a missing patch).
-    sorted = e;
+    // Refit without the worst 25 % of the patches kept (glare, a shadow, a missing patch).
+    sorted.clear();
+    for (size_t k = 0; k < n; ++k)
+      if (!left_out[k]) sorted.push_back(e[k]);
     const auto q3 = sorted.begin() + static_cast<std::ptrdiff_t>(std::floor(0.75 * (sorted.size() - 1)));
     std::nth_element(sorted.begin(), q3, sorted.end());
     const double cut = *q3;
     for (size_t k = 0; k < n; ++k) w[k] = e[k] > cut ? 0 : w0[k];
     if (!terms) continue;
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), terms);
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+    // Each patch's light relative to M: ρ = log(rgb·p / |p|²), p = M · ref (bright enough ones).
     for (size_t k = 0; k < n; ++k) {
       const Vec3 p = M * ref[k];
-      const double rho = rgb[k].dot(p) / (p.squaredNorm() + 1e-300);
-      if (!(w[k] > 0) || !(rho > 0) || p.squaredNorm() < 4e-3 * brightest * M.squaredNorm() / 3) continue;
-      const double u = positions[k].x() - 0.5, v = positions[k].y() - 0.5;
-      const double phi[6] = {1, u, v, u * u, v * v, u * v};
-      for (int j = 0; j < terms; ++j) A(static_cast<Eigen::Index>(k), j) = phi[j];
-      b(static_cast<Eigen::Index>(k)) = detmath::log(rho);
+      const double r = rgb[k].dot(p) / (p.squaredNorm() + 1e-300);
+      lit_ok[k] = !left_out[k] && r > 0 && p.squaredNorm() >= 4e-3 * brightest * M.squaredNorm() / 3;
+      rho[k] = lit_ok[k] ? detmath::log(r) : 0.0;
     }
-    const Eigen::VectorXd beta = A.colPivHouseholderQr().solve(b);
+    // A shadow's step with the smooth light, on every reliable patch (the refit's weights may
+    // have dropped the whole lit or shadowed side); else the smooth light alone on the patches
+    // the refit keeps.
+    Eigen::VectorXd beta;
+    if (!shadow_step(positions, rho, lit_ok, terms, step, beta)) {
+      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), terms);
+      Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+      for (size_t k = 0; k < n; ++k) {
+        if (!lit_ok[k] || !(w[k] > 0)) continue;
+        const auto phi = light_terms(positions[k]);
+        for (int j = 0; j < terms; ++j) A(static_cast<Eigen::Index>(k), j) = phi[size_t(j)];
+        b(static_cast<Eigen::Index>(k)) = rho[k];
+      }
+      beta = A.colPivHouseholderQr().solve(b);
+    }
     for (size_t k = 0; k < n; ++k) {
-      const double u = positions[k].x() - 0.5, v = positions[k].y() - 0.5;
-      const double phi[6] = {0, u, v, u * u, v * v, u * v};  // the constant stays in M
+      const auto phi = light_terms(positions[k]);
       double l = 0;
-      for (int j = 1; j < terms; ++j) l += beta(j) * phi[j];
-      light[k] = detmath::exp(std::min(kLn2, std::max(-kLn2, l)));
+      for (int j = 1; j < terms; ++j) l += beta(j) * phi[size_t(j)];  // the constant stays in M
+      light[k] = detmath::exp(std::min(kLn2, std::max(-kLn2, l)) + step[k]);
     }
   }
   return e;
 }
 
 double reference_fit_score(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
-                           const std::vector<Eigen::Vector2d>& positions) {
-  return trimmed_mean(reference_fit_residuals(rgb, ref, positions));
+                           const std::vector<Eigen::Vector2d>& positions, const std::vector<bool>& unreliable) {
+  const std::vector<double> e = reference_fit_residuals(rgb, ref, positions, unreliable);
+  // The patches left out of the fit are left out of the score (a third of them at most).
+  const std::vector<bool> left_out = usable_flags(unreliable, rgb.size());
+  std::vector<double> kept;
+  for (size_t k = 0; k < e.size(); ++k)
+    if (!left_out[k]) kept.push_back(e[k]);
+  return trimmed_mean(kept);
 }
 
 std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group, const ChartLayout& layout,
@@ -145,9 +265,10 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
   const int reach = std::max(R, C);
   const int cache_p0 = group.p_min - reach, cache_q0 = group.q_min - reach;
   const int cache_w = group.p_max - group.p_min + 1 + 2 * reach, cache_h = group.q_max - group.q_min + 1 + 2 * reach;
-  std::vector<std::pair<bool, Vec3>> cache(size_t(cache_w) * cache_h);
+  std::vector<CellSample> cache(size_t(cache_w) * cache_h);
   std::vector<char> cached(cache.size(), 0);
-  auto sample = [&](const std::array<int, 2>& cell) -> const std::pair<bool, Vec3>& {
+  const double threshold = reference_fit_nonuniform;
+  auto sample = [&](const std::array<int, 2>& cell) -> const CellSample& {
     const size_t slot = size_t(cell[1] - cache_q0) * cache_w + size_t(cell[0] - cache_p0);
     if (cached[slot]) return cache[slot];
     const Point c = apply_homography(H, Point(cell[0], cell[1]));
@@ -156,14 +277,39 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
     const double r = std::max(0.5, 0.2 * pitch);
     const int x0 = static_cast<int>(std::floor(c.x() - r)), x1 = static_cast<int>(std::ceil(c.x() + r));
     const int y0 = static_cast<int>(std::floor(c.y() - r)), y1 = static_cast<int>(std::ceil(c.y() + r));
-    std::pair<bool, Vec3> s{false, Vec3::Zero()};
+    CellSample s;
     if (std::isfinite(c.x()) && std::isfinite(c.y()) && x0 >= 0 && y0 >= 0 && x1 < img.width && y1 < img.height) {
-      s.first = true;
-      int n = 0;
+      s.inside = true;
+      // The mean, and the quadrant means and clipped pixels for the uniformity test of
+      // sample_chart (a glare spot or a shadow's edge in the cell; layout.hpp's "nonuniform").
+      Vec3 quadrant[4] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+      Vec3 sq = Vec3::Zero();
+      int count[4] = {0, 0, 0, 0}, n = 0;
+      const bool sat = img.saturated.size() == size_t(img.width) * img.height;
+      const int xm = (x0 + x1 + 1) / 2, ym = (y0 + y1 + 1) / 2;
       for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x, ++n)
-          for (int k = 0; k < 3; ++k) s.second[k] += img.at(x, y, k);
-      s.second /= double(std::max(1, n));
+        for (int x = x0; x <= x1; ++x, ++n) {
+          const int q = (x >= xm) + 2 * (y >= ym);
+          ++count[q];
+          for (int k = 0; k < 3; ++k) {
+            const double v = img.at(x, y, k);
+            s.mean[k] += v;
+            quadrant[q][k] += v;
+            sq[k] += v * v;
+          }
+          s.unreliable = s.unreliable || (sat && img.saturated[size_t(y) * img.width + x]);
+        }
+      s.mean /= double(std::max(1, n));
+      for (int k = 0; k < 3 && n > 1 && count[0] && count[1] && count[2] && count[3]; ++k) {
+        double qmin = 1e300, qmax = -1e300;
+        for (int q = 0; q < 4; ++q) {
+          qmin = std::min(qmin, quadrant[q][k] / count[q]);
+          qmax = std::max(qmax, quadrant[q][k] / count[q]);
+        }
+        const double variance = std::max(0.0, (sq[k] - n * s.mean[k] * s.mean[k]) / (n - 1));
+        const double standard_error = std::sqrt(variance / (n / 4.0));
+        s.unreliable = s.unreliable || (qmax - qmin > threshold * s.mean[k] && qmax - qmin > 4.0 * standard_error);
+      }
     }
     cached[slot] = 1;
     return cache[slot] = s;
@@ -195,22 +341,24 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
         pl.found = covered;
         std::vector<Vec3> rgb, ref;
         std::vector<Point> where;
+        std::vector<bool> unreliable;
         int outside = 0;
         for (int k = 0; k < N; ++k) {
           const auto& cell = layout.patches[k];
           const auto pq = dihedral(t, cell.column, cell.row);
           const auto& s = sample({pq[0] + op, pq[1] + oq});
-          if (!s.first) {
+          if (!s.inside) {
             ++outside;
             continue;
           }
-          rgb.push_back(s.second);
+          rgb.push_back(s.mean);
+          unreliable.push_back(s.unreliable);
           where.emplace_back(C > 1 ? cell.column / (C - 1.0) : 0.5, R > 1 ? cell.row / (R - 1.0) : 0.5);
           if (!reference.empty()) ref.push_back(reference[k]);
         }
         pl.inside = outside == 0;
         if (rgb.size() < std::max<size_t>(6, N / 2)) continue;
-        pl.residual = reference.empty() ? 0.0 : reference_fit_score(rgb, ref, where);
+        pl.residual = reference.empty() ? 0.0 : reference_fit_score(rgb, ref, where, unreliable);
         // Corners: chart (u, v) -> layout (c, r) -> lattice -> image.
         const double us[4] = {0, 1, 1, 0}, vs[4] = {0, 0, 1, 1};
         std::vector<Point> k(4);

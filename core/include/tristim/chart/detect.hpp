@@ -225,15 +225,29 @@ Refinement refine_corners(const RawImage& image, const LayoutOptions& layout,
 /// Step 7. Robust 3×3 fit camera_RGB ≈ L · M · reference (least squares weighted to relative
 /// errors, refitted without the worst 25 %): the per-patch relative residuals (see
 /// PatchAgreement), same order as the inputs. With `positions` (each patch's centre in the
-/// chart, 0..1 across the grid) the light L may vary smoothly over the chart — vignetting, a
-/// lamp to one side: log L linear in (u, v) from 12 patches, quadratic from 24, each factor
-/// within 0.5..2 — fitted alternately with M. Needs ≥ 4 pairs.
+/// chart, 0..1 across the grid) the light L may vary over the chart, fitted alternately with M:
+/// smoothly — vignetting, a lamp to one side: log L linear in (u, v) from 12 patches, quadratic
+/// from 24, each factor within 0.5..2 — and, from 12 patches, by a step across a straight line
+/// (a cast shadow's edge: the half-plane split of the patches that best explains their light,
+/// kept when it explains most of its variation, 4 patches or more on each side; docs/detection.md).
+/// `unreliable` (empty, or one flag per pair): patches whose sample is clipped or not uniform
+/// (glare, a shadow's edge across them: reference_fit_nonuniform) are left out of the fit when
+/// they are at most a third of the pairs and 6 others remain; their residuals are still returned.
+/// Needs ≥ 4 pairs.
 std::vector<double> reference_fit_residuals(const std::vector<Vec3>& camera_RGB, const std::vector<Vec3>& reference,
-                                            const std::vector<Eigen::Vector2d>& positions = {});
+                                            const std::vector<Eigen::Vector2d>& positions = {},
+                                            const std::vector<bool>& unreliable = {});
 
-/// The same fit summarised: mean of the smallest 75 % of the residuals (Placement::residual).
+/// A patch sample is unreliable for the fit when its four quadrant means differ by more than this
+/// fraction of its mean (and by 4 standard errors: SampleOptions::nonuniform_threshold's test),
+/// or a pixel of it is clipped.
+inline constexpr double reference_fit_nonuniform = 0.25;
+
+/// The same fit summarised: mean of the smallest 75 % of the residuals (Placement::residual),
+/// the patches left out of the fit dropped first (beyond a quarter of the pairs, theirs count).
 double reference_fit_score(const std::vector<Vec3>& camera_RGB, const std::vector<Vec3>& reference,
-                           const std::vector<Eigen::Vector2d>& positions = {});
+                           const std::vector<Eigen::Vector2d>& positions = {},
+                           const std::vector<bool>& unreliable = {});
 
 /// Helpers shared by the steps: a DLT homography (Hartley-normalised, Eigen SVD) mapping
 /// src[i] -> dst[i] (≥ 4 points), and applying one.
