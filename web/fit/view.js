@@ -165,10 +165,12 @@ export function mount(section, app) {
   /// cancelled, or null.
   async function run({ onFirst, firstOnEngine = false } = {}) {
     clearError(runBtn);
+    log.replaceChildren();   // the last run's lines go now: the pairing below is asynchronous
+    runBtn.disabled = true;
     const data = await describeData();
+    runBtn.disabled = false;
     if (!data) { showError(runBtn, new Error('no paired data yet: set the reference and sample the chart first'), 'Fit'); return null; }
     if (data.error) {
-      log.replaceChildren();
       const e = data.error, advice = e.code === 'PATCH_MISMATCH' ? ': choose the chart layout or reference that belong together' : '';
       showError(runBtn, Object.assign(new Error(`${e.message}${advice}`), { code: e.code }), 'Fit');
       return null;
