@@ -99,6 +99,14 @@ async function start() {
   const saved = await storedSession;
   const fresh = !saved.settings;
   Object.assign(app.session, saved);
+  // Results kept by a page from before a recipe crossed as its JSON (a layout's margin_left …, no
+  // `margins`): each one's recipe as its profile embeds it, the form the engine reads.
+  for (const r of app.session.results ?? []) {
+    if (!r.recipe?.sampling?.layout || r.recipe.sampling.layout.margins || !r.fit?.profile) continue;
+    const { format, ...recipe } = JSON.parse(r.fit.profile).recipe;
+    r.recipe = r.fit.recipe = recipe;
+    if (r.key === app.session.selected) app.session.recipe = recipe;
+  }
 
   const features = await FEATURES;
   // The plotting library (deferred scripts) has run once the document is parsed.
