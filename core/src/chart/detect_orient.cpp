@@ -78,65 +78,87 @@ std::array<double, 6> light_terms(const Eigen::Vector2d& at) {
 // (O(terms²) per split from running sums). The best split is kept when it halves the smooth
 // fit's error and |δ| > ln 1.25 (a step of 20 %): then `step` holds δ (within ln 10) on its side
 // and 0 elsewhere, for every patch, `beta` the smooth terms, and the result is true.
-bool shadow_step(const std::vector<Eigen::Vector2d>& positions, const std::vector<double>& rho,
+// The patches in order along each of the 12 directions of shadow_step (their projection, index).
+using LineOrders = std::array<std::vector<std::pair<double, size_t>>, 12>;
+LineOrders line_orders(const std::vector<Eigen::Vector2d>& positions) {
+  LineOrders out;
+  for (int d = 0; d < 12; ++d) {
+    const double th = kPi * d / 12, cs = detmath::cos(th), sn = detmath::sin(th);
+    for (size_t k = 0; k < positions.size(); ++k)
+      out[size_t(d)].emplace_back((positions[k].x() - 0.5) * cs + (positions[k].y() - 0.5) * sn, k);
+    std::sort(out[size_t(d)].begin(), out[size_t(d)].end());
+  }
+  return out;
+}
+
+bool shadow_step(const std::vector<Eigen::Vector2d>& positions, const LineOrders& orders, const std::vector<double>& rho,
                  const std::vector<char>& ok, int terms, std::vector<double>& step, Eigen::VectorXd& beta) {
   const size_t n = rho.size(), side = 4;
   std::fill(step.begin(), step.end(), 0.0);
+  // With the step, the smooth light is linear (1, u, v): a quadratic could bend into a step where
+  // a row of patches at the shadow's edge is left out, and would then be clamped. Fixed-size
+  // algebra: this runs for every placement of a Digital SG.
   std::vector<size_t> idx;
+  std::vector<Eigen::Vector3d> phi;
   for (size_t k = 0; k < n; ++k)
-    if (ok[k]) idx.push_back(k);
+    if (ok[k]) {
+      idx.push_back(k);
+      const auto t = light_terms(positions[k]);
+      phi.emplace_back(t[0], t[1], t[2]);
+    }
   const size_t m = idx.size();
-  // With the step, the smooth light is linear: a quadratic could bend into a step where a row
-  // of patches at the shadow's edge is left out, and would then be clamped.
-  const Eigen::Index p = std::min(terms, 3);
-  if (m < 2 * side + static_cast<size_t>(p)) return false;
-  Eigen::MatrixXd Phi(static_cast<Eigen::Index>(m), p);
-  Eigen::VectorXd y(static_cast<Eigen::Index>(m));
+  if (m < 2 * side + 3) return false;
+  Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d Phi_y = Eigen::Vector3d::Zero();
   for (size_t i = 0; i < m; ++i) {
-    const auto phi = light_terms(positions[idx[i]]);
-    for (Eigen::Index j = 0; j < p; ++j) Phi(static_cast<Eigen::Index>(i), j) = phi[size_t(j)];
-    y(static_cast<Eigen::Index>(i)) = rho[idx[i]];
+    G += phi[i] * phi[i].transpose();
+    Phi_y += phi[i] * rho[idx[i]];
   }
-  Eigen::MatrixXd G = Phi.transpose() * Phi;
-  G += 1e-12 * G.trace() * Eigen::MatrixXd::Identity(p, p);
-  const Eigen::LDLT<Eigen::MatrixXd> solver(G);
-  const Eigen::MatrixXd Gi = solver.solve(Eigen::MatrixXd::Identity(p, p));
-  const Eigen::VectorXd r = y - Phi * solver.solve(Phi.transpose() * y);  // r = Pρ
-  const double sse0 = r.squaredNorm();
-  double best = 0.5 * sse0, best_delta = 0;
-  std::vector<char> best_side;
-  std::vector<std::pair<double, size_t>> order(m);
+  G += 1e-12 * G.trace() * Eigen::Matrix3d::Identity();
+  const Eigen::LDLT<Eigen::Matrix3d> solver(G);
+  const Eigen::Matrix3d Gi = solver.solve(Eigen::Matrix3d::Identity());
+  const Eigen::Vector3d b0 = solver.solve(Phi_y);
+  std::vector<double> r(m);  // r = Pρ
+  double sse0 = 0;
+  for (size_t i = 0; i < m; ++i) {
+    r[i] = rho[idx[i]] - phi[i].dot(b0);
+    sse0 += r[i] * r[i];
+  }
+  double best = 0.5 * sse0, best_delta = 0, best_cs = 0, best_sn = 0, best_cut = 0;
+  bool found = false;
+  std::vector<size_t> row_of(n, 0);  // patch -> its row among the ok ones
+  for (size_t i = 0; i < m; ++i) row_of[idx[i]] = i;
+  std::vector<std::pair<double, size_t>> order;
   for (int d = 0; d < 12; ++d) {
     const double th = kPi * d / 12, cs = detmath::cos(th), sn = detmath::sin(th);
-    for (size_t i = 0; i < m; ++i)
-      order[i] = {(positions[idx[i]].x() - 0.5) * cs + (positions[idx[i]].y() - 0.5) * sn, i};
-    std::sort(order.begin(), order.end());
+    order.clear();
+    for (const auto& e : orders[size_t(d)])
+      if (ok[e.second]) order.emplace_back(e.first, row_of[e.second]);
     double sr = 0;
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(p);  // Φᵀs
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();  // Φᵀs
     for (size_t i = 0; i + 1 < m; ++i) {
       const size_t row = order[i].second;
-      sr += r(static_cast<Eigen::Index>(row));
-      g += Phi.row(static_cast<Eigen::Index>(row)).transpose();
+      sr += r[row];
+      g += phi[row];
       const size_t nl = i + 1;
       if (nl < side || m - nl < side || !(order[i + 1].first - order[i].first > 1e-9)) continue;
       const double q = double(nl) - g.dot(Gi * g);  // sᵀPs
       if (!(q > 1e-6 * double(nl))) continue;
       const double sse = sse0 - sr * sr / q, delta = sr / q;
       if (sse < best && std::abs(delta) > kStep) {
-        best = sse, best_delta = delta;
-        best_side.assign(n, 0);
-        const double cut = (order[i].first + order[i + 1].first) / 2;
-        for (size_t k = 0; k < n; ++k)
-          best_side[k] = (positions[k].x() - 0.5) * cs + (positions[k].y() - 0.5) * sn < cut;
+        best = sse, best_delta = delta, best_cs = cs, best_sn = sn, found = true;
+        best_cut = (order[i].first + order[i + 1].first) / 2;
       }
     }
   }
-  if (best_side.empty()) return false;
+  if (!found) return false;
   best_delta = std::min(kLn10, std::max(-kLn10, best_delta));
-  for (size_t k = 0; k < n; ++k) step[k] = best_side[k] ? best_delta : 0.0;
-  for (size_t i = 0; i < m; ++i) y(static_cast<Eigen::Index>(i)) -= step[idx[i]];
+  for (size_t k = 0; k < n; ++k)
+    step[k] = (positions[k].x() - 0.5) * best_cs + (positions[k].y() - 0.5) * best_sn < best_cut ? best_delta : 0.0;
+  Eigen::Vector3d Phi_rest = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < m; ++i) Phi_rest += phi[i] * (rho[idx[i]] - step[idx[i]]);
   beta = Eigen::VectorXd::Zero(terms);
-  beta.head(p) = solver.solve(Phi.transpose() * y);
+  beta.head<3>() = solver.solve(Phi_rest);
   return true;
 }
 
@@ -192,6 +214,7 @@ std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const 
   std::vector<Vec3> lit = ref;
   std::vector<double> e, sorted;
   const int iterations = terms ? 5 : 2;
+  const LineOrders orders = terms ? line_orders(positions) : LineOrders{};
   for (int it = 0; it < iterations; ++it) {
     for (size_t k = 0; k < n; ++k) lit[k] = light[k] * ref[k];
     const Mat3 M = fit_matrix(rgb, lit, w);
@@ -217,7 +240,7 @@ std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const 
     // have dropped the whole lit or shadowed side); else the smooth light alone on the patches
     // the refit keeps.
     Eigen::VectorXd beta;
-    if (!shadow_step(positions, rho, lit_ok, terms, step, beta)) {
+    if (!shadow_step(positions, orders, rho, lit_ok, terms, step, beta)) {
       Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), terms);
       Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
       for (size_t k = 0; k < n; ++k) {
