@@ -22,7 +22,7 @@ const INPUT = {
   icc: ['export', '#step-export input[type=file]'],
   project: ['share', '#share-import'],
 };
-const DETECT_AGAIN = '#step-images .detect-panel button:not(.primary)';
+const DETECT_AGAIN = '#step-images .detect-panel button.detect-again';
 const A1 = '#step-images .patch-table tbody tr[data-id="A1"]';
 
 pageTest('every catalogue case shows its code next to its input, and the page still fits afterwards', async ({ page }) => {

@@ -1,9 +1,9 @@
-// Node unit tests of the page's pure functions (pairing, plot data, display, forms). The .cube and
+// Node unit tests of the page's pure functions (the excluded ids, plot data, display, forms). The .cube and
 // ICC readers are the engine's: tests/wasm/formats.test.mjs.
 // (Chart layouts, the corner homography and crossed corners are the engine's: tests/wasm.)
 import test from 'node:test';
 import assert from 'node:assert/strict';
-import { pairData } from '../../web/lib/pairs.js';
+import { excludedBy } from '../../web/lib/pairs.js';
 import { deSegments } from '../../web/plots/de_bars.js';
 import { xyFromXYZ, cssColours } from '../../web/plots/common.js';
 import { locusData } from '../../web/plots/xy.js';
@@ -13,14 +13,12 @@ import { defaultChoice, completeChoice } from '../../web/lib/options_form.js';
 
 const close = (a, b, tol = 1e-9) => assert.ok(Math.abs(a - b) <= tol, `${a} vs ${b} (tol ${tol})`);
 
-test('pairing leaves out saturated patches by id', () => {
-  const s = { ids: ['A1', 'A2', 'X9'], RGB: Float64Array.from([1, 2, 3, 4, 5, 6, 7, 8, 9]), flags: [[], ['saturated'], []] };
-  const ref = { ids: ['A2', 'A1'], XYZ: Float64Array.from([20, 21, 22, 10, 11, 12]) };
-  const d = pairData(s, ref);
-  assert.deepEqual(d.ids, ['A1']);
-  assert.deepEqual(Array.from(d.xyz), [10, 11, 12]);
-  assert.deepEqual(d.missing, ['X9']);
-  assert.deepEqual(d.excluded.map((e) => e.id), ['A2']);
+// The pairing itself is the engine's (tests/wasm/pairs_page.test.mjs); the page only picks the ids
+// its "leave out saturated" toggle writes into the recipe's sampling.exclude.
+test('the saturated patches the page leaves out are picked by their flags', () => {
+  const s = { ids: ['A1', 'A2', 'X9', 'B1'], flags: [[], ['saturated'], ['dark'], ['saturated', 'nonuniform']] };
+  assert.deepEqual(excludedBy(s, (f) => f.includes('saturated')), ['A2', 'B1']);
+  assert.deepEqual(excludedBy({ ids: ['A1'] }, (f) => f.includes('saturated')), []);
 });
 
 test('ΔE00 bar segments add up to ΔE00', () => {

@@ -77,7 +77,7 @@ export function mount(section, app) {
   // Automatic detection: what was found, and the buttons to use it or look again.
   const detectText = h('p', { class: 'detect-text', 'aria-live': 'polite' });
   const acceptBtn = h('button', { type: 'button', class: 'primary', hidden: true, onclick: () => useDetected() }, 'Use the detected corners');
-  const againBtn = h('button', { type: 'button', disabled: true, onclick: () => detect() }, 'Detect again');
+  const againBtn = h('button', { type: 'button', class: 'detect-again', disabled: true, onclick: () => detect() }, 'Detect again');
   // Two charts of the layout in this image (issue 48): the second becomes the second chart (second.js).
   let found = [];   // the last detection's candidates
   const bothBtn = h('button', { type: 'button', class: 'use-both', hidden: true, onclick: () => useBoth() }, 'Use both charts found');
