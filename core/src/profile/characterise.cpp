@@ -108,10 +108,14 @@ TrainingSet training_set(const Recipe& in, const ChartSample& sample, const Refe
   std::vector<Vec3> rgb, xyz;
   // A reference handed over without labels (or with a different number of them) is labelled by its ids.
   const bool labelled = reference.labels.size() == reference.ids.size();
-  for (const PatchSample& p : sample.patches) {
-    const std::string id = normalise_patch_id(p.id);
+  const auto row_of = [&reference](const std::string& id) {  // the reference row of a normalised id, or its size
     size_t k = 0;
     while (k < reference.ids.size() && normalise_patch_id(reference.ids[k]) != id) ++k;
+    return k;
+  };
+  for (const PatchSample& p : sample.patches) {
+    const std::string id = normalise_patch_id(p.id);
+    const size_t k = row_of(id);
     if (k == reference.ids.size())
       throw Error(ErrorCode::PatchMismatch, "sampled patch '" + id + "' is not in the reference");
     const std::string& label = labelled ? reference.labels[k] : reference.ids[k];
@@ -131,9 +135,7 @@ TrainingSet training_set(const Recipe& in, const ChartSample& sample, const Refe
     xyz.push_back(reference.XYZ[k]);
   }
   for (const std::string& m : sample.missing) {  // a chart cut by the frame: these were not sampled
-    const std::string id = normalise_patch_id(m);
-    size_t k = 0;
-    while (k < reference.ids.size() && normalise_patch_id(reference.ids[k]) != id) ++k;
+    const size_t k = row_of(normalise_patch_id(m));
     excluded.push_back((k < reference.ids.size() && labelled ? reference.labels[k] : m) + " (outside the frame)");
   }
   return finish(std::move(ids), std::move(labels), std::move(rgb), std::move(xyz), std::move(excluded));
