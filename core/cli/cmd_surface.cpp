@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <ostream>
+#include <sstream>
 #include <string>
 
 #include "cli.hpp"
@@ -15,10 +16,30 @@
 #include "tristim/surface/fit.hpp"
 #include "tristim/surface/geometry_table.hpp"
 #include "tristim/surface/joint.hpp"
+#include "tristim/surface/options_table.hpp"
 #include "tristim/surface/saunderson.hpp"
 #include "tristim/surface/surface.hpp"
 
 namespace tristim::cli {
+
+/// A --help section of OptionSpec rows (an engine table of a command's numbers, as the page's
+/// inputs read it): "name: label (unit), min to max, default d — description"; a choice row lists
+/// its choices. Also used by cmd_absolute*.cpp.
+std::string option_rows_help(const std::string& title, const std::vector<OptionSpec>& rows) {
+  std::ostringstream s;
+  s << title << ":\n";
+  for (const OptionSpec& o : rows) {
+    s << "  " << o.name << ": " << o.label << (o.unit.empty() ? "" : " (" + o.unit + ")") << ", ";
+    if (o.type == "choice" || o.type == "text") {
+      for (size_t k = 0; k < o.choices.size(); ++k) s << (k ? " | " : "") << o.choices[k];
+      s << (o.choices.empty() ? "" : ", ") << "default " << o.default_text;
+    } else {
+      s << o.min << " to " << o.max << ", default " << o.default_number;
+    }
+    s << " — " << o.description << "\n";
+  }
+  return s.str();
+}
 
 namespace {
 
@@ -204,8 +225,7 @@ int run_table4(const Args& args, std::ostream& out) {
   const double seed = args.get_double("seed", 1);
   if (!(seed >= 0) || seed != static_cast<double>(static_cast<uint64_t>(seed)))
     throw Error(ErrorCode::InvalidArgument, "--seed expects a non-negative integer");
-  const double noise = args.get_double("noise", 0.001);
-  if (!(noise >= 0)) throw Error(ErrorCode::InvalidArgument, "--noise expects a non-negative number");
+  const double noise = args.get_double("noise", 0.001);  // bounds: the noise row of surface_option_table()
   const GeometryExperiment x = geometry_experiment_Abed2013(args.get("camera", "Nikon_D850"), args.get("illuminant", "D50"),
                                                             noise, static_cast<uint64_t>(seed));
   const auto cells = geometry_table_Abed2013(x.training, x.test, x.options);
@@ -295,7 +315,9 @@ CommandRegistration reg_surface(
      run_surface, [] {
        std::vector<MethodInfo> rows;
        for (const auto& m : surface_table()) rows.push_back(m.info);
-       return methods_help("Surface corrections (--method; tristim surface methods)", rows);
+       return methods_help("Surface corrections (--method; tristim surface methods)", rows) +
+              option_rows_help("Numbers (the page's boxes; fit --range min-max in nm, table4 --noise)",
+                               surface_option_table());
      }});
 
 }  // namespace

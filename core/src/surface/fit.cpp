@@ -11,6 +11,7 @@
 #include "minimise.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
+#include "tristim/surface/options_table.hpp"
 #include "tristim/surface/saunderson.hpp"
 #include "tristim/surface/surface.hpp"
 
@@ -201,7 +202,10 @@ SurfaceFitResult fit_surface(const MethodChoice& start, const SpectralData& meas
   const double m_lo = measured.wavelengths.front(), m_hi = measured.wavelengths.back();
   const double t_lo = target.wavelengths.front(), t_hi = target.wavelengths.back();
   double lo = options.range_min, hi = options.range_max;
-  if (lo == 0 && hi == 0) {
+  if (lo != 0 || hi != 0) {  // a given range: inside the rows of surface_option_table()
+    check_surface_option("range_min", lo);
+    check_surface_option("range_max", hi);
+  } else {
     lo = std::max(m_lo, t_lo);
     hi = std::min(m_hi, t_hi);
     if (!(hi >= lo))

@@ -8,6 +8,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/surface/joint.hpp"
+#include "tristim/surface/options_table.hpp"
 #include "tristim/surface/surface.hpp"
 
 namespace tristim {
@@ -147,6 +148,7 @@ std::vector<GeometryTableCell> geometry_table_Abed2013(const std::vector<Geometr
 
 GeometryExperiment geometry_experiment_Abed2013(const std::string& camera, const std::string& illuminant_id,
                                                 double noise_sigma, uint64_t seed) {
+  check_surface_option("noise", noise_sigma);
   GeometryExperiment x;
   x.scene.ssf = camera_ssf(camera);
   x.scene.illuminant = illuminant_spd(illuminant_id);

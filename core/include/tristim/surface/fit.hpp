@@ -22,7 +22,8 @@
 namespace tristim {
 
 struct SurfaceFitOptions {
-  /// Fitted range in nm; both 0: the overlap of the two sets' ranges.
+  /// Fitted range in nm; both 0: the overlap of the two sets' ranges. A given range lies inside
+  /// the range_min / range_max rows of surface_option_table() (options_table.hpp).
   double range_min = 0, range_max = 0;
   /// Illuminant of the CIELAB report (empty: D50) and observer.
   SpectralData illuminant;
@@ -57,7 +58,7 @@ struct SurfaceFitResult {
 
 /// Fits `start.method` (its options are the start values and, for Saunderson, the fixed
 /// coefficients) mapping `measured` onto `target`. Errors: UnknownId, InvalidArgument (bad
-/// options, reflectance > 1.5), NegativeValue, PatchMismatch, DuplicateId, WavelengthMismatch,
+/// options, a range outside surface_option_table()'s rows, reflectance > 1.5), NegativeValue, PatchMismatch, DuplicateId, WavelengthMismatch,
 /// IllPosed (too many free Saunderson coefficients), FitFailed (the optimiser failed).
 SurfaceFitResult fit_surface(const MethodChoice& start, const SpectralData& measured, const SpectralData& target,
                              const SurfaceFitOptions& options = {});

@@ -88,7 +88,8 @@ std::vector<GeometryTableCell> geometry_table_Abed2013(const std::vector<Geometr
                                                        const GeometryChart& test, const GeometryTableOptions& options);
 
 /// The simulated experiment the tests, the example and the page run: camera `camera`
-/// (virtual_camera.hpp names), illuminant `illuminant_id`, noise σ (white G = 1).
+/// (virtual_camera.hpp names), illuminant `illuminant_id`, noise σ (white G = 1; the noise row of
+/// surface_option_table(), Error(InvalidArgument) outside it).
 /// Instrument: 45°:0° (Eye-one); capture: diffuse booth — the coefficients of the paper's
 /// Table III: training "Classic" = cc24-2005 spectra with the Classic row (matte), "SG" =
 /// sg140-2005 with the SG row (semi-gloss), "Glossy" = sg140 with the Custom-Glossy row, "Total" =
