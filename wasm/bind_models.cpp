@@ -27,9 +27,6 @@ EMSCRIPTEN_BINDINGS(tristim_models) {
   STRUCT(Model, id, coefficients);
   STRUCT(FitResult, model, objective, status, message, iterations, evaluations, condition_number, objective_value,
            start_objective_value, white_preserved, fitted, residuals, mu);
-  STRUCT(Summary, min, median, mean, p95, max, rms, std);
-  STRUCT(PatchErrors, dE76, dE94, dE00, dL, dC, dH, dE_xyz, rel_Y);
-  STRUCT(Metrics, patches, dE76, dE94, dE00, dE_xyz, abs_rel_Y, NRMSE);
   { using S = ModelEvaluation; value_object<S>("ModelEvaluation") FIELD(fit) FIELD(fit_seconds) FIELD(fit_cpu_seconds)
       FIELD(training) FIELD(has_loo) .field("loo", &loo_of, &set_field<&S::loo>) FIELD(loo_XYZ); }
   STRUCT(CompareRow, model_id, objective, n_terms, ok, error_code, message, status, condition_number, seconds,

@@ -55,7 +55,7 @@ inline json::Value from_js(const val& v, const std::string& path) {
 }
 /// The error code of a refused object of T (ReadCode<AbsoluteRecipe>: RECIPE_INVALID).
 template <class T> struct ReadCode { static constexpr ErrorCode code = ErrorCode::InvalidArgument; };
-template <class T, class = void> struct SchemaName { static constexpr const char* prefix = ""; };
+template <class T, class = void> struct SchemaName { static inline const std::string prefix; };
 template <class T> struct SchemaName<T, std::void_t<decltype(fields::Schema<T>::name)>> {
   static inline const std::string prefix = std::string(fields::Schema<T>::name) + ": ";
 };
@@ -68,15 +68,11 @@ struct SchemaConv {
   static val to(const T& x) { return to_js(fields::write(x)); }
   static T from(const val& v) {
     T out{};
-    if (absent(v)) return out;
-    fields::Context c{ReadCode<T>::code, ""};
-    const std::string prefix = SchemaName<T>::prefix;
-    c.prefix = prefix.c_str();
-    c.null_is_nan = true;
-    c.missing_is_default = true;
-    fields::read(from_js(v, ""), out, c);
+    if (!absent(v)) fields::read(from_js(v, ""), out, context());
     return out;
   }
+  /// How a JS object of T is read (the code and prefix of a refusal, null as NaN, defaults kept).
+  static fields::Context context() { return {ReadCode<T>::code, SchemaName<T>::prefix.c_str(), true, true}; }
 };
 template <class T>
 struct Conv<T, std::enable_if_t<fields::has_schema<T>::value>> : SchemaConv<T> {};

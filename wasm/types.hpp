@@ -33,11 +33,20 @@ template <>
 struct Conv<MethodChoice> : SchemaConv<MethodChoice> {  // "psm:expansion=3" or {method, parameters, settings}
   static MethodChoice from(const val& v) { return v.isString() ? parse_choice(v.as<std::string>()) : SchemaConv<MethodChoice>::from(v); }
 };
-// The error summaries keep bind_models.cpp's value_object (NaN crosses as NaN, not null; Metrics'
-// field list has the summaries only, the per-patch errors cross too).
-template <> struct Conv<Summary> : StructConv<Summary> {};
-template <> struct Conv<PatchErrors> : StructConv<PatchErrors> {};
-template <> struct Conv<Metrics> : StructConv<Metrics> {};
+/// Metrics: its list's summaries and `patches`, the object PatchErrors' list writes — the CLI's
+/// per-patch form (metrics_json) without the ids. A figure that is not a number is null.
+template <>
+struct Conv<Metrics> {
+  static val to(const Metrics& m) { return to_js(metrics_json(m, {}, true)); }
+  static Metrics from(const val& v) {
+    Metrics m;
+    if (absent(v)) return m;
+    const json::Value o = from_js(v, "");
+    fields::read_members(o, m, SchemaConv<Metrics>::context(), "", {"patches"});
+    if (const json::Value* p = o.find("patches")) fields::read(*p, m.patches, SchemaConv<PatchErrors>::context(), "patches");
+    return m;
+  }
+};
 // The absolute mode's structs cross by their field lists (tristim/absolute/fields.hpp): an
 // exposure is [t, N, ISO], a region row's rectangle is region: [x, y, w, h].
 template <> struct Conv<ExposureSettings> : SchemaConv<ExposureSettings> {};

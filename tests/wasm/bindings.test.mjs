@@ -108,7 +108,7 @@ test('structs: fields left out take the C++ defaults; unknown fields and wrong t
   assert.equal(e.fit.status, 'ok');
   assert.equal(e.has_loo, true);
   assert.equal(e.fit.model.coefficients.length, 9);
-  assert.ok(e.training.patches.dE00 instanceof Float64Array);
+  assert.ok(Array.isArray(e.training.patches.dE00) && e.training.patches.dE00.length === 5);
   assert.deepEqual(camelKeys(e), []);
   const noLoo = T.evaluateModel('matrix-3x3', rgb, xyz, {}, -1, false);
   assert.equal(noLoo.loo, null);

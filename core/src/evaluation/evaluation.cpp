@@ -370,3 +370,20 @@ RidgeRow recipe_ridge_row(const Recipe& recipe, const std::vector<std::string>& 
 }
 
 }  // namespace tristim
+
+namespace tristim::fields {
+
+TRISTIM_FIELDS_DEFINE(Summary, member<&Summary::min>("min"), member<&Summary::median>("median"),
+                      member<&Summary::mean>("mean"), member<&Summary::p95>("p95"), member<&Summary::max>("max"),
+                      member<&Summary::rms>("rms"), member<&Summary::std>("std"));
+
+TRISTIM_FIELDS_DEFINE(PatchErrors, member<&PatchErrors::dE76>("dE76"), member<&PatchErrors::dE94>("dE94"),
+                      member<&PatchErrors::dE00>("dE00"), member<&PatchErrors::dL>("dL"),
+                      member<&PatchErrors::dC>("dC"), member<&PatchErrors::dH>("dH"),
+                      member<&PatchErrors::dE_xyz>("dE_xyz"), member<&PatchErrors::rel_Y>("rel_Y"));
+
+TRISTIM_FIELDS_DEFINE(Metrics, member<&Metrics::dE76>("dE76"), member<&Metrics::dE94>("dE94"),
+                      member<&Metrics::dE00>("dE00"), member<&Metrics::dE_xyz>("dE_xyz"),
+                      member<&Metrics::abs_rel_Y>("abs_rel_Y"), member<&Metrics::NRMSE>("NRMSE"));
+
+}  // namespace tristim::fields

@@ -9,6 +9,7 @@
 
 #include "tristim/colorimetry/colorimetry.hpp"
 #include "tristim/characterisation/fit.hpp"
+#include "tristim/io/fields.hpp"
 
 namespace tristim {
 
@@ -162,3 +163,13 @@ std::vector<TransferCell> transfer_table(const std::vector<NamedPatches>& traini
                                          const FitOptions& options = {});
 
 }  // namespace tristim
+
+// Field lists (io/fields.hpp), defined in evaluation.cpp: a Summary and the per-patch errors are
+// the objects their JSON is (a figure that is not a number, null); Metrics' list is its summaries
+// (the form profiles and reports store), its per-patch errors are written beside their ids
+// (metrics_json with per_patch) and cross to JS as `patches` (wasm/types.hpp).
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(Summary);
+TRISTIM_FIELDS_DECLARE(PatchErrors);
+TRISTIM_FIELDS_DECLARE(Metrics);
+}  // namespace tristim::fields
