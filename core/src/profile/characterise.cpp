@@ -123,9 +123,7 @@ TrainingSet training_set(const Recipe& in, const ChartSample& sample, const Refe
       excluded.push_back(label + " (excluded)");
       continue;
     }
-    if (r.sampling.exclude_flagged && !p.flags.empty()) {
-      std::string why;
-      for (const auto& f : p.flags) why += (why.empty() ? "" : ", ") + f;
+    if (const std::string why = excluding_flags(r.sampling, p.flags); !why.empty()) {
       excluded.push_back(label + " (" + why + ")");
       continue;
     }
@@ -134,11 +132,16 @@ TrainingSet training_set(const Recipe& in, const ChartSample& sample, const Refe
     rgb.emplace_back(p.mean[0], p.mean[1], p.mean[2]);
     xyz.push_back(reference.XYZ[k]);
   }
+  std::vector<std::string> missing;
   for (const std::string& m : sample.missing) {  // a chart cut by the frame: these were not sampled
-    const size_t k = row_of(normalise_patch_id(m));
+    missing.push_back(normalise_patch_id(m));
+    const size_t k = row_of(missing.back());
     excluded.push_back((k < reference.ids.size() && labelled ? reference.labels[k] : m) + " (outside the frame)");
   }
-  return finish(std::move(ids), std::move(labels), std::move(rgb), std::move(xyz), std::move(excluded));
+  TrainingSet t = finish(std::move(ids), std::move(labels), std::move(rgb), std::move(xyz), std::move(excluded));
+  t.sampled = true;
+  t.missing = std::move(missing);
+  return t;
 }
 
 TrainingSet training_set(const Recipe& in, const std::vector<std::string>& in_ids, const PatchMatrix& camera_RGB,
@@ -219,15 +222,23 @@ std::vector<ChartSample> sample_recipe_image(RecipeImage& e, size_t index, const
       e.capture.flare = trap.mean;
       cal = with_light_trap(cal, trap);
     }
+    // One chart: its patches outside the frame recorded in the entry (as characterise() records a
+    // one-image recipe's); several candidates ("all") each have their own, named in the training set.
+    const auto one = [&e](ChartSample sample) {
+      e.sampling.missing.clear();
+      for (const auto& m : sample.missing) e.sampling.missing.push_back(normalise_patch_id(m));
+      return std::vector<ChartSample>{std::move(sample)};
+    };
     const auto& c = e.sampling.corners;
     if (std::any_of(c.begin(), c.end(), [](double v) { return v != 0; }))
-      return {sample_chart(image, e.sampling.layout, c, so, &cal)};
+      return one(sample_chart(image, e.sampling.layout, c, so, &cal));
     DetectOptions o;
     o.charts = {e.sampling.layout.chart};
     if (e.sampling.layout.chart == "custom") o.custom = e.sampling.layout;
     const std::vector<ChartCandidate> found = detect_charts(image, o);
     std::vector<ChartSample> samples;
     if (e.candidate == "all") {
+      e.sampling.missing.clear();
       for (const auto& k : found) samples.push_back(sample_chart(image, e.sampling.layout, k.corners, so, &cal));
       return samples;
     }
@@ -235,7 +246,7 @@ std::vector<ChartSample> sample_recipe_image(RecipeImage& e, size_t index, const
     if (k >= found.size())
       throw Error(ErrorCode::InvalidArgument, "candidate " + e.candidate + " asked for, but " +
                                                   std::to_string(found.size()) + " chart(s) were detected");
-    return {sample_chart(image, e.sampling.layout, found[k].corners, so, &cal)};
+    return one(sample_chart(image, e.sampling.layout, found[k].corners, so, &cal));
   } catch (const Error& x) {
     throw Error(x.code(), named + x.what());
   }
@@ -299,6 +310,7 @@ TrainingSet training_union(const Recipe& in, const std::vector<ChartPart>& chart
 Characterisation characterise(const Recipe& in, const TrainingSet& t) {
   Characterisation c;
   c.recipe = complete_recipe(in);
+  if (t.sampled && c.recipe.images.empty()) c.recipe.sampling.missing = t.missing;  // what the profile was made without
   if (!c.recipe.images.empty() && joint_surface(c.recipe.surface))
     throw Error(ErrorCode::InvalidArgument, "the joint surface fit (Phase II) corrects one built-in chart's spectra; "
                                             "the recipe has " + std::to_string(c.recipe.images.size()) + " images");

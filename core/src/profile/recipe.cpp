@@ -51,9 +51,14 @@ TRISTIM_FIELDS_DEFINE(LayoutOptions, member<&LayoutOptions::chart>("chart"), mem
                member<&LayoutOptions::columns>("columns"), Field<LayoutOptions>{"margins", margins_json, read_margins},
                member<&LayoutOptions::gap>("gap"));
 
+// exclude_flags and missing only when not empty: a recipe without them is written as before.
+static bool has_exclude_flags(const SamplingStage& s) { return !s.exclude_flags.empty(); }
+static bool has_missing(const SamplingStage& s) { return !s.missing.empty(); }
 TRISTIM_FIELDS_DEFINE(SamplingStage, member<&SamplingStage::layout>("layout"), member<&SamplingStage::corners>("corners"),
                member<&SamplingStage::area>("area"), member<&SamplingStage::exclude>("exclude"),
-               member<&SamplingStage::exclude_flagged>("exclude_flagged"));
+               member<&SamplingStage::exclude_flagged>("exclude_flagged"),
+               with_shown(member<&SamplingStage::exclude_flags>("exclude_flags", false), has_exclude_flags),
+               with_shown(member<&SamplingStage::missing>("missing", false), has_missing));
 
 TRISTIM_FIELDS_DEFINE(CharacterisationStage, member<&CharacterisationStage::model>("model"),
                member<&CharacterisationStage::objective>("objective"),
@@ -123,6 +128,31 @@ TRISTIM_FIELDS_DEFINE(Recipe, member<&Recipe::version>("version", false), member
 
 }  // namespace fields
 
+// ---- the sample flags a recipe may leave out --------------------------------------------------
+
+std::vector<OptionSpec> sample_flag_table() {
+  // sample_chart() (chart/layout.cpp) sets these; a saturated patch's mean is biased low in the
+  // clipped channel, so it is left out by default (Abed et al. 2013 App. C: unclipped exposures).
+  return {number_option("saturated", "Leave out saturated patches", 1, 0, 1,
+                        "a pixel of the sample area reached the clip level in some channel: its mean is too low there",
+                        "boolean"),
+          number_option("dark", "Leave out patches near the noise floor", 0, 0, 1,
+                        "a channel's mean is below 0.2 % of its clip level or 3 × the dark frame's noise", "boolean"),
+          number_option("nonuniform", "Leave out non-uniform patches", 0, 0, 1,
+                        "the sample area's quadrant means differ by > 5 % and > 4 standard errors (glare, a shadow's "
+                        "edge, dust, a patch border)",
+                        "boolean")};
+}
+
+std::string excluding_flags(const SamplingStage& sampling, const std::vector<std::string>& flags) {
+  std::string why;
+  for (const auto& f : flags)
+    if (sampling.exclude_flagged || std::find(sampling.exclude_flags.begin(), sampling.exclude_flags.end(), f) !=
+                                        sampling.exclude_flags.end())
+      why += (why.empty() ? "" : ", ") + f;
+  return why;
+}
+
 // ---- completion --------------------------------------------------------------------------
 
 namespace {
@@ -162,6 +192,19 @@ void complete_stages(ReferenceStage& ref, CaptureStage& cap, SamplingStage& s, c
     chart_layout(s.layout);  // UnknownId / InvalidArgument for a bad layout
     if (!(s.area > 0 && s.area <= 1)) throw Error(ErrorCode::InvalidArgument, p + "sampling.area must be in (0, 1]");
     for (auto& id : s.exclude) id = normalise_patch_id(id);
+    for (auto& id : s.missing) id = normalise_patch_id(id);
+    // The flags in the table's order, each once; an unknown one refused.
+    const std::vector<OptionSpec> table = sample_flag_table();
+    std::vector<std::string> flags;
+    for (const auto& f : s.exclude_flags)
+      if (std::none_of(table.begin(), table.end(), [&f](const OptionSpec& o) { return o.name == f; })) {
+        std::string known;
+        for (const auto& o : table) known += (known.empty() ? "" : ", ") + o.name;
+        throw Error(ErrorCode::UnknownId, p + "sampling.exclude_flags: unknown flag '" + f + "' (known: " + known + ")");
+      }
+    for (const auto& o : table)
+      if (std::find(s.exclude_flags.begin(), s.exclude_flags.end(), o.name) != s.exclude_flags.end()) flags.push_back(o.name);
+    s.exclude_flags = flags;
   });
 }
 

@@ -3,7 +3,7 @@
 // below the chart's second row cut off, and a recipe whose corners put rows C and D outside the
 // image. The recipe path samples the chart as the page does (SampleOptions::partial): the 12
 // patches inside are sampled (their planted camera RGB recovered), the 12 outside named on stderr
-// and left out, and the profile equals `tristim fit --rgb --xyz cc24` on the planted RGB of the 12
+// and left out (and listed in the profile's recipe, sampling.missing), and the profile equals `tristim fit --rgb --xyz cc24` on the planted RGB of the 12
 // patches inside; a share link of it and its project file (sampled again from the DNG) reproduce.
 // Corners that put every patch outside the image: CORNERS_OUTSIDE (native only: the CLI).
 #if !defined(__EMSCRIPTEN__) && defined(TRISTIM_CLI)
@@ -70,6 +70,11 @@ TEST_CASE("fit --recipe --raw on a chart cut by the frame: the patches inside, t
   CHECK(p.at("training").at("patches").as_number() == 12);
   for (const char* id : {"C1", "C6", "D1", "D6"}) CHECK(err.find(std::string("left out ") + id + " (outside the frame)") != std::string::npos);
   CHECK(err.find("left out B6") == std::string::npos);
+  // The profile's recipe names them too (sampling.missing, layout order), so it and its share link say
+  // which patches the fit was made without.
+  std::vector<std::string> missing;
+  for (const auto& m : p.at("recipe").at("sampling").at("missing").as_array()) missing.push_back(m.as_string());
+  CHECK(missing == std::vector<std::string>{"C1", "C2", "C3", "C4", "C5", "C6", "D1", "D2", "D3", "D4", "D5", "D6"});
 
   // The planted solution: the profile of the 12 patches' true camera RGB, paired with cc24's reference.
   std::ostringstream rgb;

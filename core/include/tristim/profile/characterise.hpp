@@ -37,6 +37,11 @@ struct TrainingSet {
   PatchMatrix camera_RGB;     ///< as sampled (before the linearisation stage), N × 3
   PatchMatrix reference_XYZ;  ///< N × 3, Y = 100 for the perfect diffuser
   std::vector<std::string> excluded;  ///< ids left out, with the reason: "A3 (nonuniform)"
+  /// From a chart sample (training_set of a ChartSample): true, and `missing` its patches outside
+  /// the frame (normalised ids, layout order), which characterise() records in the profile's
+  /// recipe (sampling.missing). From tables: false, and the recipe's record is kept as it is.
+  bool sampled = false;
+  std::vector<std::string> missing;
   /// Several charts (training_union): each chart's name and the rows that came from it (a row
   /// merged from several charts is listed under each). Empty for one chart.
   std::vector<std::string> chart_names;
@@ -44,7 +49,8 @@ struct TrainingSet {
 };
 
 /// Pairs a chart sample with a reference by patch id, leaving out the recipe's sampling.exclude
-/// ids and, with sampling.exclude_flagged, every flagged patch; the patches of a chart cut by the
+/// ids and the patches flagged as sampling.exclude_flags (or, with exclude_flagged, any flag)
+/// names (excluding_flags, recipe.hpp); the patches of a chart cut by the
 /// frame (sample.missing) are listed in `excluded` as "D1 (outside the frame)". Error(PatchMismatch) when a
 /// sampled patch is not in the reference; Error(TooFewPatches) when nothing is left. Labels: the
 /// reference's (a user file's own spelling; the layout's ids for a built-in chart).

@@ -16,7 +16,9 @@
 //   "sampling": {"layout": {"chart": "passport", "rows": 0, "columns": 0, "margins": [l, t, r, b],
 //                           "gap": -1},
 //                "corners": [x1, y1, ... x4, y4], "area": 0.5, "exclude": ["A3"],
-//                "exclude_flagged": false},
+//                "exclude_flagged": false,
+//                "exclude_flags": ["saturated"],        (only when not empty)
+//                "missing": ["C1", …]},                  (only when not empty: a chart cut by the frame)
 //   "linearisation": {"method": "identity", "parameters": {}, "settings": {}},
 //   "surface": {"method": "none", "parameters": {}, "settings": {}},
 //   "characterisation": {"model": "Finlayson2015-2",
@@ -83,8 +85,26 @@ struct SamplingStage {
   std::array<double, 8> corners{};       ///< x1,y1 … x4,y4 clockwise from A1 (all 0: not from an image)
   double area = 0.5;                     ///< sampled fraction of each patch side
   std::vector<std::string> exclude;      ///< patch ids left out of the fit
-  bool exclude_flagged = false;          ///< also leave out every flagged patch (saturated, dark, nonuniform)
+  bool exclude_flagged = false;          ///< also leave out every flagged patch (every row of sample_flag_table())
+  /// Also leave out the patches with any of these flags (sample_flag_table() ids, in its order:
+  /// completion sorts them and refuses an unknown one). Empty: none by its flags (an older recipe,
+  /// or the page's toggles all off); written only when not empty, so older recipes stay as they were.
+  std::vector<std::string> exclude_flags;
+  /// The patches of a chart cut by the frame that were not sampled (ChartSample::missing, their
+  /// normalised ids in layout order): a record of the sample the fit was made on — characterise()
+  /// sets it from a sampled training set — not an instruction. Written only when not empty.
+  std::vector<std::string> missing;
 };
+
+/// The flags sample_chart() puts on a patch (chart/layout.hpp: "saturated", "dark", "nonuniform"),
+/// one "boolean" OptionSpec row each, named by the flag: its label is the page's toggle, its
+/// default (1: left out) the page's starting choice, which a fresh session's recipe writes in
+/// sampling.exclude_flags. `tristim models --json` lists them ("sample_flags").
+std::vector<OptionSpec> sample_flag_table();
+
+/// Whether a patch with these flags is left out by `sampling` (exclude_flagged: any flag;
+/// exclude_flags: one of those), and the flags that leave it out ("" when kept).
+std::string excluding_flags(const SamplingStage& sampling, const std::vector<std::string>& flags);
 
 /// Model, objective and their options.
 struct CharacterisationStage {
