@@ -77,8 +77,8 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     'images/Flat-field correction': rows(T.listFlatFieldModes()),
     // The layouts the engine has, named after the built-in charts; 'custom' is named by the page.
     'images/Chart layout': T.listChartLayouts().map((id) => ({ value: id, label: charts.find((c) => c.id === id)?.name ?? null })),
-    // A second chart image (issue 48): the built-in charts that have a layout (layout and reference in one).
-    'images/Its chart (layout and reference)': rows(charts.filter((c) => T.listChartLayouts().includes(c.id))),
+    // An extra chart image (issue 48): the layouts, as the first image's (a custom grid takes a reference file).
+    'images/Its chart (layout and reference)': T.listChartLayouts().map((id) => ({ value: id, label: charts.find((c) => c.id === id)?.name ?? null })),
     'images/Patches of the same colour': { owned: 'the recipe\'s two duplicates rules, once and each (docs/multi-image.md)' },
     'linearisation/Linearisation': rows(T.listLinearisations(), (r) => `${r.label} (${r.id})`),
     'linearisation/Patch to plot': { owned: 'the patches of this session\'s chart' },
@@ -182,14 +182,18 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     }
     // Step 2's custom grid and sampled area: one number input per row of the engine's layout option
     // table (layout_option_table), in its order, labelled "label (unit)", with its bounds, step and default.
-    const layoutInputs = await page.$$eval('#step-images input[data-layout-option]', (els) => els.map((el) => ({
+    // An extra chart image's panel (fieldset.second-chart) has its own custom grid (its sampled area is the first's).
+    const inputsOf = (sel) => page.$$eval(sel, (els) => els.map((el) => ({
       name: el.dataset.layoutOption, type: el.type, label: (el.labels?.[0]?.textContent ?? el.getAttribute('aria-label') ?? '').trim(),
       min: el.getAttribute('min'), max: el.getAttribute('max'), step: el.getAttribute('step'), value: el.getAttribute('value'), title: el.title,
     })));
+    const layoutInputs = await inputsOf('#step-images input[data-layout-option]:not(fieldset.second-chart input)');
+    const extraInputs = await inputsOf('#step-images fieldset.second-chart input[data-layout-option]');
     const layoutTable = T.listLayoutOptions();
     if (JSON.stringify(layoutInputs.map((i) => i.name)) !== JSON.stringify(layoutTable.map((o) => o.name))) wrong.push(`layout inputs ${layoutInputs.map((i) => i.name)}, the table's ${layoutTable.map((o) => o.name)}`);
-    for (const o of layoutTable) {
-      const i = layoutInputs.find((x) => x.name === o.name);
+    const gridNames = layoutTable.map((o) => o.name).filter((n) => n !== 'area');
+    if (JSON.stringify(extraInputs.map((i) => i.name)) !== JSON.stringify(gridNames)) wrong.push(`extra image's layout inputs ${extraInputs.map((i) => i.name)}, the table's ${gridNames}`);
+    for (const o of layoutTable) for (const i of [layoutInputs, extraInputs].map((list) => list.find((x) => x.name === o.name))) {
       if (!i) continue;
       const want = { name: o.name, type: 'number', label: o.unit ? `${o.label} (${o.unit})` : o.label, min: String(o.min), max: String(o.max),
         step: String(o.step || (o.type === 'integer' ? 1 : 'any')), value: String(o.default_number), title: o.description };

@@ -1,16 +1,20 @@
 // Worker handlers of step 2: decoding RAW files into the worker's slots ('chart', 'dark', 'flat',
-// 'scene', 'chart2' — a second chart image, issue 48, with its own 'dark2', 'flat2'; the images stay
-// here, state.raw[slot]), each chart image's dark/flat calibration,
+// 'scene', and 'chart2', 'chart3', … — extra chart images, issue 48, each with its own 'dark<k>',
+// 'flat<k>'; the images stay here, state.raw[slot]), each chart image's dark/flat calibration,
 // sampling the chart, the engine's patch grid for the corner editor.
 import { reply, coded } from '../lib/reply.js';
 
-/// Each chart slot's frame slots and flat-field mode; the chart slot a slot calibrates.
-const FRAMES = { chart: { dark: 'dark', flat: 'flat', mode: 'flatMode' }, chart2: { dark: 'dark2', flat: 'flat2', mode: 'flatMode2' } };
-const TARGET = { chart: 'chart', dark: 'chart', flat: 'chart', chart2: 'chart2', dark2: 'chart2', flat2: 'chart2' };
+/// A slot's role and number: 'chart' / 'dark' / 'flat' (k ''), 'chart3' / 'dark3' / 'flat3' (k '3').
+const parse = (slot) => /^(chart|dark|flat)(\d*)$/.exec(slot ?? '') ?? [];
+/// The chart slot a slot calibrates (undefined: none, e.g. 'scene').
+const targetOf = (slot) => { const [, role, k] = parse(slot); return role ? `chart${k}` : undefined; };
+/// Each chart slot's frame slots and flat-field mode.
+const framesOf = (target) => { const k = parse(target)[2] ?? ''; return { dark: `dark${k}`, flat: `flat${k}`, mode: `flatMode${k}` }; };
+const isChart = (slot) => parse(slot)[1] === 'chart';
 /// Sets a chart image's dark frame and flat field from its decoded frame slots (Abed 2013 App. C);
 /// returns what the engine reports. Throws (e.g. FRAME_MISMATCH) when a frame does not fit.
 function calibrate(state, target = 'chart') {
-  const chart = state.raw?.[target], f = FRAMES[target];
+  const chart = state.raw?.[target], f = framesOf(target);
   if (!chart) return null;
   const out = {};
   if (state.raw[f.dark]) out.dark = chart.setDark(state.raw[f.dark], 'per_pixel'); else chart.clearDark();
@@ -27,11 +31,11 @@ const previewOf = (image, side) => {
   const p = image.preview(side);
   return { ...p, rgba: new Uint8ClampedArray(p.rgba.buffer) };
 };
-/// The slots that hold a chart photograph (previewed, sampled, searched for a chart).
-const CHARTS = new Set(['chart', 'chart2']);
 function freeRaw(raw) {
   if (raw) for (const r of [raw].flat()) r.delete();
 }
+
+export { isChart };
 
 export const handlers = {
   /// Decodes RAW bytes into state.raw[slot] ('chart', 'dark', 'flat', 'scene'); returns metadata,
@@ -64,13 +68,13 @@ export const handlers = {
     let result;
     try {
       result = { width: first.width(), height: first.height(), metadata: first.metadata() };
-      if (CHARTS.has(slot) && previewSide > 0) result.preview = previewOf(first, previewSide);
+      if (isChart(slot) && previewSide > 0) result.preview = previewOf(first, previewSide);
     } catch (e) { freeRaw(raw); throw e; }
     // The new image replaces the slot's previous one only once it fits (calibrate below).
-    const target = TARGET[slot], mode = target && FRAMES[target].mode;
+    const target = targetOf(slot), mode = target && framesOf(target).mode;
     const previous = { raw: state.raw[slot], flatMode: mode && state[mode] };
     state.raw[slot] = raw;
-    if (slot === 'flat' || slot === 'flat2') state[mode] = flatMode;
+    if (parse(slot)[1] === 'flat') state[mode] = flatMode;
     if (target) {
       try {
         result.calibration = calibrate(state, target);
@@ -94,15 +98,15 @@ export const handlers = {
     return reply(raw ? previewOf([raw].flat()[0], previewSide) : null);
   },
 
-  /// Samples the chart in `slot` ('chart', or 'chart2': a second chart image, no light trap). A chart
+  /// Samples the chart in `slot` ('chart', or 'chart2', 'chart3', …: an extra chart image). A chart
   /// cut by the frame is sampled where it is inside (SampleOptions.partial): the patches whose
   /// sample area leaves the image are named in `missing`; CORNERS_OUTSIDE when every one does. lightTrap: the four corners of an in-scene light trap (Abed 2013 App. C
   /// step 1) whose mean after the dark frame is subtracted as flare before sampling, or null. A
   /// trap the engine refuses (outside the image, saturated, ...) is not used: the chart is
   /// sampled without it and the reply carries lightTrapError {code, message} for the trap's input.
   sample: (T, { slot = 'chart', layout, corners, sampleOptions = {}, lightTrap = null }, { state }) => {
-    const chart = CHARTS.has(slot) ? state.raw?.[slot] : null;
-    if (!chart) throw coded(`no ${slot === 'chart2' ? 'second chart image' : 'RAW image'} decoded yet`, 'NO_IMAGE');
+    const chart = isChart(slot) ? state.raw?.[slot] : null;
+    if (!chart) throw coded(`no ${slot === 'chart' ? 'RAW image' : 'extra chart image'} decoded yet (${slot})`, 'NO_IMAGE');
     let trap = null, trapError = null;
     if (lightTrap) {
       try { trap = chart.setLightTrap(lightTrap, sampleOptions); } catch (e) { chart.clearLightTrap(); trapError = { code: e.code, message: e.message }; }
@@ -121,6 +125,6 @@ export const handlers = {
   forget: (T, { slot }, { state }) => {
     freeRaw(state.raw?.[slot]);
     delete state.raw?.[slot];
-    return { result: calibrateQuietly(state, TARGET[slot] ?? 'chart') };
+    return { result: calibrateQuietly(state, targetOf(slot) ?? 'chart') };
   },
 };

@@ -5,6 +5,8 @@
 // corners; an image that already has corners gets the detected chart as a proposal to use or
 // ignore; "Detect again"). Emits 'sample'.
 import { h, field, select, showError, clearError, errorSlot, numberValue, progressBar, fmt, fileBytes } from '../lib/ui.js';
+import { customGrid, optionInput, labelOf, layoutName } from './layout_inputs.js';
+import { lightTrapBox } from './light_trap.js';
 import { CornerEditor } from './corners.js';
 import { patchTable } from './patch_table.js';
 import { fetchExample } from './example.js';
@@ -44,28 +46,15 @@ export function mount(section, app) {
     if (f && await decode('flat', f)) await resample();
   });
   // The layouts the engine has (chart_layout ids), named after the built-in charts.
-  const chartName = (id) => app.catalog.charts.find((c) => c.id === id)?.name ?? (id === 'custom' ? 'Custom grid (rows × columns)' : id);
+  const chartName = (id) => layoutName(app, id);
   const layoutSel = select(Object.keys(app.catalog.layouts).map((value) => ({ value, label: chartName(value) })), app.session.layout?.chart ?? 'passport');
   layoutSel.dataset.role = 'layout';
-  // The custom grid's and the sampled area's inputs from the engine's table (layoutOptions:
-  // layout_option_table rows — label, unit, min/max/step/default); the session's values over the defaults.
-  const spec = Object.fromEntries(app.catalog.layoutOptions.map((o) => [o.name, o]));
-  const labelOf = (o) => (o.unit ? `${o.label} (${o.unit})` : o.label);
-  const optionInput = (name, value, attrs = {}) => {
-    const o = spec[name];
-    return h('input', { type: 'number', min: o.min, max: o.max, step: o.step || (o.type === 'integer' ? 1 : 'any'),
-      value: value ?? o.default_number, title: o.description, 'data-layout-option': name, ...attrs });
-  };
-  const rowsIn = optionInput('rows', app.session.layout?.rows, { 'data-layout': 'rows' });
-  const colsIn = optionInput('columns', app.session.layout?.columns, { 'data-layout': 'columns' });
-  const areaIn = optionInput('area', app.session.sampleOptions?.area, { 'data-role': 'sample-area' });
-  const gapIn = optionInput('gap', undefined, { 'data-layout': 'gap' });
-  const marginIns = ['margin_left', 'margin_top', 'margin_right', 'margin_bottom']
-    .map((name) => optionInput(name, undefined, { 'data-layout': name, 'aria-label': labelOf(spec[name]) }));
-  const customBox = h('span', { class: 'custom-grid' }, field(labelOf(spec.rows), rowsIn), field(labelOf(spec.columns), colsIn),
-    field(labelOf(spec.gap), gapIn),
-    h('fieldset', { class: 'margins' }, h('legend', {}, 'Margins inside the corners (left, top, right, bottom)'), marginIns,
-      marginIns.map((i) => errorSlot(i))));
+  // The custom grid's and the sampled area's inputs from the engine's table (layout_inputs.js);
+  // the session's values over the defaults.
+  const grid = customGrid(app, app.session.layout ?? {});
+  const customBox = grid.el;
+  const areaSpec = app.catalog.layoutOptions.find((o) => o.name === 'area');
+  const areaIn = optionInput(app, 'area', app.session.sampleOptions?.area, { 'data-role': 'sample-area' });
   const meta = h('p', { class: 'meta', 'aria-live': 'polite' });
   // A TIFF/PNG/JPEG: its non-linear encoding and what to do about it (the linearisation step).
   const encodingNote = h('p', { class: 'warning encoding-note', role: 'status', hidden: true });
@@ -86,56 +75,9 @@ export function mount(section, app) {
   const detectPanel = h('div', { class: 'detect-panel', dataset: { state: 'idle' } }, detectText, acceptBtn, bothBtn, againBtn, detectProgress.el);
   let detection = null;  // {candidate, state: 'proposal' | 'in-use' | 'adjusted'}
   let unconfirmed = false;  // detection missed and the corners are still the ones from before: the table is stale
-  // Light trap (Abed 2013 App. C step 1): a black cavity in the scene, marked like a patch; its
-  // mean after the dark frame is the flare subtracted per channel before sampling.
-  const trapOn = h('input', { type: 'checkbox', checked: !!app.session.lightTrap });
-  const trapIns = ['x', 'y', 'width', 'height'].map((k) => h('input', { type: 'number', min: 0, step: 1, 'aria-label': `Light trap ${k} (pixels)`, dataset: { trap: k } }));
-  const trapMark = h('button', { type: 'button' }, 'Mark it on the image');
-  const trapState = h('p', { class: 'light-trap-state', 'aria-live': 'polite' });
-  const trapErr = errorSlot(trapOn);
-  const trapBox = h('fieldset', { class: 'light-trap' },
-    h('legend', {}, 'Light trap — flare (Abed et al. 2013, App. C)'),
-    h('label', {}, trapOn, ' Subtract an in-scene light trap'),
-    ...trapIns.map((i) => h('label', {}, i.getAttribute('aria-label').replace(/^Light trap /, '').replace(/ \(pixels\)/, ''), ' ', i)),
-    trapMark, trapState, trapErr);
-  const trapRect = () => {
-    if (!trapOn.checked) return null;
-    const [x, y, w, hh] = trapIns.map((i) => Number(i.value));
-    return [x, y, w, hh].every(Number.isFinite) && w > 0 && hh > 0 ? { x, y, w, h: hh } : null;
-  };
-  const trapCorners = (r) => (r ? [r.x, r.y, r.x + r.w, r.y, r.x + r.w, r.y + r.h, r.x, r.y + r.h] : null);
-  function showTrap(r) {
-    if (r) [r.x, r.y, r.w, r.h].forEach((v, i) => { trapIns[i].value = v; });
-    for (const i of [...trapIns, trapMark]) i.disabled = !trapOn.checked;
-    editor.setLightTrap(trapOn.checked ? trapRect() : null);
-  }
-  async function trapChanged() {
-    const r = trapRect();
-    editor.setLightTrap(r);
-    await app.save('lightTrap', trapOn.checked ? (r ?? app.session.lightTrap ?? null) : undefined);
-    resample();
-  }
-  trapOn.addEventListener('change', () => {
-    if (trapOn.checked && !trapRect() && editor.width) {
-      // A first guess to move: a small square at the image's top-left quarter.
-      const side = Math.round(Math.min(editor.width, editor.height) / 12);
-      showTrap({ x: Math.round(editor.width / 8), y: Math.round(editor.height / 8), w: side, h: side });
-    }
-    showTrap();
-    if (!trapOn.checked) { clearError(trapOn); trapState.textContent = ''; }
-    trapChanged();
-  });
-  for (const i of trapIns) i.addEventListener('change', () => {
-    clearError(trapOn);
-    // A typo in a box (type=number then reads '') would move the trap to 0 without a word.
-    try { for (const b of trapIns) numberValue(b, 0); } catch (e) { showError(trapOn, e, 'Light trap'); return; }
-    showTrap(); trapChanged();
-  });
-  trapMark.addEventListener('click', () => {
-    trapState.textContent = 'Drag a rectangle over the light trap on the image.';
-    editor.markLightTrap((r) => { if (r.w >= 1 && r.h >= 1) { showTrap(r); trapChanged(); } else trapState.textContent = ''; });
-  });
-  if (app.session.lightTrap) showTrap(app.session.lightTrap); else showTrap();
+  // Light trap (Abed 2013 App. C step 1): its flare is subtracted before sampling (light_trap.js).
+  const trap = lightTrapBox({ editor: () => editor, stored: () => app.session.lightTrap,
+    save: async (r) => { await app.save('lightTrap', r); resample(); } });
   const tableBox = h('div', { class: 'table-box' });
   const sampleSummary = h('p', { class: 'summary', 'aria-live': 'polite' });
 
@@ -143,12 +85,12 @@ export function mount(section, app) {
   section.append(
     fileRow, drop, progress.el, meta, encodingNote,
     h('div', { class: 'controls' }, field('Chart layout', layoutSel), customBox,
-      field(labelOf(spec.area), areaIn, spec.area.description), resetCorners),
-    h('div', { class: 'controls' }, trapBox),
+      field(labelOf(areaSpec), areaIn, areaSpec.description), resetCorners),
+    h('div', { class: 'controls' }, trap.el),
     h('p', { class: 'hint' }, 'Drag the four corner handles onto the chart\'s outer patch corners (A1 top-left). '
       + 'With the keyboard: Tab to a handle, arrow keys move it 1 pixel (Shift: 10).'),
     h('div', { class: 'images-layout' }, h('div', {}, editor.el, cornerErr, detectPanel, detectErr), h('div', {}, sampleSummary, tableBox)));
-  // "Add another chart image" (issue 48): the fit trains on both charts (second.js).
+  // "Add chart image" (issue 48): the fit trains on every chart image's patches (second.js).
   const second = mountSecond(section, app, { ensureFirst: () => ensureDecoded() });
 
   // Drag and drop onto the zone (or anywhere on this step) sets the chart RAW.
@@ -163,13 +105,10 @@ export function mount(section, app) {
   /// The engine's LayoutOptions for the chosen layout. A custom box that cannot be read (a typo;
   /// rows or columns left empty) throws INVALID_ARGUMENT carrying the box; gap and margins empty: 0.
   function layoutOptions() {
-    const chart = layoutSel.value;
-    if (chart !== 'custom') return { chart };
-    const margins = marginIns.map((i) => numberValue(i, 0));   // read first: a margin's typo is shown even while rows is empty
-    return { chart, rows: numberValue(rowsIn), columns: numberValue(colsIn), margins, gap: numberValue(gapIn, 0) };
+    return grid.read(layoutSel.value);
   }
   const sampleOptions = () => ({ area: numberValue(areaIn) });
-  const layoutBoxes = [rowsIn, colsIn, areaIn, gapIn, ...marginIns];
+  const layoutBoxes = [...grid.boxes, areaIn];
   function syncLayout(layout = layoutOptions()) {
     customBox.hidden = layoutSel.value !== 'custom';
     editor.setLayout(layout);
@@ -443,11 +382,11 @@ export function mount(section, app) {
     }
     const corners = Array.from(editor.corners);   // a copy: handles move while the worker samples
     try {
-      const lightTrap = trapCorners(trapRect());
+      const lightTrap = trap.corners();
       const s = await engine.call('sample', { layout: layoutOptions(), corners: Array.from(corners), sampleOptions: sampleOptions(), lightTrap });
       if (seq !== sampleSeq) return null;
       clearError(editor.el);
-      showTrapResult(s, lightTrap);
+      trap.showResult(s, lightTrap);
       if (s.lightTrap) s.lightTrapCorners = lightTrap;
       s.corners = Array.from(corners);
       // Handles may have moved while the worker sampled: sample again until the table matches.
@@ -471,20 +410,6 @@ export function mount(section, app) {
     }
   }
 
-  /// What the light trap gave: the flare subtracted, or the reason it was not used (next to it).
-  function showTrapResult(s, lightTrap) {
-    clearError(trapOn);
-    if (!lightTrap) { trapState.textContent = trapOn.checked ? 'Mark the trap (a rectangle of positive size).' : ''; return; }
-    if (s.lightTrapError) {
-      showError(trapOn, s.lightTrapError, 'Light trap');
-      trapState.textContent = 'Not subtracted: the chart is sampled without a light trap.';
-      return;
-    }
-    const t = s.lightTrap;
-    trapState.textContent = `Flare subtracted from every pixel: R ${fmt(t.mean[0], 1)}, G ${fmt(t.mean[1], 1)}, B ${fmt(t.mean[2], 1)} DN `
-      + `(mean of ${t.n} pixels after the dark frame; σ ${t.std.map((v) => fmt(v, 1)).join(' / ')})${t.flags.length ? ` — ${t.flags.join(', ')}` : ''}.`;
-  }
-
   function renderTable(s) {
     tableBox.classList.toggle('stale', unconfirmed);
     const flagged = s.flags.filter((f) => f.length).length;
@@ -504,12 +429,9 @@ export function mount(section, app) {
     const L = app.session.layout;
     if (L) {
       layoutSel.value = L.chart;
-      if (L.rows) rowsIn.value = L.rows;
-      if (L.columns) colsIn.value = L.columns;
-      if (L.gap >= 0) gapIn.value = L.gap;
-      (L.margins ?? []).forEach((m, i) => { if (m) marginIns[i].value = m; });
-      // A session saved before the layout crossed as its JSON (margin_left …): kept in that form.
-      if ('margin_left' in L) { ['margin_left', 'margin_top', 'margin_right', 'margin_bottom'].forEach((k, i) => { if (L[k]) marginIns[i].value = L[k]; }); app.save('layout', layoutOptions()); }
+      grid.set(L);
+      // A session saved before the layout crossed as its JSON (margin_left …): saved in the new form.
+      if ('margin_left' in L) app.save('layout', layoutOptions());
     }
     syncLayout();
     previewAfter = previewWait;
