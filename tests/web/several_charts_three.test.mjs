@@ -5,7 +5,7 @@
 // recipe lists the three images with their layouts, reference and capture; `tristim fit --recipe r.json
 // --raw a --raw b --raw c --xyz rb.csv` gives the page's coefficients and per-chart figures to the bit;
 // the share link (a reference-file chart among its images) reproduces with `tristim reproduce` and in
-// a fresh browser; a reload restores the three images. The charts are rendered by `tristim lab
+// a fresh browser; a reload restores the three images; removing image 2 moves image 3 into its place. The charts are rendered by `tristim lab
 // render` at test time.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -112,4 +112,14 @@ pageTest('three chart images (a custom grid with its reference file, a light tra
   await sampled(page, 3, ([sel]) => document.querySelector(sel).dataset.trap === 'subtracted');
   assert.deepEqual(await page.evaluate(() => Array.from(window.tristim.derived.sample3.lightTrap.mean)), trap.mean);
   assert.match(await page.textContent(`${PANEL(2)} .second-frames`), /three-grid-reference\.csv: 24 patches/);
+
+  // Removing chart image 2 moves chart image 3 (its file, layout and light trap) into its place.
+  await page.click(`${PANEL(2)} button.remove-image`);
+  await sampled(page, 2, ([sel]) => document.querySelector(sel).dataset.trap === 'subtracted' && /^flare\.dng/.test(document.querySelector(`${sel} .file-state`).textContent));
+  assert.equal(await page.locator('#step-images fieldset.second-chart').count(), 1);
+  const left = await page.evaluate(() => {
+    const t = window.tristim;
+    return { keys: Object.keys(t.session).filter((k) => /^chart\d/.test(k) && t.session[k]), chart: t.session.chart2.chart, trap: Array.from(t.derived.sample2.lightTrap.mean) };
+  });
+  assert.deepEqual(left, { keys: ['chart2'], chart: 'cc24', trap: trap.mean });
 });

@@ -91,7 +91,7 @@ export function mountPanel(app, k, { ensureFirst, changed, remove, more = [] }) 
     if (same() && app.session.layout?.chart) chartSel.value = app.session.layout.chart;
     grid.el.hidden = same() || chartSel.value !== 'custom';
     if (!editor) {
-      editor = new CornerEditor({ onChange: (c, final) => cornersChanged(c, final), grid: (L, corners) => engine.call('grid', { layout: L, corners }), clipId: `image-clip-${k}` });
+      editor = new CornerEditor({ onChange: (c, final) => { note.textContent = 'Corners placed by hand.'; return cornersChanged(c, final); }, grid: (L, corners) => engine.call('grid', { layout: L, corners }), clipId: `image-clip-${k}` });
       editorBox.replaceChildren(editor.el);
     }
     editor.setImage(r);
@@ -147,8 +147,8 @@ export function mountPanel(app, k, { ensureFirst, changed, remove, more = [] }) 
     } catch (e) {
       if (e.code === 'CANCELLED' || !editor) return;
       if (e.input) { showError(e.input, e, 'Layout'); return; }
+      editor.reset();   // (its onChange says 'by hand': the reason follows)
       note.textContent = `No ${chartSel.selectedOptions[0]?.textContent ?? 'chart'} found (${e.message}): drag the four corners onto the chart's outer patch corners (A1 first).`;
-      editor.reset();
       return;
     }
     await cornersChanged(editor.corners, true);
