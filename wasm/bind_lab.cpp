@@ -1,8 +1,10 @@
 // Declarations: the colorimetry lab — a chart photograph rendered from measured spectra as DNG
 // bytes plus its truth (JSON text), and camera quality (ISO 17321-1 SMI, Vora–Trussell μ, the
 // ranking of the 52 cameras, the best-fit CMF combination for the plot), the exercises, and the
-// metamerism explorer (pairs searched in the Munsell set, metamers constructed).
+// metamerism explorer (pairs searched in the Munsell set, metamers constructed); the lab's number
+// options (lab_option_table: the page's boxes).
 #include "tristim/lab/exercises.hpp"
+#include "tristim/lab/lab_options.hpp"
 #include "tristim/lab/metamerism.hpp"
 #include "tristim/lab/render.hpp"
 #include "tristim/lab/smi.hpp"
@@ -15,7 +17,7 @@ using wasm::def;
 EMSCRIPTEN_BINDINGS(tristim_lab) {
   STRUCT(LabRenderOptions, camera, sensitivities, chart, illuminant, illuminant_spd, surface, width, height, corners,
            exposure, falloff, flare, shot_gain, read_noise, seed, bits, black, cfa, oecf, jpeg_quality);
-  STRUCT(LabRenderFiles, dng, truth);
+  STRUCT(LabRenderFiles, dng, truth, reference);
   STRUCT(LutherFit, wavelengths, camera, fit, coefficients);
 
   STRUCT(ColourRow, illuminant, observer, XYZ, Lab, x, y);
@@ -37,4 +39,6 @@ EMSCRIPTEN_BINDINGS(tristim_lab) {
   def<&metamer_pairs>("labMetamers");
   def<&construct_metamer>("labConstructMetamer");
   def<&munsell_ids>("listMunsell");
+  def<&lab_option_table>("listLabOptions");
+  def<&lab_option>("labOption");
 }

@@ -6,6 +6,7 @@
 #include "patch_args.hpp"
 #include "tristim/error.hpp"
 #include "tristim/lab/exercises.hpp"
+#include "tristim/lab/lab_options.hpp"
 #include "tristim/lab/metamerism.hpp"
 #include "tristim/lab/render.hpp"
 #include "tristim/lab/smi.hpp"
@@ -35,7 +36,7 @@ int print_rows(const Args& args, std::ostream& out, const std::vector<Row>& rows
 
 int run_render(const Args& args, std::ostream& out) {
   args.allow_only({"camera", "sensitivities", "chart", "reflectances", "illuminant", "oecf", "noise", "seed", "exposure",
-                   "surface", "falloff", "flare", "corners", "size", "bits", "black", "cfa", "quality", "out"});
+                   "surface", "falloff", "flare", "corners", "size", "bits", "black", "cfa", "quality", "out", "reference-out"});
   LabRenderOptions o;
   o.camera = args.get("camera", o.camera);
   if (args.has("sensitivities")) {
@@ -62,7 +63,7 @@ int run_render(const Args& args, std::ostream& out) {
     o.shot_gain = n[0];
     o.read_noise = n[1];
   }
-  if (args.has("seed")) o.seed = static_cast<std::uint64_t>(args.get_double("seed", 1));
+  if (args.has("seed")) o.seed = static_cast<std::uint64_t>(lab_option("render.seed", args.get_double("seed", 1)));
   if (args.has("corners")) {
     const auto c = numbers(args.get("corners"), "corners");
     if (c.size() != 8) throw Error(ErrorCode::InvalidArgument, "--corners expects x1,y1,x2,y2,x3,y3,x4,y4");
@@ -88,6 +89,7 @@ int run_render(const Args& args, std::ostream& out) {
     throw Error(ErrorCode::InvalidArgument, "--out must name a .dng, .tiff or .jpg file, got '" + path + "'");
   const LabRenderFiles r = lab_render_files(o, format);
   write_bytes(path, r.dng.data(), r.dng.size());
+  if (args.has("reference-out")) write_bytes(args.get("reference-out"), r.reference.data(), r.reference.size());
   out << r.truth << "\n";
   return 0;
 }
@@ -144,7 +146,7 @@ int run_metamers(const Args& args, std::ostream& out) {
   }
   o.match = args.get("match", o.match);
   o.max_match = args.get_double("max-match", o.max_match);
-  o.top = static_cast<int>(args.get_double("top", o.top));
+  o.top = static_cast<int>(lab_option("metamers.top", args.get_double("top", o.top)));  // whole, in range, before the cast
   SpectralData set = args.has("reflectances") ? reflectances_arg(args.get("reflectances")) : SpectralData{};
   if (args.has("reflectances")) reflectance_to_fraction(set);
   const MetamerResult r = args.has("construct")
@@ -165,6 +167,21 @@ int run_metamers(const Args& args, std::ostream& out) {
       out << p.a << ',' << p.b << ',' << json::number_text(p.alpha) << ',' << v.viewer << ',' << json::number_text(v.dE00_1)
           << ',' << json::number_text(v.dE00_2) << "\n";
   return 0;
+}
+
+/// The lab's number options (lab_option_table: the page's boxes), under the subcommand that takes
+/// each, with the bounds the engine enforces.
+std::string lab_options_help() {
+  std::string s = "Number options (the page's boxes; a value outside [min, max] is refused, INVALID_ARGUMENT):\n", group;
+  for (const OptionSpec& o : lab_option_table()) {
+    const auto dot = o.name.find('.');
+    if (o.name.substr(0, dot) != group) s += "  tristim lab " + (group = o.name.substr(0, dot)) + "\n";
+    s += "    " + o.name.substr(dot + 1) + ": " + o.label + (o.unit.empty() ? "" : " (" + o.unit + ")") + ", " +
+         lab_option_number(o, o.min) + " to " + lab_option_number(o, o.max) + (o.type == "integer" ? " (whole)" : "") + ", default " +
+         lab_option_number(o, o.default_number) + " — " +
+         o.description + "\n";
+  }
+  return s;
 }
 
 int run_lab(const Args& args, std::ostream& out) {
@@ -201,6 +218,8 @@ CommandRegistration reg_lab(
      "  chips); --reflectances: a spectral CSV/CGATS of your own (or a chart id). Both are drawn as a grid of\n"
      "  columns = ceil(sqrt(1.5 N)) x rows, gap 0, ids from the file; the truth's \"sample_args\" are the\n"
      "  `tristim sample` options (--chart custom --rows --columns --corners) that sample it, \"cell\" per patch.\n"
+     "  --reference-out ref.csv: the patches' reference XYZ as a patch CSV (id,X,Y,Z; a grid's cells by cell id)\n"
+     "  for tristim fit --xyz.\n"
      "  --out .tiff: an RGB image (one pixel per 2x2 sensor block, no CFA) encoded by --oecf (x = DN/saturation;\n"
      "  gamma=g stores x^(1/g)) in 16 bits; the truth adds `stored` per patch (what sampling the TIFF recovers).\n"
      "tristim lab render ... --oecf sRGB [--quality 95] --out chart.jpg\n"
@@ -245,7 +264,7 @@ CommandRegistration reg_lab(
      "  Munsell chips' camera RGB and XYZ scaled by k (dE00 vs k: the root-polynomial is exposure-invariant).\n"
      "  table4: the Absolute mode's virtual bracket per light and colour training, fitted as a user would,\n"
      "  applied to one shot, the weighted fusion and Algorithm 1; NRMSE X/Y/Z beside the paper's Table 4.",
-     run_lab});
+     run_lab, lab_options_help});
 
 }  // namespace
 

@@ -80,7 +80,7 @@ int run_shen(const Args& args, std::ostream& out) {
 int run_table4(const Args& args, std::ostream& out) {
   args.allow_only({"camera", "illuminant", "noise", "seed", "json"});
   print_table(args, table4_table(lab_table4_exercise(args.get("camera", "Nikon_D850"), args.get("illuminant", "D50"),
-                                                     args.get_double("noise", 0.001), seed_arg(args))), out);
+                                                     args.get_double("noise", kTable4Noise), seed_arg(args))), out);
   return 0;
 }
 

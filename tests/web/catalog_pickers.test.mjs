@@ -3,7 +3,7 @@
 // list, with the tables' ids and labels. The expected rows come from the wasm module loaded here in
 // node (tests/wasm/load.mjs), not from the page's copy of the catalog, so a picker whose list,
 // order, labels, option bounds or families drift from the engine fails; so does a number input of
-// the custom grid or the sampled area whose label, unit, bounds, step or default is not the table's. A <select> the registry
+// the custom grid, the sampled area or the Lab whose label, unit, bounds, step or default is not the table's. A <select> the registry
 // below does not know fails too: a new picker states where its choices come from.
 import test from 'node:test';
 import assert from 'node:assert/strict';
@@ -199,6 +199,29 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
         step: String(o.step || (o.type === 'integer' ? 1 : 'any')), value: String(o.default_number), title: o.description };
       if (JSON.stringify(i) !== JSON.stringify(want)) wrong.push(`layout input ${o.name}: ${JSON.stringify(i)}, the table ${JSON.stringify(want)}`);
     }
+    // The Lab's number boxes (render, exercises 2 and 4, metamer search): one input per row of the
+    // engine's lab option table (lab_option_table), labelled "label (unit)", with its bounds, step,
+    // default and description — the bounds the engine's lab functions enforce.
+    const labInputs = await page.$$eval('#step-lab input[data-lab-option]', (els) => els.map((el) => ({
+      name: el.dataset.labOption, type: el.type, label: (el.labels?.[0]?.textContent ?? '').trim(),
+      min: el.getAttribute('min'), max: el.getAttribute('max'), step: el.getAttribute('step'), value: el.getAttribute('value'), title: el.title,
+    })));
+    const labTable = T.listLabOptions();
+    if (JSON.stringify(labInputs.map((i) => i.name).sort()) !== JSON.stringify(labTable.map((o) => o.name).sort())) wrong.push(`lab inputs ${labInputs.map((i) => i.name)}, the table's ${labTable.map((o) => o.name)}`);
+    for (const o of labTable) {
+      const i = labInputs.find((x) => x.name === o.name);
+      if (!i) continue;
+      const want = { name: o.name, type: 'number', label: o.unit ? `${o.label} (${o.unit})` : o.label, min: String(o.min), max: String(o.max),
+        step: String(o.step || (o.type === 'integer' ? 1 : 'any')), value: String(o.default_number), title: o.description };
+      if (JSON.stringify(i) !== JSON.stringify(want)) wrong.push(`lab input ${o.name}: ${JSON.stringify(i)}, the table ${JSON.stringify(want)}`);
+    }
+    // The surface presets: every preset of the table (by id, with its label), the page's '' = custom.
+    for (const role of ['Measurement geometry', 'Capture geometry']) {
+      const opts = found.find((s) => s.step === 'surface' && s.name.startsWith(role))?.options ?? [];
+      if (JSON.stringify(opts.map((o) => o.value).sort()) !== JSON.stringify(['', ...presets.map((p) => p.id)].sort())) wrong.push(`${role}: ${opts.map((o) => o.value)}`);
+      for (const p of presets) if (!opts.find((o) => o.value === p.id)?.label.startsWith(`${p.id} — ${p.label}`)) wrong.push(`${role} ${p.id}: label`);
+    }
+
     // The surface presets: every preset of the table (by id, with its label), the page's '' = custom.
     for (const role of ['Measurement geometry', 'Capture geometry']) {
       const opts = found.find((s) => s.step === 'surface' && s.name.startsWith(role))?.options ?? [];

@@ -8,6 +8,7 @@ import { options } from '../lib/catalog.js';
 import { labPanel } from './panel.js';
 import { figure } from '../plots/common.js';
 import { stimulusPlot, overfitPlot } from './plots.js';
+import { labOptionBoxes } from './options.js';
 
 const ILLUMINANTS = ['D65', 'A', 'F11'], OBSERVERS = ['1931', '1964'];
 
@@ -45,7 +46,8 @@ export function spectraPanel(app) {
 export function overfitPanel(app) {
   const cams = [{ value: 'cmf', label: 'The CIE 1931 CMFs (a Luther camera)' }, ...options(app.catalog.cameras)];
   const camSel = select(cams, 'Canon_EOS_5D_Mark_II');
-  const noiseIn = h('input', { type: 'number', step: 'any', min: 0, max: 0.1, value: 0.002, class: 'num', 'data-lab': 'ex2-noise', 'aria-label': 'Noise' });
+  const boxes = labOptionBoxes(app);
+  const noiseIn = boxes.box('overfit.noise', 'ex2-noise');
   const btn = h('button', { type: 'button', 'data-action': 'lab-ex2' }, 'Fit and compare');
   const out = h('div', { 'data-lab': 'ex2' });
   const cli = h('pre', { class: 'cli' });
@@ -75,6 +77,6 @@ export function overfitPanel(app) {
   }
   btn.addEventListener('click', run);
   const panel = labPanel({ id: 'ex2', title: 'Exercise 2 · Why a 3×3 is not enough: the Luther condition and over-fitting',
-    controls: [field('Camera', camSel), field('Noise (fraction of white)', noiseIn)], buttons: [btn], cli }, out);
+    controls: [field('Camera', camSel), boxes.field(noiseIn)], buttons: [btn], cli }, out);
   return { panel, run, params: { camera: camSel, noise: noiseIn } };
 }

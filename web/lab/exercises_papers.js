@@ -10,6 +10,7 @@ import { h, field, select, showError, clearError, numberValue, download } from '
 import { options } from '../lib/catalog.js';
 import { labPanel } from './panel.js';
 import { figure, getPlot } from '../plots/common.js';
+import { labOptionBoxes } from './options.js';
 
 const q = (s) => (/^[\w.+-]+$/.test(s) ? s : `"${s}"`);
 
@@ -102,7 +103,8 @@ export function table4Plot(rows, { width = 900, height = 300, Plot = getPlot() }
 export function table4Panel(app) {
   const camSel = select(options(app.catalog.cameras), 'Nikon_D850');
   const illumSel = select(options(app.catalog.illuminants), 'D50');
-  const noiseIn = h('input', { type: 'number', step: 'any', min: 0, max: 0.05, value: 0.001, class: 'num', 'data-lab': 'ex4-noise', 'aria-label': 'Noise' });
+  const boxes = labOptionBoxes(app);
+  const noiseIn = boxes.box('table4.noise', 'ex4-noise');
   const btn = h('button', { type: 'button', 'data-action': 'lab-ex4' }, 'Train on every chart');
   const out = h('div', { 'data-lab': 'ex4' });
   const cli = h('pre', { class: 'cli' });
@@ -133,7 +135,7 @@ export function table4Panel(app) {
   }
   btn.addEventListener('click', run);
   const panel = panelShell('ex4', 'Exercise 4 · Abed et al. 2013: training-chart independence with and without Saunderson (Table IV)',
-    [field('Camera', camSel), field('Illuminant', illumSel), field('Noise (fraction of white)', noiseIn)], btn, cli, out);
+    [field('Camera', camSel), field('Illuminant', illumSel), boxes.field(noiseIn)], btn, cli, out);
   return { panel, run, params: { camera: camSel, illuminant: illumSel, noise: noiseIn } };
 }
 

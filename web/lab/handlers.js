@@ -9,10 +9,11 @@ export const handlers = {
   /// the engine from an uploaded CSV `spd` {name, text}.
   /// `refl` {name, text}: uploaded reflectances, read by the engine, drawn as a generated grid.
   labRender: (T, { options, format = 'dng', spd, refl }) => {
+    T.labOption('render.seed', options.seed);   // a whole number before it becomes the engine's integer
     const L = spd ? T.readIlluminantCsv(spd.text, spd.name) : T.illuminantSpectrum(options.illuminant ?? 'D65');
     const o = { ...options, illuminant_spd: L };
     const out = refl ? T.labRenderReflectances(o, T.readReflectanceFile(refl.text, refl.name), format) : T.labRender(o, format);
-    return { result: { dng: out.dng, truth: JSON.parse(out.truth), format }, transfer: [out.dng.buffer] };
+    return { result: { dng: out.dng, truth: JSON.parse(out.truth), reference: out.reference, format }, transfer: [out.dng.buffer] };
   },
   labOecfs: (T) => reply(T.listLabOecfs()),
   /// Exercise 1: one patch's spectra and its XYZ / Lab / xy under each illuminant and observer.
@@ -27,6 +28,9 @@ export const handlers = {
   },
   /// The metamerism explorer: options are MetamerOptions fields; `construct` a Munsell id builds a
   /// metamer of that chip, otherwise pairs are searched in the Munsell set.
-  labMetamers: (T, { options, construct }) => reply(construct ? T.labConstructMetamer(options, construct) : T.labMetamers(options)),
+  labMetamers: (T, { options, construct }) => {
+    if (!construct) T.labOption('metamers.top', options.top);   // a whole number before it becomes the engine's int
+    return reply(construct ? T.labConstructMetamer(options, construct) : T.labMetamers(options));
+  },
   labMunsell: (T) => reply(T.listMunsell()),
 };

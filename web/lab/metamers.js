@@ -8,6 +8,7 @@ import { labPanel } from './panel.js';
 import { figure } from '../plots/common.js';
 import { metamerPlot } from './plots.js';
 import { fillChips } from './chips.js';
+import { labOptionBoxes } from './options.js';
 
 const q = (s) => (/^[\w.+/-]+$/.test(s) ? s : `"${s}"`);
 
@@ -27,8 +28,8 @@ export function metamersPanel(app) {
   const obsSel = select(options(app.catalog.observers), '1931');
   const camSel = select(cams, '');
   const matchSel = select([{ value: 'observer', label: 'the observer' }, { value: 'camera', label: 'the camera' }], 'observer');
-  const maxIn = h('input', { type: 'number', step: 'any', min: 0, value: 0.5, class: 'num', 'data-lab': 'met-max', 'aria-label': 'Largest ΔE00 under the first light' });
-  const topIn = h('input', { type: 'number', step: 1, min: 1, value: 10, class: 'num', 'data-lab': 'met-top', 'aria-label': 'Pairs shown' });
+  const boxes = labOptionBoxes(app);
+  const maxIn = boxes.box('metamers.max_match', 'met-max'), topIn = boxes.box('metamers.top', 'met-top');
   const chipSel = select([{ value: '5R5/6', label: '5R5/6' }], '5R5/6');
   const searchBtn = h('button', { type: 'button', 'data-action': 'lab-met-search' }, 'Find pairs');
   const constructBtn = h('button', { type: 'button', 'data-action': 'lab-met-construct' }, 'Construct a metamer');
@@ -108,7 +109,7 @@ export function metamersPanel(app) {
       + 'first light. With a camera, its numbers are shown too (and the pair can be made to match for the camera).',
     controls: [field('First light (match)', ill1), field('Second light', ill2), field('Observer', obsSel),
       field('Camera', camSel), field('Match for', matchSel),
-      field('Largest ΔE00 under the first light', maxIn), field('Pairs shown', topIn), field('Munsell chip', chipSel)],
+      boxes.field(maxIn), boxes.field(topIn), field('Munsell chip', chipSel)],
     buttons: [searchBtn, constructBtn], cli }, summary, tableBox, plotBox);
   return { panel, run: (construct = false) => loadChips().then(() => run(construct)), loadChips };
 }

@@ -15,6 +15,7 @@ import { shenPanel, table4Panel, guarneraPanel } from './exercises_papers.js';
 import { wireLabLinks } from './exercises_link.js';
 import { metamersPanel } from './metamers.js';
 import { fillChips } from './chips.js';
+import { labOptionBoxes } from './options.js';
 
 const CHARTS = [
   { value: 'cc24', label: 'ColorChecker Classic (24)' },
@@ -123,15 +124,10 @@ export function mount(section, app) {
     oecfSel.replaceChildren(...ids.map((id) => h('option', { value: id }, id)));
     oecfSel.value = ids.includes('sRGB') ? 'sRGB' : ids[0];
   }).catch((e) => showError(oecfSel, e, 'OECFs'));
-  const num = (name, label, value, attrs = {}) => h('input', { type: 'number', step: 'any', class: 'num', 'data-lab': name, 'aria-label': label, value, ...attrs });
-  const inputs = {
-    exposure: num('exposure', 'Exposure', saved.exposure ?? 0.5, { min: 0.01, max: 4 }),
-    shot_gain: num('shot_gain', 'Shot-noise gain', saved.shot_gain ?? 0, { min: 0 }),
-    read_noise: num('read_noise', 'Read noise', saved.read_noise ?? 0, { min: 0 }),
-    falloff: num('falloff', 'Fall-off', saved.falloff ?? 0, { min: 0, max: 0.9 }),
-    flare: num('flare', 'Flare', saved.flare ?? 0, { min: 0, max: 1 }),
-    seed: num('seed', 'Noise seed', saved.seed ?? 1, { min: 1, step: 1 }),
-  };
+  // The render's number boxes: rows render.<option> of the engine's lab option table.
+  const boxes = labOptionBoxes(app);
+  const inputs = Object.fromEntries(['exposure', 'shot_gain', 'read_noise', 'falloff', 'flare', 'seed']
+    .map((k) => [k, boxes.box(`render.${k}`, k, saved[k])]));
   const renderBtn = h('button', { type: 'button', 'data-action': 'lab-render' }, 'Render the chart');
   const renderCli = h('pre', { class: 'cli', 'data-lab': 'render-cli' });
   const renderOut = h('div', { class: 'lab-out', 'aria-live': 'polite' });
@@ -223,8 +219,7 @@ export function mount(section, app) {
     }
     const { rows, columns } = truth.layout;
     const board = truth.patches.filter((p) => p.board).map((p) => p.cell);
-    const csv = ['id,X,Y,Z', ...truth.patches.map((p) => [p.cell, ...p.XYZ.map((v) => v.toPrecision(17))].join(','))].join('\n');
-    await ref.useFile({ name: name.replace(/\.\w+$/, '-reference.csv'), text: csv });
+    await ref.useFile({ name: name.replace(/\.\w+$/, '-reference.csv'), text: last.reference });   // the engine's CSV
     for (const [k, v] of [['rows', rows], ['columns', columns], ['gap', 0]]) images.querySelector(`input[data-layout="${k}"]`).value = v;
     layoutSel.value = 'custom';
     layoutSel.dispatchEvent(new Event('change'));
@@ -251,8 +246,7 @@ export function mount(section, app) {
       field('or Munsell chips', chipsSel, 'The engine\'s 1269 matte chips: Ctrl/Shift-click several; drawn as a grid'),
       field('or reflectances (CSV)', reflIn, 'Spectra of your own (id, then one column per wavelength); drawn as a grid'),
       field('File', formatSel), field('OECF (TIFF, JPEG)', oecfSel),
-      field('Exposure', inputs.exposure), field('Shot-noise gain', inputs.shot_gain), field('Read noise (DN)', inputs.read_noise),
-      field('Fall-off', inputs.falloff), field('Flare', inputs.flare), field('Noise seed', inputs.seed)],
+      ...Object.values(inputs).map(boxes.field)],
     buttons: [renderBtn], cli: renderCli }, renderOut);
 
   // ---- (2) camera quality

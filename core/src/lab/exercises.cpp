@@ -12,6 +12,7 @@
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/io/fields.hpp"
 #include "tristim/io/patch_files.hpp"
+#include "tristim/lab/lab_options.hpp"
 #include "tristim/linearisation/oecf_Shen2008.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
@@ -82,7 +83,7 @@ SpectralData cmf_sensitivities() {
 std::vector<OverfitRow> lab_overfit_exercise(const SpectralData& ssf, const SpectralData& illuminant,
                                              const OverfitOptions& o) {
   for (const auto& m : o.models) model_info(m);  // UnknownId before any work
-  if (!(o.noise >= 0 && o.noise < 1)) throw Error(ErrorCode::InvalidArgument, "noise must be in [0, 1)");
+  lab_option("overfit.noise", o.noise);
   Vec3 white;
   const SpectralData& munsell = munsell_reflectances();
   const PatchMatrix test_XYZ = lab_patch_matrix(reflectances_to_XYZ(munsell, illuminant, Observer::CIE1931_2, &white));

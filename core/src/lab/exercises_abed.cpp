@@ -5,6 +5,7 @@
 
 #include "tristim/error.hpp"
 #include "tristim/lab/exercises.hpp"
+#include "tristim/lab/lab_options.hpp"
 #include "tristim/linearisation/oecf_Shen2008.hpp"
 #include "tristim/surface/geometry_table.hpp"
 
@@ -40,7 +41,7 @@ constexpr double kPaper[6][5][4] = {
 
 std::vector<Table4Row> lab_table4_exercise(const std::string& camera, const std::string& illuminant, double noise,
                                            std::uint64_t seed) {
-  if (!(noise >= 0 && noise < 1)) throw Error(ErrorCode::InvalidArgument, "noise must be in [0, 1) (fraction of the white's G)");
+  lab_option("table4.noise", noise);
   GeometryExperiment x = geometry_experiment_Abed2013(camera, illuminant, noise, seed);
   // x.training: Classic, SG, Glossy (SG spectra), Total (Classic + SG); the custom rows are ours.
   auto pair = [](const char* a) { return saunderson_preset(a).geometry; };

@@ -9,6 +9,7 @@
 
 #include "tristim/error.hpp"
 #include "tristim/io/fields.hpp"
+#include "tristim/lab/lab_options.hpp"
 #include "tristim/lab/smi.hpp"
 #include "tristim/linearisation/oecf_Shen2008.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -154,8 +155,8 @@ std::vector<std::string> munsell_ids() { return munsell_reflectances().names; }
 MetamerResult metamer_pairs(const MetamerOptions& o) { return metamer_pairs_in(o, munsell_reflectances()); }
 
 MetamerResult metamer_pairs_in(const MetamerOptions& o, const SpectralData& set) {
-  if (!(o.max_match > 0)) throw Error(ErrorCode::InvalidArgument, "max-match must be > 0");
-  if (o.top < 1) throw Error(ErrorCode::InvalidArgument, "top must be >= 1");
+  lab_option("metamers.max_match", o.max_match);
+  lab_option("metamers.top", o.top);
   if (set.size() < 2) throw Error(ErrorCode::InvalidArgument, "metamer search needs at least 2 reflectances");
   Setup s = setup(o, set);
   const Viewer& v = s.viewers[s.matched];

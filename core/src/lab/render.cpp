@@ -1,6 +1,8 @@
 // The colorimetry lab's chart photographs (rules in tristim/lab/render.hpp).
 #include "tristim/lab/render.hpp"
+#include "tristim/lab/exercises.hpp"
 #include "tristim/lab/jpeg_writer.hpp"
+#include "tristim/lab/lab_options.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -94,14 +96,22 @@ LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::stri
   if (format == "dng" && options.oecf != "linear")
     throw Error(ErrorCode::InvalidArgument, "a DNG holds linear sensor data: the OECF must be 'linear' (write a .tiff for '" + options.oecf + "')");
   const LabRender r = render_lab_chart(options);
-  if (format == "tiff") return {lab_render_tiff(r), lab_render_json(r, 65535).dump(1)};
+  if (format == "tiff") return {lab_render_tiff(r), lab_render_json(r, 65535).dump(1), lab_reference_csv(r)};
   if (format == "jpeg") {
     const auto bytes = lab_render_jpeg(r);  // the quality is checked before the truth is written
     json::Value truth = lab_render_json(r, 255);
     truth.set("jpeg_quality", options.jpeg_quality);
-    return {bytes, truth.dump(1)};
+    return {bytes, truth.dump(1), lab_reference_csv(r)};
   }
-  return {lab_render_dng(r), lab_render_json(r).dump(1)};
+  return {lab_render_dng(r), lab_render_json(r).dump(1), lab_reference_csv(r)};
+}
+
+std::string lab_reference_csv(const LabRender& render) {
+  LabTable t{"lab-reference", {"id", "X", "Y", "Z"}, {}};
+  for (const LabPatchTruth& p : render.patches)
+    t.rows.push_back({p.cell.empty() ? p.id : p.cell, json::number_text(p.XYZ[0]), json::number_text(p.XYZ[1]),
+                      json::number_text(p.XYZ[2])});
+  return lab_table_csv(t);
 }
 
 LabRenderFiles lab_render_reflectance_files(LabRenderOptions options, const SpectralData& reflectances,
@@ -206,11 +216,12 @@ LabRender render_lab_chart(const LabRenderOptions& o) {
     throw Error(ErrorCode::UnknownId, "lab render: unknown chart '" + o.chart + "' (cc24, passport, sg140, munsell:<chips> or reflectances)");
   if (o.width < 64 || o.height < 64 || o.width > 4000 || o.height > 4000)
     throw Error(ErrorCode::InvalidArgument, "lab render: --size must be 64..4000 pixels per side (the sensor is twice that)");
-  check_range(o.exposure, 1e-6, 4, "exposure");
-  check_range(o.falloff, 0, 0.9, "falloff");
-  check_range(o.flare, 0, 1, "flare");
-  check_range(o.shot_gain, 0, 1000, "shot noise gain");
-  check_range(o.read_noise, 0, 10000, "read noise");
+  lab_option("render.exposure", o.exposure);
+  lab_option("render.falloff", o.falloff);
+  lab_option("render.flare", o.flare);
+  lab_option("render.shot_gain", o.shot_gain);
+  lab_option("render.read_noise", o.read_noise);
+  lab_option("render.seed", static_cast<double>(o.seed));
   check_range(o.bits, 10, 16, "bits");
   check_range(o.black, 0, (1 << o.bits) / 2, "black level");
   if (o.cfa.size() != 4 || std::count(o.cfa.begin(), o.cfa.end(), 'G') != 2 || o.cfa.find('R') == std::string::npos ||

@@ -152,9 +152,12 @@ struct Table4Row {
   /// The paper's Table IV cell (Phase III, ten ColorChecker DC patches).
   double paper_dE_xyz_mean = 0, paper_dE_xyz_max = 0, paper_dE00_mean = 0, paper_dE00_max = 0;
 };
-/// Error(UnknownId) for an unknown camera or illuminant; InvalidArgument for a negative noise.
+/// The exercise's default camera noise σ (fraction of the white's G; lab_option_table's table4.noise).
+constexpr double kTable4Noise = 0.001;
+/// Error(UnknownId) for an unknown camera or illuminant; InvalidArgument for a noise outside
+/// table4.noise's bounds (lab_option_table).
 std::vector<Table4Row> lab_table4_exercise(const std::string& camera = "Nikon_D850", const std::string& illuminant = "D50",
-                                           double noise = 0.001, std::uint64_t seed = 1);
+                                           double noise = kTable4Noise, std::uint64_t seed = 1);
 LabTable table4_table(const std::vector<Table4Row>& rows);
 
 // ---- Exercise 5: Guarnera, Bianco & Schettini 2018 — exposure invariance, HDR, Table 4 --------

@@ -117,11 +117,17 @@ double lab_encode(const LabRenderOptions& options, double dn, double saturation)
 /// per patch `stored`: round(full_scale · encode(rgb)), what sampling the image recovers (noise off).
 json::Value lab_render_json(const LabRender& render, double full_scale = 0);
 
+/// The rendered patches' reference as a patch CSV (read_patch_csv reads it back): the header
+/// "id,X,Y,Z", then per patch of the truth its id — a generated grid's cell (R1C1…, the board's
+/// cells included, as the custom layout samples them) — and the XYZ (17 significant digits).
+std::string lab_reference_csv(const LabRender& render);
+
 /// What `tristim lab render` writes and prints, and what the page's Lab mode receives: the DNG's
 /// bytes and the truth as JSON text (lab_render_json, pretty-printed).
 struct LabRenderFiles {
   std::vector<std::uint8_t> dng;    ///< the file's bytes (DNG, TIFF or JPEG)
   std::string truth;
+  std::string reference;            ///< lab_reference_csv: the reference the journey fits against
 };
 /// format: "dng" (or empty; options.oecf must be "linear"), "tiff" or "jpeg" (the truth adds
 /// "jpeg_quality").

@@ -1,0 +1,32 @@
+// The bounds of the numbers a user gives the colorimetry lab: the chart photograph's exposure,
+// noise, fall-off, flare and seed (LabRenderOptions), the exercises' noise (OverfitOptions,
+// lab_table4_exercise) and the metamer search's threshold and count (MetamerOptions) — one
+// OptionSpec row each, which the page builds its number boxes from (labels, units,
+// min/max/step/default), `tristim lab --help` lists, and the lab's functions check values against
+// (lab_option), so a bound is written once.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "tristim/methods.hpp"
+
+namespace tristim {
+
+/// Rows named "<subcommand>.<member>": render.exposure, render.shot_gain, render.read_noise,
+/// render.falloff, render.flare, render.seed (LabRenderOptions; `tristim lab render`),
+/// overfit.noise (OverfitOptions::noise; `lab overfit`), table4.noise (lab_table4_exercise's noise;
+/// `lab table4`), metamers.max_match, metamers.top (MetamerOptions; `lab metamers`). Defaults are
+/// the structs' defaults; every value inside a row's [min, max] is one the function accepts, and
+/// every value outside it is refused with Error(InvalidArgument).
+std::vector<OptionSpec> lab_option_table();
+
+/// `value` checked against row `name` of lab_option_table(): returned when inside [min, max] (and
+/// whole for an integer row); otherwise Error(InvalidArgument) naming the option, its bounds and the
+/// value. Error(Internal) for a name the table does not have.
+double lab_option(const std::string& name, double value);
+
+/// A value of row `o` as text: every digit for an integer row, 6 significant digits otherwise
+/// (the help's and the error messages' spelling).
+std::string lab_option_number(const OptionSpec& o, double value);
+
+}  // namespace tristim

@@ -1,0 +1,143 @@
+// The lab's option table (lab_option_table) against the functions it bounds: every row's default
+// is its struct's, every value at a bound is accepted and every value beyond one (or a fraction for
+// an integer row) is refused by the lab function with INVALID_ARGUMENT; the reference CSV the page
+// hands to the Reference step reads back as the truth's XYZ, to the bit.
+#include <cmath>
+#include <functional>
+#include <map>
+#include <string>
+
+#include "refused.hpp"
+#include "test_support.hpp"
+#include "tristim/error.hpp"
+#include "tristim/io/patch_files.hpp"
+#include "tristim/lab/exercises.hpp"
+#include "tristim/lab/lab_options.hpp"
+#include "tristim/lab/metamerism.hpp"
+#include "tristim/lab/render.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+
+using namespace tristim;
+
+namespace {
+
+// A small render (64 × 64, the least the renderer draws) with one member set.
+void render_with(const std::function<void(LabRenderOptions&)>& set) {
+  LabRenderOptions o;
+  o.width = o.height = 64;
+  set(o);
+  render_lab_chart(o);
+}
+
+// Exercise 2 on one model and one chart (the bound is checked before any fit).
+void overfit_with(double noise) {
+  OverfitOptions o;
+  o.models = {"matrix-3x3"};
+  o.training = {"cc24"};
+  o.noise = noise;
+  lab_overfit_exercise(camera_ssf("Nikon_D850"), illuminant_spd("D65"), o);
+}
+
+// The metamer search over one Munsell hue page (5R: a few dozen chips).
+void metamers_with(const std::function<void(MetamerOptions&)>& set) {
+  MetamerOptions o;
+  set(o);
+  metamer_pairs_in(o, lab_munsell_selection("5R"));
+}
+
+// Each row's function, given a value of that row. `cheap`: worth running at the bounds too.
+struct Bounded {
+  std::function<void(double)> run;
+  bool cheap = true;
+};
+
+std::map<std::string, Bounded> functions() {
+  return {
+      {"render.exposure", {[](double v) { render_with([v](auto& o) { o.exposure = v; }); }}},
+      {"render.shot_gain", {[](double v) { render_with([v](auto& o) { o.shot_gain = v; }); }}},
+      {"render.read_noise", {[](double v) { render_with([v](auto& o) { o.read_noise = v; }); }}},
+      {"render.falloff", {[](double v) { render_with([v](auto& o) { o.falloff = v; }); }}},
+      {"render.flare", {[](double v) { render_with([v](auto& o) { o.flare = v; }); }}},
+      // A seed is an unsigned integer: below 0 and fractions cannot reach the renderer (the CLI
+      // and the page go through lab_option first); above the table's max it refuses.
+      {"render.seed", {[](double v) {
+         if (v < 0 || v != std::floor(v)) lab_option("render.seed", v);
+         render_with([v](auto& o) { o.seed = static_cast<std::uint64_t>(v); });
+       }}},
+      {"overfit.noise", {overfit_with}},
+      {"table4.noise", {[](double v) { lab_table4_exercise("Nikon_D850", "D50", v); }, false}},
+      {"metamers.max_match", {[](double v) { metamers_with([v](auto& o) { o.max_match = v; }); }}},
+      // top is an int: a fraction is checked as given, as the CLI and the page do before the cast.
+      {"metamers.top", {[](double v) {
+         if (v != std::floor(v)) lab_option("metamers.top", v);
+         metamers_with([v](auto& o) { o.top = static_cast<int>(v); });
+       }}},
+  };
+}
+
+}  // namespace
+
+TEST_CASE("lab options: each row's default is its struct's, and its form fields are set", "[lab]") {
+  const LabRenderOptions render;
+  const OverfitOptions overfit;
+  const MetamerOptions metamers;
+  const std::map<std::string, double> defaults{
+      {"render.exposure", render.exposure}, {"render.shot_gain", render.shot_gain},
+      {"render.read_noise", render.read_noise}, {"render.falloff", render.falloff},
+      {"render.flare", render.flare}, {"render.seed", static_cast<double>(render.seed)},
+      {"overfit.noise", overfit.noise}, {"table4.noise", kTable4Noise},
+      {"metamers.max_match", metamers.max_match}, {"metamers.top", static_cast<double>(metamers.top)}};
+  const auto table = lab_option_table();
+  REQUIRE(table.size() == defaults.size());
+  for (const OptionSpec& o : table) {
+    INFO(o.name);
+    REQUIRE(defaults.count(o.name) == 1);
+    CHECK(o.default_number == defaults.at(o.name));
+    CHECK(o.min < o.max);
+    CHECK(o.default_number >= o.min);
+    CHECK(o.default_number <= o.max);
+    CHECK((o.type == "number" || o.type == "integer"));
+    CHECK(o.step == (o.type == "integer" ? 1 : 0));
+    CHECK(!o.label.empty());
+    CHECK(!o.description.empty());
+    CHECK(lab_option(o.name, o.default_number) == o.default_number);
+  }
+  test::require_code([] { lab_option("render.no_such", 1); }, ErrorCode::Internal);
+}
+
+TEST_CASE("lab options: every bound is the lab function's — accepted at it, refused beyond it", "[lab]") {
+  const auto runs = functions();
+  for (const OptionSpec& o : lab_option_table()) {
+    INFO(o.name << " in [" << o.min << ", " << o.max << "]");
+    REQUIRE(runs.count(o.name) == 1);  // a new row needs its function here
+    const Bounded& f = runs.at(o.name);
+    const double below = o.min - std::max(1.0, std::abs(o.min)) * 1e-6, above = o.max + std::max(1.0, std::abs(o.max)) * 1e-6;
+    test::require_code([&] { f.run(o.type == "integer" ? std::floor(below) : below); }, ErrorCode::InvalidArgument);
+    test::require_code([&] { f.run(o.type == "integer" ? std::ceil(above) : above); }, ErrorCode::InvalidArgument);
+    test::require_code([&] { f.run(std::nan("")); }, ErrorCode::InvalidArgument);
+    if (o.type == "integer") test::require_code([&] { f.run(o.min + 0.5); }, ErrorCode::InvalidArgument);
+    if (!f.cheap) continue;
+    CHECK_NOTHROW(f.run(o.min));
+    CHECK_NOTHROW(f.run(o.max));
+  }
+}
+
+TEST_CASE("lab render: the reference CSV reads back as the truth's XYZ, by cell for a grid", "[lab]") {
+  for (const std::string chart : {"cc24", "munsell:5R4/14,10YR6/10,5PB5/10,5G5/8"}) {
+    INFO(chart);
+    LabRenderOptions o;
+    o.width = o.height = 128;
+    o.chart = chart;
+    const LabRender r = render_lab_chart(o);
+    const std::string csv = lab_reference_csv(r);
+    CHECK(csv.rfind("id,X,Y,Z\n", 0) == 0);
+    const PatchTable t = read_patch_csv(csv, "reference.csv");
+    REQUIRE(t.has_XYZ);
+    REQUIRE(t.ids.size() == r.patches.size());
+    for (size_t i = 0; i < r.patches.size(); ++i) {
+      const LabPatchTruth& p = r.patches[i];
+      CHECK(t.labels[i] == (p.cell.empty() ? p.id : p.cell));
+      for (int c = 0; c < 3; ++c) CHECK(t.XYZ[i][c] == p.XYZ[static_cast<size_t>(c)]);
+    }
+  }
+}
