@@ -70,12 +70,14 @@ struct Growth {
 // 6+ members on two rows (or columns) of 3+ — the DLT is well posed there too (no three of four
 // points collinear), and under strong perspective the pitch changes from one cell to the next by
 // more than an affine map can follow (a Classic tilted 49°: a third from one column to the next).
-void refit(Growth& g, const std::vector<PatchQuad>& quads, bool two_rows = false) {
+// `centre(m)`: the image point of member m (a quad's or a flat region's centre).
+template <class Centre>
+void refit(Growth& g, const Centre& centre, bool two_rows = false) {
   std::vector<Point> src, dst;
   std::set<int> ps, qs;
   for (const auto& kv : g.cell_quad) {
     src.emplace_back(kv.first[0], kv.first[1]);
-    dst.push_back(quads[kv.second].centre);
+    dst.push_back(centre(kv.second));
     ps.insert(kv.first[0]);
     qs.insert(kv.first[1]);
   }
@@ -101,6 +103,28 @@ bool on_two_rows(const Growth& g) {
   return (ps.size() == 2 && qs.size() >= 3) || (qs.size() == 2 && ps.size() >= 3);
 }
 
+// The lattice as a GridGroup (`quad_of(m)`: the quad index of member m, or -1); false when it
+// has fewer than `min_cells` members or lies on one row or column.
+template <class QuadOf>
+bool to_group(const Growth& g, int min_cells, const QuadOf& quad_of, GridGroup& group) {
+  std::set<int> ps, qs;
+  for (const auto& kv : g.cell_quad) {
+    ps.insert(kv.first[0]);
+    qs.insert(kv.first[1]);
+  }
+  if (static_cast<int>(g.cell_quad.size()) < min_cells || ps.size() < 2 || qs.size() < 2) return false;
+  group.lattice_to_image = g.H;
+  group.p_min = *ps.begin();
+  group.p_max = *ps.rbegin();
+  group.q_min = *qs.begin();
+  group.q_max = *qs.rbegin();
+  for (const auto& kv : g.cell_quad) {
+    group.cells.push_back(kv.first);
+    group.quads.push_back(quad_of(kv.second));
+  }
+  return true;
+}
+
 // |cos| of the angle between two vectors.
 double parallel(const Point& a, const Point& b) { return std::abs(a.dot(b)) / (a.norm() * b.norm() + 1e-12); }
 
@@ -108,6 +132,7 @@ double parallel(const Point& a, const Point& b) { return std::abs(a.dot(b)) / (a
 
 std::vector<GridGroup> group_grids(const std::vector<PatchQuad>& quads, int min_cells) {
   const int n = static_cast<int>(quads.size());
+  const auto centre = [&](int j) { return quads[j].centre; };
   // Neighbour lists: centres within 2.8 patch sizes, areas within a factor 2.2 (sweep over x).
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -246,32 +271,156 @@ std::vector<GridGroup> group_grids(const std::vector<PatchQuad>& quads, int min_
         two_rows = true;
         stalled_at = g.cell_quad.size();
         stalled_H = g.H;
-        refit(g, quads, true);
+        refit(g, centre, true);
         continue;
       }
       for (const auto& kv : offers) {
         g.cell_quad[kv.first] = kv.second.second;
         members.insert(kv.second.second);
       }
-      refit(g, quads, two_rows);
+      refit(g, centre, two_rows);
     }
-    std::set<int> ps, qs;
-    for (const auto& kv : g.cell_quad) {
-      ps.insert(kv.first[0]);
-      qs.insert(kv.first[1]);
-    }
-    if (static_cast<int>(g.cell_quad.size()) < min_cells || ps.size() < 2 || qs.size() < 2) continue;
     GridGroup group;
-    group.lattice_to_image = g.H;
-    group.p_min = *ps.begin();
-    group.p_max = *ps.rbegin();
-    group.q_min = *qs.begin();
-    group.q_max = *qs.rbegin();
-    for (const auto& kv : g.cell_quad) {
-      group.cells.push_back(kv.first);
-      group.quads.push_back(kv.second);
-      used[kv.second] = 1;
+    if (!to_group(g, min_cells, [](int m) { return m; }, group)) continue;
+    for (int m : group.quads) used[m] = 1;
+    groups.push_back(std::move(group));
+  }
+  std::stable_sort(groups.begin(), groups.end(), [](const GridGroup& a, const GridGroup& b) { return a.cells.size() > b.cells.size(); });
+  return groups;
+}
+
+namespace {
+
+// A flat region's pixel count and moments.
+struct RegionShape {
+  long count = 0;
+  bool border = false;                                 // touches the image border
+  Point centre = Point::Zero();                        // mean of the pixel centres
+  Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();    // their covariance, px²
+};
+
+std::vector<RegionShape> region_shapes(const RegionLabels& regions) {
+  const int w = regions.width, h = regions.height;
+  std::vector<RegionShape> out(size_t(std::max(0, regions.count)));
+  std::vector<std::array<double, 5>> sums(out.size(), {0, 0, 0, 0, 0});
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int l = regions.label[size_t(y) * w + x];
+      if (l < 0) continue;
+      RegionShape& s = out[size_t(l)];
+      ++s.count;
+      s.border = s.border || x <= 1 || y <= 1 || x >= w - 2 || y >= h - 2;
+      const double px = x + 0.5, py = y + 0.5;
+      auto& m = sums[size_t(l)];
+      m[0] += px, m[1] += py, m[2] += px * px, m[3] += px * py, m[4] += py * py;
     }
+  for (size_t l = 0; l < out.size(); ++l) {
+    RegionShape& s = out[l];
+    if (s.count == 0) continue;
+    const auto& m = sums[l];
+    const double n = double(s.count);
+    s.centre = Point(m[0] / n, m[1] / n);
+    s.spread << m[2] / n - s.centre.x() * s.centre.x(), m[3] / n - s.centre.x() * s.centre.y(),
+        m[3] / n - s.centre.x() * s.centre.y(), m[4] / n - s.centre.y() * s.centre.y();
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<GridGroup> group_regions(const std::vector<PatchQuad>& quads, const RegionLabels& regions, int min_cells) {
+  const std::vector<RegionShape> shape = region_shapes(regions);
+  const int w = regions.width, h = regions.height;
+  const long min_pixels = QuadOptions{}.min_pixels;
+  auto label_at = [&](const Point& p) {
+    if (!(p.x() >= 0 && p.y() >= 0 && p.x() < w && p.y() < h)) return -1;
+    return regions.label[size_t(p.y()) * w + size_t(p.x())];
+  };
+  // The quad of each region (a quad's centre lies in its own region), else -1.
+  std::vector<int> quad_of(shape.size(), -1);
+  for (size_t i = 0; i < quads.size(); ++i) {
+    const int l = label_at(quads[i].centre);
+    if (l >= 0 && quad_of[size_t(l)] < 0) quad_of[size_t(l)] = static_cast<int>(i);
+  }
+  const auto centre = [&](int l) { return shape[size_t(l)].centre; };
+  // Whether region l is the flat interior of one patch at lattice cell `cell` of the map H: its
+  // centre within 0.3 cell of the cell's, its extent (a uniform square of side s has variance
+  // s²/12 along any direction) within one pitch along each lattice axis, fewer pixels than the
+  // cell's image — not two patches run together, not the background around the chart.
+  auto one_patch = [&](int l, const Eigen::Matrix3d& H, const Eigen::Matrix3d& Hi, const std::array<int, 2>& cell) {
+    const RegionShape& s = shape[size_t(l)];
+    if (s.count < min_pixels || s.border) return false;
+    const Point at = apply_homography(Hi, s.centre);
+    if (std::abs(at.x() - cell[0]) > 0.3 || std::abs(at.y() - cell[1]) > 0.3) return false;
+    const Point c(cell[0], cell[1]);
+    const Point P = apply_homography(H, c + Point(0.5, 0)) - apply_homography(H, c - Point(0.5, 0));
+    const Point Q = apply_homography(H, c + Point(0, 0.5)) - apply_homography(H, c - Point(0, 0.5));
+    if (double(s.count) > cell_area(H, cell)) return false;
+    const Point u = P.normalized(), v = Q.normalized();
+    return 12 * u.dot(s.spread * u) <= P.squaredNorm() && 12 * v.dot(s.spread * v) <= Q.squaredNorm();
+  };
+  std::vector<char> used(shape.size(), 0);
+  std::vector<GridGroup> groups;
+  for (const PatchQuad& seed : quads) {
+    const int own = label_at(seed.centre);
+    if (own < 0 || used[size_t(own)]) continue;
+    // The pitch along each of the quad's axes: the nearest region on either side along it whose
+    // centre lies on the axis (as group_grids' neighbours: 0.9..2.6 sides away, 0.2 across).
+    Eigen::Matrix2d B;
+    B.col(0) = seed.side_a;
+    B.col(1) = seed.side_b;
+    if (std::abs(B.determinant()) < 1e-9) continue;
+    const Eigen::Matrix2d Bi = B.inverse();
+    Point step[2] = {Point::Zero(), Point::Zero()};
+    double nearest[2] = {1e9, 1e9};
+    for (int axis = 0; axis < 2; ++axis)
+      for (int sign : {1, -1})
+        for (double t = 0.8; t <= 2.6; t += 0.1) {
+          const int m = label_at(seed.centre + sign * t * B.col(axis));
+          if (m < 0 || m == own || shape[size_t(m)].count < min_pixels) continue;
+          const Point d = shape[size_t(m)].centre - seed.centre;
+          const Point ab = Bi * d;
+          const double along = sign * ab[axis], across = ab[1 - axis];
+          if (along < 0.9 || along > 2.6 || std::abs(across) > 0.2 * along + 0.15) continue;
+          if (along < nearest[axis]) nearest[axis] = along, step[axis] = sign * d;
+          break;
+        }
+    if (nearest[0] > 9 || nearest[1] > 9 || std::max(nearest[0], nearest[1]) > 1.3 * std::min(nearest[0], nearest[1]))
+      continue;
+    Growth g;
+    g.cell_quad[{0, 0}] = own;
+    std::set<int> members = {own};
+    g.H << step[0].x(), step[1].x(), seed.centre.x(), step[0].y(), step[1].y(), seed.centre.y(), 0, 0, 1;
+    for (int round = 0; round < 400; ++round) {
+      const Eigen::Matrix3d Hi = g.H.inverse();
+      std::map<std::array<int, 2>, int> offers;  // cell -> region
+      std::set<int> offered;
+      for (const auto& kv : g.cell_quad)
+        for (int dp = -2; dp <= 2; ++dp)
+          for (int dq = -2; dq <= 2; ++dq) {
+            const std::array<int, 2> cell = {kv.first[0] + dp, kv.first[1] + dq};
+            if (g.cell_quad.count(cell) || offers.count(cell)) continue;
+            // The region at the cell's predicted centre, or a little off it (a flat interior
+            // eaten into by noise).
+            const Point c = apply_homography(g.H, Point(cell[0], cell[1]));
+            const Point P = apply_homography(g.H, Point(cell[0] + 0.15, cell[1])) - c;
+            const Point Q = apply_homography(g.H, Point(cell[0], cell[1] + 0.15)) - c;
+            for (const Point& at : {c, Point(c + P), Point(c - P), Point(c + Q), Point(c - Q)}) {
+              const int m = label_at(at);
+              if (m < 0 || used[size_t(m)] || members.count(m) || offered.count(m) || !one_patch(m, g.H, Hi, cell))
+                continue;
+              offers[cell] = m;
+              offered.insert(m);
+              break;
+            }
+          }
+      if (offers.empty()) break;
+      for (const auto& kv : offers) g.cell_quad[kv.first] = kv.second, members.insert(kv.second);
+      refit(g, centre);
+    }
+    GridGroup group;
+    if (!to_group(g, min_cells, [&](int l) { return quad_of[size_t(l)]; }, group)) continue;
+    for (const auto& kv : g.cell_quad) used[size_t(kv.second)] = 1;
     groups.push_back(std::move(group));
   }
   std::stable_sort(groups.begin(), groups.end(), [](const GridGroup& a, const GridGroup& b) { return a.cells.size() > b.cells.size(); });
