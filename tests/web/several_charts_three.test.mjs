@@ -5,7 +5,7 @@
 // recipe lists the three images with their layouts, reference and capture; `tristim fit --recipe r.json
 // --raw a --raw b --raw c --xyz rb.csv` gives the page's coefficients and per-chart figures to the bit;
 // the share link (a reference-file chart among its images) reproduces with `tristim reproduce` and in
-// a fresh browser; a reload restores the three images; removing image 2 moves image 3 into its place. The charts are rendered by `tristim lab
+// a fresh browser, and so does the project file, whose link names the three source images; a reload restores the three images; removing image 2 moves image 3 into its place. The charts are rendered by `tristim lab
 // render` at test time.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -103,6 +103,20 @@ pageTest('three chart images (a custom grid with its reference file, a light tra
     const again = await fresh.evaluate(async (text) => JSON.parse((await window.tristim.engine.call('openLink', { text })).profile), link);
     assert.deepEqual(again.model.coefficients, made.profile.model.coefficients, 'the link\'s coefficients, to the bit');
   });
+
+  // The project file names and carries the three images: `tristim reproduce` samples each again.
+  const project = artifact('three.tristim');
+  const [download] = await Promise.all([page.waitForEvent('download', { timeout: 120000 }), page.click('#share-export')]);
+  await download.saveAs(project);
+  const proj = spawnSync(CLI, ['reproduce', project], { encoding: 'utf8' });
+  assert.equal(proj.status, 0, proj.stderr + proj.stdout);
+  assert.match(proj.stdout, /^reproduced/);
+  const opened = await page.evaluate(async (bytes) => {
+    const p = await window.tristim.engine.call('projectOpen', { bytes: new Uint8Array(bytes) });
+    return { images: p.images.map((i) => i.name), sources: JSON.parse(p.reproduction.payload).sources.map((s) => s.name) };
+  }, Array.from(fs.readFileSync(project)));
+  assert.deepEqual(opened.sources, ['passport.dng', 'grid.dng', 'flare.dng'], 'the project\'s link names the three source images');
+  for (const name of opened.sources) assert.ok(opened.images.includes(name), `the project holds ${name}`);
 
   // A reload restores the three images: the custom grid with its reference, the trap subtracted.
   await page.reload();

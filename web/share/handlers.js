@@ -29,8 +29,8 @@ export const handlers = {
   /// {text, image?}: the link (or payload) recomputed; with `image` ({name, bytes}) its SHA-256 is
   /// checked against the link's sources and its patches sampled again.
   openLink: (T, { text, image }) => reply(image ? T.reproduceLinkImage(text, image.bytes) : T.reproduceLink(text)),
-  projectExport: (T, { images, session, ...fit }) => {
-    const payload = payloadOf(T, fit, ['files.chart', 'files.chart2'].map((key) => images.find((i) => i.key === key)));
+  projectExport: (T, { images, session, sources, ...fit }) => {
+    const payload = payloadOf(T, fit, sources.map((key) => images.find((i) => i.key === key)));
     return reply({ bytes: T.projectFile(payload, images.map(({ name, bytes }) => ({ name, bytes })), session) });
   },
   projectOpen: (T, { bytes }) => {

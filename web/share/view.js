@@ -142,7 +142,8 @@ export function mount(section, app) {
       const r = selected();
       if (!r) throw Object.assign(new Error('no profile yet: fit one in step 3'), { code: 'NO_PROFILE' });
       const { json, images } = encodeSession(app.session);
-      const { bytes } = await engine.call('projectExport', { recipe: r.recipe, ...fitInputs(r.recipe), images, session: json });
+      const { bytes } = await engine.call('projectExport', { recipe: r.recipe, ...fitInputs(r.recipe), images, session: json,
+        sources: sourceKeys(app, r.recipe) });
       download('session.tristim', bytes, 'application/octet-stream');
       projectNote.textContent = `Project file: ${bytes.length} bytes (recipe, patch data, reference, ${images.length} image(s) and the page's settings). tristim reproduce session.tristim checks it from the command line.`;
     } catch (e) { showError(exportBtn, e, 'Project'); }
