@@ -16,6 +16,7 @@
 
 #include "absolute_cli.hpp"
 #include "tristim/absolute/characterise.hpp"
+#include "tristim/absolute/options_table.hpp"
 #include "tristim/absolute/sensitivities.hpp"
 #include "tristim/absolute/stimuli_file.hpp"
 #include "tristim/chart/reference.hpp"
@@ -27,6 +28,9 @@
 #include "tristim/simulate/virtual_camera.hpp"
 
 namespace tristim::cli {
+
+/// OptionSpec rows as a --help section (defined in cmd_surface.cpp).
+std::string option_rows_help(const std::string& title, const std::vector<OptionSpec>& rows);
 
 RawImage load_raw_file(const std::string& path) {
   return parse_named(path, read_file(path), [](const std::uint8_t* d, std::size_t n) { return decode_raw(d, n); });
@@ -261,7 +265,8 @@ const CommandRegistration sensitivities_cmd{Command{
     "Süsstrunk 2013). Output CSV wavelength_nm,R,G,B with the three curves scaled by one factor so the\n"
     "largest value is 1 (channel ratios kept); with --out the CSV goes there and a JSON summary (residual,\n"
     "areas, area ratios; --compare: RMS against a built-in camera, each channel peak 1) to stdout.",
-    run_sensitivities}};
+    run_sensitivities,
+    [] { return option_rows_help("Numbers (--components, --smoothness; the page's boxes)", sensitivity_option_table()); }}};
 
 const CommandRegistration absolute_cmd{Command{
     "absolute", "absolute X, Y, Z in cd/m² from bracketed RAWs (Guarnera 2018)",
@@ -304,7 +309,11 @@ const CommandRegistration absolute_cmd{Command{
     "  NRMSE per X, Y, Z, relative Y error, median absolute error — over every row and over the chromatic\n"
     "  and equal-tristimulus rows apart, the per-point and per-region rows, and the exposure-selection\n"
     "  summary. Text, or JSON with --json.",
-    run_absolute}};
+    run_absolute,
+    [] {
+      return option_rows_help("Options of fit (--transform, --fusion, --w, --noise-floor, --saturation; the page's boxes)",
+                              absolute_option_table());
+    }}};
 
 }  // namespace
 }  // namespace tristim::cli

@@ -142,9 +142,11 @@ std::string stimulus_where(const AbsoluteStimulus& s) {
 // ---- the table and completion ------------------------------------------------------------
 
 std::vector<OptionSpec> absolute_option_table() {
-  auto number = [](const char* name, const char* label, double def, double lo, double hi, const char* what) {
+  auto number = [](const char* name, const char* label, double def, double lo, double hi, const char* what,
+                   const char* unit = "") {
     OptionSpec o;
     o.name = name, o.type = "number", o.label = label, o.default_number = def, o.min = lo, o.max = hi, o.description = what;
+    o.unit = unit;
     return o;
   };
   auto choice = [](const char* name, const char* label, const char* def, std::vector<std::string> choices, const char* what) {
@@ -159,8 +161,8 @@ std::vector<OptionSpec> absolute_option_table() {
              "weighted: every reliable exposure, by reliability x t/N^2; recursive: Algorithm 1"),
       number("w", "Zone parameter w", 10, kZoneWidthMin, kZoneWidthMax,
              "section 3.1: Z_c = [1/w, (w-1)/w] of the (S - n) interval is the reliable zone; more than 2"),
-      number("noise_floor", "Noise floor n (DN)", 0, 0, 1e9, "eq (7), when no lens-cap frames are given"),
-      number("saturation", "Saturation S (DN)", 0, 0, 1e9, "eq (7); 0: measured from the frames (where the body clips)"),
+      number("noise_floor", "Noise floor n", 0, 0, 1e9, "eq (7), when no lens-cap frames are given", "DN"),
+      number("saturation", "Saturation S", 0, 0, 1e9, "eq (7); 0: measured from the frames (where the body clips)", "DN"),
   };
 }
 

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "tristim/absolute/normalisation.hpp"
+#include "tristim/absolute/options_table.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/patch_files.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -60,9 +61,7 @@ std::array<Eigen::MatrixXd, 3> basis(int K, const std::vector<std::string>& excl
 SensitivityEstimate estimate_sensitivities_Jiang2013(const std::vector<Vec3>& rgb, const SpectralData& reflectances,
                                                      const SpectralData& illuminant, const SensitivityOptions& o) {
   const int N = static_cast<int>(rgb.size()), K = o.components;
-  if (K < 1 || K > 12) throw Error(ErrorCode::InvalidArgument, "components must be 1..12");
-  if (!(o.smoothness >= 0) || !std::isfinite(o.smoothness))
-    throw Error(ErrorCode::InvalidArgument, "smoothness must be >= 0");
+  check_sensitivity_options(o);  // K and the smoothness inside sensitivity_option_table()'s rows
   if (static_cast<int>(reflectances.size()) != N)
     throw Error(ErrorCode::PatchMismatch, std::to_string(N) + " camera RGB rows but " +
                                               std::to_string(reflectances.size()) + " reflectances");

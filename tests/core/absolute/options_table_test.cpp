@@ -1,0 +1,130 @@
+// The Absolute mode's option rows against the engine functions that check them: the recipe's
+// numbers and choices (absolute_option_table, complete_absolute_recipe) and the sensitivity
+// estimate's (sensitivity_option_table, estimate_sensitivities_Jiang2013) — the page's inputs and
+// `tristim absolute --help`. A row's default and bounds are accepted; a value past a bound, or a
+// choice the row does not list, is refused with a coded error naming the option.
+#include <map>
+#include <string>
+
+#include "test_support.hpp"
+#include "tristim/absolute/options_table.hpp"
+#include "tristim/absolute/recipe.hpp"
+#include "tristim/chart/reference.hpp"
+#include "tristim/simulate/virtual_camera.hpp"
+
+using namespace tristim;
+
+namespace {
+
+template <class Table>
+std::map<std::string, OptionSpec> by_name(Table table) {
+  std::map<std::string, OptionSpec> m;
+  for (const OptionSpec& o : table()) m[o.name] = o;
+  return m;
+}
+
+/// `f()`'s error as "CODE: message", or "" when it returns.
+template <class F>
+std::string refusal(F f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return std::string(e.code_name()) + ": " + e.what();
+  }
+  return "";
+}
+
+/// The default recipe with number option `name` set to `value`.
+AbsoluteRecipe with_number(const std::string& name, double value) {
+  AbsoluteRecipe r;
+  (name == "w" ? r.options.w : name == "noise_floor" ? r.options.noise_floor : r.options.saturation) = value;
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("absolute option table: its rows, and the recipe's defaults are the rows'", "[absolute][catalog]") {
+  std::string names;
+  for (const OptionSpec& o : absolute_option_table()) names += o.name + " ";
+  CHECK(names == "transform fusion w noise_floor saturation ");
+  const auto rows = by_name(absolute_option_table);
+  const AbsoluteOptions d;
+  CHECK(rows.at("transform").default_text == d.transform);
+  CHECK(rows.at("fusion").default_text == d.fusion);
+  CHECK(rows.at("w").default_number == d.w);
+  CHECK(rows.at("noise_floor").default_number == d.noise_floor);
+  CHECK(rows.at("saturation").default_number == d.saturation);
+  CHECK(rows.at("noise_floor").unit == "DN");
+  CHECK(rows.at("saturation").unit == "DN");
+  CHECK(refusal([] { complete_absolute_recipe(AbsoluteRecipe{}); }) == "");
+}
+
+TEST_CASE("absolute option table: complete_absolute_recipe refuses a number past a row's bounds", "[absolute][catalog]") {
+  for (const auto& [name, o] : by_name(absolute_option_table)) {
+    if (o.type != "number") continue;
+    INFO(name);
+    CHECK(refusal([&] { complete_absolute_recipe(with_number(name, o.max)); }) == "");
+    if (name != "w") CHECK(refusal([&] { complete_absolute_recipe(with_number(name, o.min)); }) == "");
+    for (double past : {o.min - 1, o.max * 1.001}) {
+      INFO("value " << past);
+      CHECK(refusal([&] { complete_absolute_recipe(with_number(name, past)); }).rfind("INVALID_ARGUMENT: ", 0) == 0);
+    }
+  }
+  // w's lower bound is open (Z_c = [1/w, (w−1)/w] is empty at 2), as its description says.
+  CHECK(refusal([] { complete_absolute_recipe(with_number("w", 2)); }).rfind("INVALID_ARGUMENT: ", 0) == 0);
+  CHECK(by_name(absolute_option_table).at("w").description.find("more than 2") != std::string::npos);
+}
+
+TEST_CASE("absolute option table: a choice the row does not list is refused", "[absolute][catalog]") {
+  const auto rows = by_name(absolute_option_table);
+  for (const std::string& t : rows.at("transform").choices) {
+    AbsoluteRecipe r;
+    r.options.transform = t;
+    CHECK(refusal([&] { complete_absolute_recipe(r); }) == "");
+  }
+  for (const std::string& f : rows.at("fusion").choices) {
+    AbsoluteRecipe r;
+    r.options.fusion = f;
+    CHECK(refusal([&] { complete_absolute_recipe(r); }) == "");
+  }
+  AbsoluteRecipe t, f;
+  t.options.transform = "T3";
+  f.options.fusion = "median";
+  CHECK(refusal([&] { complete_absolute_recipe(t); }).rfind("UNKNOWN_ID: ", 0) == 0);
+  CHECK(refusal([&] { complete_absolute_recipe(f); }).rfind("UNKNOWN_ID: ", 0) == 0);
+}
+
+TEST_CASE("sensitivity option table: estimate_sensitivities_Jiang2013 refuses K and μ past the rows' bounds",
+          "[absolute][sensitivities][catalog]") {
+  std::string names;
+  for (const OptionSpec& o : sensitivity_option_table()) names += o.name + " ";
+  CHECK(names == "components smoothness ");
+  const auto rows = by_name(sensitivity_option_table);
+  const SensitivityOptions d;
+  CHECK(rows.at("components").default_number == d.components);
+  CHECK(rows.at("components").type == "integer");
+  CHECK(rows.at("smoothness").default_number == d.smoothness);
+
+  const SpectralData refl = chart_reflectances("cc24");
+  const SpectralData d65 = illuminant_spd("D65");
+  const auto rgb = simulate_camera_RGB(camera_ssf("Nikon_D850"), refl, d65);
+  auto estimate = [&](const std::string& name, double value) {
+    SensitivityOptions o;
+    if (name == "components") o.components = static_cast<int>(value);
+    else o.smoothness = value;
+    return refusal([&] { estimate_sensitivities_Jiang2013(rgb, refl, d65, o); });
+  };
+  for (const auto& [name, o] : rows) {
+    INFO(name);
+    for (double ok : {o.min, o.default_number, o.max}) {
+      INFO("value " << ok);
+      CHECK(estimate(name, ok) == "");
+    }
+    for (double past : {o.min - 1, o.max + 1}) {
+      INFO("value " << past);
+      const std::string why = estimate(name, past);
+      CHECK(why.rfind("INVALID_ARGUMENT: ", 0) == 0);
+      CHECK(why.find(name) != std::string::npos);
+    }
+  }
+}
