@@ -64,7 +64,8 @@ double lab_option(const std::string& name, double value) {
     if (o.name != name) continue;
     const bool whole = o.type != "integer" || std::floor(value) == value;
     if (!(value >= o.min && value <= o.max) || !whole)
-      throw Error(ErrorCode::InvalidArgument, "lab " + name + " (" + o.label + ") must be " +
+      throw Error(ErrorCode::InvalidArgument, "lab " + name.substr(0, name.find('.')) + ": " + name.substr(name.find('.') + 1) +
+                                                  " (" + o.label + ") must be " +
                                                   (o.type == "integer" ? "a whole number " : "") + "in [" +
                                                   lab_option_number(o, o.min) + ", " + lab_option_number(o, o.max) + "], got " +
                                                   lab_option_number(o, value));
