@@ -1,7 +1,8 @@
 // Declarations: version, built-in data, and every table the page builds its pickers from —
 // charts, illuminants, observers, models and their families, the method tables of each stage
 // (MethodInfo / OptionSpec rows; the flat-field modes too), chart layouts, the custom grid's and the
-// sampling's option rows, and the corner homography.
+// sampling's option rows, the sensitivity estimate's option rows, and the corner homography.
+#include "tristim/absolute/options_table.hpp"
 #include "tristim/capture/calibration.hpp"
 #include "tristim/characterisation/objectives.hpp"
 #include "tristim/chart/layout.hpp"
@@ -56,5 +57,6 @@ EMSCRIPTEN_BINDINGS(tristim_catalog) {
   def<&chart_layout_ids>("listChartLayouts");
   def<&chart_layout>("chartLayout");
   def<&layout_option_table>("listLayoutOptions");
+  def<&sensitivity_option_table>("listSensitivityOptions");
   def<&homography_unit_square>("homographyUnitSquare");
 }

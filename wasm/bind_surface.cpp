@@ -5,6 +5,7 @@
 #include "tristim/surface/fit.hpp"
 #include "tristim/surface/geometry_table.hpp"
 #include "tristim/surface/joint.hpp"
+#include "tristim/surface/options_table.hpp"
 #include "tristim/surface/saunderson.hpp"
 #include "tristim/surface/surface.hpp"
 #include "types.hpp"
@@ -73,6 +74,7 @@ EMSCRIPTEN_BINDINGS(tristim_surface) {
       FIELD(error_code) FIELD(message) FIELD(dE_xyz) FIELD(dE00) FIELD(matrix) FIELD(correction) FIELD(mu) FIELD(status); }
 
   def<&saunderson_presets>("listSurfacePresets");
+  def<&surface_option_table>("listSurfaceOptions");
   def<&correct_surface>("correctSurface");
   def<&surface_choice_text>("surfaceChoiceText");
   def<&fit_surface_under>("fitSurface");

@@ -27,6 +27,7 @@ const handlers = {
     models: T.listModels(), modelFamilies: T.listModelFamilies(), objectives: T.listObjectives(),
     linearisations: T.listLinearisations(), spectral: T.spectralMethod(), surfaces: T.listSurfaceCorrections(), surfacePresets: T.listSurfacePresets(),
     flatFieldModes: T.listFlatFieldModes(), absoluteOptions: T.listAbsoluteOptions(), fusionModes: T.listFusionModes(),
+    surfaceOptions: T.listSurfaceOptions(), sensitivityOptions: T.listSensitivityOptions(),
     layoutOptions: T.listLayoutOptions(), labOptions: T.listLabOptions(),
     absoluteWhiteRules: T.listAbsoluteWhiteRules(),
     bootstrapOptions: T.bootstrapOptions(),

@@ -3,7 +3,7 @@
 // list, with the tables' ids and labels. The expected rows come from the wasm module loaded here in
 // node (tests/wasm/load.mjs), not from the page's copy of the catalog, so a picker whose list,
 // order, labels, option bounds or families drift from the engine fails; so does a number input of
-// the custom grid, the sampled area or the Lab whose label, unit, bounds, step or default is not the table's. A <select> the registry
+// the custom grid, the sampled area, the Lab, the Surface step or the Absolute mode whose label, unit, bounds, step or default is not the table's. A <select> the registry
 // below does not know fails too: a new picker states where its choices come from.
 import test from 'node:test';
 import assert from 'node:assert/strict';
@@ -222,11 +222,27 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
       for (const p of presets) if (!opts.find((o) => o.value === p.id)?.label.startsWith(`${p.id} — ${p.label}`)) wrong.push(`${role} ${p.id}: label`);
     }
 
-    // The surface presets: every preset of the table (by id, with its label), the page's '' = custom.
-    for (const role of ['Measurement geometry', 'Capture geometry']) {
-      const opts = found.find((s) => s.step === 'surface' && s.name.startsWith(role))?.options ?? [];
-      if (JSON.stringify(opts.map((o) => o.value).sort()) !== JSON.stringify(['', ...presets.map((p) => p.id)].sort())) wrong.push(`${role}: ${opts.map((o) => o.value)}`);
-      for (const p of presets) if (!opts.find((o) => o.value === p.id)?.label.startsWith(`${p.id} — ${p.label}`)) wrong.push(`${role} ${p.id}: label`);
+    // The Surface step's and the Absolute mode's number boxes: one input per row of the engine's
+    // surface_option_table, absolute_option_table (its number rows) and sensitivity_option_table —
+    // the bounds fit_surface, the Table IV simulation, the absolute recipe and the sensitivity
+    // estimate enforce — marked data-<table>-option, labelled "label (unit)", with the row's bounds,
+    // step, default and description.
+    const numberTables = [['surface', '#step-surface', T.listSurfaceOptions()],
+      ['absolute', '#step-absolute', T.listAbsoluteOptions().filter((o) => o.type === 'number')],
+      ['sensitivity', '#step-absolute', T.listSensitivityOptions()]];
+    for (const [table, scope, list] of numberTables) {
+      const attr = `data-${table}-option`;
+      const boxes = await page.$$eval(`${scope} input[${attr}]`, (els, a) => els.map((el) => ({
+        name: el.getAttribute(a), type: el.type, label: (el.labels?.[0]?.textContent ?? '').trim(),
+        min: el.getAttribute('min'), max: el.getAttribute('max'), step: el.getAttribute('step'), value: el.getAttribute('value'), title: el.title,
+      })), attr);
+      if (JSON.stringify(boxes.map((i) => i.name).sort()) !== JSON.stringify(list.map((o) => o.name).sort())) wrong.push(`${table} inputs ${boxes.map((i) => i.name)}, the table's ${list.map((o) => o.name)}`);
+      for (const o of list) {
+        const want = { name: o.name, type: 'number', label: o.unit ? `${o.label} (${o.unit})` : o.label, min: String(o.min), max: String(o.max),
+          step: String(o.step || (o.type === 'integer' ? 1 : 'any')), value: String(o.default_number), title: o.description };
+        const got = boxes.find((x) => x.name === o.name);
+        if (got && JSON.stringify(got) !== JSON.stringify(want)) wrong.push(`${table} input ${o.name}: ${JSON.stringify(got)}, the table ${JSON.stringify(want)}`);
+      }
     }
 
     // Step 3: the model checklist in the engine's families (their order, labels, advice), each

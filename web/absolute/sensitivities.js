@@ -10,6 +10,7 @@
 import { h, field, select, setOptions, showError, clearError, numberValue, download, readText, onFileText } from '../lib/ui.js';
 import { figure } from '../plots/common.js';
 import { sensitivitiesPlot } from '../plots/sensitivities.js';
+import { optionInput, optionLabel } from './option_input.js';
 
 const fold = (s) => String(s).toLowerCase().replace(/[\s_-]+/g, ' ').trim();
 const ratio = (a) => `${(a[0] / a[1]).toFixed(4)} / ${(a[2] / a[1]).toFixed(4)}`;
@@ -57,7 +58,9 @@ export function mountSensitivities(app, { onChoice }) {
   const loaded = { reflectances: null, illuminant: null };   // file names the worker holds
   /// The chart or illuminant as named in file names and messages: its id, or the loaded file's name.
   const named = (sel, kind) => (sel.value === 'file' ? (loaded[kind] ?? 'file').replace(/\.[^.]*$/, '') : sel.value);
-  const kInput = h('input', { type: 'number', min: 1, max: 12, step: 1, value: 4, class: 'num', 'data-role': 'abs-ssf-components' });
+  // The estimate's numbers from the engine's rows (listSensitivityOptions: sensitivity_option_table).
+  const rows = app.catalog?.sensitivityOptions ?? [];
+  const numberBoxes = rows.map((o) => optionInput('sensitivity', o, { class: 'num', 'data-role': `abs-ssf-${o.name}` }));
   const blindBox = h('input', { type: 'checkbox', 'data-role': 'abs-ssf-blind' });
   const estimateBtn = h('button', { type: 'button', 'data-role': 'abs-ssf-estimate' }, 'Estimate the sensitivities (Jiang 2013)');
   estimateBtn._errorSlot = h('p', { class: 'field-error', role: 'alert', hidden: true });
@@ -86,7 +89,7 @@ export function mountSensitivities(app, { onChoice }) {
       h('fieldset', {}, h('legend', {}, 'Estimate from one chart photo'),
         field('Patches', sourceSel), filePatchField,
         field('Chart (known reflectances)', chartSel), reflField, field('Illuminant of the photo', illSel), illField,
-        field('Principal components K', kInput, '1–12 per channel (the paper\'s space is low-dimensional; 4 by default)'),
+        numberBoxes.map((i, k) => field(optionLabel(rows[k]), i, rows[k].description)),
         h('label', { class: 'check' }, blindBox, ' leave the compared built-in camera out of the basis (a blind test of the estimate)'),
         h('div', { class: 'buttons' }, estimateBtn, csvBtn), estimateBtn._errorSlot, estimateInfo)),
     compareBox);
@@ -164,7 +167,7 @@ export function mountSensitivities(app, { onChoice }) {
   }
 
   async function estimate() {
-    for (const c of [estimateBtn, patchInput, sourceSel, kInput, ...Object.values(spectraInputs)]) clearError(c);
+    for (const c of [estimateBtn, patchInput, sourceSel, ...numberBoxes, ...Object.values(spectraInputs)]) clearError(c);
     estimateBtn.disabled = true;
     let target = estimateBtn;
     try {
@@ -174,9 +177,10 @@ export function mountSensitivities(app, { onChoice }) {
           throw Object.assign(new Error(`choose ${kind === 'illuminant' ? 'an illuminant' : 'a reflectance'} file`), { code: 'NO_SPECTRA' });
         }
       }
-      const components = numberValue(kInput, 4);
+      // each box's number (empty: the row's default), under the row's name as SensitivityOptions has it
+      const numbers = Object.fromEntries(numberBoxes.map((i, k) => [rows[k].name, numberValue(i, rows[k].default_number)]));
       const msg = { chart: chartSel.value, illuminant: illSel.value,
-        options: { components, exclude_cameras: blindBox.checked ? [compareSel.value] : [] } };
+        options: { ...numbers, exclude_cameras: blindBox.checked ? [compareSel.value] : [] } };
       let left = 0, from;
       if (sourceSel.value === 'file') {
         target = patchInput;

@@ -10,6 +10,7 @@ import { figure } from '../plots/common.js';
 import { oecfPlot } from '../plots/oecf.js';
 import { NO_VALUE_RGB } from './render.js';
 import { mountSensitivities } from './sensitivities.js';
+import { optionInput, optionLabel } from './option_input.js';
 
 const MAPS = {
   viridis: { label: 'viridis', interp: () => globalThis.d3.interpolateViridis },
@@ -71,15 +72,16 @@ export function mount(section, app) {
   const WHITE_AUTO = (app.catalog?.absoluteWhiteRules ?? []).map((r) => ({ value: r.id, label: r.label }));
   const whiteSel = select(WHITE_AUTO, '');
   whiteSel.dataset.role = 'abs-white';
-  // The engine's option ranges (listAbsoluteOptions): the zone parameter w of section 3.1.
-  const wSpec = (app.catalog?.absoluteOptions ?? []).find((o) => o.name === 'w') ?? { default_number: 10, min: 2, max: 1e6 };
-  const wInput = h('input', { type: 'number', min: wSpec.min, max: wSpec.max, step: 'any', value: String(wSpec.default_number), 'data-role': 'abs-w', 'aria-label': 'Zone parameter w' });
+  // The recipe's numbers from the engine's rows (listAbsoluteOptions: absolute_option_table — label,
+  // unit, bounds, default): the zone parameter w of section 3.1, the noise floor and saturation of eq (7).
+  const spec = Object.fromEntries((app.catalog?.absoluteOptions ?? []).map((o) => [o.name, o]));
+  const wInput = optionInput('absolute', spec.w, { 'data-role': 'abs-w' });
   const capInput = h('input', { type: 'file', multiple: true, 'data-role': 'abs-lenscap' });
   const capInfo = h('span', { class: 'file-state' });
   const flatInput = h('input', { type: 'file', 'data-role': 'abs-flat' });
   const flatInfo = h('span', { class: 'file-state' });
-  const noiseInput = h('input', { type: 'number', min: 0, step: 'any', placeholder: '0', 'data-role': 'abs-noise' });
-  const satInput = h('input', { type: 'number', min: 0, step: 'any', placeholder: 'measured', 'data-role': 'abs-saturation' });
+  const noiseInput = optionInput('absolute', spec.noise_floor, { 'data-role': 'abs-noise' });
+  const satInput = optionInput('absolute', spec.saturation, { 'data-role': 'abs-saturation' });
   // Sensitivities for eq (7)'s areas: none, an uploaded CSV or an estimate ('@upload', '@estimate':
   // held by the worker, see sensitivities.js), or a built-in camera (its id).
   const builtIn = (app.catalog?.cameras ?? []).map((c) => ({ value: c.id, label: c.name }));
@@ -132,9 +134,7 @@ export function mount(section, app) {
       field('White of the test figures', whiteSel, 'CIELAB white of ΔE94/ΔE00 (Guarnera 2018 section 4.1)'),
       h('div', {}, field('Lens-cap frames (RAW, optional)', capInput, 'Averaged: the noise floor n of eq (7)'), capInfo),
       h('div', {}, field('Flat field (RAW, optional)', flatInput, 'Evenly lit: the radial fall-off f(r) of eq (7)'), flatInfo),
-      field('Noise floor n (DN, without lens cap)', noiseInput),
-      field('Saturation S (DN)', satInput, 'Empty: measured from the frames (where the body clips)'),
-      field('Zone parameter w', wInput, wSpec.description ?? 'Z_c = [1/w, (w−1)/w] of the usable range is the reliable zone (more than 2)'),
+      ...[noiseInput, satInput, wInput].map((i) => { const o = spec[i.dataset.absoluteOption]; return field(optionLabel(o), i, o.description); }),
       field('Sensitivities for A_R, A_G, A_B', cameraSel, 'Eq (7) channel areas: built-in measured sensitivities, or an upload or estimate (below)'),
       h('div', { class: 'abs-ssf-box' }, ssf.el),
       wide(field('Colour matrix', transformSel)),
@@ -354,7 +354,7 @@ export function mount(section, app) {
     seriesRows(ex.frames);
     capInfo.textContent = `${ex.lensCap.length} virtual lens-cap frames`;
     flatInfo.textContent = 'virtual flat field (equal-tristimulus light, 450 cd/m²)';
-    noiseInput.value = ''; satInput.value = ''; wInput.value = String(wSpec.default_number);
+    for (const i of [noiseInput, satInput, wInput]) i.value = String(spec[i.dataset.absoluteOption].default_number);
     setOptions(cameraSel, cameraOptions(), ex.camera);
     if (!(await loadStimuli(ex.stimuliCsv, 'example-stimuli.csv'))) return null;
     if (!(await loadStimuli(ex.testCsv, 'example-test.csv', 'test'))) return null;

@@ -27,7 +27,14 @@ export function mount(section, app) {
   // A correction's citation is its table row's reference (the engine's one place for it).
   const cite = (id) => (byId[id] ? `${byId[id].label}: ${byId[id].reference}` : '');
   const choice = (app.session.surface = completeChoice(byId[app.session.surface?.method] ?? rows[0], app.session.surface));
-  const st = (app.session.surfaceSettings ??= { measurement: '45-0', capture: 'diffuse', free: 'capture', range: [400, 700], patches: '' });
+  // The step's numbers from the engine's rows (surface_option_table: label, unit, bounds, step,
+  // default — what fit_surface and the simulated Table IV accept).
+  const spec = Object.fromEntries(app.catalog.surfaceOptions.map((o) => [o.name, o]));
+  const labelOf = (name) => (spec[name].unit ? `${spec[name].label} (${spec[name].unit})` : spec[name].label);
+  const numberBox = (name, role, value) => h('input', { type: 'number', 'data-surface-option': name, 'data-role': role, size: 6,
+    min: spec[name].min, max: spec[name].max, step: spec[name].step || 'any', value: value ?? spec[name].default_number, title: spec[name].description });
+  const st = (app.session.surfaceSettings ??= { measurement: '45-0', capture: 'diffuse', free: 'capture',
+    range: [spec.range_min.default_number, spec.range_max.default_number], patches: '' });
 
   const methodSel = select(rows.map((r) => ({ value: r.id, label: r.label })), choice.method);
   // Every preset in both pickers (an instrument geometry can describe a capture too: d:8 SCI is a
@@ -52,8 +59,8 @@ export function mount(section, app) {
   // Second measurement (Phase I ranking)
   const fileInput = h('input', { type: 'file', accept: '.csv,.txt,.cgats,.it8' });
   const exampleBtn = h('button', { type: 'button' }, 'Use the example second measurement');
-  const rangeMin = h('input', { type: 'number', 'data-role': 'surface-range-min', value: st.range[0], min: 300, max: 830, step: 10, size: 5 });
-  const rangeMax = h('input', { type: 'number', 'data-role': 'surface-range-max', value: st.range[1], min: 300, max: 830, step: 10, size: 5 });
+  const rangeMin = numberBox('range_min', 'surface-range-min', st.range[0]);
+  const rangeMax = numberBox('range_max', 'surface-range-max', st.range[1]);
   const compareState = h('p', { class: 'file-state' });
   const progress = progressBar('Fitting surface corrections');
   const rankBox = h('div', { class: 'table-box' });
@@ -62,7 +69,7 @@ export function mount(section, app) {
 
   // Simulated Table IV
   const cameraSel = select(asOptions(app.catalog.cameras), 'Nikon_D850');
-  const noiseInput = h('input', { type: 'number', 'data-role': 'surface-noise', value: 0.001, min: 0, max: 0.05, step: 0.001, size: 6 });
+  const noiseInput = numberBox('noise', 'surface-noise');
   const table4Btn = h('button', { type: 'button', 'data-role': 'surface-table4' }, 'Run the simulated Table IV');
   const table4Box = h('div', { class: 'table-box' });
 
@@ -81,13 +88,13 @@ export function mount(section, app) {
       + 'reflectance factors as fractions). Each correction is fitted from the step-1 chart\'s reflectances onto it by minimising the spectral RMS '
       + '(bounded NLopt, Fig. 6 of the paper); CIEDE2000 before and after under the step-1 illuminant and observer.'),
     h('div', { class: 'controls' }, field('Second measurement (spectral CSV)', fileInput), exampleBtn,
-      field('from λ (nm)', rangeMin), field('to λ (nm)', rangeMax)),
+      field(labelOf('range_min'), rangeMin), field(labelOf('range_max'), rangeMax)),
     compareState, progress.el, useNote, rankBox, rankPlots,
     h('h3', {}, 'Table IV by simulation: five methods, trained on one chart, tested on a matte chart'),
     h('p', { class: 'hint' }, 'No capture-geometry measurement of a real chart is at hand, so the virtual camera renders the paper\'s experiment: '
       + 'instrument Eye-one 45°:0°, capture a diffuse booth, the Table III coefficients of each chart; Phase II fits (scaler-offset and Saunderson '
       + 'jointly with a 3×3 anchored to a PTFE white, R_w = 0.99), the plain 3×3 and 3×4 matrices, and the corrected 3×3 (eqs 6–13).'),
-    h('div', { class: 'controls' }, field('Camera sensitivities', cameraSel), field('Noise σ (white G = 1)', noiseInput), table4Btn),
+    h('div', { class: 'controls' }, field('Camera sensitivities', cameraSel), field(labelOf('noise'), noiseInput), table4Btn),
     table4Box);
 
   const persist = () => { app.save('surface', JSON.parse(JSON.stringify(choice))); app.save('surfaceSettings', { ...st }); };

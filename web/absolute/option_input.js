@@ -1,0 +1,14 @@
+// A number box built from one row of an engine option table (OptionSpec: name, label, unit,
+// min/max/step, default, description) — the Absolute mode's recipe options (absolute_option_table)
+// and the sensitivity estimate's (sensitivity_option_table). `data-<table>-option` names the row
+// (tests/web/catalog_pickers.test.mjs checks each box against it).
+import { h } from '../lib/ui.js';
+
+/// "label (unit)", or the label alone.
+export const optionLabel = (row) => (row.unit ? `${row.label} (${row.unit})` : row.label);
+
+/// <input type=number> bounded as `row`, showing its default; `attrs` add to or override it.
+export function optionInput(table, row, attrs = {}) {
+  return h('input', { type: 'number', min: row.min, max: row.max, step: row.step || (row.type === 'integer' ? 1 : 'any'),
+    value: row.default_number, title: row.description, [`data-${table}-option`]: row.name, ...attrs });
+}
