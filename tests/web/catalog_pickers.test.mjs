@@ -199,22 +199,6 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
         step: String(o.step || (o.type === 'integer' ? 1 : 'any')), value: String(o.default_number), title: o.description };
       if (JSON.stringify(i) !== JSON.stringify(want)) wrong.push(`layout input ${o.name}: ${JSON.stringify(i)}, the table ${JSON.stringify(want)}`);
     }
-    // The Lab's number boxes (render, exercises 2 and 4, metamer search): one input per row of the
-    // engine's lab option table (lab_option_table), labelled "label (unit)", with its bounds, step,
-    // default and description — the bounds the engine's lab functions enforce.
-    const labInputs = await page.$$eval('#step-lab input[data-lab-option]', (els) => els.map((el) => ({
-      name: el.dataset.labOption, type: el.type, label: (el.labels?.[0]?.textContent ?? '').trim(),
-      min: el.getAttribute('min'), max: el.getAttribute('max'), step: el.getAttribute('step'), value: el.getAttribute('value'), title: el.title,
-    })));
-    const labTable = T.listLabOptions();
-    if (JSON.stringify(labInputs.map((i) => i.name).sort()) !== JSON.stringify(labTable.map((o) => o.name).sort())) wrong.push(`lab inputs ${labInputs.map((i) => i.name)}, the table's ${labTable.map((o) => o.name)}`);
-    for (const o of labTable) {
-      const i = labInputs.find((x) => x.name === o.name);
-      if (!i) continue;
-      const want = { name: o.name, type: 'number', label: o.unit ? `${o.label} (${o.unit})` : o.label, min: String(o.min), max: String(o.max),
-        step: String(o.step || (o.type === 'integer' ? 1 : 'any')), value: String(o.default_number), title: o.description };
-      if (JSON.stringify(i) !== JSON.stringify(want)) wrong.push(`lab input ${o.name}: ${JSON.stringify(i)}, the table ${JSON.stringify(want)}`);
-    }
     // The surface presets: every preset of the table (by id, with its label), the page's '' = custom.
     for (const role of ['Measurement geometry', 'Capture geometry']) {
       const opts = found.find((s) => s.step === 'surface' && s.name.startsWith(role))?.options ?? [];
@@ -222,14 +206,14 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
       for (const p of presets) if (!opts.find((o) => o.value === p.id)?.label.startsWith(`${p.id} — ${p.label}`)) wrong.push(`${role} ${p.id}: label`);
     }
 
-    // The Surface step's and the Absolute mode's number boxes: one input per row of the engine's
-    // surface_option_table, absolute_option_table (its number rows) and sensitivity_option_table —
-    // the bounds fit_surface, the Table IV simulation, the absolute recipe and the sensitivity
-    // estimate enforce — marked data-<table>-option, labelled "label (unit)", with the row's bounds,
+    // The Surface step's, the Absolute mode's and the Lab's number boxes: one input per row of the
+    // engine's surface_option_table, absolute_option_table (its number rows), sensitivity_option_table
+    // and lab_option_table — the bounds fit_surface, the Table IV simulation, the absolute recipe,
+    // the sensitivity estimate and the lab's functions enforce — marked data-<table>-option, labelled "label (unit)", with the row's bounds,
     // step, default and description.
     const numberTables = [['surface', '#step-surface', T.listSurfaceOptions()],
       ['absolute', '#step-absolute', T.listAbsoluteOptions().filter((o) => o.type === 'number')],
-      ['sensitivity', '#step-absolute', T.listSensitivityOptions()]];
+      ['sensitivity', '#step-absolute', T.listSensitivityOptions()], ['lab', '#step-lab', T.listLabOptions()]];
     for (const [table, scope, list] of numberTables) {
       const attr = `data-${table}-option`;
       const boxes = await page.$$eval(`${scope} input[${attr}]`, (els, a) => els.map((el) => ({
