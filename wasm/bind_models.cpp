@@ -1,5 +1,5 @@
 // Declarations: characterisation fits and their evaluation, the model × objective comparison,
-// profiles (a Profile argument may be given as the profile JSON text) and their exports.
+// profiles (a Profile crosses as its document, or its JSON text: wasm/types.hpp) and their exports.
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/profile/export.hpp"
 #include "declare.hpp"
@@ -33,9 +33,6 @@ EMSCRIPTEN_BINDINGS(tristim_models) {
            cpu_seconds, train_dE00, loo_dE00, train_dE_xyz, loo_dE_xyz, has_loo);
   STRUCT(StoppingCheck, checked, flagged, loo_mean, perturbed_loo_mean);
   STRUCT(RidgeRow, row, lambda);
-  STRUCT(Profile, version, tristim_version, model, objective, white, illuminant, observer, white_preserved,
-           white_patch, white_RGB, white_XYZ, training_patches, training_digest, rgb_max, status, message,
-           condition_number, iterations, objective_value, has_recipe, recipe, has_linearisation, linearisation);
   STRUCT(IccOptions, rgb_scale, grid_points, shaper_gamma, description, version);
 
   def<&evaluate_model>("evaluateModel");

@@ -29,7 +29,7 @@ Module['onRuntimeInitialized'] = function () {
   M.evaluateProfile = function (profile, rgb, xyz, ids) {
     // (a profile with a linearisation stage takes stored values: profilePredict linearises them)
     var p = M.profileFromJson(profile), estimated = M.profilePredict(profile, rgb);
-    return { profile: p, estimated: estimated, metrics: M.evaluate(estimated, xyz, p.white),
-      same_data_as_training: M.trainingDigest(ids, rgb, xyz) === p.training_digest };
+    return { profile: p, estimated: estimated, metrics: M.evaluate(estimated, xyz, p.colorimetry.white),
+      same_data_as_training: M.trainingDigest(ids, rgb, xyz) === p.training.digest };
   };
 };

@@ -63,9 +63,14 @@ template <>
 struct Conv<Recipe> : SchemaConv<Recipe> {  // the recipe JSON text, or its object
   static Recipe from(const val& v) { return v.isString() ? recipe_from_json(v.as<std::string>()) : SchemaConv<Recipe>::from(v); }
 };
+/// A profile crosses as its document (format, version, then Profile's field list: what `tristim fit`
+/// writes), and comes back from its JSON text or that object, read by the same reader.
 template <>
-struct Conv<Profile> : StructConv<Profile> {  // the profile JSON text, or the declared struct
-  static Profile from(const val& v) { return v.isString() ? profile_from_json(v.as<std::string>()) : StructConv<Profile>::from(v); }
+struct Conv<Profile> {
+  static val to(const Profile& p) { return to_js(profile_json(p)); }
+  static Profile from(const val& v) {
+    return v.isString() ? profile_from_json(v.as<std::string>()) : profile_from_document(from_js(v, "profile"));
+  }
 };
 
 }  // namespace tristim::wasm

@@ -143,10 +143,12 @@ test('recipes: the fit returns the completed recipe, the profile embeds it, JSON
   assert.equal(r.recipe.characterisation.objective.parameters.rms, 1);
   assert.equal(r.recipe.linearisation.method, 'identity');
   assert.deepEqual(camelKeys(r), []);
-  const p = T.profileFromJson(r.profile);
-  assert.equal(p.has_recipe, true);
-  assert.deepEqual(p.recipe, r.recipe);
-  assert.deepEqual(Array.from(p.model.coefficients), Array.from(r.evaluation.fit.model.coefficients));
+  const p = T.profileFromJson(r.profile);  // the profile's document, as its JSON text parses
+  assert.deepEqual(p, JSON.parse(r.profile));
+  const { format, ...embedded } = p.recipe;
+  assert.equal(format, 'tristim-recipe');
+  assert.deepEqual(embedded, r.recipe);
+  assert.deepEqual(p.model.coefficients.flat(), Array.from(r.evaluation.fit.model.coefficients));
   const text = T.recipeToJson(r.recipe);
   assert.deepEqual(T.recipeFromJson(text), r.recipe);
   assert.deepEqual(T.fitTables(text, ids, rgb, xyz).evaluation.fit.model.coefficients, r.evaluation.fit.model.coefficients);

@@ -53,3 +53,15 @@ test('metrics: a fit\'s training and leave-one-out metrics, and the comparison r
   assert.equal(rows[0].train_dE00.mean, e.training.dE00.mean);
   assert.equal(rows[0].loo_dE00.mean, e.loo.dE00.mean);
 });
+
+test('profile: crosses as its document (what tristim fit writes), back from that object or its text, strictly', async () => {
+  const T = await loadTristim();
+  const r = T.fitTables({ characterisation: { model: 'matrix-3x3', objective: { method: 'ls' } } }, ids, rgb, xyz);
+  const p = T.profileFromJson(r.profile);
+  assert.deepEqual(p, JSON.parse(r.profile));
+  assert.equal(T.exportCube(p, 5), T.exportCube(r.profile, 5));
+  assert.deepEqual(T.profilePredict(p, rgb), T.profilePredict(r.profile, rgb));
+  assert.throws(() => T.exportCube({ ...p, colour: 1 }, 5), (e) => e.code === 'PROFILE_INVALID' && /colour/.test(e.message));
+  assert.throws(() => T.exportCube({ ...p, version: 2 }, 5), (e) => e.code === 'PROFILE_VERSION');
+  assert.throws(() => T.exportCube({ ...p, colorimetry: { ...p.colorimetry, white: [1, -1, 1] } }, 5), (e) => e.code === 'PROFILE_INVALID');
+});

@@ -6,7 +6,7 @@ import { reply, displayOf } from '../lib/reply.js';
 export const handlers = {
   evaluate: (T, { profile, rgb, xyz, ids }) => {
     const out = T.evaluateProfile(profile, rgb, xyz, ids);
-    out.display = displayOf(T, xyz, out.estimated, out.profile.white);
+    out.display = displayOf(T, xyz, out.estimated, out.profile.colorimetry.white);
     return reply(out);
   },
 

@@ -228,13 +228,13 @@ export function mount(section, app) {
       profile: text,
       display: evaluation.display,
       evaluation: {
-        fit: { status: same ? 'imported' : 'imported (other training data)', message: '', condition_number: profile.condition_number, fitted: evaluation.estimated },
+        fit: { status: same ? 'imported' : 'imported (other training data)', message: '', condition_number: profile.fit.condition_number, fitted: evaluation.estimated },
         training: evaluation.metrics,
         loo: same ? json.metrics?.loo ?? null : null,
       },
     };
     const result = { key: `imported|${f.name}|${Date.now()}`, modelId: profile.model.id, objective: profile.objective,
-      label: `${modelLabel} · ${profile.objective} (imported ${f.name})`, ids: data.ids, labels: data.labels, rgb: data.rgb, xyz: data.xyz, white: profile.white, fit, evaluation };
+      label: `${modelLabel} · ${profile.objective} (imported ${f.name})`, ids: data.ids, labels: data.labels, rgb: data.rgb, xyz: data.xyz, white: profile.colorimetry.white, fit, evaluation };
     const results = [...(app.session.results ?? []), result];
     await app.save('results', results);
     await app.save('selected', result.key);

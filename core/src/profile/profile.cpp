@@ -7,7 +7,6 @@
 #include <cstring>
 
 #include "tristim/error.hpp"
-#include "tristim/io/limits.hpp"
 #include "tristim/profile/export.hpp"
 #include "tristim/profile/fields.hpp"
 #include "tristim/version.hpp"
@@ -38,12 +37,6 @@ struct Fnv1a64 {
     bytes(le, 8);
   }
 };
-
-Vec3 read_vec3(const json::Value& v, const std::string& what) {
-  const auto a = v.as_numbers(what);
-  if (a.size() != 3) throw Error(ErrorCode::ProfileInvalid, what + " must have 3 numbers");
-  return Vec3(a[0], a[1], a[2]);
-}
 
 std::string guess_illuminant(const Vec3& w) {
   auto same = [&](const Vec3& ref) {
@@ -119,153 +112,30 @@ Profile make_profile(const ModelEvaluation& ev, const FitOptions& options, const
 }
 
 namespace {
-/// training.camera_RGB / reference_XYZ: one row of 3 finite numbers per label.
-PatchMatrix read_training_rows(const json::Value& v, const char* name, size_t n) {
-  const auto& rows = v.as_array(name);
-  if (rows.size() != n)
-    throw Error(ErrorCode::ProfileInvalid, std::string(name) + ": " + std::to_string(rows.size()) + " rows for " +
-                                               std::to_string(n) + " labels");
-  PatchMatrix m(static_cast<Eigen::Index>(n), 3);
-  for (size_t i = 0; i < n; ++i) {
-    const auto r = rows[i].as_numbers(name);
-    if (r.size() != 3) throw Error(ErrorCode::ProfileInvalid, std::string(name) + ": rows of 3 values");
-    for (int c = 0; c < 3; ++c) {
-      if (!std::isfinite(r[c])) throw Error(ErrorCode::ProfileInvalid, std::string(name) + ": non-finite value");
-      m(static_cast<Eigen::Index>(i), c) = r[c];
-    }
-  }
-  return m;
-}
-
-void read_training_data(const json::Value& labels, const json::Value& tr, Profile& p) {
-  for (const auto& l : labels.as_array("training.labels")) p.training_labels.push_back(l.as_string("training.labels"));
-  const size_t n = p.training_labels.size();
-  if (n == 0 || static_cast<int>(n) != p.training_patches)
-    throw Error(ErrorCode::ProfileInvalid, "training.labels: " + std::to_string(n) + " labels for " +
-                                               std::to_string(p.training_patches) + " training patches");
-  p.training_camera_RGB = read_training_rows(tr.at("camera_RGB"), "training.camera_RGB", n);
-  p.training_reference_XYZ = read_training_rows(tr.at("reference_XYZ"), "training.reference_XYZ", n);
-  p.has_training_data = true;
-}
+const fields::Document kProfileDocument{"tristim-profile", kProfileVersion, "profile", ErrorCode::ProfileInvalid,
+                                        ErrorCode::ProfileVersion};
 }  // namespace
 
-std::string profile_to_json(const Profile& p) {
-  const ModelInfo& info = model_info(p.model.id);
-  json::Value o = json::Value::object();
-  o.set("format", "tristim-profile");
-  o.set("version", p.version);
-  o.set("tristim_version", p.tristim_version.empty() ? std::string(kVersion) : p.tristim_version);
-  json::Value model = json::Value::object();
-  model.set("id", p.model.id);
-  model.set("n_terms", info.n_terms);
-  model.set("terms", fields::write(info.term_names));
-  model.set("coefficients", fields::write(p.model.coefficients));
-  o.set("model", model);
-  o.set("objective", objective_id(p.objective));
-  json::Value col = json::Value::object();
-  col.set("white", fields::write(p.white));
-  col.set("illuminant", p.illuminant);
-  col.set("observer", p.observer);
-  o.set("colorimetry", col);
-  json::Value wp = json::Value::object();
-  wp.set("enabled", p.white_preserved);
-  wp.set("patch", p.white_patch);
-  wp.set("RGB", fields::write(p.white_RGB));
-  wp.set("XYZ", fields::write(p.white_XYZ));
-  o.set("white_preservation", wp);
-  json::Value tr = json::Value::object();
-  tr.set("patches", p.training_patches);
-  tr.set("digest", p.training_digest);
-  tr.set("rgb_max", p.rgb_max);
-  if (p.has_training_data) {
-    tr.set("labels", fields::write(p.training_labels));
-    tr.set("camera_RGB", fields::write(Eigen::MatrixXd(p.training_camera_RGB)));
-    tr.set("reference_XYZ", fields::write(Eigen::MatrixXd(p.training_reference_XYZ)));
-  }
-  o.set("training", tr);
-  json::Value f = json::Value::object();
-  f.set("status", fit_status_name(p.status));
-  f.set("message", p.message);
-  f.set("condition_number", p.condition_number);
-  f.set("iterations", p.iterations);
-  f.set("objective_value", p.objective_value);
-  o.set("fit", f);
-  o.set("metrics", p.metrics.is_object() ? p.metrics : json::Value::object());
-  if (p.has_recipe) o.set("recipe", recipe_json(p.recipe));
-  if (p.has_linearisation) o.set("linearisation", linearisation_json(p.linearisation));
-  return o.dump(2) + "\n";
-}
+json::Value profile_json(const Profile& profile) { return fields::write_document(profile, kProfileDocument); }
 
-Profile profile_from_json(const std::string& text) {
-  const fields::Document d{"tristim-profile", kProfileVersion, "profile", ErrorCode::ProfileInvalid, ErrorCode::ProfileVersion};
-  const json::Value o = fields::parse_document(text, d);
-  fields::check_document(o, d);
+std::string profile_to_json(const Profile& profile) { return profile_json(profile).dump(2) + "\n"; }
+
+Profile profile_from_document(const json::Value& document) {
   Profile p;
+  fields::check_document(document, kProfileDocument);
+  // What `tristim fit` writes beside the profile's members (its bootstrap intervals, the figures
+  // per chart, a corrected 3x3's mu) is known and not read.
+  fields::read_members(document, p, fields::Context{ErrorCode::ProfileInvalid, ""}, "",
+                       {"format", "version", "bootstrap", "charts", "corrected_3x3"});
   p.version = kProfileVersion;
-  if (const auto* tv = o.find("tristim_version")) p.tristim_version = tv->as_string("tristim_version");
-  const json::Value& model = o.at("model");
-  p.model.id = model.at("id").as_string("model.id");
-  const ModelInfo* info = nullptr;
-  try {
-    info = &model_info(p.model.id);
-  } catch (const Error&) {
-    throw Error(ErrorCode::ProfileInvalid, "unknown model id '" + p.model.id + "' in profile");
-  }
-  const auto& rows = model.at("coefficients").as_array("model.coefficients");
-  if (rows.size() != 3) throw Error(ErrorCode::ProfileInvalid, "model.coefficients must have 3 rows");
-  p.model.coefficients.resize(3, info->n_terms);
-  for (int c = 0; c < 3; ++c) {
-    const auto r = rows[c].as_numbers("model.coefficients row");
-    if (static_cast<int>(r.size()) != info->n_terms)
-      throw Error(ErrorCode::ProfileInvalid, "model '" + p.model.id + "' needs " + std::to_string(info->n_terms) +
-                                                 " coefficients per row, got " + std::to_string(r.size()));
-    for (int j = 0; j < info->n_terms; ++j) {
-      if (!std::isfinite(r[j])) throw Error(ErrorCode::ProfileInvalid, "non-finite coefficient");
-      p.model.coefficients(c, j) = r[j];
-    }
-  }
-  try {
-    p.objective = objective_from_id(o.at("objective").as_string("objective"));
-  } catch (const Error& e) {
-    if (e.code() == ErrorCode::ProfileInvalid) throw;
-    throw Error(ErrorCode::ProfileInvalid, e.what());
-  }
-  const json::Value& col = o.at("colorimetry");
-  p.white = read_vec3(col.at("white"), "colorimetry.white");
-  if (!(p.white.minCoeff() > 0)) throw Error(ErrorCode::ProfileInvalid, "colorimetry.white must be positive");
-  if (const auto* v = col.find("illuminant")) p.illuminant = v->as_string("colorimetry.illuminant");
-  if (const auto* v = col.find("observer")) p.observer = v->as_string("colorimetry.observer");
-  if (const auto* wp = o.find("white_preservation")) {
-    p.white_preserved = wp->at("enabled").as_bool("white_preservation.enabled");
-    if (const auto* v = wp->find("patch")) p.white_patch = v->as_string("white_preservation.patch");
-    if (const auto* v = wp->find("RGB")) p.white_RGB = read_vec3(*v, "white_preservation.RGB");
-    if (const auto* v = wp->find("XYZ")) p.white_XYZ = read_vec3(*v, "white_preservation.XYZ");
-  }
-  const json::Value& tr = o.at("training");
-  p.training_patches = tr.at("patches").as_int("training.patches", 0, limits::kMaxJsonInt);
-  p.training_digest = tr.at("digest").as_string("training.digest");
-  if (const auto* v = tr.find("rgb_max")) p.rgb_max = v->as_number("training.rgb_max");
-  if (!(p.rgb_max > 0)) throw Error(ErrorCode::ProfileInvalid, "training.rgb_max must be positive");
-  if (const auto* v = tr.find("labels")) read_training_data(*v, tr, p);
-  if (const auto* f = o.find("fit")) {
-    if (const auto* v = f->find("status")) p.status = fit_status_from_name(v->as_string("fit.status"));
-    if (const auto* v = f->find("message")) p.message = v->as_string("fit.message");
-    if (const auto* v = f->find("condition_number"); v && v->is_number()) p.condition_number = v->as_number();
-    if (const auto* v = f->find("iterations"); v && v->is_number()) p.iterations = v->as_int("fit.iterations", 0, limits::kMaxJsonInt);
-    if (const auto* v = f->find("objective_value"); v && v->is_number()) p.objective_value = v->as_number();
-  }
-  if (const auto* m = o.find("metrics"); m && m->is_object()) p.metrics = *m;
-  else p.metrics = json::Value::object();
-  if (const auto* r = o.find("recipe")) {
-    p.recipe = recipe_from_json(*r);
-    p.has_recipe = true;
-  }
-  if (const auto* l = o.find("linearisation")) {
-    p.linearisation = linearisation_from_json(*l);
-    p.has_linearisation = true;
-  }
+  const auto n = static_cast<Eigen::Index>(p.training_labels.size());
+  if (p.training_camera_RGB.rows() != n || p.training_reference_XYZ.rows() != n)
+    throw Error(ErrorCode::ProfileInvalid, "training.camera_RGB and training.reference_XYZ: " + std::to_string(n) +
+                                               " rows each, one per training.labels entry");
   return p;
 }
+
+Profile profile_from_json(const std::string& text) { return profile_from_document(fields::parse_document(text, kProfileDocument)); }
 
 PatchMatrix profile_input(const Profile& profile, const PatchMatrix& camera_RGB) {
   return profile.has_linearisation ? linearise(profile.linearisation, camera_RGB) : camera_RGB;
@@ -290,3 +160,168 @@ PatchMatrix profile_predict(const Profile& profile, const PatchMatrix& camera_RG
 }
 
 }  // namespace tristim
+
+// The profile's field list: its members in the order of the format (profile.hpp's header comment),
+// in sections. Members the model implies (n_terms, terms) are written for readers and not read.
+namespace tristim::fields {
+namespace {
+using P = Profile;
+
+/// `f`, kept at its C++ default when the profile leaves it out.
+Field<P> optional(Field<P> f) {
+  f.required = false;
+  return f;
+}
+/// A number member written as a number (null when not finite) and read back when it is one (a
+/// null keeps the default).
+template <double P::*M>
+Field<P> figure(const char* name) {
+  return {name, [](const P& p) { return json::Value(p.*M); },
+          [](const json::Value& v, P& p, const Context& c, const std::string& path) {
+            if (!v.is_null()) Codec<double>::read(v, p.*M, c, path);
+          },
+          nullptr, false};
+}
+void read_nothing(const json::Value&, P&, const Context&, const std::string&) {}
+
+const FieldList<P>& model_fields() {
+  static const FieldList<P> f = {
+      {"id", [](const P& p) { return json::Value(p.model.id); },
+       [](const json::Value& v, P& p, const Context& c, const std::string& path) {
+         Codec<std::string>::read(v, p.model.id, c, path);
+         try {
+           model_info(p.model.id);
+         } catch (const Error&) {
+           c.refuse("unknown model id '" + p.model.id + "' in profile");
+         }
+       }},
+      {"n_terms", [](const P& p) { return json::Value(model_info(p.model.id).n_terms); }, read_nothing},
+      {"terms", [](const P& p) { return write(model_info(p.model.id).term_names); }, read_nothing},
+      {"coefficients", [](const P& p) { return write(p.model.coefficients); },
+       [](const json::Value& v, P& p, const Context& c, const std::string& path) {
+         read(v, p.model.coefficients, c, path);
+         check_coefficient_shape(p.model, model_info(p.model.id));
+       }},
+  };
+  return f;
+}
+const FieldList<P>& colorimetry_fields() {
+  static const FieldList<P> f = {
+      {"white", [](const P& p) { return write(p.white); },
+       [](const json::Value& v, P& p, const Context& c, const std::string& path) {
+         read(v, p.white, c, path);
+         if (!(p.white.minCoeff() > 0)) c.refuse("'" + path + "' must be positive");
+       }},
+      member<&P::illuminant>("illuminant", false),
+      member<&P::observer>("observer", false),
+  };
+  return f;
+}
+const FieldList<P>& white_preservation_fields() {
+  static const FieldList<P> f = {member<&P::white_preserved>("enabled"), member<&P::white_patch>("patch", false),
+                                 member<&P::white_RGB>("RGB", false), member<&P::white_XYZ>("XYZ", false)};
+  return f;
+}
+/// training.camera_RGB / reference_XYZ: rows of 3 numbers (their count is checked against the
+/// labels once all are read).
+template <PatchMatrix P::*M>
+Field<P> training_rows(const char* name) {
+  return {name, [](const P& p) { return write(Eigen::MatrixXd(p.*M)); },
+          [](const json::Value& v, P& p, const Context& c, const std::string& path) {
+            Eigen::MatrixXd m;
+            read(v, m, c, path);
+            if (m.rows() > 0 && m.cols() != 3) c.refuse("'" + path + "' must have rows of 3 values");
+            p.*M = m.rows() > 0 ? PatchMatrix(m) : PatchMatrix(0, 3);
+          },
+          [](const P& p) { return p.has_training_data; }, false};
+}
+const FieldList<P>& training_fields() {
+  static const FieldList<P> f = {
+      {"patches", [](const P& p) { return json::Value(p.training_patches); },
+       [](const json::Value& v, P& p, const Context& c, const std::string& path) {
+         read(v, p.training_patches, c, path);
+         if (p.training_patches < 0) c.refuse("'" + path + "' must not be negative");
+       }},
+      member<&P::training_digest>("digest"),
+      {"rgb_max", [](const P& p) { return json::Value(p.rgb_max); },
+       [](const json::Value& v, P& p, const Context& c, const std::string& path) {
+         read(v, p.rgb_max, c, path);
+         if (!(p.rgb_max > 0)) c.refuse("'" + path + "' must be positive");
+       },
+       nullptr, false},
+      {"labels", [](const P& p) { return write(p.training_labels); },
+       [](const json::Value& v, P& p, const Context& c, const std::string& path) {
+         read(v, p.training_labels, c, path);
+         const size_t n = p.training_labels.size();
+         if (n == 0 || static_cast<int>(n) != p.training_patches)
+           c.refuse("'" + path + "': " + std::to_string(n) + " labels for " + std::to_string(p.training_patches) +
+                    " training patches");
+         p.has_training_data = true;
+       },
+       [](const P& p) { return p.has_training_data; }, false},
+      training_rows<&P::training_camera_RGB>("camera_RGB"),
+      training_rows<&P::training_reference_XYZ>("reference_XYZ"),
+  };
+  return f;
+}
+const FieldList<P>& fit_fields() {
+  static const FieldList<P> f = {
+      {"status", [](const P& p) { return json::Value(fit_status_name(p.status)); },
+       [](const json::Value& v, P& p, const Context& c, const std::string& path) {
+         std::string name;
+         read(v, name, c, path);
+         p.status = fit_status_from_name(name);
+       },
+       nullptr, false},
+      member<&P::message>("message", false),
+      figure<&P::condition_number>("condition_number"),
+      {"iterations", [](const P& p) { return json::Value(p.iterations); },
+       [](const json::Value& v, P& p, const Context& c, const std::string& path) {
+         if (v.is_null()) return;
+         read(v, p.iterations, c, path);
+         if (p.iterations < 0) c.refuse("'" + path + "' must not be negative");
+       },
+       nullptr, false},
+      figure<&P::objective_value>("objective_value"),
+  };
+  return f;
+}
+}  // namespace
+
+TRISTIM_FIELDS_DEFINE(
+    Profile,
+    {"tristim_version", [](const P& p) { return json::Value(p.tristim_version.empty() ? std::string(kVersion) : p.tristim_version); },
+     [](const json::Value& v, P& p, const Context& c, const std::string& path) { read(v, p.tristim_version, c, path); },
+     nullptr, false},
+    section<P, &model_fields>("model"),
+    {"objective", [](const P& p) { return json::Value(objective_id(p.objective)); },
+     [](const json::Value& v, P& p, const Context& c, const std::string& path) {
+       std::string id;
+       read(v, id, c, path);
+       try {
+         p.objective = objective_from_id(id);
+       } catch (const Error& e) {
+         c.refuse(e.what());
+       }
+     }},
+    section<P, &colorimetry_fields>("colorimetry"),
+    optional(section<P, &white_preservation_fields>("white_preservation")),
+    section<P, &training_fields>("training"),
+    optional(section<P, &fit_fields>("fit")),
+    {"metrics", [](const P& p) { return p.metrics.is_object() ? p.metrics : json::Value::object(); },
+     [](const json::Value& v, P& p, const Context&, const std::string&) { p.metrics = v.is_object() ? v : json::Value::object(); },
+     nullptr, false},
+    {"recipe", [](const P& p) { return recipe_json(p.recipe); },
+     [](const json::Value& v, P& p, const Context&, const std::string&) {
+       p.recipe = recipe_from_json(v);
+       p.has_recipe = true;
+     },
+     [](const P& p) { return p.has_recipe; }, false},
+    {"linearisation", [](const P& p) { return linearisation_json(p.linearisation); },
+     [](const json::Value& v, P& p, const Context&, const std::string&) {
+       p.linearisation = linearisation_from_json(v);
+       p.has_linearisation = true;
+     },
+     [](const P& p) { return p.has_linearisation; }, false});
+
+}  // namespace tristim::fields

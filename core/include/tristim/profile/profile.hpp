@@ -99,14 +99,24 @@ Profile make_profile(const ModelEvaluation& evaluation, const FitOptions& option
 /// "fnv1a64:xxxxxxxxxxxxxxxx" of arbitrary bytes (an uploaded reference file, a held-out set).
 std::string bytes_digest(const std::string& bytes);
 
+/// The profile document (format, version, then Profile's field list) and its text.
+json::Value profile_json(const Profile& profile);
 std::string profile_to_json(const Profile& profile);
 /// Error(ProfileVersion) for another version, Error(ProfileInvalid) for text that is not
-/// JSON, not a tristim profile, missing fields, an unknown model or a wrong coefficient shape;
-/// an embedded recipe is read strictly (recipe_from_json's codes).
+/// JSON, not a tristim profile, missing or unknown fields, an unknown model or a wrong coefficient
+/// shape; an embedded recipe is read strictly (recipe_from_json's codes).
 Profile profile_from_json(const std::string& text);
+/// The same from the parsed document (a JS caller's object).
+Profile profile_from_document(const json::Value& document);
 
 /// Summaries (and, with per_patch, the per-patch arrays) as a JSON object.
 json::Value summary_json(const Summary& s);
 json::Value metrics_json(const Metrics& m, const std::vector<std::string>& ids = {}, bool per_patch = false);
 
 }  // namespace tristim
+
+/// The profile's members (io/fields.hpp), defined in profile.cpp: a profile crosses to JS as its
+/// document (wasm/types.hpp).
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(Profile);
+}  // namespace tristim::fields
