@@ -523,7 +523,8 @@ DetectionScore score_detection(const ChartScene& scene, const std::array<double,
 }
 
 const std::vector<std::string>& failure_kinds() {
-  static const std::vector<std::string> kinds = {"tilted-glare", "tilted-shadow", "tilted-grid", "small",
+  static const std::vector<std::string> kinds = {"tilted-glare", "tilted-shadow", "tilted-glare-shadow",
+                                                 "tilted-grid", "small",
                                                  "passport-open", "cut", "perspective", "phone-jpeg", "sg", "no-chart"};
   return kinds;
 }
@@ -544,6 +545,10 @@ SceneSpec failure_kind_spec(const std::string& kind, int index, std::uint64_t se
     s.glare_patches = 0;
     if (kind == "tilted-glare") s.glare_patches = 2 + rng.integer(2), s.glare_strength = rng.uniform(1, 2);
     if (kind == "tilted-shadow") s.shadow = rng.uniform(0.5, 0.75);
+    if (kind == "tilted-glare-shadow") {
+      s.glare_patches = 2 + rng.integer(2), s.glare_strength = rng.uniform(1, 2);
+      s.shadow = rng.uniform(0.5, 0.75);
+    }
     if (kind == "tilted-grid") {
       s.grid_object = true;
       s.area_fraction = rng.uniform(0.2, 0.3);  // room for the object beside

@@ -107,7 +107,8 @@ TwoChartScene random_two_chart_scene(const std::string& large_chart, const std::
 
 /// The kinds of scene detection is known to find hard (issue 48), one id each: "tilted-glare",
 /// "tilted-shadow", "tilted-grid" (large charts, 30-40 % of the frame, tilted 25-33° out of
-/// plane, with a strong glare spot, a cast shadow or a grid-like object beside them), "small"
+/// plane, with a strong glare spot, a cast shadow or a grid-like object beside them;
+/// "tilted-glare-shadow": glare spots and a cast shadow on the same chart), "small"
 /// (2-3.5 % of the frame), "passport-open" (both sides of a Passport), "cut" (the chart runs
 /// off the frame), "perspective" (tilted 35-50° seen from close), "phone-jpeg" (phone-like
 /// 8-bit sRGB, sharpened, noise-reduced), "sg" (ColorChecker Digital SG, as random_scene_spec)

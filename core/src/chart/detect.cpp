@@ -121,7 +121,6 @@ struct Frames {
   const RawImage& image;
   const RawImage* stored = nullptr;
   FlatRegionOptions flat = {};
-  bool regions = false;  // lattices grown into flat regions that are not quads too (group_regions)
 };
 
 // One pass of the pipeline on a working image of longer side <= working_side; its progress is
@@ -145,12 +144,7 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
   progress("segment", 0.2);
   const std::vector<PatchQuad> quads = patch_quads(segmented, regions);
   progress("group", 0.3);
-  std::vector<GridGroup> groups = group_grids(quads, 4);
-  if (frames.regions) {
-    std::vector<GridGroup> more = group_regions(quads, regions, 4);
-    groups.insert(groups.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
-    std::stable_sort(groups.begin(), groups.end(), [](const GridGroup& a, const GridGroup& b) { return a.cells.size() > b.cells.size(); });
-  }
+  const std::vector<GridGroup> groups = group_grids(quads, 4);
   progress("orient", 0.4);
 
   std::vector<ChartCandidate> found;
@@ -198,8 +192,12 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
       }
       // A placement running off the image: a chart cut by the frame when at least half of the
       // layout's patches were found as quads; it is refined and sampled where it is visible.
+      // A lattice of fewer cells (6 or more: glare or the frame took the rest) may place a cut
+      // chart too, by the colours of every patch inside the image; it is kept only when sure
+      // (below).
       bool cut = !chosen->inside;
-      if (cut && (!options.cut_charts || static_cast<int>(group.cells.size()) * 2 < N)) {
+      const bool thin = cut && static_cast<int>(group.cells.size()) * 2 < N;
+      if (cut && (!options.cut_charts || (thin && group.cells.size() < 6))) {
         if (static_cast<int>(group.cells.size()) * 2 >= N)
           note("a grid of " + grid_size(group) + " fits the " + t.id +
                " layout only partly inside the image: the chart may be cut off by the frame");
@@ -279,9 +277,9 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
           }
           final_score = reference_fit_score(rgb, ref_visible, where, unreliable);
           alternative_score = symmetric_alternatives(rgb, t.reference, cells, where, unreliable, t.grid.rows, t.grid.columns);
-          const std::vector<double> e = reference_fit_residuals(rgb, ref_visible, where, unreliable);
+          std::vector<double> sorted;  // the residuals with the fitted glare taken off
+          const std::vector<double> e = reference_fit_residuals(rgb, ref_visible, where, unreliable, &sorted);
           for (size_t k = 0; k < e.size(); ++k) c.patches.push_back({s.patches[k].id, e[k]});
-          std::vector<double> sorted = e;
           std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
           c.residual = sorted[sorted.size() / 2];
         } else {
@@ -309,6 +307,14 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
       if (std::getenv("TRISTIM_DETECT_DEBUG"))
         std::fprintf(stderr, "CANDIDATE %s residual %.4f score %.4f alternative %.4f runner-up %.4f/%.4f supported %.2f conf %.3f\n",
                      t.id.c_str(), c.residual, final_score, alternative_score, runner_up, chosen->residual, c.supported, c.confidence);
+      // A thin lattice's chart: its colours fit (fit, margin >= 0.9), half of its patches are inside
+      // the image and the edges of 70 % of those were seen.
+      const double visible = double(c.patches.size()), supported_visible = c.supported * N / std::max(1.0, visible);
+      if (thin && (fit < 0.9 || margin < 0.9 || supported_visible < 0.7 || 2 * visible < N)) {
+        note("a grid of " + grid_size(group) + " found but its colours do not fit the " + t.id +
+             " chart (its best placement runs off the image)");
+        continue;
+      }
       c.angle = chart_angle(corners);
       c.orientation = static_cast<int>(std::lround(c.angle / 90.0)) % 4 * 90;
       if (c.confidence < options.min_confidence)
@@ -443,7 +449,6 @@ std::vector<ChartCandidate> detect_image(const Frames& frames, const std::vector
     // difference then sees a quarter of its σ (0.31 against 1.22 σ), so the threshold is raised
     // by as much.
     enlarged.flat.noise_multiple = 4 * FlatRegionOptions{}.noise_multiple;
-    enlarged.regions = true;
     out = or_none([&] { return detect_pass(enlarged, wanted, options, 2 * side, coarse ? 0.6 : first_share, 1.0); });
     for (auto& c : out)
       for (double& v : c.corners) v /= 2;

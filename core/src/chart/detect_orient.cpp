@@ -64,6 +64,31 @@ std::vector<bool> usable_flags(const std::vector<bool>& unreliable, size_t n) {
   return unreliable;
 }
 
+// The patches a highlight may reach: those flagged unreliable (clipped, or lit unevenly across
+// their sample) and their 8 neighbours on the chart's grid (a spot's centre can light a patch
+// evenly; its tail crosses the neighbours). Neighbours are told by `positions` (u, v in 0..1
+// across the grid): within one grid step, the smallest non-zero difference of u (of v).
+std::vector<char> glare_reach(const std::vector<Eigen::Vector2d>& positions, const std::vector<bool>& unreliable,
+                              size_t n) {
+  std::vector<char> out(n, 0);
+  if (unreliable.empty()) return out;
+  for (size_t k = 0; k < n; ++k) out[k] = unreliable[k];
+  if (positions.size() != n) return out;
+  double du = 1e300, dv = 1e300;
+  for (size_t a = 0; a < n; ++a)
+    for (size_t b = a + 1; b < n; ++b) {
+      const double x = std::abs(positions[a].x() - positions[b].x()), y = std::abs(positions[a].y() - positions[b].y());
+      if (x > 1e-9) du = std::min(du, x);
+      if (y > 1e-9) dv = std::min(dv, y);
+    }
+  for (size_t a = 0; a < n; ++a)
+    if (unreliable[a])
+      for (size_t b = 0; b < n; ++b)
+        out[b] = out[b] || (std::abs(positions[a].x() - positions[b].x()) < 1.5 * du &&
+                            std::abs(positions[a].y() - positions[b].y()) < 1.5 * dv);
+  return out;
+}
+
 // The terms of the smooth light at a chart position (u, v in 0..1): 1, u, v, u², v², uv.
 std::array<double, 6> light_terms(const Eigen::Vector2d& at) {
   const double u = at.x() - 0.5, v = at.y() - 0.5;
@@ -182,22 +207,77 @@ std::array<int, 2> dihedral(int t, int c, int r) {
   }
 }
 
-// A lattice cell's sample in place_layout: its mean, and whether it is clipped or not uniform.
+// A lattice cell's sample in place_layout: its mean, whether it is clipped or not uniform, and
+// whether a larger square about it is (a highlight's tail that has not reached the centre).
 struct CellSample {
   bool inside = false;
   Vec3 mean = Vec3::Zero();
-  bool unreliable = false;
+  bool unreliable = false, highlight = false;
 };
+
+// Mean RGB of the pixels [x0, x1] × [y0, y1] (inside the image).
+Vec3 box_mean(const RawImage& img, int x0, int y0, int x1, int y1) {
+  Vec3 mean = Vec3::Zero();
+  int n = 0;
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x, ++n)
+      for (int k = 0; k < 3; ++k) mean[k] += img.at(x, y, k);
+  return mean / double(std::max(1, n));
+}
+
+// Whether the pixels [x0, x1] × [y0, y1] are unfit for the colour fit: a clipped pixel, or in a
+// channel the means of the four quadrants differ by more than `threshold` of the mean and by 4
+// standard errors (sample_chart's "nonuniform" test: a highlight or a shadow's edge across it).
+bool unevenly_lit(const RawImage& img, int x0, int y0, int x1, int y1, double threshold) {
+  Vec3 quadrant[4] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+  Vec3 sum = Vec3::Zero(), sq = Vec3::Zero();
+  int count[4] = {0, 0, 0, 0}, n = 0;
+  const bool sat = img.saturated.size() == size_t(img.width) * img.height;
+  const int xm = (x0 + x1 + 1) / 2, ym = (y0 + y1 + 1) / 2;
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x, ++n) {
+      if (sat && img.saturated[size_t(y) * img.width + x]) return true;
+      const int q = (x >= xm) + 2 * (y >= ym);
+      ++count[q];
+      for (int k = 0; k < 3; ++k) {
+        const double v = img.at(x, y, k);
+        sum[k] += v;
+        quadrant[q][k] += v;
+        sq[k] += v * v;
+      }
+    }
+  if (n < 2 || !count[0] || !count[1] || !count[2] || !count[3]) return false;
+  for (int k = 0; k < 3; ++k) {
+    const double mean = sum[k] / n;
+    double qmin = 1e300, qmax = -1e300;
+    for (int q = 0; q < 4; ++q) {
+      qmin = std::min(qmin, quadrant[q][k] / count[q]);
+      qmax = std::max(qmax, quadrant[q][k] / count[q]);
+    }
+    const double standard_error = std::sqrt(std::max(0.0, (sq[k] - n * mean * mean) / (n - 1)) / (n / 4.0));
+    if (qmax - qmin > threshold * mean && qmax - qmin > 4.0 * standard_error) return true;
+  }
+  return false;
+}
 
 }  // namespace
 
-std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
-                                            const std::vector<Eigen::Vector2d>& positions,
-                                            const std::vector<bool>& unreliable) {
+namespace {
+
+// One run of the fit of reference_fit_residuals: the residuals with the glare (`e`) and without
+// it (`glare_free`; the same when no glare is modelled), and the score on the latter.
+struct FitRun {
+  std::vector<double> e, glare_free;
+  double score = 0;
+};
+
+// The fit, without glare (`highlights` empty) or with it on the patches glare_reach finds from
+// `highlights` (flags of patches seen lit unevenly, maybe over a larger area than `unreliable`'s).
+FitRun fit_run(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref, const std::vector<Eigen::Vector2d>& positions,
+               const std::vector<bool>& unreliable, const std::vector<bool>& highlights) {
   const size_t n = rgb.size();
-  if (ref.size() != n || n < 4 || (!positions.empty() && positions.size() != n) ||
-      (!unreliable.empty() && unreliable.size() != n))
-    throw Error(ErrorCode::InvalidArgument, "the 3x3 reference fit needs 4 or more camera/reference pairs");
+  FitRun out;
+  std::vector<double>* glare_free = &out.glare_free;
   const std::vector<bool> left_out = usable_flags(unreliable, n);
   // Relative errors: weight 1/|ref|² (the camera scale is unknown, the reference sets the level).
   double brightest = 0;
@@ -213,13 +293,65 @@ std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const 
   std::vector<char> lit_ok(n, 0);
   std::vector<Vec3> lit = ref;
   std::vector<double> e, sorted;
-  const int iterations = terms ? 5 : 2;
+  // Glare: a highlight adds the illuminant's colour to a patch, rgb = M · (L·ref + g·white) with
+  // g >= 0 (the reference's brightest colour stands for the white: its direction is all that
+  // counts), on the patches a highlight may reach (glare_reach). They are left out of the first
+  // fit (when 6 others remain); then g is fitted per patch with M, and they count again.
+  const std::vector<char> reach = glare_reach(positions, highlights, n);
+  size_t reached = 0;
+  for (char r : reach) reached += r;
+  Vec3 white = ref.front();
+  for (const auto& r : ref)
+    if (r.squaredNorm() > white.squaredNorm()) white = r;
+  std::vector<double> glare(n, 0.0);
+  size_t flagged = 0;
+  for (bool u : highlights) flagged += u;
+  for (size_t k = 0; k < n && reached; ++k)
+    if (n - reached >= 6 ? reach[k] : n - flagged >= 6 && highlights[k]) w[k] = 0;
+  // The light across the chart is then fitted on the patches no highlight reaches, when 8 remain.
+  // (else on those not flagged).
+  const bool light_from_unreached = reached && n - reached >= 8;
+  auto unreliable_at = [&](size_t k) { return reached && highlights[k]; };
+  const int iterations = reached ? (terms ? 7 : 5) : terms ? 5 : 2;
   const LineOrders orders = terms ? line_orders(positions) : LineOrders{};
   for (int it = 0; it < iterations; ++it) {
-    for (size_t k = 0; k < n; ++k) lit[k] = light[k] * ref[k];
-    const Mat3 M = fit_matrix(rgb, lit, w);
+    for (size_t k = 0; k < n; ++k) lit[k] = light[k] * ref[k] + glare[k] * white;
+    Mat3 M = fit_matrix(rgb, lit, w);
     e = relative_residuals(rgb, lit, M);
-    if (it == iterations - 1) break;  // the weights and light below would only serve a next fit
+    if (reached && it == 0) {
+      // A robust start: a highlight's centre can be lit evenly (not flagged) and still be in the
+      // first fit; the worst quarter of the patches it used are dropped and M refitted.
+      sorted.clear();
+      for (size_t k = 0; k < n; ++k)
+        if (w[k] > 0) sorted.push_back(e[k]);
+      if (sorted.size() >= 8) {
+        const auto q3 = sorted.begin() + static_cast<std::ptrdiff_t>(std::floor(0.75 * (sorted.size() - 1)));
+        std::nth_element(sorted.begin(), q3, sorted.end());
+        std::vector<double> trimmed = w;
+        for (size_t k = 0; k < n; ++k)
+          if (e[k] > *q3) trimmed[k] = 0;
+        M = fit_matrix(rgb, lit, trimmed);
+        e = relative_residuals(rgb, lit, M);
+      }
+    }
+    if (it == iterations - 1) {
+      // What is returned: each patch against M·L·ref, its glare included (a highlight shows).
+      if (glare_free) *glare_free = e;
+      if (reached) {
+        for (size_t k = 0; k < n; ++k) lit[k] = light[k] * ref[k];
+        e = relative_residuals(rgb, lit, M);
+      }
+      break;  // the weights and light below would only serve a next fit
+    }
+    // Each reachable patch's glare: the non-negative amount of M·white that best closes its gap.
+    const Vec3 Mw = M * white;
+    if (reached) {
+      for (size_t k = 0; k < n; ++k) {
+        if (reach[k]) glare[k] = std::max(0.0, (rgb[k] - M * (light[k] * ref[k])).dot(Mw) / (Mw.squaredNorm() + 1e-300));
+        lit[k] = light[k] * ref[k] + glare[k] * white;
+      }
+      e = relative_residuals(rgb, lit, M);  // the refit's weights below: with the glare
+    }
     // Refit without the worst 25 % of the patches kept (glare, a shadow, a missing patch).
     sorted.clear();
     for (size_t k = 0; k < n; ++k)
@@ -228,12 +360,14 @@ std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const 
     std::nth_element(sorted.begin(), q3, sorted.end());
     const double cut = *q3;
     for (size_t k = 0; k < n; ++k) w[k] = e[k] > cut ? 0 : w0[k];
-    if (!terms) continue;
+    // Under glare the light waits two rounds: M and the glare first (from the patches the
+    // refit keeps), else the light bends to explain the highlights.
+    if (!terms || (reached && it < 2)) continue;
     // Each patch's light relative to M: ρ = log(rgb·p / |p|²), p = M · ref (bright enough ones).
     for (size_t k = 0; k < n; ++k) {
       const Vec3 p = M * ref[k];
-      const double r = rgb[k].dot(p) / (p.squaredNorm() + 1e-300);
-      lit_ok[k] = !left_out[k] && r > 0 && p.squaredNorm() >= 4e-3 * brightest * M.squaredNorm() / 3;
+      const double r = (rgb[k] - glare[k] * Mw).dot(p) / (p.squaredNorm() + 1e-300);
+      lit_ok[k] = !left_out[k] && !(light_from_unreached ? reach[k] : unreliable_at(k)) && r > 0 && p.squaredNorm() >= 4e-3 * brightest * M.squaredNorm() / 3;
       rho[k] = lit_ok[k] ? detmath::log(r) : 0.0;
     }
     // A shadow's step with the smooth light, on every reliable patch (the refit's weights may
@@ -258,18 +392,51 @@ std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const 
       light[k] = detmath::exp(std::min(kLn2, std::max(-kLn2, l)) + step[k]);
     }
   }
-  return e;
+  out.e = std::move(e);
+  // The score: the patches left out of the fit are left out of it (a third of them at most).
+  std::vector<double> kept;
+  for (size_t k = 0; k < n; ++k)
+    if (!left_out[k]) kept.push_back(out.glare_free[k]);
+  out.score = trimmed_mean(kept);
+  return out;
+}
+
+// Glare is modelled on charts of at most this many patches. On a Digital SG (140) a spot reaches a
+// few % of the patches, which the robust fit leaves out or trims; its g per patch, free on the
+// neighbours of every cell flagged along a shadow's edge, let wrong placements of a small lattice
+// fit as well as the right one (a tilted SG under a shadow: 0.056 against 0.080).
+constexpr size_t kGlareMostPatches = 48;
+
+// The fit without glare, and, when a patch is flagged in `highlights`, the fit with it, kept when
+// it halves the score (its g per patch can explain a little of any misfit: a wrong placement
+// gains too, though less). A cast shadow's edge is flagged as a highlight is (the sample is uneven);
+// glare is additive, of the illuminant's colour, where a shadow takes light in proportion — each
+// model explains its own and the score tells which one the patches show.
+FitRun fit_best(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref, const std::vector<Eigen::Vector2d>& positions,
+                const std::vector<bool>& unreliable, const std::vector<bool>& highlights) {
+  const size_t n = rgb.size();
+  if (ref.size() != n || n < 4 || (!positions.empty() && positions.size() != n) ||
+      (!unreliable.empty() && unreliable.size() != n) || (!highlights.empty() && highlights.size() != n))
+    throw Error(ErrorCode::InvalidArgument, "the 3x3 reference fit needs 4 or more camera/reference pairs");
+  FitRun plain = fit_run(rgb, ref, positions, unreliable, {});
+  if (n > kGlareMostPatches || std::none_of(highlights.begin(), highlights.end(), [](bool b) { return b; })) return plain;
+  FitRun glare = fit_run(rgb, ref, positions, unreliable, highlights);
+  return glare.score < 0.5 * plain.score ? glare : plain;
+}
+
+}  // namespace
+
+std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
+                                            const std::vector<Eigen::Vector2d>& positions,
+                                            const std::vector<bool>& unreliable, std::vector<double>* glare_free) {
+  FitRun run = fit_best(rgb, ref, positions, unreliable, unreliable);
+  if (glare_free) *glare_free = std::move(run.glare_free);
+  return run.e;
 }
 
 double reference_fit_score(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
                            const std::vector<Eigen::Vector2d>& positions, const std::vector<bool>& unreliable) {
-  const std::vector<double> e = reference_fit_residuals(rgb, ref, positions, unreliable);
-  // The patches left out of the fit are left out of the score (a third of them at most).
-  const std::vector<bool> left_out = usable_flags(unreliable, rgb.size());
-  std::vector<double> kept;
-  for (size_t k = 0; k < e.size(); ++k)
-    if (!left_out[k]) kept.push_back(e[k]);
-  return trimmed_mean(kept);
+  return fit_best(rgb, ref, positions, unreliable, unreliable).score;
 }
 
 std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group, const ChartLayout& layout,
@@ -303,36 +470,14 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
     CellSample s;
     if (std::isfinite(c.x()) && std::isfinite(c.y()) && x0 >= 0 && y0 >= 0 && x1 < img.width && y1 < img.height) {
       s.inside = true;
-      // The mean, and the quadrant means and clipped pixels for the uniformity test of
-      // sample_chart (a glare spot or a shadow's edge in the cell; layout.hpp's "nonuniform").
-      Vec3 quadrant[4] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-      Vec3 sq = Vec3::Zero();
-      int count[4] = {0, 0, 0, 0}, n = 0;
-      const bool sat = img.saturated.size() == size_t(img.width) * img.height;
-      const int xm = (x0 + x1 + 1) / 2, ym = (y0 + y1 + 1) / 2;
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x, ++n) {
-          const int q = (x >= xm) + 2 * (y >= ym);
-          ++count[q];
-          for (int k = 0; k < 3; ++k) {
-            const double v = img.at(x, y, k);
-            s.mean[k] += v;
-            quadrant[q][k] += v;
-            sq[k] += v * v;
-          }
-          s.unreliable = s.unreliable || (sat && img.saturated[size_t(y) * img.width + x]);
-        }
-      s.mean /= double(std::max(1, n));
-      for (int k = 0; k < 3 && n > 1 && count[0] && count[1] && count[2] && count[3]; ++k) {
-        double qmin = 1e300, qmax = -1e300;
-        for (int q = 0; q < 4; ++q) {
-          qmin = std::min(qmin, quadrant[q][k] / count[q]);
-          qmax = std::max(qmax, quadrant[q][k] / count[q]);
-        }
-        const double variance = std::max(0.0, (sq[k] - n * s.mean[k] * s.mean[k]) / (n - 1));
-        const double standard_error = std::sqrt(variance / (n / 4.0));
-        s.unreliable = s.unreliable || (qmax - qmin > threshold * s.mean[k] && qmax - qmin > 4.0 * standard_error);
-      }
+      s.mean = box_mean(img, x0, y0, x1, y1);
+      s.unreliable = unevenly_lit(img, x0, y0, x1, y1, threshold);
+      // For the glare model: the test at ±35 % of the pitch (within the patch, clear of its edges).
+      const double ro = std::max(r, 0.35 * pitch);
+      const int u0 = static_cast<int>(std::floor(c.x() - ro)), u1 = static_cast<int>(std::ceil(c.x() + ro));
+      const int w0 = static_cast<int>(std::floor(c.y() - ro)), w1 = static_cast<int>(std::ceil(c.y() + ro));
+      s.highlight = u0 < 0 || w0 < 0 || u1 >= img.width || w1 >= img.height ? s.unreliable
+                                                                              : unevenly_lit(img, u0, w0, u1, w1, threshold);
     }
     cached[slot] = 1;
     return cache[slot] = s;
@@ -364,7 +509,7 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
         pl.found = covered;
         std::vector<Vec3> rgb, ref;
         std::vector<Point> where;
-        std::vector<bool> unreliable;
+        std::vector<bool> unreliable, highlights;
         int outside = 0;
         for (int k = 0; k < N; ++k) {
           const auto& cell = layout.patches[k];
@@ -376,12 +521,13 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
           }
           rgb.push_back(s.mean);
           unreliable.push_back(s.unreliable);
+          highlights.push_back(s.highlight);
           where.emplace_back(C > 1 ? cell.column / (C - 1.0) : 0.5, R > 1 ? cell.row / (R - 1.0) : 0.5);
           if (!reference.empty()) ref.push_back(reference[k]);
         }
         pl.inside = outside == 0;
         if (rgb.size() < std::max<size_t>(6, N / 2)) continue;
-        pl.residual = reference.empty() ? 0.0 : reference_fit_score(rgb, ref, where, unreliable);
+        pl.residual = reference.empty() ? 0.0 : fit_best(rgb, ref, where, unreliable, highlights).score;
         // Corners: chart (u, v) -> layout (c, r) -> lattice -> image.
         const double us[4] = {0, 1, 1, 0}, vs[4] = {0, 0, 1, 1};
         std::vector<Point> k(4);
