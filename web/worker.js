@@ -28,7 +28,7 @@ const handlers = {
     linearisations: T.listLinearisations(), spectral: T.spectralMethod(), surfaces: T.listSurfaceCorrections(), surfacePresets: T.listSurfacePresets(),
     flatFieldModes: T.listFlatFieldModes(), absoluteOptions: T.listAbsoluteOptions(), fusionModes: T.listFusionModes(),
     surfaceOptions: T.listSurfaceOptions(), sensitivityOptions: T.listSensitivityOptions(),
-    layoutOptions: T.listLayoutOptions(), labOptions: T.listLabOptions(),
+    layoutOptions: T.listLayoutOptions(), labOptions: T.listLabOptions(), sampleFlags: T.listSampleFlags(),
     absoluteWhiteRules: T.listAbsoluteWhiteRules(),
     bootstrapOptions: T.bootstrapOptions(),
     exampleLights: T.listExampleLights(), exampleTrainings: T.listExampleTrainings(),

@@ -1,14 +1,48 @@
-// CLI: `tristim models` — the characterisation model table (fit: cmd_fit.cpp; evaluate, compare, apply,
-// export: cmd_evaluate.cpp, cmd_compare.cpp, cmd_apply.cpp, cmd_export.cpp).
+// CLI: `tristim models` — the characterisation model table, and the tables of the numbers and
+// toggles the page builds its chart step from: the custom grid's and the sampled area's bounds
+// (layout_option_table) and the sample flags a recipe may leave out (sample_flag_table). The
+// page's catalog call reads the same rows. (fit: cmd_fit.cpp; evaluate, compare, apply, export:
+// cmd_evaluate.cpp, cmd_compare.cpp, cmd_apply.cpp, cmd_export.cpp.)
 #include <iomanip>
 #include <iostream>
 
 #include "cli.hpp"
 #include "tristim/characterisation/models.hpp"
+#include "tristim/chart/layout_options_table.hpp"
 #include "tristim/io/json.hpp"
+#include "tristim/profile/recipe.hpp"
 
 namespace tristim::cli {
+
+std::string option_rows_help(const std::string& title, const std::vector<OptionSpec>& rows);  // cmd_surface.cpp
+
 namespace {
+
+/// An OptionSpec row as the page's catalog has it (its members, by name).
+json::Value option_json(const OptionSpec& o) {
+  json::Value v = json::Value::object();
+  v.set("name", o.name);
+  v.set("type", o.type);
+  v.set("label", o.label);
+  v.set("default_number", o.default_number);
+  v.set("default_text", o.default_text);
+  v.set("min", o.min);
+  v.set("max", o.max);
+  json::Value choices = json::Value::array();
+  for (const auto& c : o.choices) choices.push(c);
+  v.set("choices", choices);
+  v.set("description", o.description);
+  v.set("step", o.step);
+  v.set("unit", o.unit);
+  return v;
+}
+
+json::Value options_json(const std::vector<OptionSpec>& rows) {
+  json::Value a = json::Value::array();
+  for (const auto& o : rows) a.push(option_json(o));
+  return a;
+}
+
 int run_models(const Args& args, std::ostream& out) {
   args.allow_only({"json"});
   if (args.has("json")) {
@@ -23,16 +57,28 @@ int run_models(const Args& args, std::ostream& out) {
       o.set("family", m.family);
       a.push(o);
     }
-    out << a.dump(2) << "\n";
+    json::Value all = json::Value::object();
+    all.set("models", a);
+    all.set("layout_options", options_json(layout_option_table()));
+    all.set("sample_flags", options_json(sample_flag_table()));
+    out << all.dump(2) << "\n";
     return 0;
   }
   for (const auto& m : model_table())
     out << std::left << std::setw(18) << m.id << std::setw(4) << m.n_terms << m.label << " — " << m.reference
         << (m.duplicate_of.empty() ? "" : " (same as " + m.duplicate_of + ")") << "\n";
+  out << "\n" << option_rows_help("Custom grid and sampled area (tristim sample; the recipe's sampling.layout and area)",
+                                  layout_option_table());
+  out << "\n" << option_rows_help("Sample flags a recipe may leave out (sampling.exclude_flags; default 1: left out)",
+                                  sample_flag_table());
   return 0;
 }
 
-const CommandRegistration reg_models({"models", "list the characterisation models", "tristim models [--json]", run_models});
+const CommandRegistration reg_models({"models",
+                                      "list the characterisation models, the chart grid's bounds and the sample flags",
+                                      "tristim models [--json]\n"
+                                      "  --json: {\"models\": [...], \"layout_options\": [...], \"sample_flags\": [...]}",
+                                      run_models});
 
 }  // namespace
 }  // namespace tristim::cli

@@ -1,7 +1,8 @@
 // A chart cut by the frame (issue 48), from the page to the CLI: the example Passport DNG with its
 // sensor rows below 880 cut off (row D outside the image, as in cut_chart.test.mjs). The page's fit
 // of the 18 patches inside equals `tristim fit --recipe r.json --raw cut.dng` on the recipe the
-// page's profile embeds, to the bit, the CLI naming the 6 patches outside; the page's share link
+// page's profile embeds, to the bit, both naming the 6 patches outside (the fit's left-out list, the
+// profile's recipe: sampling.missing); the page's share link
 // reproduces with `tristim reproduce`. The corner editor shows the handles below the image in a
 // padded view: every handle inside the editor, the editor above what follows it.
 import assert from 'node:assert/strict';
@@ -11,6 +12,7 @@ import { screenshot } from './harness.mjs';
 import { pageTest, step, setCorners, fitMatrix3x3, CLI, artifact } from './journey.mjs';
 import { EXAMPLE } from './image_fixtures.mjs';
 import { CUT, openCutChart } from './cut_chart_fixture.mjs';
+import { loadTristim } from '../wasm/load.mjs';
 
 /// The screen boxes of the corner editor, its handles' rings and the elements that follow it.
 const editorBoxes = (page) => page.evaluate(() => {
@@ -52,10 +54,22 @@ pageTest('a chart cut by the frame: the page\'s fit equals fit --recipe --raw on
   await fitMatrix3x3(page);
   const page_ = await page.evaluate(() => {
     const t = window.tristim, r = t.session.results.find((x) => x.key === t.session.selected);
-    return { profile: r.fit.profile, ids: Array.from(r.ids) };
+    return { profile: r.fit.profile, ids: Array.from(r.ids), excluded: Array.from(r.fit.excluded), note: document.querySelector('#step-fit .summary').textContent };
   });
   const profile = JSON.parse(page_.profile);
   assert.equal(page_.ids.length, 18);
+  // The 6 patches outside the frame: in the fit's left-out list, the step's note, and the profile's
+  // recipe (sampling.missing), so the profile and its link say what the fit was made without.
+  const rowD = ['D1', 'D2', 'D3', 'D4', 'D5', 'D6'];
+  for (const id of rowD) assert.ok(page_.excluded.includes(`${id} (outside the frame)`), `${id} outside the frame in ${page_.excluded}`);
+  assert.match(page_.note, /outside the frame \(not sampled\): D1, D2, D3, D4, D5, D6\./);
+  assert.deepEqual(profile.recipe.sampling.missing, rowD);
+  // The fit step's sample-flag toggles are the engine's table (sample_flag_table: name, label,
+  // default), and the recipe's sampling.exclude_flags lists the checked ones: the engine applies them.
+  const flags = (await loadTristim()).listSampleFlags();
+  const toggles = await page.$$eval('#step-fit input[data-flag]', (l) => l.map((i) => ({ name: i.dataset.flag, checked: i.checked, label: i.labels[0]?.textContent })));
+  assert.deepEqual(toggles, flags.map((f) => ({ name: f.name, checked: f.default_number === 1, label: f.label })));
+  assert.deepEqual(profile.recipe.sampling.exclude_flags, flags.filter((f) => f.default_number === 1).map((f) => f.name));
   assert.ok(!page_.ids.some((id) => id.startsWith('D')), `no row-D patch in the fit: ${page_.ids}`);
   assert.deepEqual(profile.recipe.sampling.corners, EXAMPLE.corners);
   const recipe = artifact('cut-chart-recipe.json'), raw = artifact('cut-chart.dng'), out = artifact('cut-chart-recipe-cli.json');
@@ -68,6 +82,7 @@ pageTest('a chart cut by the frame: the page\'s fit equals fit --recipe --raw on
   assert.deepEqual(cli.model.coefficients, profile.model.coefficients, 'the CLI\'s coefficients are the page\'s, to the bit');
   assert.deepEqual(cli.metrics, profile.metrics);
   assert.deepEqual(cli.training, profile.training);
+  assert.deepEqual(cli.recipe.sampling.missing, rowD, 'the CLI\'s profile names the same missing patches');
 
   // The page's share link reproduces with the CLI.
   await step(page, 'share');
@@ -77,4 +92,7 @@ pageTest('a chart cut by the frame: the page\'s fit equals fit --recipe --raw on
   const rep = spawnSync(CLI, ['reproduce', link], { encoding: 'utf8' });
   assert.equal(rep.status, 0, rep.stderr + rep.stdout);
   assert.match(rep.stdout, /^reproduced/);
+  const again = artifact('cut-chart-recipe-link.json');   // the link's profile, recomputed: it names them too
+  assert.equal(spawnSync(CLI, ['reproduce', link, '--out', again], { encoding: 'utf8' }).status, 0);
+  assert.deepEqual(JSON.parse(fs.readFileSync(again, 'utf8')).recipe.sampling.missing, rowD);
 });

@@ -2,7 +2,7 @@
 // fit them in a few workers side by side, with progress, a cancel button (which terminates those
 // workers) and the rows streaming into the results as each finishes.
 import { h, field, showError, clearError, progressBar, readText } from '../lib/ui.js';
-import { pairData, excludedBy } from '../lib/pairs.js';
+import { pairData, excludeFlags } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
 import { WorkerPool } from './pool.js';
@@ -41,11 +41,23 @@ export function mount(section, app) {
         h('div', { class: 'controls' }, optionsForm(o, choice.objectiveChoices[o.id], () => persist()))));
     }
   }
-  const excludeCb = h('input', { type: 'checkbox', checked: choice.excludeSaturated !== false });
-  excludeCb.addEventListener('change', () => { choice.excludeSaturated = excludeCb.checked; persist(); });
-  const excludeAllCb = h('input', { type: 'checkbox', checked: !!choice.excludeAllFlagged });
-  excludeAllCb.addEventListener('change', () => { choice.excludeAllFlagged = excludeAllCb.checked; persist(); describeData(); });
-  const exclude = (f) => (excludeAllCb.checked ? f.length > 0 : excludeCb.checked && f.includes('saturated'));
+  // The sample flags a fit may leave out: one toggle per row of the engine's table (label, default);
+  // the recipe's sampling.exclude_flags lists those checked and the engine leaves the patches out.
+  // "Every flag" checks them all; unchecked, the table's defaults again.
+  const flagRows = app.catalog.sampleFlags;
+  choice.excludeFlags = excludeFlags(choice, flagRows);
+  const flagBoxes = flagRows.map((f) => h('input', { type: 'checkbox', id: `exclude-${f.name}`, value: f.name, checked: choice.excludeFlags.includes(f.name), dataset: { flag: f.name } }));
+  const excludeAllCb = h('input', { type: 'checkbox', id: 'exclude-flagged' });
+  const setFlags = (names) => {
+    choice.excludeFlags = flagRows.map((f) => f.name).filter((n) => names.includes(n));
+    for (const cb of flagBoxes) cb.checked = choice.excludeFlags.includes(cb.value);
+    excludeAllCb.checked = choice.excludeFlags.length === flagRows.length;
+    persist();
+    describeData();
+  };
+  for (const cb of flagBoxes) cb.addEventListener('change', () => setFlags(flagBoxes.filter((b) => b.checked).map((b) => b.value)));
+  excludeAllCb.addEventListener('change', () => setFlags(excludeAllCb.checked ? flagRows.map((f) => f.name) : excludeFlags({}, flagRows)));
+  excludeAllCb.checked = choice.excludeFlags.length === flagRows.length;
   const whiteCb = h('input', { type: 'checkbox', checked: !!choice.preserveWhite });
   whiteCb.addEventListener('change', () => { choice.preserveWhite = whiteCb.checked; persist(); });
   const heldInput = h('input', { type: 'file', accept: '.csv,.txt,.ti3,.cgats' });
@@ -61,8 +73,8 @@ export function mount(section, app) {
 
   section.append(dataNote, h('div', { class: 'fit-choice' }, modelBox, objBox),
     h('div', { class: 'controls' },
-      h('div', { class: 'check' }, excludeCb, h('label', { for: excludeCb.id = 'exclude-saturated' }, 'Leave out saturated patches')),
-      h('div', { class: 'check' }, excludeAllCb, h('label', { for: excludeAllCb.id = 'exclude-flagged' }, 'Also leave out patches flagged too dark or non-uniform')),
+      ...flagRows.map((f, i) => h('div', { class: 'check', title: f.description }, flagBoxes[i], h('label', { for: flagBoxes[i].id }, f.label))),
+      h('div', { class: 'check' }, excludeAllCb, h('label', { for: excludeAllCb.id }, 'Leave out every flagged patch')),
       h('div', { class: 'check' }, whiteCb, h('label', { for: whiteCb.id = 'preserve-white' }, 'Preserve the white: the fit maps the brightest patch (the chart\'s white) exactly'))),
     h('div', { class: 'controls' }, h('div', { class: 'field-group' }, heldField, heldState, heldClear)),
     h('div', { class: 'controls' }, runBtn, cancelBtn), progress.el, log);
@@ -72,29 +84,29 @@ export function mount(section, app) {
 
   const persist = () => app.save('fitChoice', JSON.parse(JSON.stringify(choice)));
 
-  /// The patches paired as the fit pairs them (the engine's pairing, lib/pairs.js), with `exclude`
-  /// the ids the recipe's sampling.exclude lists; {error} when the engine refuses the pairing.
+  /// The patches paired as the fit pairs them (the engine's pairing, lib/pairs.js, with the
+  /// recipe's sampling.exclude_flags); {error} when the engine refuses the pairing.
   let described = 0;
   async function describeData() {
     const mine = ++described;
     const s = app.derived.sample, r = app.derived.reference;
     if (!s || !r) { dataNote.textContent = 'Fitting needs a reference (step 1) and a sampled chart (step 2).'; return null; }
-    const left = excludedBy(s, exclude);   // the toggles' rule: what "left out as flagged" lists
-    const rule = choice.excludeAllFlagged ? { exclude: [], exclude_flagged: true } : { exclude: left, exclude_flagged: false };
     let d;
     try {
-      d = { ...(await pairData(engine, s, r, rule)), exclude: rule.exclude };
+      d = await pairData(engine, s, r, { exclude_flags: choice.excludeFlags });
     } catch (error) {
       if (mine === described) dataNote.textContent = `The sampled chart does not pair with the reference: ${error.message}.`;
       return { error };
     }
     if (mine !== described) return d;
+    // the engine's left-out lines ("A3 (saturated)"), those of the patches outside the frame last
+    const outside = s.missing ?? [], flagged = d.excluded.slice(0, d.excluded.length - outside.length);
     const surface = app.session.surface, corrected = surface && surface.method !== 'none' && !r.settings.referenceFile;
     dataNote.textContent = `${d.ids.length} patches pair sampled RGB with reference XYZ`
       + (corrected ? ` (the reference corrected for the capture geometry: ${surface.method}, step 1b)` : '')
       + linearisationText(app.session.linearisation, app.derived.image?.metadata)
-      + (left.length ? `; left out as flagged: ${left.join(', ')}` : '')
-      + (s.missing?.length ? `; outside the frame (not sampled): ${s.missing.join(', ')}` : '')
+      + (flagged.length ? `; left out: ${flagged.join(', ')}` : '')
+      + (outside.length ? `; outside the frame (not sampled): ${outside.join(', ')}` : '')
       + (app.derived.sample2 ? `; and the ${app.derived.sample2.ids.length} patches of the second chart image (${secondName(app)}, step 2): one fit on both` : '') + '.';
     return d;
   }
@@ -103,7 +115,6 @@ export function mount(section, app) {
   app.on('reference', describeData);
   app.on('surface', describeData);
   app.on('linearisation', describeData);
-  excludeCb.addEventListener('change', describeData);
 
   /// The held-out set {name, ids, rgb, xyz} from a patch file, paired with the reference by id.
   async function loadHeldOut(file) {
@@ -199,8 +210,8 @@ export function mount(section, app) {
     const results = [];
     const ref = app.derived.reference;
     const { source, settings, data_digest, ...reference } = ref;   // the engine's ReferenceChart
-    const { layout, homography, patches } = app.derived.sample;     // the engine's ChartSample
-    const sample = { layout, homography, patches };
+    const { layout, homography, patches, missing = [] } = app.derived.sample;     // the engine's ChartSample
+    const sample = { layout, homography, patches, missing };   // a cut chart's missing patches: in the profile's recipe
     const t0 = performance.now();
     let done = 0, autoKey = null, frame = 0, lastDraw = 0, shownFirst = null;
     // The page draws what the arriving rows change — the results table, the rows' log lines, the
@@ -223,7 +234,8 @@ export function mount(section, app) {
     };
     try {
       const task = async (client, job) => {
-        job.recipe = await withImages(app, recipeFor(job.mId, job.obj, ref, data), exclude);   // a second chart image: both
+        // a second chart image: both (its entry takes the recipe's exclude_flags, the engine applies them)
+        job.recipe = await withImages(app, recipeFor(job.mId, job.obj, ref, data), () => false);
         return client.call('fit', { recipe: job.recipe, sample, reference, heldOut, charts: chartsOf(app, job.recipe, sample, reference) });
       };
       const onRow = (job, { result: fit, error }) => {
@@ -309,7 +321,7 @@ export function mount(section, app) {
         // the light trap of step 2 (Abed 2013 App. C step 1) and the flare it subtracted
         ...(sample.lightTrap ? { light_trap: sample.lightTrapCorners, flare: Array.from(sample.lightTrap.mean) } : {}) },
       sampling: { layout: s.layout ?? { chart: 'passport' }, corners: sample.corners, area: s.sampleOptions?.area ?? 0.5,
-        exclude: data.exclude, exclude_flagged: !!choice.excludeAllFlagged },
+        exclude: [], exclude_flagged: false, exclude_flags: choice.excludeFlags },
       // the linearisation step's choice (step 2b): the fit trains on the linearised camera RGB
       linearisation: s.linearisation ?? { method: 'identity' },
       // the surface step's correction of a built-in chart's spectra (an uploaded reference stays as read)
@@ -378,7 +390,7 @@ function toggle(list, v, on) {
 /// in `tristim compare`) with every objective.
 function defaultChoice(models, objectives) {
   return { models: models.filter((m) => !m.duplicate_of).map((m) => m.id), objectives: objectives.map((o) => o.id),
-    excludeSaturated: true, excludeAllFlagged: false, preserveWhite: false };
+    preserveWhite: false };   // excludeFlags: the engine's defaults (excludeFlags, lib/pairs.js)
 }
 
 /// The models whose rows a fresh session shows first (the first of these the engine has) while

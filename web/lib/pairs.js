@@ -1,11 +1,23 @@
 // The page's one way to pair sampled camera RGB with reference XYZ: the engine's pairing
 // (trainingSet, profile/characterise.hpp), the one the fit, its leave-one-out and
 // `tristim fit --recipe` train on. In the sample's order; by normalised patch id; leaving out the
-// ids of the recipe's `sampling.exclude` and, with `sampling.exclude_flagged`, every flagged patch.
+// ids of the recipe's `sampling.exclude` and the patches with a flag `sampling.exclude_flags` lists
+// (or, with `sampling.exclude_flagged`, any flag).
 
-/// The ids of `sample`'s patches whose flags `rule(flags)` leaves out (the recipe's
-/// sampling.exclude list the page writes for its "leave out saturated" toggle).
+/// The ids of `sample`'s patches whose flags `rule(flags)` leaves out.
 export const excludedBy = (sample, rule) => sample.ids.filter((id, i) => rule(sample.flags?.[i] ?? []));
+
+/// The sample flags the fit step leaves out (its recipes' sampling.exclude_flags), in the engine's
+/// table's order (`rows`: catalog.sampleFlags): the fit step's choice; for a session saved before
+/// the choice was a list, its two toggles (excludeAllFlagged: every flag; excludeSaturated off:
+/// none); otherwise the table's defaults (the rows with default 1).
+export function excludeFlags(fitChoice, rows) {
+  const names = rows.map((f) => f.name);
+  if (Array.isArray(fitChoice?.excludeFlags)) return names.filter((n) => fitChoice.excludeFlags.includes(n));
+  if (fitChoice?.excludeAllFlagged) return names;
+  if (fitChoice?.excludeSaturated === false) return [];
+  return rows.filter((f) => f.default_number === 1).map((f) => f.name);
+}
 
 /// Pairs a ChartSample (`patches`, `missing`) with a ReferenceChart through the engine's worker.
 /// Resolves to {ids, labels, rgb, xyz, excluded} (`excluded`: the engine's "A3 (saturated)" lines);

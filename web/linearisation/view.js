@@ -9,7 +9,7 @@
 // (app.session.linearisation), which the fit step applies.
 import { h, field, select, showError, clearError, fmt, progressBar } from '../lib/ui.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
-import { pairData, excludedBy } from '../lib/pairs.js';
+import { pairData, excludeFlags } from '../lib/pairs.js';
 import { figure, cssColours } from '../plots/common.js';
 import { oecfPlot } from '../plots/inverse_oecf.js';
 import { reflectancePlot, patchBarsPlot } from '../plots/reflectance.js';
@@ -97,14 +97,12 @@ export function mount(section, app) {
   }
 
   /// The paired training patches, as the fit step pairs them (the engine's pairing with the fit
-  /// step's exclusion rule); `saturated`: the saturated patches that rule leaves out.
+  /// step's sample flags, sampling.exclude_flags); `excluded`: the engine's "A3 (saturated)" lines.
   async function training() {
     const s = app.derived.sample, r = app.derived.reference;
     if (!s || !r) return null;
-    const fc = app.session.fitChoice ?? {};
-    const all = !!fc.excludeAllFlagged, saturated = all || fc.excludeSaturated !== false ? excludedBy(s, (f) => f.includes('saturated')) : [];
-    const rule = all ? { exclude: [], exclude_flagged: true } : { exclude: saturated, exclude_flagged: false };
-    return { ...(await pairData(engine, s, r, rule)), saturated, reference: r };
+    const exclude_flags = excludeFlags(app.session.fitChoice, app.catalog.sampleFlags);
+    return { ...(await pairData(engine, s, r, { exclude_flags })), reference: r };
   }
 
   let seq = 0, stale = true;
@@ -158,7 +156,7 @@ export function mount(section, app) {
     const warnings = lin.message ? lin.message.split('; ') : [];
     const clipped = warnings.filter((w) => /clipped/.test(w));
     const noted = warnings.filter((w) => !/clipped/.test(w) && !/not increasing/.test(w) && !/^extrapolated /.test(w));
-    const left = d.saturated;
+    const left = d.excluded;   // the engine's lines: "A3 (saturated)", "D1 (outside the frame)"
     summary.dataset.method = lin.choice.method;
     summary.textContent = `${byId[lin.choice.method]?.label ?? lin.choice.method}: `
       + (lin.fitted.length ? `fitted on ${lin.fitted.length} of ${d.ids.length} paired patches` : `a stated curve (nothing fitted), applied to the ${d.ids.length} paired patches`)
@@ -172,7 +170,7 @@ export function mount(section, app) {
     monotonicWarn.textContent = lin.monotonic ? '' : `Not monotonic over the data range: ${warnings.filter((w) => /not increasing/.test(w)).join('; ') || lin.message}. `
       + 'A decreasing stretch maps two exposures to one value; try a lower order K or another method.';
     clipWarn.hidden = !clipped.length && !left.length;
-    clipWarn.textContent = [left.length ? `Left out as saturated in the image (flagged in step 2): ${left.join(', ')}.` : '',
+    clipWarn.textContent = [left.length ? `Left out of the fit (step 2): ${left.join(', ')}.` : '',
       ...clipped.map((w) => `${w[0].toUpperCase()}${w.slice(1)}.`),
       stored() && image().bits === 8 && (clipped.length || left.length) ? 'An 8-bit image keeps nothing above 255: expose the chart so that its white stays below the top code.' : '']
       .filter(Boolean).join(' ');

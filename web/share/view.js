@@ -14,9 +14,9 @@ export function mount(section, app) {
   const selected = () => (app.session.results ?? []).find((r) => r.key === app.session.selected) ?? app.session.results?.[0];
   const fitInputs = (recipe) => {
     const { source, settings, data_digest, ...reference } = app.derived.reference ?? {};
-    const { layout, homography, patches } = app.derived.sample ?? {};
+    const { layout, homography, patches, missing = [] } = app.derived.sample ?? {};   // missing: a cut chart's, in the link's recipe
     if (!app.derived.reference || !patches) throw Object.assign(new Error('no chart sample yet: set the reference and sample the chart first'), { code: 'NO_PROFILE' });
-    const sample = { layout, homography, patches };
+    const sample = { layout, homography, patches, missing };
     return { reference, sample, charts: several(recipe) ? chartsOf(app, recipe, sample, reference) : undefined };
   };
   // A fit on several chart images (the recipe's `images`): the link is made on the union of their

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "tristim/capture/calibration.hpp"
+#include "tristim/chart/layout_options_table.hpp"
 #include "tristim/error.hpp"
 
 namespace tristim {
@@ -46,6 +47,21 @@ constexpr double kSgGap = 0.0;
 
 double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 
+// The bounds of a custom grid's numbers: layout_option_table()'s rows (the page's inputs and
+// `tristim sample --help` show the same).
+const OptionSpec& bound(const std::string& name) {
+  static const std::vector<OptionSpec> rows = layout_option_table();
+  for (const OptionSpec& o : rows)
+    if (o.name == name) return o;
+  throw Error(ErrorCode::UnknownId, "layout option table: no row '" + name + "'");
+}
+
+std::string number_text(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
 }  // namespace
 
 std::vector<std::string> chart_layout_ids() {
@@ -53,7 +69,8 @@ std::vector<std::string> chart_layout_ids() {
 }
 
 ChartLayout chart_layout(const LayoutOptions& o) {
-  if (o.gap > 2) throw Error(ErrorCode::InvalidArgument, "gap must be below 2 patch sizes");
+  if (o.gap > bound("gap").max)
+    throw Error(ErrorCode::InvalidArgument, "gap must be at most " + number_text(bound("gap").max) + " patch sizes");
   if (o.chart == "cc24" || o.chart == "cc24-2005" || o.chart == "passport") {
     // ColorChecker Classic / Passport classic side: 4 rows A-D, 6 columns 1-6; A1 = dark skin.
     ChartLayout L = grid(o.chart, 4, 6, 0, 0, 0, 0, o.gap >= 0 ? o.gap : kClassicGap);
@@ -67,11 +84,15 @@ ChartLayout chart_layout(const LayoutOptions& o) {
     return L;
   }
   if (o.chart == "custom") {
-    if (o.rows < 1 || o.columns < 1 || o.rows > 1000 || o.columns > 1000)
-      throw Error(ErrorCode::InvalidArgument, "a custom chart needs 1..1000 rows and columns, got " +
-                                                  std::to_string(o.rows) + " x " + std::to_string(o.columns));
+    const OptionSpec &R = bound("rows"), &C = bound("columns");
+    if (o.rows < R.min || o.columns < C.min || o.rows > R.max || o.columns > C.max)
+      throw Error(ErrorCode::InvalidArgument, "a custom chart needs " + number_text(R.min) + ".." + number_text(R.max) +
+                                                  " rows and " + number_text(C.min) + ".." + number_text(C.max) +
+                                                  " columns, got " + std::to_string(o.rows) + " x " + std::to_string(o.columns));
+    // A margin may pass its row's max (0.49: the page's box) as long as the opposite one leaves room.
     for (double m : {o.margin_left, o.margin_top, o.margin_right, o.margin_bottom})
-      if (!(m >= 0 && m < 1)) throw Error(ErrorCode::InvalidArgument, "margins must be fractions in [0, 1)");
+      if (!(m >= bound("margin_left").min && m < 1))
+        throw Error(ErrorCode::InvalidArgument, "margins must be fractions in [" + number_text(bound("margin_left").min) + ", 1)");
     if (!(o.margin_left + o.margin_right < 0.99) || !(o.margin_top + o.margin_bottom < 0.99))
       throw Error(ErrorCode::InvalidArgument, "margins leave no room for patches");
     ChartLayout L = grid("custom", o.rows, o.columns, o.margin_left, o.margin_top, o.margin_right,

@@ -141,3 +141,30 @@ TEST_CASE("a chart cut by the frame: the profile's recipe names the patches it w
   whole.missing.clear();
   CHECK(characterise(back.recipe, training_set(back.recipe, whole, ref)).recipe.sampling.missing.empty());
 }
+
+#if !defined(__EMSCRIPTEN__) && defined(TRISTIM_CLI)
+#include "shell.hpp"
+#include "tristim/chart/layout_options_table.hpp"
+#include "tristim/io/json.hpp"
+
+TEST_CASE("tristim models --json lists the layout option and sample flag tables as the engine has them", "[flags][cli]") {
+  const json::Value all = json::parse(test::run_shell(std::string(TRISTIM_CLI) + " models --json"));
+  CHECK(all.at("models").as_array().size() > 0);
+  const auto same = [](const json::Value& listed, const std::vector<OptionSpec>& rows) {
+    REQUIRE(listed.as_array().size() == rows.size());
+    for (size_t k = 0; k < rows.size(); ++k) {
+      const json::Value& o = listed.as_array()[k];
+      CHECK(o.at("name").as_string() == rows[k].name);
+      CHECK(o.at("label").as_string() == rows[k].label);
+      CHECK(o.at("type").as_string() == rows[k].type);
+      CHECK(o.at("min").as_number() == rows[k].min);
+      CHECK(o.at("max").as_number() == rows[k].max);
+      CHECK(o.at("default_number").as_number() == rows[k].default_number);
+      CHECK(o.at("step").as_number() == rows[k].step);
+      CHECK(o.at("unit").as_string() == rows[k].unit);
+    }
+  };
+  same(all.at("layout_options"), layout_option_table());
+  same(all.at("sample_flags"), sample_flag_table());
+}
+#endif
