@@ -60,7 +60,9 @@ TEST_CASE("absolute option table: its rows, and the recipe's defaults are the ro
 }
 
 TEST_CASE("absolute option table: complete_absolute_recipe refuses a number past a row's bounds", "[absolute][catalog]") {
-  for (const auto& [name, o] : by_name(absolute_option_table)) {
+  for (const auto& row : by_name(absolute_option_table)) {
+    const std::string& name = row.first;  // not a structured binding: lambdas below capture it
+    const OptionSpec& o = row.second;
     if (o.type != "number") continue;
     INFO(name);
     CHECK(refusal([&] { complete_absolute_recipe(with_number(name, o.max)); }) == "");
