@@ -9,6 +9,7 @@
 #include "cli.hpp"
 #include "tristim/characterisation/models.hpp"
 #include "tristim/chart/layout_options_table.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/json.hpp"
 #include "tristim/profile/recipe.hpp"
 
@@ -20,21 +21,11 @@ namespace {
 
 /// An OptionSpec row as the page's catalog has it (its members, by name).
 json::Value option_json(const OptionSpec& o) {
-  json::Value v = json::Value::object();
-  v.set("name", o.name);
-  v.set("type", o.type);
-  v.set("label", o.label);
-  v.set("default_number", o.default_number);
-  v.set("default_text", o.default_text);
-  v.set("min", o.min);
-  v.set("max", o.max);
   json::Value choices = json::Value::array();
   for (const auto& c : o.choices) choices.push(c);
-  v.set("choices", choices);
-  v.set("description", o.description);
-  v.set("step", o.step);
-  v.set("unit", o.unit);
-  return v;
+  return fields::object({{"name", o.name}, {"type", o.type}, {"label", o.label}, {"default_number", o.default_number},
+                         {"default_text", o.default_text}, {"min", o.min}, {"max", o.max}, {"choices", choices},
+                         {"description", o.description}, {"step", o.step}, {"unit", o.unit}});
 }
 
 json::Value options_json(const std::vector<OptionSpec>& rows) {
@@ -47,21 +38,13 @@ int run_models(const Args& args, std::ostream& out) {
   args.allow_only({"json"});
   if (args.has("json")) {
     json::Value a = json::Value::array();
-    for (const auto& m : model_table()) {
-      json::Value o = json::Value::object();
-      o.set("id", m.id);
-      o.set("label", m.label);
-      o.set("reference", m.reference);
-      o.set("n_terms", m.n_terms);
-      o.set("duplicate_of", m.duplicate_of);
-      o.set("family", m.family);
-      a.push(o);
-    }
-    json::Value all = json::Value::object();
-    all.set("models", a);
-    all.set("layout_options", options_json(layout_option_table()));
-    all.set("sample_flags", options_json(sample_flag_table()));
-    out << all.dump(2) << "\n";
+    for (const auto& m : model_table())
+      a.push(fields::object({{"id", m.id}, {"label", m.label}, {"reference", m.reference}, {"n_terms", m.n_terms},
+                             {"duplicate_of", m.duplicate_of}, {"family", m.family}}));
+    out << fields::object({{"models", a}, {"layout_options", options_json(layout_option_table())},
+                           {"sample_flags", options_json(sample_flag_table())}})
+               .dump(2)
+        << "\n";
     return 0;
   }
   for (const auto& m : model_table())
