@@ -15,7 +15,7 @@ namespace tristim {
 /// Rows named "<subcommand>.<member>": render.exposure, render.shot_gain, render.read_noise,
 /// render.falloff, render.flare, render.seed (LabRenderOptions; `tristim lab render`),
 /// overfit.noise (OverfitOptions::noise; `lab overfit`), table4.noise (lab_table4_exercise's noise;
-/// `lab table4`), metamers.max_match, metamers.top (MetamerOptions; `lab metamers`). Defaults are
+/// `lab table4`: the surface step's Table IV noise row, surface/options_table.hpp), metamers.max_match, metamers.top (MetamerOptions; `lab metamers`). Defaults are
 /// the structs' defaults; every value inside a row's [min, max] is one the function accepts, and
 /// every value outside it is refused with Error(InvalidArgument).
 std::vector<OptionSpec> lab_option_table();
