@@ -23,6 +23,13 @@ std::map<std::string, OptionSpec> by_name(Table table) {
   return m;
 }
 
+/// The rows' names in order, each followed by a space.
+std::string names_of(const std::vector<OptionSpec>& rows) {
+  std::string names;
+  for (const OptionSpec& o : rows) names += o.name + " ";
+  return names;
+}
+
 /// `f()`'s error as "CODE: message", or "" when it returns.
 template <class F>
 std::string refusal(F f) {
@@ -44,9 +51,7 @@ AbsoluteRecipe with_number(const std::string& name, double value) {
 }  // namespace
 
 TEST_CASE("absolute option table: its rows, and the recipe's defaults are the rows'", "[absolute][catalog]") {
-  std::string names;
-  for (const OptionSpec& o : absolute_option_table()) names += o.name + " ";
-  CHECK(names == "transform fusion w noise_floor saturation ");
+  CHECK(names_of(absolute_option_table()) == "transform fusion w noise_floor saturation ");
   const auto rows = by_name(absolute_option_table);
   const AbsoluteOptions d;
   CHECK(rows.at("transform").default_text == d.transform);
@@ -98,9 +103,7 @@ TEST_CASE("absolute option table: a choice the row does not list is refused", "[
 
 TEST_CASE("sensitivity option table: estimate_sensitivities_Jiang2013 refuses K and μ past the rows' bounds",
           "[absolute][sensitivities][catalog]") {
-  std::string names;
-  for (const OptionSpec& o : sensitivity_option_table()) names += o.name + " ";
-  CHECK(names == "components smoothness ");
+  CHECK(names_of(sensitivity_option_table()) == "components smoothness ");
   const auto rows = by_name(sensitivity_option_table);
   const SensitivityOptions d;
   CHECK(rows.at("components").default_number == d.components);

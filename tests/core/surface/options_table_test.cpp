@@ -3,7 +3,7 @@
 // accepted, a value past either bound is refused with a coded error naming the option.
 #include <catch2/catch.hpp>
 
-#include <map>
+#include <algorithm>
 #include <string>
 
 #include "test_support.hpp"
@@ -16,10 +16,12 @@ using namespace tristim;
 
 namespace {
 
-std::map<std::string, OptionSpec> by_name() {
-  std::map<std::string, OptionSpec> m;
-  for (const OptionSpec& o : surface_option_table()) m[o.name] = o;
-  return m;
+/// The row `name` of surface_option_table().
+OptionSpec row(const std::string& name) {
+  const auto rows = surface_option_table();
+  const auto it = std::find_if(rows.begin(), rows.end(), [&](const OptionSpec& o) { return o.name == name; });
+  REQUIRE(it != rows.end());
+  return *it;
 }
 
 // The built-in SG spectra, 380-730 nm at 10 nm (core/data).
@@ -59,17 +61,16 @@ TEST_CASE("surface option table: its rows, units and steps", "[surface][catalog]
     CHECK(!o.description.empty());
   }
   CHECK(names == "range_min range_max noise ");
-  CHECK(by_name().at("range_min").unit == "nm");
-  CHECK(by_name().at("range_min").default_number < by_name().at("range_max").default_number);
+  CHECK(row("range_min").unit == "nm");
+  CHECK(row("range_min").default_number < row("range_max").default_number);
 }
 
 TEST_CASE("surface option table: fit_surface refuses a range past the rows' bounds", "[surface][catalog]") {
   const SpectralData d = sg();
-  const auto rows = by_name();
-  const double lo = rows.at("range_min").default_number, hi = rows.at("range_max").default_number;
+  const double lo = row("range_min").default_number, hi = row("range_max").default_number;
   CHECK(fit_over(d, lo, hi).first == "");
   for (const char* name : {"range_min", "range_max"}) {
-    const OptionSpec& o = rows.at(name);
+    const OptionSpec o = row(name);
     for (double past : {o.min - 1, o.max + 1}) {
       INFO(name << " = " << past);
       const bool first = std::string(name) == "range_min";
@@ -80,13 +81,13 @@ TEST_CASE("surface option table: fit_surface refuses a range past the rows' boun
   }
   // At a bound the range is the rows' to take: the SG's 380-730 nm does not cover 300 nm, which
   // the data refuses (WavelengthMismatch), not the bound.
-  CHECK(fit_over(d, rows.at("range_min").min, hi).first == "WAVELENGTH_MISMATCH");
+  CHECK(fit_over(d, row("range_min").min, hi).first == "WAVELENGTH_MISMATCH");
   // "both 0" stays the overlap of the two sets.
   CHECK(fit_over(d, 0, 0).first == "");
 }
 
 TEST_CASE("surface option table: the simulated Table IV refuses a noise past the row's bounds", "[surface][catalog]") {
-  const OptionSpec o = by_name().at("noise");
+  const OptionSpec o = row("noise");
   for (double ok : {o.min, o.default_number, o.max}) {
     INFO("noise " << ok);
     CHECK(geometry_experiment_Abed2013("Nikon_D850", "D50", ok, 1).training.size() == 4);
