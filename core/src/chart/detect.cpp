@@ -121,6 +121,7 @@ struct Frames {
   const RawImage& image;
   const RawImage* stored = nullptr;
   FlatRegionOptions flat = {};
+  bool regions = false;  // lattices grown into flat regions that are not quads too (group_regions)
 };
 
 // One pass of the pipeline on a working image of longer side <= working_side; its progress is
@@ -144,7 +145,12 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
   progress("segment", 0.2);
   const std::vector<PatchQuad> quads = patch_quads(segmented, regions);
   progress("group", 0.3);
-  const std::vector<GridGroup> groups = group_grids(quads, 4);
+  std::vector<GridGroup> groups = group_grids(quads, 4);
+  if (frames.regions) {
+    std::vector<GridGroup> more = group_regions(quads, regions, 4);
+    groups.insert(groups.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+    std::stable_sort(groups.begin(), groups.end(), [](const GridGroup& a, const GridGroup& b) { return a.cells.size() > b.cells.size(); });
+  }
   progress("orient", 0.4);
 
   std::vector<ChartCandidate> found;
@@ -449,6 +455,7 @@ std::vector<ChartCandidate> detect_image(const Frames& frames, const std::vector
     // difference then sees a quarter of its σ (0.31 against 1.22 σ), so the threshold is raised
     // by as much.
     enlarged.flat.noise_multiple = 4 * FlatRegionOptions{}.noise_multiple;
+    enlarged.regions = true;
     out = or_none([&] { return detect_pass(enlarged, wanted, options, 2 * side, coarse ? 0.6 : first_share, 1.0); });
     for (auto& c : out)
       for (double& v : c.corners) v /= 2;
