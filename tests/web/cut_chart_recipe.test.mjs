@@ -70,6 +70,9 @@ pageTest('a chart cut by the frame: the page\'s fit equals fit --recipe --raw on
   const toggles = await page.$$eval('#step-fit input[data-flag]', (l) => l.map((i) => ({ name: i.dataset.flag, checked: i.checked, label: i.labels[0]?.textContent })));
   assert.deepEqual(toggles, flags.map((f) => ({ name: f.name, checked: f.default_number === 1, label: f.label })));
   assert.deepEqual(profile.recipe.sampling.exclude_flags, flags.filter((f) => f.default_number === 1).map((f) => f.name));
+  await step(page, 'fit');
+  await page.locator('#step-fit .summary').scrollIntoViewIfNeeded();
+  await screenshot(page, 'cut-chart-recipe-2-fit');
   assert.ok(!page_.ids.some((id) => id.startsWith('D')), `no row-D patch in the fit: ${page_.ids}`);
   assert.deepEqual(profile.recipe.sampling.corners, EXAMPLE.corners);
   const recipe = artifact('cut-chart-recipe.json'), raw = artifact('cut-chart.dng'), out = artifact('cut-chart-recipe-cli.json');
