@@ -165,6 +165,24 @@ TrainingSet training_set(const Recipe& in, const std::vector<std::string>& in_id
   return finish(std::move(ids), std::move(labels), std::move(rgb), std::move(xyz), std::move(excluded));
 }
 
+namespace {
+
+/// What a recipe's capture stage does to a chart image before it is sampled, on both paths (one
+/// image, or an entry of `images`): a stored (TIFF/PNG/JPEG) image's full scale becomes the
+/// saturation when none is set, and the light trap, if any, is measured again on this image
+/// (Abed 2013 App. C step 1; after the dark frame of `frames` when given) and its flare added to
+/// `cal`. Returns the trap (all 0 without one).
+LightTrap capture_on_image(CaptureStage& cap, const RawImage& image, const SampleOptions& so, FrameCalibration& cal,
+                           const FrameCalibration* frames) {
+  if (image.meta.encoding == "stored" && cap.saturation == 0) cap.saturation = image.meta.white_level;
+  if (!cap.has_light_trap()) return {};
+  const LightTrap trap = measure_light_trap(image, cap.light_trap, so, frames);
+  cal = with_light_trap(cal, trap);
+  return trap;
+}
+
+}  // namespace
+
 SampleOptions recipe_sample_options(const SamplingStage& sampling) {
   SampleOptions so;
   so.area = sampling.area;
@@ -176,14 +194,10 @@ ChartSample sample_recipe_chart(Recipe& recipe, const RawImage& image, LightTrap
   const std::array<double, 8>& corners = recipe.sampling.corners;
   if (std::all_of(corners.begin(), corners.end(), [](double v) { return v == 0; }))
     throw Error(ErrorCode::InvalidArgument, "the recipe has no chart corners to sample the image with");
-  if (image.meta.encoding == "stored" && recipe.capture.saturation == 0) recipe.capture.saturation = image.meta.white_level;
   const SampleOptions so = recipe_sample_options(recipe.sampling);
   FrameCalibration cal;
-  if (recipe.capture.has_light_trap()) {  // Abed 2013 App. C step 1: measured again on this image
-    const LightTrap measured = measure_light_trap(image, recipe.capture.light_trap, so);
-    if (trap) *trap = measured;
-    cal = with_light_trap(cal, measured);
-  }
+  const LightTrap measured = capture_on_image(recipe.capture, image, so, cal, nullptr);
+  if (trap && recipe.capture.has_light_trap()) *trap = measured;
   return sample_chart(image, recipe.sampling.layout, corners, so, &cal);
 }
 
@@ -195,7 +209,6 @@ std::vector<ChartSample> sample_recipe_image(RecipeImage& e, size_t index, const
   try {
     e.sha256 = sha256_hex(bytes, size);
     const RawImage image = decode_any(bytes, size);
-    if (image.meta.encoding == "stored" && e.capture.saturation == 0) e.capture.saturation = image.meta.white_level;
     const SampleOptions so = recipe_sample_options(e.sampling);
     FrameCalibration cal;
     if (!frames.darks.empty()) {  // Abed 2013 App. C step 1: this image's own dark frames, averaged
@@ -217,11 +230,9 @@ std::vector<ChartSample> sample_recipe_image(RecipeImage& e, size_t index, const
       }
       e.capture.flat_field = !e.capture.falloff;
     }
-    if (e.capture.has_light_trap()) {  // Abed 2013 App. C step 1: measured again on this image, after its dark frame
-      const LightTrap trap = measure_light_trap(image, e.capture.light_trap, so, &cal);
-      e.capture.flare = trap.mean;
-      cal = with_light_trap(cal, trap);
-    }
+    const FrameCalibration frames_only = cal;  // the trap is measured after this image's dark frame
+    const LightTrap trap = capture_on_image(e.capture, image, so, cal, &frames_only);
+    if (e.capture.has_light_trap()) e.capture.flare = trap.mean;
     // One chart: its patches outside the frame recorded in the entry (as characterise() records a
     // one-image recipe's); several candidates ("all") each have their own, named in the training set.
     const auto one = [&e](ChartSample sample) {
