@@ -79,6 +79,7 @@ pageTest('three chart images (a custom grid with its reference file, a light tra
     const t = window.tristim, r = t.session.results.find((x) => x.key === t.session.selected);
     return { profile: JSON.parse(r.fit.profile), charts: r.fit.charts, ids: Array.from(r.ids) };
   });
+  assert.match(await page.textContent('#step-fit .summary'), /and the 48 patches of chart images 2–3 \(grid\.dng, flare\.dng, step 2\): one fit on all/);
   const { images } = made.profile.recipe;
   assert.deepEqual(images.map((e) => e.name), ['passport.dng', 'grid.dng', 'flare.dng']);
   assert.deepEqual(images[1].sampling.layout, { chart: 'custom', rows: Number(files.grid.rows), columns: Number(files.grid.columns), margins: [0, 0, 0, 0], gap: 0 });

@@ -11,6 +11,7 @@ import { h, field, select, setOptions, showError, clearError, numberValue, downl
 import { figure } from '../plots/common.js';
 import { sensitivitiesPlot } from '../plots/sensitivities.js';
 import { optionInput, optionLabel } from './option_input.js';
+import { excludeFlags } from '../lib/pairs.js';
 
 const fold = (s) => String(s).toLowerCase().replace(/[\s_-]+/g, ' ').trim();
 const ratio = (a) => `${(a[0] / a[1]).toFixed(4)} / ${(a[2] / a[1]).toFixed(4)}`;
@@ -156,11 +157,13 @@ export function mountSensitivities(app, { onChoice }) {
     } catch (e) { fileInfo.textContent = ''; showError(fileInput, e, f.name); }
   });
 
-  /// The chart step's samples as {ids, rgb}, saturated patches left out.
+  /// The chart step's samples as {ids, rgb}, the patches the Fit step's flag rule leaves out (the
+  /// engine's sample_flag_table; saturated by default) left out.
   function chartPatches() {
     const s = app.derived.sample;
     if (!s?.patches?.length) throw Object.assign(new Error('no sampled chart: place the chart in step 2 first, or choose a patch file'), { code: 'NO_PATCHES' });
-    const used = s.patches.filter((p) => !p.flags?.includes('saturated'));
+    const left = excludeFlags(app.session.fitChoice, app.catalog.sampleFlags);
+    const used = s.patches.filter((p) => !p.flags?.some((f) => left.includes(f)));
     const rgb = new Float64Array(3 * used.length);
     used.forEach((p, i) => rgb.set(p.mean, 3 * i));
     return { ids: used.map((p) => p.id), rgb, left: s.patches.length - used.length };

@@ -6,7 +6,7 @@ import { pairData, excludeFlags } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
 import { WorkerPool } from './pool.js';
-import { withImages, chartsOf, secondName } from '../images/second.js';
+import { withImages, chartsOf, extraCharts } from '../images/second.js';
 
 export function mount(section, app) {
   const { engine } = app;
@@ -100,6 +100,7 @@ export function mount(section, app) {
     }
     if (mine !== described) return d;
     // the engine's left-out lines ("A3 (saturated)"), those of the patches outside the frame last
+    const extra = extraCharts(app);
     const outside = s.missing ?? [], flagged = d.excluded.slice(0, d.excluded.length - outside.length);
     const surface = app.session.surface, corrected = surface && surface.method !== 'none' && !r.settings.referenceFile;
     dataNote.textContent = `${d.ids.length} patches pair sampled RGB with reference XYZ`
@@ -107,7 +108,7 @@ export function mount(section, app) {
       + linearisationText(app.session.linearisation, app.derived.image?.metadata)
       + (flagged.length ? `; left out: ${flagged.join(', ')}` : '')
       + (outside.length ? `; outside the frame (not sampled): ${outside.join(', ')}` : '')
-      + (app.derived.sample2 ? `; and the ${app.derived.sample2.ids.length} patches of the second chart image (${secondName(app)}, step 2): one fit on both` : '') + '.';
+      + (extra.count ? `; and the ${extra.patches} patches of ${extra.count === 1 ? 'the second chart image' : `chart images 2–${extra.count + 1}`} (${extra.names}, step 2): one fit on ${extra.count === 1 ? 'both' : 'all'}` : '') + '.';
     return d;
   }
   app.on('sample2', describeData);
@@ -235,7 +236,7 @@ export function mount(section, app) {
     try {
       const task = async (client, job) => {
         // a second chart image: both (its entry takes the recipe's exclude_flags, the engine applies them)
-        job.recipe = await withImages(app, recipeFor(job.mId, job.obj, ref, data), () => false);
+        job.recipe = await withImages(app, recipeFor(job.mId, job.obj, ref, data));
         return client.call('fit', { recipe: job.recipe, sample, reference, heldOut, charts: chartsOf(app, job.recipe, sample, reference) });
       };
       const onRow = (job, { result: fit, error }) => {

@@ -96,19 +96,19 @@ function captureOf(app, k, s, capture) {
 /// `images` list — the first image's stages, then each extra image's (its layout or custom grid,
 /// its chart's or its file's reference under step 1's illuminant and observer, its own frames and
 /// light trap; the second chart of the first image: that image's file and stages, its own corners)
-/// — and `duplicates`. `exclude(flags)`: whether the fit leaves a flagged patch out.
-export async function withImages(app, recipe, exclude) {
+/// — and `duplicates`. Every image leaves out the patches the recipe's flag rule names
+/// (`sampling.exclude_flags` / `exclude_flagged`, applied by the engine).
+export async function withImages(app, recipe) {
   const ks = ready(app);
   if (!ks.length) return recipe;
   const first = app.session['files.chart'];
   const sha = (app.derived.chartDigest ??= { bytes: null, sha256: '' });
   if (sha.bytes !== first.bytes) Object.assign(sha, { bytes: first.bytes, sha256: await app.engine.call('digest', { bytes: first.bytes }) });
   const { reference, capture, sampling } = recipe;
-  const excludeFlagged = sampling.exclude_flagged;
+  const rule = { exclude_flagged: sampling.exclude_flagged, ...(sampling.exclude_flags ? { exclude_flags: sampling.exclude_flags } : {}) };
   const entry = (k) => {
     const s = app.derived[`sample${k}`], c = app.session[`chart${k}`];
-    const own = { corners: s.corners, area: sampling.area,
-      exclude: excludeFlagged ? [] : s.ids.filter((id, i) => exclude(s.flags[i])), exclude_flagged: excludeFlagged };
+    const own = { corners: s.corners, area: sampling.area, exclude: [], ...rule };
     if (c.sameImage) return { name: first.name, sha256: sha.sha256, reference, capture, sampling: { ...sampling, ...own } };
     const name = app.session[`files.chart${k}`].name;
     if (c.chart === 'custom' && !c.referenceFile) {
@@ -132,11 +132,17 @@ export async function withImages(app, recipe, exclude) {
 export function chartsOf(app, recipe, sample, reference) {
   if (!recipe.images?.length) return undefined;
   return [{ sample, reference }, ...ready(app).map((k) => {
-    const { layout, homography, patches } = app.derived[`sample${k}`];
+    const { layout, homography, patches, missing = [] } = app.derived[`sample${k}`];   // missing: a cut chart's
     const c = app.session[`chart${k}`], file = app.derived[`reference${k}`];
     const { data_digest, ...own } = file ?? {};
-    return { sample: { layout, homography, patches }, reference: c.sameImage ? reference : (c.referenceFile && file ? own : null) };
+    return { sample: { layout, homography, patches, missing }, reference: c.sameImage ? reference : (c.referenceFile && file ? own : null) };
   })];
+}
+
+/// The extra charts' patch count in all, and what the page's text calls them (secondName).
+export function extraCharts(app) {
+  const ks = ready(app);
+  return { count: ks.length, patches: ks.reduce((n, k) => n + app.derived[`sample${k}`].ids.length, 0), names: secondName(app) };
 }
 
 /// What the extra charts are called in the page's text: their files, or the first image's second chart.
