@@ -74,12 +74,12 @@ bool contains(const std::array<double, 8>& k, const Point& p) {
   return true;
 }
 
-// Best score of the patches' colours against the reference read in another orientation that
+// The scores of the patches' colours against the reference read in each other orientation that
 // maps the grid onto itself (180°, the two mirrors; and 90°/270° for a square grid). `cells`:
 // the layout index (row-major) of each colour in rgb (a chart cut by the frame shows some).
-double symmetric_alternatives(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref, const std::vector<int>& cells,
-                              const std::vector<Point>& where, const std::vector<bool>& unreliable, int R, int C) {
-  double best = 1e9;
+std::vector<FitScores> symmetric_alternatives(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref, const std::vector<int>& cells,
+                                              const std::vector<Point>& where, const std::vector<bool>& unreliable, int R, int C) {
+  std::vector<FitScores> out;
   for (int t = 1; t < 8; ++t) {
     if (t % 2 == 1 && R != C) continue;  // 90° and 270° (and their mirrors) need a square grid
     std::vector<Vec3> permuted;
@@ -92,9 +92,9 @@ double symmetric_alternatives(const std::vector<Vec3>& rgb, const std::vector<Ve
       if (t % 4 == 3) rr = C - 1 - mc, cc = r;          // three quarters (square grids)
       permuted.push_back(ref[size_t(rr) * C + cc]);
     }
-    best = std::min(best, reference_fit_score(rgb, permuted, where, unreliable));
+    out.push_back(reference_fit_scores(rgb, permuted, where, unreliable));
   }
-  return best;
+  return out;
 }
 
 // "4×6": the rows × columns a lattice spans, fewer first.
@@ -281,8 +281,13 @@ std::vector<ChartCandidate> detect_pass(const Frames& frames, const std::vector<
             where.emplace_back(t.grid.columns > 1 ? cell.column / (t.grid.columns - 1.0) : 0.5,
                                t.grid.rows > 1 ? cell.row / (t.grid.rows - 1.0) : 0.5);
           }
-          final_score = reference_fit_score(rgb, ref_visible, where, unreliable);
-          alternative_score = symmetric_alternatives(rgb, t.reference, cells, where, unreliable, t.grid.rows, t.grid.columns);
+          // The found orientation and the symmetric ones, ranked by one model (rank_with_glare).
+          std::vector<FitScores> rivals{reference_fit_scores(rgb, ref_visible, where, unreliable)};
+          for (const FitScores& a : symmetric_alternatives(rgb, t.reference, cells, where, unreliable, t.grid.rows, t.grid.columns))
+            rivals.push_back(a);
+          const bool glare = rank_with_glare(rivals, 0);
+          final_score = glare ? rivals[0].glare : rivals[0].plain;
+          for (size_t a = 1; a < rivals.size(); ++a) alternative_score = std::min(alternative_score, glare ? rivals[a].glare : rivals[a].plain);
           std::vector<double> sorted;  // the residuals with the fitted glare taken off
           const std::vector<double> e = reference_fit_residuals(rgb, ref_visible, where, unreliable, &sorted);
           for (size_t k = 0; k < e.size(); ++k) c.patches.push_back({s.patches[k].id, e[k]});

@@ -424,6 +424,16 @@ FitRun fit_best(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref, cons
   return glare.score < 0.5 * plain.score ? glare : plain;
 }
 
+// The score of one placement without the glare model and with it (the same when it does not
+// apply: no patch flagged in `highlights`, or more than kGlareMostPatches).
+FitScores fit_scores(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref, const std::vector<Eigen::Vector2d>& positions,
+                     const std::vector<bool>& unreliable, const std::vector<bool>& highlights) {
+  const double plain = fit_run(rgb, ref, positions, unreliable, {}).score;
+  if (rgb.size() > kGlareMostPatches || std::none_of(highlights.begin(), highlights.end(), [](bool b) { return b; }))
+    return {plain, plain};
+  return {plain, std::min(plain, fit_run(rgb, ref, positions, unreliable, highlights).score)};
+}
+
 }  // namespace
 
 std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
@@ -437,6 +447,31 @@ std::vector<double> reference_fit_residuals(const std::vector<Vec3>& rgb, const 
 double reference_fit_score(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
                            const std::vector<Eigen::Vector2d>& positions, const std::vector<bool>& unreliable) {
   return fit_best(rgb, ref, positions, unreliable, unreliable).score;
+}
+
+FitScores reference_fit_scores(const std::vector<Vec3>& rgb, const std::vector<Vec3>& ref,
+                               const std::vector<Eigen::Vector2d>& positions, const std::vector<bool>& unreliable) {
+  if (ref.size() != rgb.size() || rgb.size() < 4 || (!positions.empty() && positions.size() != rgb.size()) ||
+      (!unreliable.empty() && unreliable.size() != rgb.size()))
+    throw Error(ErrorCode::InvalidArgument, "the 3x3 reference fit needs 4 or more camera/reference pairs");
+  return fit_scores(rgb, ref, positions, unreliable, unreliable);
+}
+
+bool rank_with_glare(const std::vector<FitScores>& rivals, int chosen) {
+  // How far the best (or the chosen) fit stands from the best other one, under one model.
+  const auto margin = [&](double FitScores::*model) {
+    size_t best = chosen >= 0 ? static_cast<size_t>(chosen) : 0;
+    if (chosen < 0)
+      for (size_t i = 1; i < rivals.size(); ++i) best = rivals[i].*model < rivals[best].*model ? i : best;
+    double other = 1e9;
+    for (size_t i = 0; i < rivals.size(); ++i)
+      if (i != best) other = std::min(other, rivals[i].*model);
+    return std::make_pair(rivals[best].*model, other / std::max(rivals[best].*model, 1e-6));
+  };
+  if (rivals.empty()) return false;
+  const auto [plain, plain_margin] = margin(&FitScores::plain);
+  const auto [glare, glare_margin] = margin(&FitScores::glare);
+  return glare < 0.5 * plain && (rivals.size() < 2 || glare_margin > plain_margin);
 }
 
 std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group, const ChartLayout& layout,
@@ -487,6 +522,7 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
   const double pw = (first.u1 - first.u0) * (1 + layout.gap), ph = (first.v1 - first.v0) * (1 + layout.gap);
   const double uc0 = (first.u0 + first.u1) / 2, vc0 = (first.v0 + first.v1) / 2;
   std::vector<Placement> out;
+  std::vector<FitScores> scores;  // each placement's, without and with the glare model
   for (int t = 0; t < 8; ++t) {
     int pa = 1 << 30, pb = -(1 << 30), qa = 1 << 30, qb = -(1 << 30);
     for (int c : {0, C - 1})
@@ -527,7 +563,7 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
         }
         pl.inside = outside == 0;
         if (rgb.size() < std::max<size_t>(6, N / 2)) continue;
-        pl.residual = reference.empty() ? 0.0 : fit_best(rgb, ref, where, unreliable, highlights).score;
+        scores.push_back(reference.empty() ? FitScores{} : fit_scores(rgb, ref, where, unreliable, highlights));
         // Corners: chart (u, v) -> layout (c, r) -> lattice -> image.
         const double us[4] = {0, 1, 1, 0}, vs[4] = {0, 0, 1, 1};
         std::vector<Point> k(4);
@@ -546,6 +582,10 @@ std::vector<Placement> place_layout(const RawImage& img, const GridGroup& group,
         out.push_back(pl);
       }
   }
+  // One model ranks all the placements of the lattice: per placement the glare model only lowers a
+  // score, a wrong placement's too, so chosen per placement it took a clean chart's margin away.
+  const bool glare = rank_with_glare(scores);
+  for (size_t i = 0; i < out.size(); ++i) out[i].residual = glare ? scores[i].glare : scores[i].plain;
   std::stable_sort(out.begin(), out.end(), [](const Placement& a, const Placement& b) { return a.residual < b.residual; });
   return out;
 }

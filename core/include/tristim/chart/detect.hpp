@@ -269,6 +269,20 @@ double reference_fit_score(const std::vector<Vec3>& camera_RGB, const std::vecto
                            const std::vector<Eigen::Vector2d>& positions = {},
                            const std::vector<bool>& unreliable = {});
 
+/// reference_fit_score without the glare model and with it (`glare` = `plain` when it does not
+/// apply: no patch flagged, or a chart of more than 48 patches). Needs ≥ 4 pairs.
+struct FitScores {
+  double plain = 0, glare = 0;
+};
+FitScores reference_fit_scores(const std::vector<Vec3>& camera_RGB, const std::vector<Vec3>& reference,
+                               const std::vector<Eigen::Vector2d>& positions = {},
+                               const std::vector<bool>& unreliable = {});
+/// Which model ranks a set of rival fits of one lattice (its placements; or the fit `chosen` and
+/// its symmetric alternatives): the glare model when it halves the best score and sets the best
+/// (or `chosen`) fit further from the best other one than the plain fit does. Decided once per
+/// set, never per fit: the glare model lowers a wrong placement's score too.
+bool rank_with_glare(const std::vector<FitScores>& rivals, int chosen = -1);
+
 /// Helpers shared by the steps: a DLT homography (Hartley-normalised, Eigen SVD) mapping
 /// src[i] -> dst[i] (≥ 4 points), and applying one.
 Eigen::Matrix3d fit_homography(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst);
