@@ -11,6 +11,7 @@ struct RawImage;
 struct SpectralData;
 struct LayoutOptions;
 struct MethodInfo;
+struct OptionSpec;
 struct FrameCalibration;
 struct SampleOptions;
 }
@@ -55,6 +56,10 @@ struct CommandRegistration {
 /// A --help section: `title`, then one line per row, "id: label — reference" (the row's own
 /// reference, from its engine table).
 std::string methods_help(const std::string& title, const std::vector<MethodInfo>& rows);
+/// A --help section of OptionSpec rows (an engine table of a command's numbers, as the page's
+/// inputs read it): "name: label (unit), min to max, default d — description"; a choice row lists
+/// its choices.
+std::string option_rows_help(const std::string& title, const std::vector<OptionSpec>& rows);
 /// The characterisation models (model_table(), duplicates named as such) as a methods_help section.
 std::string models_help();
 

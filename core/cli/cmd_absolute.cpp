@@ -30,7 +30,6 @@
 namespace tristim::cli {
 
 /// OptionSpec rows as a --help section (defined in cmd_surface.cpp).
-std::string option_rows_help(const std::string& title, const std::vector<OptionSpec>& rows);
 
 RawImage load_raw_file(const std::string& path) {
   return parse_named(path, read_file(path), [](const std::uint8_t* d, std::size_t n) { return decode_raw(d, n); });

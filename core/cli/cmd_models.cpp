@@ -15,7 +15,6 @@
 
 namespace tristim::cli {
 
-std::string option_rows_help(const std::string& title, const std::vector<OptionSpec>& rows);  // cmd_surface.cpp
 
 namespace {
 

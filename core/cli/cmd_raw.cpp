@@ -111,16 +111,8 @@ namespace {
 
 /// The custom grid's and the sampled area's rows (layout_option_table: the page's inputs).
 std::string layout_options_help() {
-  auto num = [](double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-  };
-  std::string s = "Custom grid and sampled area (the options' bounds; --margins gives the four margin_* in order):\n";
-  for (const OptionSpec& o : layout_option_table())
-    s += "  " + o.name + ": " + o.label + (o.unit.empty() ? "" : " (" + o.unit + ")") + ", " + num(o.min) + " to " +
-         num(o.max) + ", default " + num(o.default_number) + " — " + o.description + "\n";
-  return s;
+  return option_rows_help("Custom grid and sampled area (the options' bounds; --margins gives the four margin_* in order)",
+                          layout_option_table());
 }
 
 int run_sample(const Args& args, std::ostream& out) {

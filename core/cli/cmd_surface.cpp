@@ -22,25 +22,6 @@
 
 namespace tristim::cli {
 
-/// A --help section of OptionSpec rows (an engine table of a command's numbers, as the page's
-/// inputs read it): "name: label (unit), min to max, default d — description"; a choice row lists
-/// its choices. Also used by cmd_absolute*.cpp.
-std::string option_rows_help(const std::string& title, const std::vector<OptionSpec>& rows) {
-  std::ostringstream s;
-  s << title << ":\n";
-  for (const OptionSpec& o : rows) {
-    s << "  " << o.name << ": " << o.label << (o.unit.empty() ? "" : " (" + o.unit + ")") << ", ";
-    if (o.type == "choice" || o.type == "text") {
-      for (size_t k = 0; k < o.choices.size(); ++k) s << (k ? " | " : "") << o.choices[k];
-      s << (o.choices.empty() ? "" : ", ") << "default " << o.default_text;
-    } else {
-      s << o.min << " to " << o.max << ", default " << o.default_number;
-    }
-    s << " — " << o.description << "\n";
-  }
-  return s.str();
-}
-
 namespace {
 
 std::string fixed(double v, int decimals) {
