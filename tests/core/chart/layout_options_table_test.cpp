@@ -4,6 +4,7 @@
 #include <map>
 #include <string>
 
+#include "option_rows.hpp"
 #include "test_support.hpp"
 #include "tristim/capture/raw.hpp"
 #include "tristim/chart/layout.hpp"
@@ -51,20 +52,8 @@ RawImage grey(int w, int h) {
 }  // namespace
 
 TEST_CASE("layout option table: its rows, units and steps", "[chart][catalog]") {
-  const auto rows = layout_option_table();
-  std::string names;
-  for (const auto& o : rows) names += o.name + " ";
-  CHECK(names == "rows columns gap margin_left margin_top margin_right margin_bottom area ");
-  for (const auto& o : rows) {
-    INFO(o.name);
-    CHECK((o.type == "integer" || o.type == "number"));
-    CHECK(o.min < o.max);
-    CHECK(o.default_number >= o.min);
-    CHECK(o.default_number <= o.max);
-    CHECK(o.step > 0);
-    CHECK(!o.label.empty());
-    CHECK(!o.description.empty());
-  }
+  CHECK(tristim::test::check_number_rows(layout_option_table(), false) ==
+        "rows columns gap margin_left margin_top margin_right margin_bottom area ");
   CHECK(by_name().at("area").default_number == SampleOptions{}.area);
   CHECK(by_name().at("margin_top").unit == "fraction of the chart's height");
 }
