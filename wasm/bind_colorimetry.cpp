@@ -39,7 +39,7 @@ EMSCRIPTEN_BINDINGS(tristim_colorimetry) {
   { using S = PatchTable; value_object<S>("PatchTable") FIELD(format) FIELD(ids) FIELD(labels) FIELD(has_XYZ) FIELD(has_Lab)
       FIELD(has_RGB) FIELD(has_spectra) FIELD(XYZ) FIELD(Lab) FIELD(RGB) FIELD(spectra) FIELD(keywords); }
   { using S = PatchPairs; value_object<S>("PatchPairs") FIELD(ids) FIELD(measured) FIELD(reference)
-      FIELD(missing_in_measured) FIELD(missing_in_reference); }
+      FIELD(missing_in_measured) FIELD(missing_in_reference) FIELD(measured_rows) FIELD(reference_rows); }
   { using S = SpectralLocus; value_object<S>("SpectralLocus") FIELD(wavelengths) FIELD(x) FIELD(y); }
   { using S = SimulationOptions; value_object<S>("SimulationOptions") FIELD(white_level) FIELD(noise_sigma) FIELD(seed)
       FIELD(oecf) FIELD(oecf_gamma) FIELD(oecf_scale) FIELD(clip_max) FIELD(quantise); }

@@ -20,8 +20,9 @@ namespace tristim::cli {
 
 // ---- patch tables -----------------------------------------------------------------------
 // Read with the shared readers (tristim/io/patch_files.hpp: CSV or CGATS) and paired by id
-// strictly: every patch of one file must be in the other. Pairing uses the normalised ids; what
-// the commands write uses the ids as the user's file spells them (PatchTable::labels).
+// strictly: every patch of one file must be in the other. Pairing uses the normalised ids and
+// keeps the RGB file's order (pair_by_id, the page's pairing too); what the commands write uses
+// the ids as the user's file spells them (PatchTable::labels).
 
 Vec3 parse_white(const Args& args, const std::string& key, const Vec3& fallback) {
   if (!args.has(key)) return fallback;

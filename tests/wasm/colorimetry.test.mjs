@@ -143,9 +143,11 @@ test('pairById and simulateCamera (the fit will pair simulated RGB with the refe
   const rgb = new Float64Array(72);
   for (let i = 0; i < 24; i++) rgb.set(sim.RGB.subarray(3 * (23 - i), 3 * (24 - i)), 3 * i);
   const p = T.pairById(ref.ids, ref.XYZ, ids, rgb);
-  assert.deepEqual(p.ids, ref.ids);
-  assert.deepEqual(Array.from(p.measured), Array.from(sim.RGB));
-  assert.deepEqual(Array.from(p.reference), Array.from(ref.XYZ));
+  assert.deepEqual(p.ids, [...ref.ids].reverse());   // the measurement's order (the CLI's too)
+  assert.deepEqual(Array.from(p.measured), Array.from(rgb));
+  for (let i = 0; i < 24; i++) assert.deepEqual(Array.from(p.reference.subarray(3 * i, 3 * i + 3)), Array.from(ref.XYZ.subarray(3 * (23 - i), 3 * (24 - i))));
+  assert.deepEqual(Array.from(p.reference_rows), ids.map((_, i) => 23 - i));
+  assert.deepEqual(Array.from(p.measured_rows), ids.map((_, i) => i));
   throwsCode(assert, () => T.pairById(['A1'], [1, 2, 3], ['Z9'], [1, 2, 3]), 'PATCH_MISMATCH');
   const noisy = T.simulateCamera('Nikon_D850', 'cc24', 'D50', { noise_sigma: 1, seed: 5, oecf: true, oecf_gamma: 1.8, oecf_scale: 22, white_level: 80, clip_max: 255, quantise: true });
   for (const v of noisy.RGB) assert.equal(v, Math.round(v));

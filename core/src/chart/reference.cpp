@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <map>
 #include <mutex>
+#include <set>
 
 #include <Eigen/LU>
 
@@ -151,24 +152,29 @@ PatchPairs pair_by_id(const std::vector<std::string>& reference_ids, const std::
                       const std::vector<std::string>& measured_ids, const std::vector<Vec3>& measured) {
   if (reference_ids.size() != reference.size() || measured_ids.size() != measured.size())
     throw Error(ErrorCode::PatchMismatch, "ids and rows differ in number");
-  std::map<std::string, size_t> m;
-  for (size_t i = 0; i < measured_ids.size(); ++i) m.emplace(normalise_patch_id(measured_ids[i]), i);
+  // The measurement's order (see the header): a user's patches in the order they measured them.
+  // It is the order of a chart sample (layout order), so the page, `tristim fit --recipe` and a
+  // profile's training digest see the same rows whether the RGB came from an image or a file.
+  std::map<std::string, size_t> row_of;  // normalised reference id -> its first row
+  for (size_t i = 0; i < reference_ids.size(); ++i) row_of.emplace(normalise_patch_id(reference_ids[i]), i);
+  std::set<std::string> in_measured;
   PatchPairs p;
-  std::map<std::string, bool> in_ref;
-  for (size_t i = 0; i < reference_ids.size(); ++i) {
-    const std::string id = normalise_patch_id(reference_ids[i]);
-    in_ref[id] = true;
-    auto it = m.find(id);
-    if (it == m.end()) {
-      p.missing_in_measured.push_back(id);
+  for (size_t i = 0; i < measured_ids.size(); ++i) {
+    const std::string id = normalise_patch_id(measured_ids[i]);
+    in_measured.insert(id);
+    const auto it = row_of.find(id);
+    if (it == row_of.end()) {
+      p.missing_in_reference.push_back(id);
       continue;
     }
     p.ids.push_back(id);
-    p.reference.push_back(reference[i]);
-    p.measured.push_back(measured[it->second]);
+    p.measured.push_back(measured[i]);
+    p.reference.push_back(reference[it->second]);
+    p.measured_rows.push_back(static_cast<int>(i));
+    p.reference_rows.push_back(static_cast<int>(it->second));
   }
-  for (const auto& id : measured_ids)
-    if (!in_ref.count(normalise_patch_id(id))) p.missing_in_reference.push_back(normalise_patch_id(id));
+  for (const auto& rid : reference_ids)
+    if (!in_measured.count(normalise_patch_id(rid))) p.missing_in_measured.push_back(normalise_patch_id(rid));
   if (p.ids.empty())
     throw Error(ErrorCode::PatchMismatch, "no patch id is shared by the measurement and the reference (e.g. reference '" +
                                               (reference_ids.empty() ? std::string() : reference_ids[0]) + "', measured '" +

@@ -113,11 +113,20 @@ TrainingSet training_set(const Recipe& in, const ChartSample& sample, const Refe
     while (k < reference.ids.size() && normalise_patch_id(reference.ids[k]) != id) ++k;
     return k;
   };
+  // The one pairing (pair_by_id, chart/reference.hpp: the sample's order), as the CLI's --rgb/--xyz.
+  std::vector<std::string> sampled_ids;
+  std::vector<Vec3> means;
   for (const PatchSample& p : sample.patches) {
-    const std::string id = normalise_patch_id(p.id);
-    const size_t k = row_of(id);
-    if (k == reference.ids.size())
-      throw Error(ErrorCode::PatchMismatch, "sampled patch '" + id + "' is not in the reference");
+    sampled_ids.push_back(p.id);
+    means.emplace_back(p.mean[0], p.mean[1], p.mean[2]);
+  }
+  const PatchPairs pairs = sample.patches.empty() ? PatchPairs{} : pair_by_id(reference.ids, reference.XYZ, sampled_ids, means);
+  if (!pairs.missing_in_reference.empty())
+    throw Error(ErrorCode::PatchMismatch, "sampled patch '" + pairs.missing_in_reference.front() + "' is not in the reference");
+  for (size_t i = 0; i < pairs.ids.size(); ++i) {
+    const PatchSample& p = sample.patches[static_cast<size_t>(pairs.measured_rows[i])];
+    const std::string& id = pairs.ids[i];
+    const size_t k = static_cast<size_t>(pairs.reference_rows[i]);
     const std::string& label = labelled ? reference.labels[k] : reference.ids[k];
     if (listed(r.sampling.exclude, id)) {
       excluded.push_back(label + " (excluded)");
@@ -129,8 +138,8 @@ TrainingSet training_set(const Recipe& in, const ChartSample& sample, const Refe
     }
     ids.push_back(id);
     labels.push_back(label);
-    rgb.emplace_back(p.mean[0], p.mean[1], p.mean[2]);
-    xyz.push_back(reference.XYZ[k]);
+    rgb.push_back(pairs.measured[i]);
+    xyz.push_back(pairs.reference[i]);
   }
   std::vector<std::string> missing;
   for (const std::string& m : sample.missing) {  // a chart cut by the frame: these were not sampled

@@ -98,9 +98,13 @@ TEST_CASE("pair_by_id pairs measured and reference rows by normalised id", "[cha
   const std::vector<std::string> ref_ids = {"A1", "A2", "A3"};
   const std::vector<Vec3> ref = {Vec3(1, 1, 1), Vec3(2, 2, 2), Vec3(3, 3, 3)};
   const PatchPairs p = pair_by_id(ref_ids, ref, {"A03", "A01", "Z9"}, {Vec3(30, 0, 0), Vec3(10, 0, 0), Vec3(0, 0, 0)});
-  CHECK(p.ids == std::vector<std::string>{"A1", "A3"});
-  CHECK(p.measured[0][0] == 10);
-  CHECK(p.reference[1][0] == 3);
+  CHECK(p.ids == std::vector<std::string>{"A3", "A1"});  // the measurement's order
+  CHECK(p.measured[0][0] == 30);
+  CHECK(p.reference[0][0] == 3);
+  CHECK(p.measured[1][0] == 10);
+  CHECK(p.reference[1][0] == 1);
+  CHECK(p.measured_rows == std::vector<int>{0, 1});
+  CHECK(p.reference_rows == std::vector<int>{2, 0});
   CHECK(p.missing_in_measured == std::vector<std::string>{"A2"});
   CHECK(p.missing_in_reference == std::vector<std::string>{"Z9"});
   tristim::test::require_code([&] { pair_by_id(ref_ids, ref, {"X1"}, {Vec3(0, 0, 0)}); }, ErrorCode::PatchMismatch);

@@ -64,13 +64,13 @@ TEST_CASE("pairing still matches A01 with A1, and the labels follow the patches"
   const PatchTable measured = read_patch_file("id,R,G,B\nB01,4,5,6\nA01,1,2,3\nC01,7,8,9\n", "m.csv");
   const PatchTable reference = read_patch_file("patch,X,Y,Z\nA1,10,20,30\nB1,40,50,60\nC1,70,80,90\n", "r.csv");
   const PatchPairs p = pair_by_id(reference.ids, reference.XYZ, measured.ids, measured.RGB);
-  REQUIRE(p.ids == Ids{"A1", "B1", "C1"});  // the reference's order
+  REQUIRE(p.ids == Ids{"B1", "A1", "C1"});  // the measurement's order
   CHECK(p.missing_in_measured.empty());
   CHECK(p.missing_in_reference.empty());
-  CHECK(p.measured[0] == Vec3(1, 2, 3));
-  CHECK(p.reference[1] == Vec3(40, 50, 60));
-  CHECK(patch_labels(measured, p.ids) == Ids{"A01", "B01", "C01"});
-  CHECK(patch_labels(reference, p.ids) == Ids{"A1", "B1", "C1"});
+  CHECK(p.measured[1] == Vec3(1, 2, 3));
+  CHECK(p.reference[0] == Vec3(40, 50, 60));
+  CHECK(patch_labels(measured, p.ids) == Ids{"B01", "A01", "C01"});
+  CHECK(patch_labels(reference, p.ids) == Ids{"B1", "A1", "C1"});
   // Any spelling of the key finds the label; an id the table lacks is returned as it is.
   CHECK(patch_labels(measured, {"a1", "Z9"}) == Ids{"A01", "Z9"});
   // The labels themselves pair too (pair_by_id normalises both sides).

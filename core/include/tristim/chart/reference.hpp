@@ -70,13 +70,20 @@ struct PublishedReference {
 };
 PublishedReference published_reference_Lab(std::string_view chart_id);
 
-/// Measured patches paired with reference patches by id (for fits and evaluation).
-/// Order: the reference's order, keeping ids present in both. Error(PatchMismatch) if no id is
-/// shared, or if the counts of ids and rows differ.
+/// Measured patches paired with reference patches by normalised id (normalise_patch_id): the one
+/// pairing of the CLI's --rgb/--xyz and --test-rgb/--test-xyz and of training_set (the page's
+/// chart samples and held-out files, `tristim fit --recipe`). Order: the measurement's, keeping
+/// the ids present in both — the patches in the order the user measured them, which is a chart
+/// sample's layout order, so per-patch lists, CSV exports and training digests are the same
+/// whichever way the RGB arrived; a measured id appearing twice pairs twice. missing_in_measured
+/// lists the reference's unpaired ids in the reference's order, missing_in_reference the
+/// measurement's in its order (normalised). Error(PatchMismatch) if no id is shared, or if the
+/// counts of ids and rows differ.
 struct PatchPairs {
   std::vector<std::string> ids;
   std::vector<Vec3> measured, reference;
   std::vector<std::string> missing_in_measured, missing_in_reference;
+  std::vector<int> measured_rows, reference_rows;  ///< each pair's row in the measured / reference input
 };
 PatchPairs pair_by_id(const std::vector<std::string>& reference_ids, const std::vector<Vec3>& reference,
                       const std::vector<std::string>& measured_ids, const std::vector<Vec3>& measured);
