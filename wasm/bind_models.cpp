@@ -1,5 +1,7 @@
-// Declarations: characterisation fits and their evaluation, the model × objective comparison,
-// profiles (a Profile crosses as its document, or its JSON text: wasm/types.hpp) and their exports.
+// Declarations: characterisation fits and their evaluation, the model × objective comparison (its
+// rows, ridge rows and stopping checks cross by their field lists: what tristim compare --json
+// prints), profiles (a Profile crosses as its document, or its JSON text: wasm/types.hpp) and their
+// exports.
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/profile/export.hpp"
 #include "declare.hpp"
@@ -29,10 +31,6 @@ EMSCRIPTEN_BINDINGS(tristim_models) {
            start_objective_value, white_preserved, fitted, residuals, mu);
   { using S = ModelEvaluation; value_object<S>("ModelEvaluation") FIELD(fit) FIELD(fit_seconds) FIELD(fit_cpu_seconds)
       FIELD(training) FIELD(has_loo) .field("loo", &loo_of, &set_field<&S::loo>) FIELD(loo_XYZ); }
-  STRUCT(CompareRow, model_id, objective, n_terms, ok, error_code, message, status, condition_number, seconds,
-           cpu_seconds, train_dE00, loo_dE00, train_dE_xyz, loo_dE_xyz, has_loo);
-  STRUCT(StoppingCheck, checked, flagged, loo_mean, perturbed_loo_mean);
-  STRUCT(RidgeRow, row, lambda);
   STRUCT(IccOptions, rgb_scale, grid_points, shaper_gamma, description, version);
 
   def<&evaluate_model>("evaluateModel");

@@ -14,7 +14,6 @@
 #include "tristim/error.hpp"
 #include "tristim/evaluation/evaluation.hpp"
 #include "tristim/io/json.hpp"
-#include "tristim/profile/profile.hpp"
 
 namespace tristim::cli {
 namespace {
@@ -45,45 +44,21 @@ struct RowBootstrap {
   std::string error;
 };
 
-json::Value compare_row_json(const CompareRow& r, const RowBootstrap* b, const StoppingCheck* stop = nullptr) {
-  json::Value o = json::Value::object();
-  o.set("model", r.model_id);
-  o.set("objective", objective_id(r.objective));
-  o.set("n_terms", r.n_terms);
-  o.set("ok", r.ok);
-  o.set("error_code", r.error_code);
-  o.set("status", r.ok ? fit_status_name(r.status) : "error");
-  o.set("message", r.message);
-  o.set("condition_number", r.condition_number);
-  o.set("seconds", r.seconds);
-  o.set("cpu_seconds", r.cpu_seconds);
-  const bool ci = b && b->ok;
-  o.set("train_dE00", ci ? with_ci(summary_json(r.train_dE00), b->result.train_dE00_mean) : summary_json(r.train_dE00));
-  o.set("train_dE_xyz", summary_json(r.train_dE_xyz));
-  o.set("has_loo", r.has_loo);
-  if (r.has_loo) {
-    o.set("loo_dE00", ci && b->result.has_loo ? with_ci(summary_json(r.loo_dE00), b->result.loo_dE00_mean)
-                                              : summary_json(r.loo_dE00));
-    o.set("loo_dE_xyz", summary_json(r.loo_dE_xyz));
+/// A row as its field list writes it (evaluation.hpp), with what only the CLI adds: the bootstrap's
+/// intervals next to the means and how it ran, the stopping check's flag.
+json::Value compare_row_json(const CompareRow& r, const RowBootstrap* b, const StoppingCheck& stop) {
+  json::Value o = fields::write(r);
+  if (b && b->ok) {
+    o.set("train_dE00", with_ci(*o.find("train_dE00"), b->result.train_dE00_mean));
+    if (r.has_loo && b->result.has_loo) o.set("loo_dE00", with_ci(*o.find("loo_dE00"), b->result.loo_dE00_mean));
   }
-  if (stop && stop->checked) {
-    json::Value j = json::Value::object();
-    j.set("flagged", stop->flagged);
-    j.set("perturbed_loo_mean", stop->perturbed_loo_mean);
-    o.set("loo_stopping", j);
-  }
-  if (b) {
-    json::Value j = json::Value::object();
-    j.set("ok", b->ok);
-    if (b->ok) {
-      j.set("resamples", b->result.resamples);
-      j.set("failed", b->result.failed);
-      j.set("resampling", b->result.pixels ? "patches+pixels" : "patches");
-    } else {
-      j.set("message", b->error);
-    }
-    o.set("bootstrap", j);
-  }
+  if (stop.checked) o.set("loo_stopping", fields::write_picked(stop, {"flagged", "perturbed_loo_mean"}));
+  if (b)
+    o.set("bootstrap", b->ok ? fields::object({{"ok", true},
+                                               {"resamples", b->result.resamples},
+                                               {"failed", b->result.failed},
+                                               {"resampling", b->result.pixels ? "patches+pixels" : "patches"}})
+                             : fields::object({{"ok", false}, {"message", b->error}}));
   return o;
 }
 
@@ -170,33 +145,10 @@ int run_compare(const Args& args, std::ostream& out) {
     json::Value j = json::Value::object();
     j.set("patches", static_cast<int>(d.rgb.rows()));
     json::Value a = json::Value::array();
-    for (size_t i = 0; i < rows.size(); ++i) a.push(compare_row_json(rows[i], boot.empty() ? nullptr : &boot[i], &stop[i]));
+    for (size_t i = 0; i < rows.size(); ++i) a.push(compare_row_json(rows[i], boot.empty() ? nullptr : &boot[i], stop[i]));
     j.set("rows", a);
-    if (args.has("ridge")) {
-      json::Value rj = json::Value::array();
-      for (const auto& r : ridge) {
-        json::Value x = compare_row_json(r.row, nullptr);
-        x.set("ridge", true);
-        x.set("lambda", r.lambda);
-        rj.push(x);
-      }
-      j.set("ridge", rj);
-    }
-    if (!transfer.empty()) {
-      json::Value tj = json::Value::array();
-      for (const auto& c : transfer) {
-        json::Value cj = json::Value::object();
-        cj.set("training_set", c.training_set);
-        cj.set("model", c.model_id);
-        cj.set("objective", objective_id(c.objective));
-        cj.set("ok", c.ok);
-        cj.set("error_code", c.error_code);
-        cj.set("dE_xyz", summary_json(c.dE_xyz));
-        cj.set("dE00", summary_json(c.dE00));
-        tj.push(cj);
-      }
-      j.set("transfer", tj);
-    }
+    if (args.has("ridge")) j.set("ridge", fields::write(ridge));
+    if (!transfer.empty()) j.set("transfer", fields::write(transfer));
     out << j.dump(2) << "\n";
     return 0;
   }

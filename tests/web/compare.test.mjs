@@ -74,26 +74,25 @@ pageTest('the fit step compares every model × objective by default, streaming r
   assert.ok(page_.sameData, 'every row was fitted on the same patches (no surface stage)');
   const cmp = T.compareModels(Float64Array.from(page_.rgb), Float64Array.from(page_.xyz), { white: page_.white }, models, objectives, -1);
   assert.equal(cmp.length, total);
-  const objId = (o) => (typeof o === 'string' ? o : o?.constructor?.name ?? String(o));
   let worst = { rel: 0 };
   const refusedByModule = [];
   for (const c of cmp) {
-    const obj = objId(c.objective);
-    const r = page_.rows.find((x) => x.model === c.model_id && x.objective === obj);
+    const obj = c.objective;  // its id, as tristim compare --json prints it
+    const r = page_.rows.find((x) => x.model === c.model && x.objective === obj);
     if (!c.ok) {
-      refusedByModule.push(c.model_id);
-      assert.equal(r, undefined, `${c.model_id} ${obj}: refused by the module (${c.error_code}) but in the page's table`);
-      assert.ok(page_.refused.some((x) => x.code === c.error_code && x.text.includes(c.model_id)), `${c.model_id} ${obj}: the page's log says ${c.error_code}`);
+      refusedByModule.push(c.model);
+      assert.equal(r, undefined, `${c.model} ${obj}: refused by the module (${c.error_code}) but in the page's table`);
+      assert.ok(page_.refused.some((x) => x.code === c.error_code && x.text.includes(c.model)), `${c.model} ${obj}: the page's log says ${c.error_code}`);
       continue;
     }
-    assert.ok(r, `${c.model_id} ${obj}: in compareModels, not in the page's table`);
-    assert.equal(r.loo !== null, c.has_loo, `${c.model_id} ${obj}: leave-one-out present in both`);
+    assert.ok(r, `${c.model} ${obj}: in compareModels, not in the page's table`);
+    assert.equal(r.loo !== null, c.has_loo, `${c.model} ${obj}: leave-one-out present in both`);
     const pairs = [['train-mean', r.train.mean, c.train_dE00.mean], ['train-max', r.train.max, c.train_dE00.max]];
     if (c.has_loo) pairs.push(['loo-mean', r.loo.mean, c.loo_dE00.mean], ['loo-max', r.loo.max, c.loo_dE00.max]);
     for (const [col, got, want] of pairs) {
       const rel = Math.abs(got - want) / Math.max(Math.abs(want), 1e-12);
-      if (rel > worst.rel) worst = { rel, what: `${c.model_id} ${obj} ${col}`, got, want };
-      assert.equal(r.cells[col], fmt(want), `${c.model_id} ${obj} ${col}: the table shows ${r.cells[col]}, compareModels ${want}`);
+      if (rel > worst.rel) worst = { rel, what: `${c.model} ${obj} ${col}`, got, want };
+      assert.equal(r.cells[col], fmt(want), `${c.model} ${obj} ${col}: the table shows ${r.cells[col]}, compareModels ${want}`);
     }
   }
   assert.equal(page_.rows.length + page_.refused.length, total);
@@ -106,7 +105,7 @@ pageTest('the fit step compares every model × objective by default, streaming r
   const bestRow = cmp.filter((c) => c.ok && c.has_loo).reduce((a, c) => (c.loo_dE00.mean < a.loo_dE00.mean ? c : a));
   assert.match(await page.textContent('#step-results table.compare tbody tr.best th'), new RegExp(`best`));
   assert.equal(await page.getAttribute('#step-results table.compare tbody tr.best', 'data-key'),
-    page_.rows.find((r) => r.model === bestRow.model_id && r.objective === objId(bestRow.objective)).key);
+    page_.rows.find((r) => r.model === bestRow.model && r.objective === bestRow.objective).key);
   assert.equal(await page.getAttribute('#step-results table.compare tbody tr.selected', 'data-key'), await page.getAttribute('#step-results table.compare tbody tr.best', 'data-key'));
   await screenshot(page, 'compare-everything');
 

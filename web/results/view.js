@@ -258,8 +258,11 @@ function bootstrapPanel(app, selected, onDone) {
   return { el };
 }
 
-/// The ridge rows (`tristim compare --ridge`): each model by ridge least squares, λ by leave-one-out.
-function ridgeTable(rows, models) {
+/// The ridge rows (`tristim compare --ridge`'s "ridge" rows, the same object): each model by ridge
+/// least squares, λ by leave-one-out. A session saved before the rows had that form ({row, lambda})
+/// shows none until the checks run again.
+function ridgeTable(saved, models) {
+  const rows = saved.filter((r) => typeof r.model === 'string');
   if (!rows.length) return [];
   const label = (id) => models.find((m) => m.id === id)?.label ?? id;
   return [h('table', { class: 'compare ridge' },
@@ -267,8 +270,8 @@ function ridgeTable(rows, models) {
       + 'the penalty λ (relative to the largest squared singular value of the design) chosen by leave-one-out, so a many-term model no longer '
       + 'depends on where an optimiser stops. λ = 0 is plain least squares: the ridge row is never worse held out than it.'),
     h('thead', {}, h('tr', {}, ['Model (ridge)', 'training mean', 'leave-one-out mean', 'leave-one-out max', 'λ', 'status'].map((t) => h('th', { scope: 'col' }, t)))),
-    h('tbody', {}, rows.map(({ row, lambda }) => h('tr', { dataset: { model: row.model_id } }, h('th', { scope: 'row' }, label(row.model_id)),
-      ...(row.ok ? [fmt(row.train_dE00.mean), fmt(row.loo_dE00.mean), fmt(row.loo_dE00.max), lambda.toExponential(2)].map((v) => h('td', {}, v))
+    h('tbody', {}, rows.map((row) => h('tr', { dataset: { model: row.model } }, h('th', { scope: 'row' }, label(row.model)),
+      ...(row.ok ? [fmt(row.train_dE00.mean), fmt(row.loo_dE00.mean), fmt(row.loo_dE00.max), row.lambda.toExponential(2)].map((v) => h('td', {}, v))
         : [h('td', { colspan: 4 }, `${row.message} (${row.error_code})`)]),
       h('td', {}, row.ok ? row.message || 'ok' : 'refused')))))];
 }

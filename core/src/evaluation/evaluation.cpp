@@ -15,6 +15,7 @@
 #include "tristim/error.hpp"
 #include "tristim/io/limits.hpp"
 #include "tristim/profile/recipe.hpp"
+#include "tristim/profile/profile.hpp"
 
 namespace tristim {
 
@@ -385,5 +386,119 @@ TRISTIM_FIELDS_DEFINE(PatchErrors, member<&PatchErrors::dE76>("dE76"), member<&P
 TRISTIM_FIELDS_DEFINE(Metrics, member<&Metrics::dE76>("dE76"), member<&Metrics::dE94>("dE94"),
                       member<&Metrics::dE00>("dE00"), member<&Metrics::dE_xyz>("dE_xyz"),
                       member<&Metrics::abs_rel_Y>("abs_rel_Y"), member<&Metrics::NRMSE>("NRMSE"));
+
+}  // namespace tristim::fields
+
+namespace tristim::fields {
+namespace {
+
+// A RidgeRow carries its CompareRow: one list of the row's members serves both structs.
+CompareRow& row_of(CompareRow& r) { return r; }
+const CompareRow& row_of(const CompareRow& r) { return r; }
+CompareRow& row_of(RidgeRow& r) { return r.row; }
+const CompareRow& row_of(const RidgeRow& r) { return r.row; }
+
+/// The CompareRow member M of an S (a row, or the row a ridge row carries), under a JSON name.
+template <class S, auto M>
+Field<S> row_member(const char* name, bool required = true, bool (*shown)(const S&) = nullptr) {
+  using T = typename member_traits<decltype(M)>::type;
+  return {name, [](const S& s) { return Codec<T>::write(row_of(s).*M); },
+          [](const json::Value& v, S& s, const Context& c, const std::string& p) { Codec<T>::read(v, row_of(s).*M, c, p); },
+          shown, required};
+}
+
+json::Value objective_json(Objective o) { return objective_id(o); }
+void read_objective(const json::Value& v, Objective& out, const Context& c, const std::string& p) {
+  std::string id;
+  Codec<std::string>::read(v, id, c, p);
+  try {
+    out = objective_from_id(id);
+  } catch (const Error&) {
+    c.refuse("'" + p + "': unknown objective '" + id + "' (expected ls, psm or de2000)");
+  }
+}
+
+/// A row's status: fit_status_name's word, or "error" when the fit was refused (which reads back as
+/// the default status: a refused row has none).
+template <class S>
+Field<S> row_status() {
+  return {"status", [](const S& s) { return json::Value(row_of(s).ok ? fit_status_name(row_of(s).status) : "error"); },
+          [](const json::Value& v, S& s, const Context& c, const std::string& p) {
+            std::string name;
+            Codec<std::string>::read(v, name, c, p);
+            if (name == "error") {
+              row_of(s).status = FitStatus::Ok;
+              return;
+            }
+            try {
+              row_of(s).status = fit_status_from_name(name);
+            } catch (const Error&) {
+              c.refuse("'" + p + "': unknown fit status '" + name + "'");
+            }
+          }};
+}
+
+template <class S>
+bool has_loo(const S& s) { return row_of(s).has_loo; }
+
+/// The members of a compare row in `tristim compare --json`'s order.
+template <class S>
+FieldList<S> compare_row_fields() {
+  return {row_member<S, &CompareRow::model_id>("model"),
+          {"objective", [](const S& s) { return objective_json(row_of(s).objective); },
+           [](const json::Value& v, S& s, const Context& c, const std::string& p) { read_objective(v, row_of(s).objective, c, p); }},
+          row_member<S, &CompareRow::n_terms>("n_terms"),
+          row_member<S, &CompareRow::ok>("ok"),
+          row_member<S, &CompareRow::error_code>("error_code"),
+          row_status<S>(),
+          row_member<S, &CompareRow::message>("message"),
+          row_member<S, &CompareRow::condition_number>("condition_number"),
+          row_member<S, &CompareRow::seconds>("seconds"),
+          row_member<S, &CompareRow::cpu_seconds>("cpu_seconds"),
+          row_member<S, &CompareRow::train_dE00>("train_dE00"),
+          row_member<S, &CompareRow::train_dE_xyz>("train_dE_xyz"),
+          row_member<S, &CompareRow::has_loo>("has_loo"),
+          row_member<S, &CompareRow::loo_dE00>("loo_dE00", false, &has_loo<S>),
+          row_member<S, &CompareRow::loo_dE_xyz>("loo_dE_xyz", false, &has_loo<S>)};
+}
+
+/// "ridge": true, which marks a ridge row among compare rows (nothing else reads as one).
+Field<RidgeRow> ridge_mark() {
+  return {"ridge", [](const RidgeRow&) { return json::Value(true); },
+          [](const json::Value& v, RidgeRow&, const Context& c, const std::string& p) {
+            if (!v.is_bool() || !v.as_bool()) c.refuse("'" + p + "' must be true (a ridge row)");
+          },
+          nullptr, false};
+}
+
+}  // namespace
+
+const FieldList<CompareRow>& Schema<CompareRow>::fields() {
+  static const FieldList<CompareRow> list = compare_row_fields<CompareRow>();
+  return list;
+}
+
+const FieldList<RidgeRow>& Schema<RidgeRow>::fields() {
+  static const FieldList<RidgeRow> list = [] {
+    FieldList<RidgeRow> f = compare_row_fields<RidgeRow>();
+    f.push_back(ridge_mark());
+    f.push_back(member<&RidgeRow::lambda>("lambda"));
+    return f;
+  }();
+  return list;
+}
+
+TRISTIM_FIELDS_DEFINE(StoppingCheck, member<&StoppingCheck::checked>("checked"), member<&StoppingCheck::flagged>("flagged"),
+                      member<&StoppingCheck::loo_mean>("loo_mean"),
+                      member<&StoppingCheck::perturbed_loo_mean>("perturbed_loo_mean"));
+
+TRISTIM_FIELDS_DEFINE(TransferCell, member<&TransferCell::training_set>("training_set"),
+                      member<&TransferCell::model_id>("model"),
+                      Field<TransferCell>{"objective", [](const TransferCell& t) { return objective_json(t.objective); },
+                                          [](const json::Value& v, TransferCell& t, const Context& c, const std::string& p) {
+                                            read_objective(v, t.objective, c, p);
+                                          }},
+                      member<&TransferCell::ok>("ok"), member<&TransferCell::error_code>("error_code"),
+                      member<&TransferCell::dE_xyz>("dE_xyz"), member<&TransferCell::dE00>("dE00"));
 
 }  // namespace tristim::fields

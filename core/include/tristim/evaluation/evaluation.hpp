@@ -172,4 +172,13 @@ namespace tristim::fields {
 TRISTIM_FIELDS_DECLARE(Summary);
 TRISTIM_FIELDS_DECLARE(PatchErrors);
 TRISTIM_FIELDS_DECLARE(Metrics);
+// The compare table (what `tristim compare --json` prints, the names and order of its rows): a
+// CompareRow's model id is "model", its objective its id, its status "error" when the fit was
+// refused (read back as the default status), leave-one-out summaries only when it has them. A
+// RidgeRow is its row's members, then "ridge": true and "lambda". A StoppingCheck's list is all its
+// members (the CLI prints two of them). A TransferCell's list leaves out `message`.
+TRISTIM_FIELDS_DECLARE(CompareRow);
+TRISTIM_FIELDS_DECLARE(StoppingCheck);
+TRISTIM_FIELDS_DECLARE(RidgeRow);
+TRISTIM_FIELDS_DECLARE(TransferCell);
 }  // namespace tristim::fields
