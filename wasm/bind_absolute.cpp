@@ -11,7 +11,7 @@
 // Float32Array(3·w·h), source() -> Uint8Array(w·h) (dominant exposure, 255: none),
 // contributors() -> Int32Array(w·h) (bit e: exposure e served the pixel), tiff() -> Uint8Array
 // (the X, Y, Z map as a 32-bit float TIFF, as `tristim absolute apply` writes), readout(x, y,
-// window) -> AbsoluteReadout, report(test stimuli, {white}) -> the report.
+// window) -> AbsoluteReadout (by its field list, as `tristim absolute apply --points` writes it), report(test stimuli, {white}) -> the report.
 #include "raw_handle.hpp"
 #include "tristim/absolute/characterise.hpp"
 #include "tristim/profile/export.hpp"
@@ -64,8 +64,6 @@ EMSCRIPTEN_BINDINGS(tristim_absolute) {
   { using S = AbsoluteCharacterisation; value_object<S>("AbsoluteCharacterisation") FIELD(recipe) FIELD(profile) FIELD(panels)
       FIELD(report); }
   { using S = AbsoluteApplyOptions; value_object<S>("AbsoluteApplyOptions") FIELD(mode) FIELD(exposures) FIELD(names); }
-  { using S = AbsoluteReadout; value_object<S>("AbsoluteReadout") FIELD(x) FIELD(y) FIELD(n) FIELD(XYZ) FIELD(L) FIELD(source)
-      FIELD(source_label) FIELD(contributors); }
   { using S = AbsoluteEvaluateOptions; value_object<S>("AbsoluteEvaluateOptions") FIELD(white); }
 
   using M = const AbsoluteMaps&;
@@ -82,7 +80,8 @@ EMSCRIPTEN_BINDINGS(tristim_absolute) {
                         m.image.luminance.height, "CIE XYZ, cd/m2 (tristim absolute, Guarnera 2018)")); }); }))
       .function("readout", optional_override([](M m, val x, val y, val window) {
                   return guard([&] {
-                    return val(absolute_readout(m, Conv<int>::from(x), Conv<int>::from(y), wasm::absent(window) ? 1 : Conv<int>::from(window)));
+                    return Conv<AbsoluteReadout>::to(absolute_readout(m, Conv<int>::from(x), Conv<int>::from(y),
+                                                                      wasm::absent(window) ? 1 : Conv<int>::from(window)));
                   }); }))
       .function("report", optional_override([](M m) { return report(m, val::undefined(), val::undefined()); }))
       .function("report", optional_override([](M m, val test) { return report(m, test, val::undefined()); }))

@@ -3,7 +3,8 @@
 // from per-patch camera RGB paired by id with reflectances under an illuminant, the comparison of
 // two sets (RMS with each channel at peak 1; areas) and the CSV the CLI writes; the estimate's
 // own illuminant (wavelength and one value column) and reflectance files (the CLI's --illuminant
-// and --reflectances files).
+// and --reflectances files). The uncertainty (SensitivityUncertainty) crosses by its field list
+// (tristim/absolute/fields.hpp): the object `tristim sensitivities estimate` prints as "uncertainty".
 #include "tristim/absolute/normalisation.hpp"
 #include "tristim/absolute/sensitivities.hpp"
 #include "tristim/io/patch_files.hpp"
@@ -18,8 +19,6 @@ EMSCRIPTEN_BINDINGS(tristim_sensitivities) {
   STRUCT(SensitivityOptions, components, smoothness, exclude_cameras);
   STRUCT(SensitivityEstimate, ssf, residual, residual_rms, patches, components, basis_cameras, areas, clipped, ids,
            unpaired, paired_reflectances, paired_RGB);
-  STRUCT(SensitivityUncertainty, ratio, u_loo, u_K, u, coverage, loo_bases, components_tried, nearest_camera,
-           nearest_distance, residual_limit, distance_limit, warnings, message);
   STRUCT(SensitivityUncertaintyOptions, coverage, residual_limit, distance_limit);
 
   def<&camera_ssf>("cameraSensitivities");

@@ -16,6 +16,7 @@
 
 #include "absolute_cli.hpp"
 #include "tristim/absolute/characterise.hpp"
+#include "tristim/absolute/fields.hpp"
 #include "tristim/absolute/options_table.hpp"
 #include "tristim/absolute/sensitivities.hpp"
 #include "tristim/absolute/stimuli_file.hpp"
@@ -28,8 +29,6 @@
 #include "tristim/simulate/virtual_camera.hpp"
 
 namespace tristim::cli {
-
-/// OptionSpec rows as a --help section (defined in cmd_surface.cpp).
 
 RawImage load_raw_file(const std::string& path) {
   return parse_named(path, read_file(path), [](const std::uint8_t* d, std::size_t n) { return decode_raw(d, n); });
@@ -100,11 +99,7 @@ int run_sensitivities(const Args& args, std::ostream& out) {
   // How sure the areas are (leave-one-camera-out bases, K ± 1) and whether the camera is unlike the basis.
   const SensitivityUncertainty u =
       sensitivity_uncertainty(e.paired_RGB, e.paired_reflectances, illuminant_arg(args.get("illuminant")), o, e);
-  s.set("uncertainty", fields::object({{"area_ratio_R_G", u.u[0]}, {"area_ratio_B_G", u.u[1]}, {"coverage", u.coverage},
-                                       {"loo_R_G", u.u_loo[0]}, {"loo_B_G", u.u_loo[1]}, {"K_R_G", u.u_K[0]},
-                                       {"K_B_G", u.u_K[1]}, {"loo_bases", u.loo_bases},
-                                       {"nearest_camera", u.nearest_camera}, {"nearest_distance", u.nearest_distance}}));
-  s.set("warnings", fields::write(u.warnings));
+  s.set("uncertainty", fields::write(u));  // by its field list: what the page gets
   std::cerr << "tristim sensitivities: A_R/A_G " << e.areas[0] / e.areas[1] << " ± " << 100 * u.u[0] << " %, A_B/A_G "
             << e.areas[2] / e.areas[1] << " ± " << 100 * u.u[1] << " % (k = " << u.coverage << ")\n";
   if (!u.message.empty()) std::cerr << "tristim sensitivities: warning: " << u.message << "\n";
@@ -128,8 +123,9 @@ int run_sensitivities(const Args& args, std::ostream& out) {
 
 // ---- tristim absolute apply --------------------------------------------------------------
 
-// Mean X, Y, Z over a window around each point of a CSV (id, x, y[, X, Y, Z reference]).
-json::Value point_readout(const std::string& path, const AbsoluteImage& img, int window) {
+// The engine's read-out (absolute_readout: the page's pointer) at each point of a CSV (id, x, y[, X,
+// Y, Z reference]): {id, the read-out's members, reference, relative_Y_error}.
+json::Value point_readout(const std::string& path, const AbsoluteMaps& maps, int window) {
   const TextTable t = parse_delimited(read_file(path), path);
   auto col = [&](const char* name) {
     for (size_t k = 0; k < t.header.size(); ++k)
@@ -138,21 +134,20 @@ json::Value point_readout(const std::string& path, const AbsoluteImage& img, int
   };
   const int id = col("id"), x = col("x"), y = col("y"), X = col("X"), Y = col("Y"), Z = col("Z");
   if (x < 0 || y < 0) throw Error(ErrorCode::MissingColumn, path + ": points need x and y columns");
+  const FusedLuminance& L = maps.image.luminance;
   json::Value out = json::Value::array();
   for (size_t r = 0; r < t.rows.size(); ++r) {
     const double px = parse_cell(t.rows[r][x], path, t.lines[r], "x"), py = parse_cell(t.rows[r][y], path, t.lines[r], "y");
-    if (!(px >= 0 && py >= 0 && px < img.luminance.width && py < img.luminance.height))
+    if (!(px >= 0 && py >= 0 && px < L.width && py < L.height))
       throw Error(ErrorCode::InvalidArgument, path + ", line " + std::to_string(t.lines[r]) + ": point outside the image");
-    int n = 0;
-    const Vec3 m = window_mean(img, static_cast<int>(px), static_cast<int>(py), window, n);
-    json::Value o = json::Value::object();
-    o.set("id", id >= 0 ? t.rows[r][id] : std::to_string(r + 1));
-    o.set("XYZ", json::Value(std::vector<double>{m[0], m[1], m[2]}));
+    const AbsoluteReadout m = absolute_readout(maps, static_cast<int>(px), static_cast<int>(py), window);
+    json::Value o = fields::object({{"id", id >= 0 ? t.rows[r][id] : std::to_string(r + 1)}});
+    fields::write_members(m, o);
     if (X >= 0 && Y >= 0 && Z >= 0) {
       const Vec3 ref(parse_cell(t.rows[r][X], path, t.lines[r], "X"), parse_cell(t.rows[r][Y], path, t.lines[r], "Y"),
                      parse_cell(t.rows[r][Z], path, t.lines[r], "Z"));
-      o.set("reference", json::Value(std::vector<double>{ref[0], ref[1], ref[2]}));
-      o.set("relative_Y_error", ref[1] > 0 ? (m[1] - ref[1]) / ref[1] : NAN);
+      o.set("reference", fields::write(ref));
+      o.set("relative_Y_error", ref[1] > 0 ? (m.XYZ[1] - ref[1]) / ref[1] : NAN);
     }
     out.push(o);
   }
@@ -213,30 +208,11 @@ int run_apply(const Args& args, std::ostream& out) {
     write_bytes(args.get("source-map"), float_tiff(map.data(), L.width, L.height,
                                                    "source exposure index, count, mask (tristim absolute)"));
   }
-  std::vector<double> Y;
-  for (size_t q = 0; q < img.XYZ.size() / 3; ++q)
-    if (std::isfinite(img.XYZ[q * 3 + 1])) Y.push_back(img.XYZ[q * 3 + 1]);
-  const Summary y = summarize(Y);
-  json::Value s = json::Value::object();
-  s.set("width", L.width);
-  s.set("height", L.height);
-  s.set("mode", fusion_mode_id(p.fusion));
-  json::Value ex = json::Value::array();
-  for (size_t e = 0; e < L.exposures.size(); ++e) {
-    json::Value o = json::Value::object();
-    o.set("file", files[e]);
-    o.set("exposure", L.exposures[e].label());
-    o.set("dominant_pixels", static_cast<double>(L.dominant_pixels[e]));
-    ex.push(o);
-  }
-  s.set("exposures", ex);
-  s.set("saturated_pixels", static_cast<double>(L.saturated_pixels));
-  s.set("unreliable_pixels", static_cast<double>(L.unreliable_pixels));
-  s.set("Y_min", y.min);
-  s.set("Y_median", y.median);
-  s.set("Y_max", y.max);
+  // The exposure-selection summary by its field list (what the page's maps summary() gives).
+  const AbsoluteMaps maps{p, std::move(img), files};
+  json::Value s = fields::write(absolute_maps_summary(maps));
   s.set("out", out_path);
-  if (args.has("points")) s.set("points", point_readout(args.get("points"), img, static_cast<int>(args.get_double("window", 5))));
+  if (args.has("points")) s.set("points", point_readout(args.get("points"), maps, static_cast<int>(args.get_double("window", 5))));
   out << s.dump() << "\n";
   return 0;
 }
@@ -297,8 +273,10 @@ const CommandRegistration absolute_cmd{Command{
     "  --exposure per file) -> 32-bit float TIFF of X, Y, Z in cd/m² (NaN where every exposure clipped);\n"
     "  --source-map: float TIFF of (dominant exposure index or -1, number of exposures used, their bit mask).\n"
     "  weighted (default) streams the frames and weights each usable one by its zone reliability times t/N²;\n"
-    "  recursive is the paper's Algorithm 1. Summary JSON on stdout; --points: the mean X, Y, Z over a\n"
-    "  window around each (id, x, y) of a CSV, with the relative Y error when it also has X, Y, Z.\n"
+    "  recursive is the paper's Algorithm 1. The exposure-selection summary as JSON on stdout (the page's:\n"
+    "  exposures, pixels each served, Y's range); --points: the page's read-out at each (id, x, y) of a\n"
+    "  CSV (mean X, Y, Z over a --window square, L(R, G, B) and the source exposure at the point), with\n"
+    "  the relative Y error when the CSV also has X, Y, Z.\n"
     "evaluate: a test scene — a stimuli CSV of per-patch rows (R, G, B as for fit) and region rows (file, x, y,\n"
     "  w, h naming a RAW of the bracket) with their measured X, Y, Z — through the profile: the bracket (the\n"
     "  RAWs given, else the files the region rows name, relative to the CSV) is fused, each region's mean\n"

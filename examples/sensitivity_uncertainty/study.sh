@@ -27,12 +27,12 @@ inside = n = warned = 0
 for cam in open(os.path.join(d, "cameras")).read().split():
     s = json.load(open(os.path.join(d, cam + ".json")))
     u, c = s["uncertainty"], s["compare"]
-    row, w = [], s["warnings"]
-    for k in ("area_ratio_R_G", "area_ratio_B_G"):
+    row, w = [], u["warnings"]
+    for i, k in enumerate(("area_ratio_R_G", "area_ratio_B_G")):
         err = s[k] / c[k] - 1
-        ok = abs(err) <= u[k]
+        ok = abs(err) <= u["u"][i]
         inside += ok; n += 1
-        row += ["%+.2f %%" % (100 * err), "%.2f %%" % (100 * u[k]), "yes" if ok else "no"]
+        row += ["%+.2f %%" % (100 * err), "%.2f %%" % (100 * u["u"][i]), "yes" if ok else "no"]
     warned += bool(w)
     print("| %s | %s | %.2f %% | %.3f | %s |" % (cam, " | ".join(row), 100 * s["residual_rms"], u["nearest_distance"], " ".join(w) or "-"))
 print("\nCoverage (noise %s, k = %g): %d of %d ratios inside their stated band (%.0f %%); %d cameras warned"

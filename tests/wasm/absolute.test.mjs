@@ -3,8 +3,8 @@
 // fitted from its stimuli CSV, lens-cap frames and flat, applied to the bracket: planted OECF
 // exponents and S recovered, every cell's Y within the paper's 2.4 %, the pointer read-out, and
 // coded errors for mismatched brackets, an all-dark series and non-monotonic stimuli; the module's
-// profile and report equal `tristim absolute fit` and `tristim absolute evaluate --json` to the bit
-// on the example and on test scenes of region rows.
+// profile, report, maps summary and read-out equal `tristim absolute fit`, `tristim absolute evaluate
+// --json` and `tristim absolute apply --points` to the bit on the example and on test scenes of region rows.
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -248,6 +248,15 @@ test('absolute: the example — the module\'s profile and report equal the CLI\'
     assert.deepStrictEqual(report, expected);
     assert.equal(report.test.regions.length, 36);
     assert.deepEqual(report.test.figures.map((f) => f.group), ['all', 'colour', 'luminance']);
+    // `tristim absolute apply --points`: the maps summary and, per point, the id and the engine's
+    // read-out (AbsoluteReadout's list) — the page's summary() and readout(), to the bit
+    fs.writeFileSync(path.join(dir, 'points.csv'), 'id,x,y\ncentre,96,96\ncorner,0,191\n');
+    const applied = JSON.parse(cli(dir, ['absolute', 'apply', 'profile.json', ...ex.frame_names, ...exposures, '--out', 'xyz.tiff', '--points', 'points.csv']));
+    const { out, points, ...summary } = applied;
+    assert.equal(out, 'xyz.tiff');
+    assert.deepStrictEqual(summary, maps.summary());
+    assert.deepStrictEqual(points, [{ id: 'centre', ...maps.readout(96, 96, 5) }, { id: 'corner', ...maps.readout(0, 191, 5) }]);
+    assert.equal(points[1].n, 9, 'the 5 x 5 window clipped to 3 x 3 at the corner');
   } finally { maps.delete(); }
 });
 

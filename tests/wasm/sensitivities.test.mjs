@@ -2,11 +2,14 @@
 // Süsstrunk 2013): a built-in camera's curves through the CSV writer and the core's parser
 // (ratios kept), the estimate from a simulated ColorChecker photo under D65 with the camera held
 // out of the basis (area ratios within the issue's 2 %), pairing by patch id, a given set feeding
-// the absolute fit (same areas as the built-in camera, source recorded in the profile), and coded
-// errors for bad CSVs and unpaired patches.
+// the absolute fit (same areas as the built-in camera, source recorded in the profile), coded
+// errors for bad CSVs and unpaired patches, and the uncertainty equal to the CLI's to the bit.
 import test from 'node:test';
 import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
 import { loadTristim, throwsCode } from './load.mjs';
+import { absoluteFixture } from '../support/absolute_fixture.mjs';
 
 const CAMERA = 'Canon_EOS_5D_Mark_II';
 const rel = (a, b) => Math.abs(a / b - 1);
@@ -86,4 +89,22 @@ test('sensitivities: coded errors for bad CSVs, unknown cameras and unpaired pat
   throwsCode(assert, () => T.estimateSensitivities(['Z1', 'Z2'], new Float64Array(6).fill(1), refl, d65), 'PATCH_MISMATCH');
   throwsCode(assert, () => T.estimateSensitivities(['A1'], new Float64Array(6).fill(1), refl, d65), 'PATCH_MISMATCH');
   throwsCode(assert, () => T.illuminantSpectrum('D1'), 'UNKNOWN_ID');
+});
+
+// ---- one field list: the uncertainty the page shows is what `tristim sensitivities estimate` prints
+const { dir: fixture, cli } = absoluteFixture('tristim-sensitivities-');
+
+test('sensitivities: the module\'s uncertainty equals the CLI\'s "uncertainty", to the bit (SensitivityUncertainty\'s list)', async () => {
+  const T = await loadTristim();
+  const dir = fixture();
+  const printed = JSON.parse(cli(dir, ['sensitivities', 'estimate', '--rgb', 'patches_rgb.csv', '--reflectances', 'cc24', '--illuminant', 'D65',
+    '--exclude', CAMERA, '--out', 'ssf.csv']));
+  // as the page's handler does (web/absolute/sensitivities_handlers.js): the patch file, a chart, an illuminant
+  const p = T.parsePatchFile(fs.readFileSync(path.join(dir, 'patches_rgb.csv'), 'utf8'), 'patches_rgb.csv');
+  const spd = T.illuminantSpectrum('D65'), options = { exclude_cameras: [CAMERA] };
+  const e = T.estimateSensitivities(p.ids, p.RGB, T.chartReflectances('cc24'), spd, options);
+  const u = T.sensitivityUncertainty(e.paired_RGB, e.paired_reflectances, spd, options, e);
+  assert.deepStrictEqual(u, printed.uncertainty);
+  assert.ok(Array.isArray(u.ratio) && Array.isArray(u.u), 'plain Arrays, as the JSON has them');
+  assert.equal(u.ratio[0], printed.area_ratio_R_G);
 });

@@ -174,7 +174,9 @@ export const handlers = {
     if (!(x >= 0 && y >= 0 && x < width && y < height)) return { result: null };
     const r = a.maps.readout(Math.floor(x), Math.floor(y), window);
     const region = a.test?.find(({ file, region: [gx, gy, gw, gh] = [] }) => file && x >= gx && x < gx + gw && y >= gy && y < gy + gh);
-    return { result: { ...r, XYZ: Array.from(r.XYZ), L: Array.from(r.L), region: region ? { id: region.id, XYZ: Array.from(region.XYZ) } : null } };
+    // AbsoluteReadout by its field list (a figure that is not a number is null): NaN again for the view
+    const nan = (v) => v.map((c) => c ?? NaN);
+    return { result: { ...r, XYZ: nan(r.XYZ), L: nan(r.L), region: region ? { id: region.id, XYZ: Array.from(region.XYZ) } : null } };
   },
 };
 

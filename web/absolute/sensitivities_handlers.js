@@ -72,7 +72,7 @@ export const handlers = {
     const left = options.exclude_cameras?.length ? ` basis without ${options.exclude_cameras.join(' ')}` : '';
     s.estimate = { ssf: e.ssf, source: `estimate:Jiang2013 ${chart} ${illuminant} ${e.patches} patches K ${e.components}${left} residual ${e.residual_rms.toPrecision(3)}` };
     return reply({ ...e, ssf: spectral(e.ssf), residual: Array.from(e.residual), areas: Array.from(e.areas), csv: T.sensitivitiesToCsv(e.ssf), label,
-      uncertainty: { ...u, ratio: Array.from(u.ratio), u: Array.from(u.u), u_loo: Array.from(u.u_loo), u_K: Array.from(u.u_K) } });
+      uncertainty: u });  // SensitivityUncertainty's field list: plain arrays, what the CLI prints as "uncertainty"
   },
 
   /// A built-in camera's curves and areas; with `which` ('upload' | 'estimate') the RMS difference

@@ -79,6 +79,26 @@ TRISTIM_FIELDS_DEFINE(Maps, member<&Maps::width>("width"), member<&Maps::height>
                member<&Maps::unreliable_pixels>("unreliable_pixels"), member<&Maps::finite_pixels>("finite_pixels"),
                member<&Maps::Y>("Y"), member<&Maps::Y_p01>("Y_p01"), member<&Maps::Y_p99>("Y_p99"));
 
+// What the pointer reads on the maps (the page's read-out; `tristim absolute apply --points`, one
+// per point after its id).
+using Readout = AbsoluteReadout;
+TRISTIM_FIELDS_DEFINE(Readout, member<&Readout::x>("x"), member<&Readout::y>("y"), member<&Readout::n>("n"),
+                      member<&Readout::XYZ>("XYZ"), member<&Readout::L>("L"), member<&Readout::source>("source"),
+                      member<&Readout::source_label>("source_label"), member<&Readout::contributors>("contributors"));
+
+// The sensitivity estimate's uncertainty (tristim/absolute/sensitivities.hpp): the page's note and
+// `tristim sensitivities estimate`'s "uncertainty".
+using Uncertainty = SensitivityUncertainty;
+TRISTIM_FIELDS_DEFINE(Uncertainty, member<&Uncertainty::ratio>("ratio"), member<&Uncertainty::u_loo>("u_loo"),
+                      member<&Uncertainty::u_K>("u_K"), member<&Uncertainty::u>("u"),
+                      member<&Uncertainty::coverage>("coverage"), member<&Uncertainty::loo_bases>("loo_bases"),
+                      member<&Uncertainty::components_tried>("components_tried"),
+                      member<&Uncertainty::nearest_camera>("nearest_camera"),
+                      member<&Uncertainty::nearest_distance>("nearest_distance"),
+                      member<&Uncertainty::residual_limit>("residual_limit"),
+                      member<&Uncertainty::distance_limit>("distance_limit"), member<&Uncertainty::warnings>("warnings"),
+                      member<&Uncertainty::message>("message"));
+
 using Report = AbsoluteReport;
 TRISTIM_FIELDS_DEFINE(Report, member<&Report::fit>("fit"),
                member_or_null<&Report::has_training, &Report::training>("training"),

@@ -13,6 +13,7 @@
 #include "test_support.hpp"
 #include "text_edit.hpp"
 #include "tristim/absolute/characterise.hpp"
+#include "tristim/absolute/fields.hpp"
 #include "tristim/absolute/fit_frames.hpp"
 #include "tristim/absolute/stimuli_file.hpp"
 
@@ -345,4 +346,38 @@ TEST_CASE("absolute report: a test scene of regions and points with the eq 16 wh
   CHECK(n == 25);
   CHECK(ro.XYZ == m);
   test::require_code([&] { absolute_readout(maps, -1, 0, 1); }, ErrorCode::InvalidArgument);
+}
+
+TEST_CASE("absolute read-out: by its field list, NaN as null and back, unknown members refused", "[absolute][recipe]") {
+  // What the page's pointer and `tristim absolute apply --points` print: the engine's read-out
+  // written by AbsoluteReadout's list and read back by the same list.
+  const Chart& k = chart();
+  std::vector<const RawImage*> frames;
+  for (const auto& f : k.frames) frames.push_back(&f);
+  AbsoluteMaps maps = apply_absolute_series(fitted().profile, frames, {});
+  const AbsoluteReadout r = absolute_readout(maps, 24, 40, 5);
+  REQUIRE(r.n == 25);
+  REQUIRE(r.source >= 0);
+  const fields::Context ctx{ErrorCode::InvalidArgument, "read-out: ", true};
+  AbsoluteReadout back;
+  fields::read(json::parse(fields::write(r).dump()), back, ctx);
+  CHECK(back.x == 24);
+  CHECK(back.y == 40);
+  CHECK(back.n == 25);
+  CHECK(back.XYZ == r.XYZ);
+  CHECK(back.L == r.L);
+  CHECK(back.source == r.source);
+  CHECK(back.source_label == maps.image.luminance.exposures[static_cast<size_t>(r.source)].label());
+  CHECK(back.contributors == r.contributors);
+  // A pixel every exposure clipped: no mean (n 0), X, Y, Z written as null and read as NaN.
+  const size_t q = static_cast<size_t>(40) * maps.image.luminance.width + 24;
+  for (int c = 0; c < 3; ++c) maps.image.XYZ[q * 3 + c] = NAN;
+  const json::Value j = json::parse(fields::write(absolute_readout(maps, 24, 40, 1)).dump());
+  CHECK(j.find("XYZ")->dump() == "[null,null,null]");
+  fields::read(j, back, ctx);
+  CHECK(back.n == 0);
+  CHECK(std::isnan(back.XYZ[1]));
+  json::Value extra = j;
+  extra.set("region", json::Value());
+  test::require_code([&] { fields::read(extra, back, ctx); }, ErrorCode::InvalidArgument);
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "test_support.hpp"
+#include "tristim/absolute/fields.hpp"
 #include "tristim/absolute/normalisation.hpp"
 #include "tristim/absolute/sensitivities.hpp"
 #include "tristim/chart/reference.hpp"
@@ -156,4 +157,47 @@ TEST_CASE("absolute: a camera without an IR-cut filter is flagged as outside the
   INFO("residual " << e.residual_rms << ", nearest " << u.nearest_camera << " at " << u.nearest_distance << ": " << u.message);
   CHECK(!u.warnings.empty());
   CHECK(u.message.find("unlike the") != std::string::npos);
+}
+
+TEST_CASE("absolute: the uncertainty's field list — JSON round trip exact, unknown members refused", "[absolute][sensitivities]") {
+  // One list gives the CLI's "uncertainty" and the object the page gets; its reader takes back what
+  // its writer wrote, member for member, and refuses what the list does not name.
+  SensitivityUncertainty u;
+  u.ratio = {0.4572284455105721, 0.7008403574692194};
+  u.u_loo = {6.86e-4, 1.2067685403866057e-3};
+  u.u_K = {1.9e-4, 5.57e-4};
+  u.u = {2.1370647929991804e-3, 3.987e-3};
+  u.coverage = 2;
+  u.loo_bases = 51;
+  u.components_tried = {3, 4, 5};
+  u.nearest_camera = "Canon_EOS_M";
+  u.nearest_distance = 0.035214111406810064;
+  u.residual_limit = 0.02;
+  u.distance_limit = 0.1;
+  u.warnings = {"residual", "distance"};
+  u.message = "two lines";
+  const fields::Context ctx{ErrorCode::InvalidArgument, "uncertainty: "};
+  const std::string text = fields::write(u).dump();
+  SensitivityUncertainty back;
+  fields::read(json::parse(text), back, ctx);
+  CHECK(back.ratio == u.ratio);
+  CHECK(back.u_loo == u.u_loo);
+  CHECK(back.u_K == u.u_K);
+  CHECK(back.u == u.u);
+  CHECK(back.coverage == 2);
+  CHECK(back.loo_bases == 51);
+  CHECK(back.components_tried == u.components_tried);
+  CHECK(back.nearest_camera == u.nearest_camera);
+  CHECK(back.nearest_distance == u.nearest_distance);
+  CHECK(back.residual_limit == u.residual_limit);
+  CHECK(back.distance_limit == u.distance_limit);
+  CHECK(back.warnings == u.warnings);
+  CHECK(back.message == u.message);
+  CHECK(fields::write(back).dump() == text);
+  json::Value extra = json::parse(text);
+  extra.set("area_ratio_R_G", 0.002);  // a name the list does not have
+  test::require_code([&] { fields::read(extra, back, ctx); }, ErrorCode::InvalidArgument);
+  json::Value short_u = json::parse(text);
+  short_u.set("u", json::Value(std::vector<double>{0.002}));  // two ratios, two uncertainties
+  test::require_code([&] { fields::read(short_u, back, ctx); }, ErrorCode::InvalidArgument);
 }

@@ -1,14 +1,17 @@
 // The field lists (io/fields.hpp) of the absolute mode's structs that cross a boundary — the
-// recipe and its parts, the training figures, the maps summary and the report — declared here so
-// a binding converts them by their lists, and defined once in core/src/absolute (recipe.cpp,
+// recipe and its parts, the training figures, the maps summary, the pointer read-out, the sensitivity
+// estimate's uncertainty and the report — declared here so a binding converts them by their lists
+// and the CLI writes them by the same lists, and defined once in core/src/absolute (recipe.cpp,
 // report.cpp, fields.hpp). An exposure is the array [t, N, ISO] wherever it is written.
 #pragma once
 #include <array>
 
+#include "tristim/absolute/characterise.hpp"
 #include "tristim/absolute/normalisation.hpp"
 #include "tristim/absolute/profile.hpp"
 #include "tristim/absolute/recipe.hpp"
 #include "tristim/absolute/report.hpp"
+#include "tristim/absolute/sensitivities.hpp"
 #include "tristim/io/fields.hpp"
 
 namespace tristim::fields {
@@ -32,6 +35,8 @@ TRISTIM_FIELDS_DECLARE(AbsoluteOptions);
 TRISTIM_FIELDS_DECLARE(AbsoluteRecipe);
 TRISTIM_FIELDS_DECLARE(AbsoluteMetrics);
 TRISTIM_FIELDS_DECLARE(AbsoluteMapsSummary);
+TRISTIM_FIELDS_DECLARE(AbsoluteReadout);
+TRISTIM_FIELDS_DECLARE(SensitivityUncertainty);
 TRISTIM_FIELDS_DECLARE(AbsoluteReport);
 
 }  // namespace tristim::fields
