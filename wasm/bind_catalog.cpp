@@ -1,12 +1,15 @@
 // Declarations: version, built-in data, and every table the page builds its pickers from —
 // charts, illuminants, observers, models and their families, the method tables of each stage
 // (MethodInfo / OptionSpec rows; the flat-field modes too), chart layouts, the custom grid's and the
-// sampling's option rows, the sensitivity estimate's option rows, and the corner homography.
+// sampling's option rows, the sensitivity estimate's option rows and the Absolute mode's choices of
+// sensitivities, a light trap's rows for an image's size, and the corner homography.
 #include "tristim/absolute/options_table.hpp"
+#include "tristim/absolute/recipe.hpp"
 #include "tristim/capture/calibration.hpp"
 #include "tristim/characterisation/objectives.hpp"
 #include "tristim/chart/layout.hpp"
 #include "tristim/chart/layout_options_table.hpp"
+#include "tristim/chart/light_trap.hpp"
 #include "tristim/chart/reference.hpp"
 #include "tristim/data.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -32,7 +35,7 @@ EMSCRIPTEN_BINDINGS(tristim_catalog) {
       FIELD(term_names) FIELD(terms) FIELD(root) FIELD(linear) FIELD(exposure_invariant) FIELD(duplicate_of) FIELD(family); }
   { using S = ModelFamily; value_object<S>("ModelFamily") FIELD(id) FIELD(label) FIELD(about); }
   { using S = OptionSpec; value_object<S>("OptionSpec") FIELD(name) FIELD(type) FIELD(label) FIELD(default_number)
-      FIELD(default_text) FIELD(min) FIELD(max) FIELD(choices) FIELD(description) FIELD(step) FIELD(unit); }
+      FIELD(default_text) FIELD(min) FIELD(max) FIELD(choices) FIELD(description) FIELD(step) FIELD(unit) FIELD(min_exclusive); }
   { using S = MethodInfo; value_object<S>("MethodInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(options); }
   { using S = SurfaceListing; value_object<S>("SurfaceListing") FIELD(id) FIELD(label) FIELD(reference) FIELD(options)
       FIELD(coefficients) FIELD(equation) FIELD(geometry); }
@@ -58,5 +61,7 @@ EMSCRIPTEN_BINDINGS(tristim_catalog) {
   def<&chart_layout>("chartLayout");
   def<&layout_option_table>("listLayoutOptions");
   def<&sensitivity_option_table>("listSensitivityOptions");
+  def<&absolute_sensitivity_table>("listAbsoluteSensitivities");
+  def<&light_trap_option_table>("listLightTrapOptions");
   def<&homography_unit_square>("homographyUnitSquare");
 }

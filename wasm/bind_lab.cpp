@@ -18,6 +18,7 @@ EMSCRIPTEN_BINDINGS(tristim_lab) {
   STRUCT(LabRenderOptions, camera, sensitivities, chart, illuminant, illuminant_spd, surface, width, height, corners,
            exposure, falloff, flare, shot_gain, read_noise, seed, bits, black, cfa, oecf, jpeg_quality);
   STRUCT(LabRenderFiles, dng, truth, reference);
+  STRUCT(LabFileKind, id, label, extension, media_type, through_oecf);
   STRUCT(LutherFit, wavelengths, camera, fit, coefficients);
 
   STRUCT(ColourRow, illuminant, observer, XYZ, Lab, x, y);
@@ -40,5 +41,7 @@ EMSCRIPTEN_BINDINGS(tristim_lab) {
   def<&construct_metamer>("labConstructMetamer");
   def<&munsell_ids>("listMunsell");
   def<&lab_option_table>("listLabOptions");
+  def<&lab_file_kinds>("listLabFileKinds");
+  def<&metamer_match_table>("listMetamerMatches");
   def<&lab_option>("labOption");
 }

@@ -29,11 +29,14 @@ const handlers = {
     flatFieldModes: T.listFlatFieldModes(), absoluteOptions: T.listAbsoluteOptions(), fusionModes: T.listFusionModes(),
     surfaceOptions: T.listSurfaceOptions(), sensitivityOptions: T.listSensitivityOptions(),
     layoutOptions: T.listLayoutOptions(), labOptions: T.listLabOptions(), sampleFlags: T.listSampleFlags(),
-    absoluteWhiteRules: T.listAbsoluteWhiteRules(),
+    absoluteWhiteRules: T.listAbsoluteWhiteRules(), absoluteSensitivities: T.listAbsoluteSensitivities(),
+    labCharts: T.listLabCharts(), labFileKinds: T.listLabFileKinds(), metamerMatches: T.listMetamerMatches(),
     bootstrapOptions: T.bootstrapOptions(),
     exampleLights: T.listExampleLights(), exampleTrainings: T.listExampleTrainings(),
     layouts: Object.fromEntries(T.listChartLayouts().map((id) => [id, id === 'custom' ? null : T.chartLayout({ chart: id })])),
   }),
+  /// A light trap's box rows for an image of this size (light_trap_option_table: the boxes' bounds).
+  lightTrapOptions: (T, { width, height }) => reply(T.listLightTrapOptions(width, height)),
   /// Test-only (tests/web/worker_restart.test.mjs): makes this worker die the two ways a real one
   /// can — 'abort': the module traps (what an abort or out-of-memory in wasm throws); 'uncaught':
   /// an error escapes the worker. It can only stop the caller's own worker, which the page replaces.

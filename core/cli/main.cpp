@@ -46,7 +46,7 @@ std::string option_rows_help(const std::string& title, const std::vector<OptionS
       for (size_t k = 0; k < o.choices.size(); ++k) s << (k ? " | " : "") << o.choices[k];
       s << (o.choices.empty() ? "" : ", ") << "default " << o.default_text;
     } else {
-      s << o.min << " to " << o.max << ", default " << o.default_number;
+      s << (o.min_exclusive ? "more than " : "") << o.min << " to " << o.max << ", default " << o.default_number;
     }
     s << " — " << o.description << "\n";
   }

@@ -72,10 +72,10 @@ MethodChoice complete_choice(const MethodInfo& info, const MethodChoice& choice)
       throw Error(ErrorCode::InvalidArgument, info.id + ": option '" + name + "' must be an integer");
     if (o->type == "boolean" && value != 0 && value != 1)
       throw Error(ErrorCode::InvalidArgument, info.id + ": option '" + name + "' must be 0 or 1");
-    if (o->min != o->max && (value < o->min || value > o->max))
+    if (o->min != o->max && (value < o->min || (o->min_exclusive && value == o->min) || value > o->max))
       throw Error(ErrorCode::InvalidArgument, info.id + ": option '" + name + "' = " + std::to_string(value) +
-                                                  " is outside [" + std::to_string(o->min) + ", " +
-                                                  std::to_string(o->max) + "]");
+                                                  " is outside " + (o->min_exclusive ? "(" : "[") +
+                                                  std::to_string(o->min) + ", " + std::to_string(o->max) + "]");
     out.parameters[name] = value;
   }
   for (const auto& [name, value] : choice.settings) {

@@ -3,7 +3,8 @@
 // list, with the tables' ids and labels. The expected rows come from the wasm module loaded here in
 // node (tests/wasm/load.mjs), not from the page's copy of the catalog, so a picker whose list,
 // order, labels, option bounds or families drift from the engine fails; so does a number input of
-// the custom grid, the sampled area, the Lab, the Surface step or the Absolute mode whose label, unit, bounds, step or default is not the table's. A <select> the registry
+// the custom grid, the sampled area, the Lab, the Surface step, the Absolute mode or the light trap whose label, unit, bounds, step or default is
+// not the table's (or, for a row whose min is exclusive, whose box accepts min). A <select> the registry
 // below does not know fails too: a new picker states where its choices come from.
 import test from 'node:test';
 import assert from 'node:assert/strict';
@@ -85,7 +86,9 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     'apply/Apply to': { owned: 'where the image comes from (a UI choice)' },
     'apply/Colour map for Y': { owned: 'display colour maps (d3)' },
     'absolute/Colour map': { owned: 'display colour maps (d3)' },
-    'absolute/Sensitivities for A_R, A_G, A_B': { owned: 'none, this session\'s sets, then the built-in cameras (checked below)' },
+    // The engine's sensitivity choices in its order: 'none' itself, 'given' as this session's sets
+    // (none at start), 'camera' as the built-in cameras.
+    'absolute/Sensitivities for A_R, A_G, A_B': T.listAbsoluteSensitivities().flatMap((r) => (r.id === 'none' ? [{ value: r.id, label: r.label }] : r.id === 'camera' ? rows(cameras) : [])),
     'absolute/Patches': { owned: 'where the patches come from (a UI choice)' },
     'absolute/Chart (known reflectances)': { owned: 'the built-in charts and a file (checked below)' },
     'absolute/Illuminant of the photo': { owned: 'the built-in illuminants and a file (checked below)' },
@@ -102,15 +105,15 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     'export/Illuminant': rows(T.listIlluminants()),
     'export/Chromatic adaptation': { owned: 'the adaptations tristim idt takes (each checked against the engine below)' },
     'lab/Camera': { owned: 'the built-in cameras, after the CMFs in exercise 2 (checked below)' },
-    'lab/Chart': { owned: 'the charts the renderer draws, named by the page (ids checked below)' },
+    'lab/Chart': [...T.listLabCharts()].map((id) => ({ value: id, label: charts.find((c) => c.id === id)?.name ?? null })),
     'lab/Illuminant': rows(T.listIlluminants()),
     'lab/ColorChecker patch': { owned: 'the patches of the CC24 (exercise 1)' },
-    'lab/File': { owned: 'the file kinds the renderer writes (DNG, TIFF, JPEG: a UI choice)' },
+    'lab/File': rows(T.listLabFileKinds()),
     'lab/OECF (TIFF, JPEG)': { owned: 'the renderer\'s OECFs, labelled by their ids (checked below)' },
     'lab/First light (match)': rows(T.listIlluminants()),
     'lab/Second light': rows(T.listIlluminants()),
     'lab/Observer': rows(T.listObservers()),
-    'lab/Match for': { owned: 'which viewer the constructed metamer matches for (a UI choice)' },
+    'lab/Match for': rows(T.listMetamerMatches()),
     'lab/Munsell chip': { owned: 'the engine\'s Munsell ids, loaded when the picker opens (checked below)' },
     'lab/or Munsell chips': { owned: 'the engine\'s Munsell ids for a chart of one\'s own, loaded when the picker opens (checked below)' },
     'lab/Training chart': { owned: 'the charts the exercise trains on, named by their role in the paper (ids checked below)' },
@@ -139,6 +142,13 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     const tail = (key, n) => JSON.stringify((byKey[key] ?? []).slice(-n).map(({ value, label }) => ({ value, label })));
     const head = (key, n) => JSON.stringify((byKey[key] ?? []).slice(0, n).map(({ value, label }) => ({ value, label })));
     if (tail('absolute/Sensitivities for A_R, A_G, A_B', cameras.length) !== JSON.stringify(rows(cameras))) wrong.push('absolute sensitivities: not the built-in cameras');
+    // Its hint is the chosen row's label and citation (eq 7), for a value of each row shown.
+    for (const r of T.listAbsoluteSensitivities().filter((x) => x.id !== 'given')) {
+      await choose(page, 'absolute', 'Sensitivities for A_R, A_G, A_B', r.id === 'none' ? 'none' : cameras[0].id);
+      const hint = await page.evaluate(() => document.querySelector('#step-absolute select[data-role="abs-camera"]')?.closest('.field')?.querySelector('small.hint')?.textContent);
+      if (hint !== `${r.label} — ${r.reference}`) wrong.push(`absolute sensitivities ${r.id}: hint '${hint}'`);
+    }
+    await choose(page, 'absolute', 'Sensitivities for A_R, A_G, A_B', 'none');
     if (head('absolute/Chart (known reflectances)', charts.length) !== JSON.stringify(rows(charts))) wrong.push('absolute chart: not the built-in charts');
     if (head('absolute/Illuminant of the photo', T.listIlluminants().length) !== JSON.stringify(rows(T.listIlluminants()))) wrong.push('absolute illuminant: not the built-in illuminants');
     const guarnera = models.filter((m) => m.family === 'Guarnera2018');
@@ -164,9 +174,6 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     }
     for (const s of found.filter((x) => x.step === 'lab' && x.name === 'Camera')) {
       if (JSON.stringify(s.options.slice(-cameras.length).map(({ value, label }) => ({ value, label }))) !== JSON.stringify(rows(cameras))) wrong.push('lab camera: not the built-in cameras');
-    }
-    for (const s of found.filter((x) => x.step === 'lab' && x.name === 'Chart')) {
-      if (JSON.stringify(s.options.map((o) => o.value)) !== JSON.stringify([...T.listLabCharts()])) wrong.push(`lab chart: ${s.options.map((o) => o.value)}, the renderer draws ${[...T.listLabCharts()]}`);
     }
     // The Lab's OECFs are the renderer's; the exercise charts are ones it draws; the chips are Munsell ids.
     const oecfs = found.find((x) => x.step === 'lab' && x.name === 'OECF (TIFF, JPEG)')?.options.map((o) => o.value);
@@ -226,8 +233,34 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
           step: String(o.step || (o.type === 'integer' ? 1 : 'any')), value: String(o.default_number), title: o.description };
         const got = boxes.find((x) => x.name === o.name);
         if (got && JSON.stringify(got) !== JSON.stringify(want)) wrong.push(`${table} input ${o.name}: ${JSON.stringify(got)}, the table ${JSON.stringify(want)}`);
+        // A row whose min the engine refuses (min_exclusive: the zone parameter w) makes its box
+        // invalid at min, valid at the default; another row's box is valid at min.
+        const validAt = (v) => page.evaluate(([sel, val]) => {
+          const el = document.querySelector(sel);
+          const before = el.value;
+          el.value = val;
+          el.dispatchEvent(new Event('input'));
+          const ok = el.checkValidity();
+          el.value = before;
+          el.dispatchEvent(new Event('input'));
+          return ok;
+        }, [`${scope} input[${attr}="${o.name}"]`, String(v)]);
+        if (got && (await validAt(o.min)) === !!o.min_exclusive) wrong.push(`${table} input ${o.name}: ${o.min} is ${o.min_exclusive ? 'accepted' : 'refused'}, the engine ${o.min_exclusive ? 'refuses' : 'accepts'} it`);
+        if (got && !(await validAt(o.default_number))) wrong.push(`${table} input ${o.name}: its default ${o.default_number} is marked invalid`);
       }
     }
+
+    // Step 2's light trap: one box per row of the engine's table for the chart image's size
+    // (light_trap_option_table), labelled "label (unit)", with its bounds, step and description.
+    const [W, H] = await page.$eval('#step-images rect.image-frame', (r) => [Number(r.getAttribute('width')), Number(r.getAttribute('height'))]);
+    const trapRows = T.listLightTrapOptions(W, H);
+    await page.waitForFunction(() => document.querySelector('#step-images fieldset.light-trap input[data-light-trap-option]'), null, { timeout: 30000 });
+    const trapBoxes = await page.$$eval('#step-images fieldset.light-trap:not(fieldset.second-chart fieldset) input[data-trap]', (els) => els.map((el) => ({
+      name: el.dataset.lightTrapOption, type: el.type, label: el.getAttribute('aria-label'), min: el.getAttribute('min'), max: el.getAttribute('max'),
+      step: el.getAttribute('step'), title: el.title })));
+    const wantTrap = trapRows.map((o) => ({ name: o.name, type: 'number', label: o.unit ? `${o.label} (${o.unit})` : o.label, min: String(o.min),
+      max: String(o.max), step: String(o.step || 1), title: o.description }));
+    if (JSON.stringify(trapBoxes) !== JSON.stringify(wantTrap)) wrong.push(`light trap boxes ${JSON.stringify(trapBoxes)}, the table for ${W} x ${H}: ${JSON.stringify(wantTrap)}`);
 
     // Step 3: the model checklist in the engine's families (their order, labels, advice), each
     // family's models in the table's order with their labels and citations; the objectives.

@@ -7,8 +7,17 @@ import { h } from '../lib/ui.js';
 /// "label (unit)", or the label alone.
 export const optionLabel = (row) => (row.unit ? `${row.label} (${row.unit})` : row.label);
 
-/// <input type=number> bounded as `row`, showing its default; `attrs` add to or override it.
+/// <input type=number> bounded as `row`, showing its default; `attrs` add to or override it. A row
+/// whose min is exclusive (min_exclusive: the engine refuses min itself, e.g. the zone parameter w)
+/// marks the box invalid at min as the browser does past max (the engine's coded error follows).
 export function optionInput(table, row, attrs = {}) {
-  return h('input', { type: 'number', min: row.min, max: row.max, step: row.step || (row.type === 'integer' ? 1 : 'any'),
+  const input = h('input', { type: 'number', min: row.min, max: row.max, step: row.step || (row.type === 'integer' ? 1 : 'any'),
     value: row.default_number, title: row.description, [`data-${table}-option`]: row.name, ...attrs });
+  if (row.min_exclusive) {
+    input.dataset.minExclusive = '';
+    const check = () => input.setCustomValidity(input.value !== '' && Number(input.value) <= row.min ? `${row.label}: more than ${row.min}` : '');
+    input.addEventListener('input', check);
+    input.addEventListener('change', check);
+  }
+  return input;
 }

@@ -82,15 +82,25 @@ export function mount(section, app) {
   const flatInfo = h('span', { class: 'file-state' });
   const noiseInput = optionInput('absolute', spec.noise_floor, { 'data-role': 'abs-noise' });
   const satInput = optionInput('absolute', spec.saturation, { 'data-role': 'abs-saturation' });
-  // Sensitivities for eq (7)'s areas: none, an uploaded CSV or an estimate ('@upload', '@estimate':
-  // held by the worker, see sensitivities.js), or a built-in camera (its id).
+  // Sensitivities for eq (7)'s areas, in the order of the engine's table (listAbsoluteSensitivities:
+  // absolute_sensitivity_table — the recipe's sensitivities.choice ids): 'none' itself, 'given' as
+  // this session's sets (an uploaded CSV or an estimate, '@upload' / '@estimate': held by the worker,
+  // see sensitivities.js), 'camera' as the built-in cameras (their ids).
+  const ssfRows = app.catalog?.absoluteSensitivities ?? [];
+  const NONE = 'none';
   const builtIn = (app.catalog?.cameras ?? []).map((c) => ({ value: c.id, label: c.name }));
   const givenSets = {};
-  const cameraOptions = () => [{ value: '', label: 'none (A_R = A_G = A_B)' },
-    ...Object.entries(givenSets).map(([k, label]) => ({ value: `@${k}`, label })), ...builtIn];
-  const cameraSel = select(cameraOptions(), '');
+  const expand = {
+    none: (r) => [{ value: r.id, label: r.label }],
+    given: () => Object.entries(givenSets).map(([k, label]) => ({ value: `@${k}`, label })),
+    camera: () => builtIn,
+  };
+  const cameraOptions = () => ssfRows.flatMap((r) => expand[r.id]?.(r) ?? []);
+  /// The table's row a picker value stands for.
+  const ssfRowOf = (value) => ssfRows.find((r) => r.id === (value.startsWith('@') ? 'given' : value === NONE ? NONE : 'camera'));
+  const cameraSel = select(cameraOptions(), NONE);
   cameraSel.dataset.role = 'abs-camera';
-  const ssf = mountSensitivities(app, { onChoice: (which, label) => { givenSets[which] = label; setOptions(cameraSel, cameraOptions(), `@${which}`); } });
+  const ssf = mountSensitivities(app, { onChoice: (which, label) => { givenSets[which] = label; setOptions(cameraSel, cameraOptions(), `@${which}`); cameraSel._showHint?.(); } });
   // The colour matrix: the Guarnera2018 family of the engine's model table; a row's id is
   // Guarnera2018-<transform> and the recipe names the transform.
   const transforms = (app.catalog?.models ?? []).filter((m) => m.family === 'Guarnera2018')
@@ -122,6 +132,16 @@ export function mount(section, app) {
     show();
     return f;
   };
+  // The sensitivities' field: its hint is the chosen row's label and citation (the engine's words).
+  const ssfField = () => {
+    const f = field('Sensitivities for A_R, A_G, A_B', cameraSel, ' ');
+    const hint = f.querySelector('small.hint');
+    const show = () => { const r = ssfRowOf(cameraSel.value); hint.textContent = r ? `${r.label} — ${r.reference}` : ''; };
+    cameraSel.addEventListener('change', show);
+    cameraSel._showHint = show;
+    show();
+    return f;
+  };
   // Two grid columns for a field whose choices are long (the chosen text stays readable).
   const wide = (el) => { el.classList.add('abs-wide'); return el; };
   const progress = progressBar('Absolute');
@@ -135,7 +155,7 @@ export function mount(section, app) {
       h('div', {}, field('Lens-cap frames (RAW, optional)', capInput, 'Averaged: the noise floor n of eq (7)'), capInfo),
       h('div', {}, field('Flat field (RAW, optional)', flatInput, 'Evenly lit: the radial fall-off f(r) of eq (7)'), flatInfo),
       ...[noiseInput, satInput, wInput].map((i) => { const o = spec[i.dataset.absoluteOption]; return field(optionLabel(o), i, o.description); }),
-      field('Sensitivities for A_R, A_G, A_B', cameraSel, 'Eq (7) channel areas: built-in measured sensitivities, or an upload or estimate (below)'),
+      ssfField(),
       h('div', { class: 'abs-ssf-box' }, ssf.el),
       wide(field('Colour matrix', transformSel)),
       wide(field('Exposure fusion', fusionSel)),
@@ -316,8 +336,8 @@ export function mount(section, app) {
     let stage = 'fit';
     try {
       progress.start('Fitting the absolute profile…');
-      const given = cameraSel.value.startsWith('@');
-      const options = { camera: given ? '' : cameraSel.value, sensitivities: given ? cameraSel.value.slice(1) : '', transform: transformSel.value, fusion: fusionSel.value,
+      const kind = ssfRowOf(cameraSel.value)?.id;
+      const options = { camera: kind === 'camera' ? cameraSel.value : '', sensitivities: kind === 'given' ? cameraSel.value.slice(1) : '', transform: transformSel.value, fusion: fusionSel.value,
         noise_floor: numberValue(noiseInput, 0), saturation: numberValue(satInput, 0), w: numberValue(wInput) };
       const fit = await engine.call('absFit', { options }, { onProgress: progress.update });
       st.fit = fit;
@@ -355,7 +375,8 @@ export function mount(section, app) {
     capInfo.textContent = `${ex.lensCap.length} virtual lens-cap frames`;
     flatInfo.textContent = 'virtual flat field (equal-tristimulus light, 450 cd/m²)';
     for (const i of [noiseInput, satInput, wInput]) i.value = String(spec[i.dataset.absoluteOption].default_number);
-    setOptions(cameraSel, cameraOptions(), ex.camera);
+    setOptions(cameraSel, cameraOptions(), ex.camera || NONE);
+    cameraSel._showHint();
     if (!(await loadStimuli(ex.stimuliCsv, 'example-stimuli.csv'))) return null;
     if (!(await loadStimuli(ex.testCsv, 'example-test.csv', 'test'))) return null;
     st.testFromExample = true;
@@ -531,7 +552,8 @@ export function mount(section, app) {
   engine.addEventListener('restart', () => {
     st.shown = null; maps.hidden = true;
     for (const k of Object.keys(givenSets)) delete givenSets[k];
-    setOptions(cameraSel, cameraOptions(), cameraSel.value.startsWith('@') ? '' : cameraSel.value);
+    setOptions(cameraSel, cameraOptions(), cameraSel.value.startsWith('@') ? NONE : cameraSel.value);
+    cameraSel._showHint();
     ssf.forget();
   });
   return { run, example, read, seriesInput, stimuliInput, fitBtn, exampleBtn, sensitivities: ssf };

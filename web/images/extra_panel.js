@@ -36,7 +36,7 @@ export function mountPanel(app, k, { ensureFirst, changed, remove, more = [] }) 
   const progress = progressBar(`Decoding chart image ${k}`);
   let editor = null;   // made at the first decode
   const editorBox = h('div', { class: 'second-editor' });
-  const trap = lightTrapBox({ editor: () => editor, stored: () => saved().lightTrap, save: async (r) => { await store({ lightTrap: r }); await resample(); } });
+  const trap = lightTrapBox({ engine: app.engine, editor: () => editor, stored: () => saved().lightTrap, save: async (r) => { await store({ lightTrap: r }); await resample(); } });
   const frames = extraFrames(app, k, { ensureImage: () => ensureDecoded(), resample: () => resample() });
   const ref = extraReference(app, k, { saved, store, same, changed: () => changed() });
   const ownBox = h('div', { class: 'controls second-frames', hidden: true }, frames.el, ref.el, trap.el);

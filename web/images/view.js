@@ -76,7 +76,7 @@ export function mount(section, app) {
   let detection = null;  // {candidate, state: 'proposal' | 'in-use' | 'adjusted'}
   let unconfirmed = false;  // detection missed and the corners are still the ones from before: the table is stale
   // Light trap (Abed 2013 App. C step 1): its flare is subtracted before sampling (light_trap.js).
-  const trap = lightTrapBox({ editor: () => editor, stored: () => app.session.lightTrap,
+  const trap = lightTrapBox({ engine: app.engine, editor: () => editor, stored: () => app.session.lightTrap,
     save: async (r) => { await app.save('lightTrap', r); resample(); } });
   const tableBox = h('div', { class: 'table-box' });
   const sampleSummary = h('p', { class: 'summary', 'aria-live': 'polite' });

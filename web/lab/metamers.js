@@ -27,7 +27,9 @@ export function metamersPanel(app) {
   const ill1 = select(illuminants, 'D65'), ill2 = select(illuminants, 'A');
   const obsSel = select(options(app.catalog.observers), '1931');
   const camSel = select(cams, '');
-  const matchSel = select([{ value: 'observer', label: 'the observer' }, { value: 'camera', label: 'the camera' }], 'observer');
+  // Who the pair matches for: the engine's viewers (metamer_match_table), the default first.
+  const matches = app.catalog.metamerMatches ?? [];
+  const matchSel = select(matches.map((m) => ({ value: m.id, label: m.label })), matches[0]?.id);
   const boxes = labOptionBoxes(app);
   const maxIn = boxes.box('metamers.max_match', 'met-max'), topIn = boxes.box('metamers.top', 'met-top');
   const chipSel = select([{ value: '5R5/6', label: '5R5/6' }], '5R5/6');

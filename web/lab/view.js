@@ -17,12 +17,6 @@ import { metamersPanel } from './metamers.js';
 import { fillChips } from './chips.js';
 import { labOptionBoxes } from './options.js';
 
-const CHARTS = [
-  { value: 'cc24', label: 'ColorChecker Classic (24)' },
-  { value: 'passport', label: 'ColorChecker Passport (classic side)' },
-  { value: 'sg140', label: 'ColorChecker Digital SG (140)' },
-];
-
 /// Sets a picker of another step as a person would (its change handler runs) when it offers `value`.
 function choose(sel, value) {
   if (!sel || ![...sel.options].some((o) => o.value === value) || sel.value === value) return;
@@ -51,24 +45,15 @@ function extraChoice(sel) {
   };
 }
 
-/// The files the renderer writes: a DNG is linear sensor data; a TIFF or JPEG goes through the OECF.
-const FORMATS = [
-  { value: 'dng', label: 'DNG (linear RAW)', ext: 'dng', type: 'image/x-adobe-dng' },
-  { value: 'tiff', label: 'TIFF, 16 bits through the OECF', ext: 'tiff', type: 'image/tiff' },
-  { value: 'jpeg', label: 'JPEG, 8 bits through the OECF (quality 95)', ext: 'jpg', type: 'image/jpeg' },
-];
-const formatOf = (id) => FORMATS.find((f) => f.value === id) ?? FORMATS[0];
-
-/// The command line that renders the same file.
-export function renderCommand(o) {
+/// The command line that renders the same file; `kind`: its row of the engine's file kinds.
+export function renderCommand(o, kind) {
   const chart = o.reflectances ? `--reflectances ${q(o.reflectances)}` : `--chart ${q(o.chart)}`;
   let s = `tristim lab render --camera ${q(o.camera)} ${chart} --illuminant ${q(o.illuminant)} --exposure ${o.exposure}`;
   if (o.shot_gain > 0 || o.read_noise > 0) s += ` --noise ${o.shot_gain},${o.read_noise} --seed ${o.seed}`;
   if (o.falloff > 0) s += ` --falloff ${o.falloff}`;
   if (o.flare > 0) s += ` --flare ${o.flare}`;
-  const f = formatOf(o.format);
-  if (f.value !== 'dng') s += ` --oecf ${o.oecf}`;
-  return `${s} --out chart.${f.ext}`;
+  if (kind.through_oecf) s += ` --oecf ${o.oecf}`;
+  return `${s} --out chart.${kind.extension}`;
 }
 
 export function mount(section, app) {
@@ -77,11 +62,17 @@ export function mount(section, app) {
   const cameras = options(app.catalog.cameras);
   const illuminants = options(app.catalog.illuminants);
 
+  // The charts the renderer draws (lab_chart_ids), named by the chart catalog; the files it writes
+  // (lab_file_kinds: id, label, extension, media type), DNG first.
+  const charts = (app.catalog.labCharts ?? []).map((id) => ({ value: id, label: app.catalog.charts.find((c) => c.id === id)?.name ?? id }));
+  const kinds = app.catalog.labFileKinds ?? [];
+  const formatOf = (id) => kinds.find((k) => k.id === id) ?? kinds[0];
+
   // ---- (1) render
   const camSel = select(cameras, saved.camera ?? 'Canon_EOS_5D_Mark_II');
-  const chartSel = select(CHARTS, saved.chart ?? 'cc24');
+  const chartSel = select(charts, saved.chart ?? charts[0]?.value);
   const illumSel = select(illuminants, saved.illuminant ?? 'D65');
-  const formatSel = select(FORMATS, 'dng');
+  const formatSel = select(kinds.map((k) => ({ value: k.id, label: k.label })), kinds[0]?.id);
   const oecfSel = select([{ value: 'linear', label: 'linear' }], 'linear');
   const spdIn = h('input', { type: 'file', accept: '.csv,.txt', 'data-lab': 'spd', 'aria-label': 'Illuminant SPD (CSV)' });
   formatSel.dataset.lab = 'format';
@@ -135,7 +126,7 @@ export function mount(section, app) {
 
   function readOptions() {
     const o = { camera: camSel.value, chart: refl ? refl.name : chartSel.value, illuminant: spd ? spd.name : illumSel.value,
-      format: formatSel.value, oecf: formatSel.value === 'dng' ? 'linear' : oecfSel.value };
+      format: formatSel.value, oecf: formatOf(formatSel.value).through_oecf ? oecfSel.value : 'linear' };
     if (refl) o.reflectances = refl.name;
     for (const [k, el] of Object.entries(inputs)) o[k] = numberValue(el);
     return o;
@@ -147,7 +138,7 @@ export function mount(section, app) {
     let o;
     try { o = readOptions(); } catch (e) { showError(e.input ?? renderBtn, e, 'Lab'); return null; }
     app.save('lab', { ...o });
-    renderCli.textContent = renderCommand(o);
+    renderCli.textContent = renderCommand(o, formatOf(o.format));
     renderBtn.disabled = true;
     renderOut.replaceChildren(h('p', {}, 'Rendering in the engine…'));
     try {
@@ -165,23 +156,23 @@ export function mount(section, app) {
 
   function show({ dng, truth, format }) {
     const f = formatOf(format);
-    const name = `lab-${truth.layout ? 'grid' : truth.chart}-${truth.camera.replace(/[^\w.-]+/g, '_')}-${truth.illuminant.replace(/[^\w.-]+/g, '_')}.${f.ext}`;
+    const name = `lab-${truth.layout ? 'grid' : truth.chart}-${truth.camera.replace(/[^\w.-]+/g, '_')}-${truth.illuminant.replace(/[^\w.-]+/g, '_')}.${f.extension}`;
     const openBtn = h('button', { type: 'button', 'data-action': 'lab-open' }, 'Open in the journey (Images step)');
-    const saveBtn = h('button', { type: 'button', 'data-action': 'lab-download' }, `Download the ${f.ext.toUpperCase()}`);
+    const saveBtn = h('button', { type: 'button', 'data-action': 'lab-download' }, `Download the ${f.extension.toUpperCase()}`);
     const truthBtn = h('button', { type: 'button', 'data-action': 'lab-truth' }, 'Download the truth (JSON)');
     openBtn.addEventListener('click', () => openInJourney(name));
-    saveBtn.addEventListener('click', () => download(name, dng, f.type));
+    saveBtn.addEventListener('click', () => download(name, dng, f.media_type));
     truthBtn.addEventListener('click', () => download(name.replace(/\.\w+$/, '.json'), JSON.stringify(truth, null, 1), 'application/json'));
     const stored = truth.patches[0]?.stored !== undefined;
     const rows = truth.patches.map((p) => h('tr', {},
       h('th', { scope: 'row', title: p.cell ?? '' }, p.board ? `${p.id} (board)` : p.id), ...p.rgb.map((v) => h('td', { class: 'num' }, String(v))),
       ...p.XYZ.map((v) => h('td', { class: 'num' }, fmt(v, 2))),
       ...(stored ? p.stored.map((v) => h('td', { class: 'num' }, String(v))) : [])));
-    const what = f.value === 'dng'
+    const what = !f.through_oecf
       ? `A ${truth.sensor_width} × ${truth.sensor_height} ${truth.cfa} DNG (${(dng.length / 1e6).toFixed(1)} MB, black ${truth.black}, white ${truth.white_level}): `
-      : `A ${truth.width} × ${truth.height} RGB ${f.value === 'jpeg' ? `JPEG (quality ${truth.jpeg_quality}, 8 bits` : 'TIFF (16 bits'}, `
+      : `A ${truth.width} × ${truth.height} RGB ${f.id === 'jpeg' ? `JPEG (quality ${truth.jpeg_quality}, 8 bits` : 'TIFF (16 bits'}, `
         + `${(dng.length / 1e6).toFixed(2)} MB) through the OECF ${truth.oecf}; the stored columns are its encoded values (full scale ${truth.full_scale})`
-        + `${f.value === 'jpeg' ? ' before compression' : ''}: `;
+        + `${f.id === 'jpeg' ? ' before compression' : ''}: `;
     renderOut.replaceChildren(
       h('p', { class: 'summary', 'data-lab': 'summary' }, what
         + `the white diffuser's G at ${fmt(truth.white[1], 0)} DN. The table is the truth: the camera RGB (DN above black) that sampling the patches `
@@ -205,7 +196,7 @@ export function mount(section, app) {
   async function openInJourney(name) {
     if (!last) return;
     const { truth } = last;
-    const file = new File([last.dng], name, { type: formatOf(last.format).type });
+    const file = new File([last.dng], name, { type: formatOf(last.format).media_type });
     const ref = app.views.reference;
     choose(ref?.controls?.illumSel, truth.illuminant);
     const images = document.getElementById('step-images');

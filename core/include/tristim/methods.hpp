@@ -21,11 +21,12 @@ struct OptionSpec {
   std::string label;        ///< short human label for forms
   double default_number = 0;      ///< number / integer / boolean
   std::string default_text;       ///< choice / text
-  double min = 0, max = 0;        ///< inclusive bounds of number/integer (min == max: unbounded)
+  double min = 0, max = 0;        ///< bounds of number/integer, inclusive unless min_exclusive (min == max: unbounded)
   std::vector<std::string> choices;
   std::string description;  ///< one sentence: what it does, units
   double step = 0;          ///< a form's increment for number options (0: any value; integers step 1)
   std::string unit = {};    ///< the unit a form shows after the label ("" when none, or in the label)
+  bool min_exclusive = false;  ///< min itself is refused (value > min): a bound where the method degenerates
 };
 
 /// One row of a stage's method table.

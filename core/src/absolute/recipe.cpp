@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "tristim/absolute/fusion.hpp"
+#include "../citations.hpp"
 #include "tristim/absolute/stimuli_file.hpp"
 #include "tristim/error.hpp"
 #include "tristim/io/fields.hpp"
@@ -149,6 +150,11 @@ std::vector<OptionSpec> absolute_option_table() {
     o.unit = unit;
     return o;
   };
+  // Z_u, Z_c, Z_o are three disjoint intervals only for w > 2: the row says so (the page and --help).
+  auto exclusive_min = [](OptionSpec o) {
+    o.min_exclusive = true;
+    return o;
+  };
   auto choice = [](const char* name, const char* label, const char* def, std::vector<std::string> choices, const char* what) {
     OptionSpec o;
     o.name = name, o.type = "choice", o.label = label, o.default_text = def, o.choices = std::move(choices), o.description = what;
@@ -159,10 +165,21 @@ std::vector<OptionSpec> absolute_option_table() {
              "the polynomial T of eq (4): T1 linear (eq 13), To with an offset (eq 14), T2R root-polynomial (eq 15)"),
       choice("fusion", "Exposure fusion", "weighted", {"weighted", "recursive"},
              "weighted: every reliable exposure, by reliability x t/N^2; recursive: Algorithm 1"),
-      number("w", "Zone parameter w", 10, kZoneWidthMin, kZoneWidthMax,
-             "section 3.1: Z_c = [1/w, (w-1)/w] of the (S - n) interval is the reliable zone; more than 2"),
+      exclusive_min(number("w", "Zone parameter w", 10, kZoneWidthMin, kZoneWidthMax,
+                           "section 3.1: Z_c = [1/w, (w-1)/w] of the (S - n) interval is the reliable zone; more than 2")),
       number("noise_floor", "Noise floor n", 0, 0, 1e9, "eq (7), when no lens-cap frames are given", "DN"),
       number("saturation", "Saturation S", 0, 0, 1e9, "eq (7); 0: measured from the frames (where the body clips)", "DN"),
+  };
+}
+
+std::vector<MethodInfo> absolute_sensitivity_table() {
+  const std::string eq7 = std::string(citation::kGuarnera2018) + ", eq (7)";
+  return {
+      {"none", "none (A_R = A_G = A_B)", eq7 + " with the channel areas taken equal: no sensitivities known", {}},
+      {"given", "Given curves (a CSV of R, G, B, or an estimate from a chart photo)",
+       eq7 + ": the areas of curves given by the user, measured or estimated (Jiang, Liu, Gu & Süsstrunk 2013)", {}},
+      {"camera", "A built-in camera's measured sensitivities", eq7 + ": the areas of one of the built-in cameras' curves",
+       {}},
   };
 }
 
@@ -190,6 +207,8 @@ AbsoluteRecipe complete_absolute_recipe(const AbsoluteRecipe& in) {
     }
   }
   AbsoluteSensitivities& a = r.inputs.sensitivities;
+  std::string ids;
+  for (const MethodInfo& m : absolute_sensitivity_table()) ids += (ids.empty() ? "" : ", ") + m.id;
   if (a.choice == "none") {
     a.camera.clear(), a.source.clear(), a.ssf = {};
   } else if (a.choice == "camera") {
@@ -203,7 +222,7 @@ AbsoluteRecipe complete_absolute_recipe(const AbsoluteRecipe& in) {
     a.camera.clear();
     if (a.source.empty()) a.source = "given";
   } else {
-    throw Error(ErrorCode::InvalidArgument, "sensitivities: choice is none, camera or given, not '" + a.choice + "'");
+    throw Error(ErrorCode::InvalidArgument, "sensitivities: choice is one of " + ids + ", not '" + a.choice + "'");
   }
   return r;
 }

@@ -68,6 +68,19 @@ std::vector<OptionSpec> lab_option_table() {
   };
 }
 
+std::vector<LabFileKind> lab_file_kinds() {
+  const std::string quality = std::to_string(LabRenderOptions{}.jpeg_quality);
+  return {{"dng", "DNG (linear RAW)", "dng", "image/x-adobe-dng", false},
+          {"tiff", "TIFF, 16 bits through the OECF", "tiff", "image/tiff", true},
+          {"jpeg", "JPEG, 8 bits through the OECF (quality " + quality + ")", "jpg", "image/jpeg", true}};
+}
+
+std::vector<MethodInfo> metamer_match_table() {
+  return {{"observer", "the observer", "CIE XYZ under each light (CIE 15), CIELAB, ΔE00 (Sharma, Wu & Dalal 2005)", {}},
+          {"camera", "the camera",
+           "the virtual camera's RGB through its ISO 17321-1 matrix fitted under each light, CIELAB, ΔE00", {}}};
+}
+
 std::string lab_option_number(const OptionSpec& o, double value) {
   return o.type == "integer" ? json::number_text(value) : lab_number(value);
 }

@@ -91,9 +91,15 @@ double pixel_dn(const LabRender& r, int x, int y, int c, GaussianNoise* noise) {
 
 LabRenderFiles lab_render_files(const LabRenderOptions& options, const std::string& format_given) {
   const std::string format = format_given.empty() ? "dng" : format_given;
-  if (format != "dng" && format != "tiff" && format != "jpeg")
-    throw Error(ErrorCode::InvalidArgument, "lab render writes dng, tiff or jpeg, not '" + format + "'");
-  if (format == "dng" && options.oecf != "linear")
+  std::string kinds;  // the ids of lab_file_kinds(), the one list of what is written
+  const LabFileKind* kind = nullptr;
+  const std::vector<LabFileKind> all = lab_file_kinds();
+  for (const LabFileKind& k : all) {
+    kinds += (kinds.empty() ? "" : ", ") + k.id;
+    if (k.id == format) kind = &k;
+  }
+  if (!kind) throw Error(ErrorCode::InvalidArgument, "lab render writes " + kinds + ", not '" + format + "'");
+  if (!kind->through_oecf && options.oecf != "linear")
     throw Error(ErrorCode::InvalidArgument, "a DNG holds linear sensor data: the OECF must be 'linear' (write a .tiff for '" + options.oecf + "')");
   const LabRender r = render_lab_chart(options);
   if (format == "tiff") return {lab_render_tiff(r), lab_render_json(r, 65535).dump(1), lab_reference_csv(r)};

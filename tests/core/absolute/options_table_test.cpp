@@ -3,6 +3,7 @@
 // estimate's (sensitivity_option_table, estimate_sensitivities_Jiang2013) — the page's inputs and
 // `tristim absolute --help`. A row's default and bounds are accepted; a value past a bound, or a
 // choice the row does not list, is refused with a coded error naming the option.
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -71,15 +72,23 @@ TEST_CASE("absolute option table: complete_absolute_recipe refuses a number past
     if (o.type != "number") continue;
     INFO(name);
     CHECK(refusal([&] { complete_absolute_recipe(with_number(name, o.max)); }) == "");
-    if (name != "w") CHECK(refusal([&] { complete_absolute_recipe(with_number(name, o.min)); }) == "");
+    // An exclusive minimum (w) is refused itself; an inclusive one accepted.
+    const std::string at_min = refusal([&] { complete_absolute_recipe(with_number(name, o.min)); });
+    if (o.min_exclusive) CHECK(at_min.rfind("INVALID_ARGUMENT: ", 0) == 0);
+    else CHECK(at_min == "");
     for (double past : {o.min - 1, o.max * 1.001}) {
       INFO("value " << past);
       CHECK(refusal([&] { complete_absolute_recipe(with_number(name, past)); }).rfind("INVALID_ARGUMENT: ", 0) == 0);
     }
   }
-  // w's lower bound is open (Z_c = [1/w, (w−1)/w] is empty at 2), as its description says.
+  // w's lower bound is open (Z_u, Z_c, Z_o are disjoint only for w > 2, section 3.1): the row says
+  // so (min_exclusive, which the page's box and --help show), and the next double above 2 is taken.
+  const OptionSpec w = by_name(absolute_option_table).at("w");
+  CHECK(w.min == 2);
+  CHECK(w.min_exclusive);
   CHECK(refusal([] { complete_absolute_recipe(with_number("w", 2)); }).rfind("INVALID_ARGUMENT: ", 0) == 0);
-  CHECK(by_name(absolute_option_table).at("w").description.find("more than 2") != std::string::npos);
+  CHECK(refusal([] { complete_absolute_recipe(with_number("w", std::nextafter(2.0, 3.0))); }) == "");
+  for (const auto& row : by_name(absolute_option_table)) CHECK(row.second.min_exclusive == (row.first == "w"));
 }
 
 TEST_CASE("absolute option table: a choice the row does not list is refused", "[absolute][catalog]") {
@@ -99,6 +108,40 @@ TEST_CASE("absolute option table: a choice the row does not list is refused", "[
   f.options.fusion = "median";
   CHECK(refusal([&] { complete_absolute_recipe(t); }).rfind("UNKNOWN_ID: ", 0) == 0);
   CHECK(refusal([&] { complete_absolute_recipe(f); }).rfind("UNKNOWN_ID: ", 0) == 0);
+}
+
+TEST_CASE("absolute sensitivity table: the recipe's sensitivities take exactly its ids", "[absolute][catalog]") {
+  const std::vector<MethodInfo> table = absolute_sensitivity_table();
+  std::string ids;
+  for (const MethodInfo& m : table) {
+    ids += m.id + " ";
+    CHECK(!m.label.empty());
+    CHECK(m.reference.find("Guarnera") != std::string::npos);  // eq (7)'s A_R, A_G, A_B
+    CHECK(m.reference.find("eq (7)") != std::string::npos);
+  }
+  CHECK(ids == "none given camera ");
+  // Each id with what it needs is accepted; the default recipe takes the first.
+  CHECK(AbsoluteRecipe{}.inputs.sensitivities.choice == table.front().id);
+  for (const MethodInfo& m : table) {
+    INFO(m.id);
+    AbsoluteRecipe r;
+    r.inputs.sensitivities.choice = m.id;
+    if (m.id == "camera") r.inputs.sensitivities.camera = "Nikon_D850";
+    if (m.id == "given") {
+      SpectralData ssf = camera_ssf("Nikon_D850");
+      r.inputs.sensitivities.ssf = ssf;
+    }
+    CHECK(refusal([&] { complete_absolute_recipe(r); }) == "");
+  }
+  // Anything else is refused, the message listing the table's ids.
+  for (const std::string bad : {"estimate", "", "None"}) {
+    INFO("'" << bad << "'");
+    AbsoluteRecipe r;
+    r.inputs.sensitivities.choice = bad;
+    const std::string why = refusal([&] { complete_absolute_recipe(r); });
+    CHECK(why.rfind("INVALID_ARGUMENT: ", 0) == 0);
+    CHECK(why.find("none, given, camera") != std::string::npos);
+  }
 }
 
 TEST_CASE("sensitivity option table: estimate_sensitivities_Jiang2013 refuses K and μ past the rows' bounds",

@@ -82,7 +82,8 @@ TEST_CASE("layout option table: chart_layout takes every value in the bounds and
 }
 
 TEST_CASE("layout option table: sample_chart takes the sampled area's bounds and refuses past them", "[chart][catalog]") {
-  const auto& A = by_name().at("area");
+  const auto spec = by_name();  // kept: a reference into by_name()'s temporary map would dangle
+  const auto& A = spec.at("area");
   const RawImage img = grey(1200, 600);  // patches of ~170 x 120 px: the smallest area still has pixels
   const std::array<double, 8> corners = {10, 10, 1190, 10, 1190, 590, 10, 590};
   SampleOptions so;

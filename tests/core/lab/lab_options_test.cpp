@@ -136,3 +136,47 @@ TEST_CASE("lab render: the reference CSV reads back as the truth's XYZ, by cell 
     }
   }
 }
+
+TEST_CASE("lab file kinds: lab_render_files writes exactly these ids, each a file of its type", "[lab][catalog]") {
+  std::string ids;
+  for (const LabFileKind& k : lab_file_kinds()) {
+    ids += k.id + " ";
+    INFO(k.id);
+    CHECK(!k.label.empty());
+    LabRenderOptions o;
+    o.width = o.height = 64;
+    if (k.through_oecf) o.oecf = "sRGB";
+    const std::vector<std::uint8_t> bytes = lab_render_files(o, k.id).dng;
+    // A kind that is not encoded through the OECF refuses one (a DNG holds linear sensor data).
+    LabRenderOptions encoded = o;
+    encoded.oecf = "sRGB";
+    if (!k.through_oecf) test::require_code([&] { lab_render_files(encoded, k.id); }, ErrorCode::InvalidArgument);
+    REQUIRE(bytes.size() > 4);
+    // The magic of the file its media type names: TIFF (a DNG is one) "II*\0", JPEG FF D8.
+    if (k.media_type == "image/jpeg") CHECK((bytes[0] == 0xFF && bytes[1] == 0xD8));
+    else CHECK((bytes[0] == 'I' && bytes[1] == 'I' && bytes[2] == 42 && bytes[3] == 0));
+    CHECK((k.media_type == "image/jpeg") == (k.extension == "jpg"));
+  }
+  CHECK(ids == "dng tiff jpeg ");
+  CHECK(lab_file_kinds().back().label.find(std::to_string(LabRenderOptions{}.jpeg_quality)) != std::string::npos);
+  LabRenderOptions o;
+  o.width = o.height = 64;
+  test::require_code([&] { lab_render_files(o, "png"); }, ErrorCode::InvalidArgument);
+}
+
+TEST_CASE("metamer match table: the search takes exactly its viewers", "[lab][catalog]") {
+  std::string ids;
+  for (const MethodInfo& m : metamer_match_table()) {
+    ids += m.id + " ";
+    INFO(m.id);
+    CHECK(!m.label.empty());
+    CHECK(!m.reference.empty());
+    CHECK_NOTHROW(metamers_with([&m](auto& o) {
+      o.match = m.id;
+      o.camera = "Nikon_D850";
+    }));
+  }
+  CHECK(ids == "observer camera ");
+  CHECK(MetamerOptions{}.match == metamer_match_table().front().id);
+  test::require_code([] { metamers_with([](auto& o) { o.match = "eye"; }); }, ErrorCode::UnknownId);
+}

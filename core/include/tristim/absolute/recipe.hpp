@@ -64,7 +64,7 @@ std::string stimulus_where(const AbsoluteStimulus& row);
 
 /// Where the channel areas A_R, A_G, A_B of eq (7) come from.
 struct AbsoluteSensitivities {
-  std::string choice = "none";  ///< "none" (A = 1, 1, 1) | "camera" (built in) | "given" (ssf)
+  std::string choice = "none";  ///< absolute_sensitivity_table(): "none" (A = 1, 1, 1) | "camera" (built in) | "given" (ssf)
   std::string camera;           ///< a built-in camera (camera_names()) for "camera"
   std::string source;           ///< what given curves are: "file:ssf.csv", "estimate:Jiang2013 …"
   SpectralData ssf;             ///< the given curves: three columns R, G, B
@@ -95,6 +95,10 @@ struct AbsoluteRecipe {
 /// The options' ranges as the method tables state them (the page's inputs and --help read them):
 /// transform (choice), fusion (choice), w (> 2: Z_c must not be empty), noise_floor, saturation.
 std::vector<OptionSpec> absolute_option_table();
+
+/// Where A_R, A_G, A_B of eq (7) come from: AbsoluteSensitivities::choice takes exactly these ids
+/// (none, given, camera — in the order the page's picker lists them; each row cites what it uses).
+std::vector<MethodInfo> absolute_sensitivity_table();
 
 /// Checks ids, options and rows and returns the recipe with every row's set completed ("" by the
 /// 2 % rule) and the sensitivities' defaults. Errors: RecipeVersion; InvalidArgument (an option

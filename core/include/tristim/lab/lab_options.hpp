@@ -20,6 +20,23 @@ namespace tristim {
 /// every value outside it is refused with Error(InvalidArgument).
 std::vector<OptionSpec> lab_option_table();
 
+/// A kind of file the lab's renderer writes (lab_render_files' `format`; the page's File picker).
+struct LabFileKind {
+  std::string id;          ///< "dng" | "tiff" | "jpeg": lab_render_files' format
+  std::string label;       ///< what the picker shows
+  std::string extension;   ///< a file name's extension, without the dot
+  std::string media_type;  ///< the file's MIME type (a download's)
+  bool through_oecf = true;  ///< encoded through LabRenderOptions::oecf (false: linear sensor data, oecf "linear")
+};
+/// dng (linear sensor data), tiff (16 bits through the OECF), jpeg (8 bits through the OECF, at
+/// LabRenderOptions::jpeg_quality): lab_render_files accepts exactly these ids.
+std::vector<LabFileKind> lab_file_kinds();
+
+/// The viewers a metamer pair can be made to match for (MetamerOptions::match; the page's "Match
+/// for"): "observer" (the CIE observer's ΔE00) and "camera" (the camera's, through its best 3×3
+/// matrix to XYZ); metamer_pairs and construct_metamer accept exactly these ids.
+std::vector<MethodInfo> metamer_match_table();
+
 /// `value` checked against row `name` of lab_option_table(): returned when inside [min, max] (and
 /// whole for an integer row); otherwise Error(InvalidArgument) naming the option, its bounds and the
 /// value. Error(Internal) for a name the table does not have.
