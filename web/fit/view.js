@@ -2,7 +2,7 @@
 // fit them in a few workers side by side, with progress, a cancel button (which terminates those
 // workers) and the rows streaming into the results as each finishes.
 import { h, field, showError, clearError, progressBar, readText } from '../lib/ui.js';
-import { pairData, excludeFlags } from '../lib/pairs.js';
+import { pairData, excludeFlags, heldOutSet } from '../lib/pairs.js';
 import { metric } from '../lib/metrics.js';
 import { optionsForm, completeChoice } from '../lib/options_form.js';
 import { WorkerPool } from './pool.js';
@@ -117,25 +117,11 @@ export function mount(section, app) {
   app.on('surface', describeData);
   app.on('linearisation', describeData);
 
-  /// The held-out set {name, ids, rgb, xyz} from a patch file, paired with the reference by id.
-  async function loadHeldOut(file) {
-    const p = await engine.call('parsePatchFile', { text: file.text, fileName: file.name });
-    if (!p.has_RGB) throw Object.assign(new Error(`${file.name} has no R, G, B columns`), { code: 'MISSING_COLUMN' });
-    let xyz = p.XYZ;
-    let ids = p.ids, rgb = p.RGB;
-    if (!p.has_XYZ) {
-      const ref = app.derived.reference;
-      if (!ref) throw Object.assign(new Error('no reference to pair the held-out patches with (step 1)'), { code: 'NO_REFERENCE' });
-      const patches = ids.map((id, i) => ({ id, mean: [rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]] }));
-      ({ ids, rgb, xyz } = await pairData(engine, { patches }, ref).catch((e) => { throw Object.assign(new Error(`${file.name}: ${e.message}`), { code: e.code }); }));
-    }
-    return { name: file.name, ids, rgb: Float64Array.from(rgb), xyz: Float64Array.from(xyz) };
-  }
   let heldOut = null;
   async function setHeldOut(file) {
     clearError(heldInput);
     try {
-      heldOut = file ? await loadHeldOut(file) : null;
+      heldOut = file ? await heldOutSet(engine, file, app.derived.reference) : null;
       heldState.textContent = heldOut ? `${heldOut.name}: ${heldOut.ids.length} patches held out.` : '';
       heldClear.hidden = !heldOut;
       await app.save('heldOutFile', file ?? undefined);
