@@ -1,7 +1,9 @@
 // Declarations: the surface stage (Abed, Berns & Masaoka 2013) — the Saunderson presets, a
 // correction applied to reflectances, Phase I (one measurement onto another), Phase II (jointly
 // with a white-anchored 3×3), the corrected 3×3 (eqs 6-13) and the simulated Table IV. The table
-// of corrections itself is listSurfaceCorrections (bind_catalog.cpp). Illuminants cross as ids.
+// of corrections itself is listSurfaceCorrections (bind_catalog.cpp). Illuminants cross as ids. The
+// results (SurfaceFitResult, JointFitResult, GeometryTableCell) cross by their field lists (the
+// objects `tristim surface fit / joint / table4 --json` prints; core/src/surface/fields.cpp).
 #include "tristim/surface/fit.hpp"
 #include "tristim/surface/geometry_table.hpp"
 #include "tristim/surface/joint.hpp"
@@ -60,18 +62,9 @@ EMSCRIPTEN_BINDINGS(tristim_surface) {
       FIELD(source); }
   { using S = SurfaceFitOptions; value_object<S>("SurfaceFitOptions") FIELD(range_min) FIELD(range_max) FIELD(illuminant)
       FIELD(observer) FIELD(per_wavelength) FIELD(free) FIELD(max_evaluations); }
-  { using S = SurfaceFitResult; value_object<S>("SurfaceFitResult") FIELD(choice) FIELD(free) FIELD(wavelengths) FIELD(ids)
-      FIELD(measured) FIELD(corrected) FIELD(target) FIELD(rms_before) FIELD(rms_after) FIELD(dE00_before)
-      FIELD(dE00_after) FIELD(spectral_rms_before) FIELD(spectral_rms_after) FIELD(summary_dE00_before)
-      FIELD(summary_dE00_after) FIELD(white) FIELD(evaluations) FIELD(status) FIELD(message); }
   { using S = JointFitOptions; value_object<S>("JointFitOptions") FIELD(illuminant) FIELD(observer) FIELD(white_RGB)
       FIELD(white_reflectance) FIELD(anchor_white) FIELD(free) FIELD(max_evaluations); }
-  { using S = JointFitResult; value_object<S>("JointFitResult") FIELD(choice) FIELD(free) FIELD(matrix) FIELD(reference_XYZ)
-      FIELD(corrected_XYZ) FIELD(fitted_XYZ) FIELD(dE_xyz_rms_start) FIELD(dE_xyz_rms) FIELD(evaluations) FIELD(status)
-      FIELD(message); }
   { using S = Corrected3x3; value_object<S>("Corrected3x3") FIELD(matrix_3x4) FIELD(matrix_prime) FIELD(matrix) FIELD(mu); }
-  { using S = GeometryTableCell; value_object<S>("GeometryTableCell") FIELD(training) FIELD(method) FIELD(ok)
-      FIELD(error_code) FIELD(message) FIELD(dE_xyz) FIELD(dE00) FIELD(matrix) FIELD(correction) FIELD(mu) FIELD(status); }
 
   def<&saunderson_presets>("listSurfacePresets");
   def<&surface_option_table>("listSurfaceOptions");

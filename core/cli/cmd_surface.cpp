@@ -12,7 +12,6 @@
 #include "tristim/io/json.hpp"
 #include "tristim/number.hpp"
 #include "tristim/io/patch_files.hpp"
-#include "tristim/profile/fields.hpp"
 #include "tristim/surface/fit.hpp"
 #include "tristim/surface/geometry_table.hpp"
 #include "tristim/surface/joint.hpp"
@@ -63,9 +62,6 @@ void parse_range(const std::string& text, double& lo, double& hi) {
   throw Error(ErrorCode::InvalidArgument, "--range expects start-end in nm, e.g. 400-700, got '" + text + "'");
 }
 
-/// The short form of an error summary this command prints.
-json::Value summary_json(const Summary& s) { return fields::write_picked(s, {"mean", "median", "p95", "max", "rms"}); }
-
 // Start values: --start choice text, else the method with the Saunderson geometries of
 // --measurement / --capture presets (defaults d8-sci -> 45-0).
 MethodChoice start_choice(const Args& args) {
@@ -102,19 +98,12 @@ int run_fit(const Args& args, std::ostream& out) {
   const SurfaceFitResult r = fit_surface(start, measured.spectra, read_reflectances(to).spectra, o);
   const std::vector<std::string> ids = patch_labels(measured, r.ids);  // as --from spells them
   const double lo = r.wavelengths.front(), hi = r.wavelengths.back();
-  if (args.has("json")) {
-    const json::Value j = fields::object(
-        {{"method", r.choice.method}, {"choice", fields::write(r.choice)}, {"surface", surface_choice_text(r.choice)},
-         {"free", fields::write(r.free)}, {"range_nm", json::Value(std::vector<double>{lo, hi})},
-         {"wavelengths", json::Value(r.wavelengths)}, {"illuminant", illuminant},
-         {"observer", observer_name(o.observer)}, {"status", r.status}, {"message", r.message},
-         {"evaluations", r.evaluations},
-         {"spectral_rms", fields::object({{"before", r.spectral_rms_before}, {"after", r.spectral_rms_after}})},
-         {"dE00", fields::object({{"before", summary_json(r.summary_dE00_before)},
-                                  {"after", summary_json(r.summary_dE00_after)}})},
-         {"patches", fields::rows({{"patch", ids}, {"rms_before", r.rms_before}, {"rms_after", r.rms_after},
-                                   {"dE00_before", r.dE00_before}, {"dE00_after", r.dE00_after}})}});
-    out << j.dump(2) << "\n";
+  if (args.has("json")) {  // the result's field list (fit.hpp): patches as --from spells them, no spectra
+    SurfaceFitResult printed = r;
+    printed.ids = ids;
+    printed.illuminant = illuminant;
+    printed.measured = printed.corrected = printed.target = SpectralData{};
+    out << fields::write(printed).dump(2) << "\n";
     return 0;
   }
   out << "# tristim surface fit: " << r.choice.method << ", " << r.ids.size() << " patches, " << fixed(lo, 0) << "-"
@@ -186,13 +175,8 @@ int run_joint(const Args& args, std::ostream& out) {
   o.white_reflectance = args.get_double("white-reflectance", 1.0);
   o.free = args.get("free", "capture");
   const JointFitResult r = fit_surface_joint_Abed2013(start_choice(args), camera_RGB, paired, o);
-  if (args.has("json")) {
-    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> m = r.matrix;  // row-major, as the text form
-    const json::Value j = fields::object(
-        {{"choice", fields::write(r.choice)}, {"surface", surface_choice_text(r.choice)},
-         {"matrix", json::Value(std::vector<double>(m.data(), m.data() + 9))}, {"dE_xyz_rms_start", r.dE_xyz_rms_start},
-         {"dE_xyz_rms", r.dE_xyz_rms}, {"status", r.status}, {"message", r.message}, {"evaluations", r.evaluations}});
-    out << j.dump(2) << "\n";
+  if (args.has("json")) {  // the result's field list (joint.hpp)
+    out << fields::write(r).dump(2) << "\n";
     return 0;
   }
   out << "key,value\nsurface," << surface_choice_text(r.choice) << "\nmatrix,\"" << matrix_text(r.matrix)
@@ -210,19 +194,8 @@ int run_table4(const Args& args, std::ostream& out) {
   const GeometryExperiment x = geometry_experiment_Abed2013(args.get("camera", "Nikon_D850"), args.get("illuminant", "D50"),
                                                             noise, static_cast<uint64_t>(seed));
   const auto cells = geometry_table_Abed2013(x.training, x.test, x.options);
-  if (args.has("json")) {
-    json::Value a = json::Value::array();
-    for (const auto& c : cells) {
-      json::Value o = fields::object({{"training", c.training}, {"method", c.method}, {"ok", c.ok}});
-      if (!c.ok) o.set("error_code", c.error_code);
-      o.set("message", c.message);
-      o.set("dE_xyz", summary_json(c.dE_xyz));
-      o.set("dE00", summary_json(c.dE00));
-      o.set("surface", surface_choice_text(c.correction));
-      if (c.method == "corrected-3x3") o.set("mu", c.mu);
-      a.push(o);
-    }
-    out << fields::object({{"test", x.test.name}, {"cells", a}}).dump(2) << "\n";
+  if (args.has("json")) {  // each cell by its field list (geometry_table.hpp)
+    out << fields::object({{"test", x.test.name}, {"cells", fields::write(cells)}}).dump(2) << "\n";
     return 0;
   }
   out << "training,method,dE_xyz_mean,dE_xyz_max,dE00_mean,dE00_max,status\n";

@@ -57,12 +57,12 @@ pageTest('surface: correction preview, Phase I ranking of the example, the choic
     const f = T.fitSurface(start, xrite, sci, { ...options, free: 'capture' }, settings.illuminant);
     fits[m] = f;
     const row = `#step-surface table.surface-ranking tr[data-method="${m}"]`;
-    assert.equal(await page.textContent(`${row} td[data-col="mean"]`), fmt(f.summary_dE00_after.mean), `${m} mean ΔE00`);
-    assert.equal(await page.textContent(`${row} td[data-col="max"]`), fmt(f.summary_dE00_after.max), `${m} max ΔE00`);
-    assert.equal(await page.textContent(`${row} td[data-col="rms"]`), `${fmt(f.spectral_rms_before, 4)} → ${fmt(f.spectral_rms_after, 4)}`, `${m} RMS`);
+    assert.equal(await page.textContent(`${row} td[data-col="mean"]`), fmt(f.dE00.after.mean), `${m} mean ΔE00`);
+    assert.equal(await page.textContent(`${row} td[data-col="max"]`), fmt(f.dE00.after.max), `${m} max ΔE00`);
+    assert.equal(await page.textContent(`${row} td[data-col="rms"]`), `${fmt(f.spectral_rms.before, 4)} → ${fmt(f.spectral_rms.after, 4)}`, `${m} RMS`);
   }
   // the paper's ranking on this pair of measurements (offset < scaler, scaler-offset < offset)
-  const m = (k) => fits[k].summary_dE00_after.mean;
+  const m = (k) => fits[k].dE00.after.mean;
   assert.ok(m('offset') < m('scaler') && m('scaler-offset') < m('offset') && m('saunderson') < m('offset'), JSON.stringify(Object.keys(fits).map((k) => [k, m(k)])));
   assert.ok(await marks(page, 'surface-reflectances') > 0);
   await screenshot(page, 'surface-2-ranking');

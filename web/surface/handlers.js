@@ -25,12 +25,11 @@ export const handlers = {
     const measured = T.chartReflectances(chart);
     const fits = starts.map(({ start, free }, k) => {
       progress(k / starts.length, `fitting ${start.method ?? start}`);
-      const r = T.fitSurface(start, measured, table.spectra, { ...options, free: free ?? 'capture' }, illuminant);
-      return { ...r, text: T.surfaceChoiceText(r.choice) };
+      return T.fitSurface(start, measured, table.spectra, { ...options, free: free ?? 'capture' }, illuminant);   // what `tristim surface fit --json` prints, with the spectra
     });
     const colours = T.referenceChart(chart, illuminant || 'D50', options.observer ?? '1931');   // display colours of the fitted patches
     const at = new Map(colours.ids.map((id, i) => [id, i]));   // both sets' ids are the engine's matching keys
-    const sRGB = fits[0].ids.flatMap((id) => { const i = at.get(id); return i === undefined ? [0.5, 0.5, 0.5] : Array.from(colours.sRGB.slice(3 * i, 3 * i + 3)); });
+    const sRGB = fits[0].patches.flatMap(({ patch: id }) => { const i = at.get(id); return i === undefined ? [0.5, 0.5, 0.5] : Array.from(colours.sRGB.slice(3 * i, 3 * i + 3)); });
     return reply({ fits, target_ids: table.ids, sRGB: Float64Array.from(sRGB) });
   },
 

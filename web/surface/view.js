@@ -220,10 +220,10 @@ export function mount(section, app) {
       { onProgress: (m) => progress.update(m) });
       const targetById = {};
       const f0 = out.fits[0];
-      f0.ids.forEach((id, i) => { targetById[id] = { wavelengths: f0.wavelengths, values: f0.target.values[i] }; });   // matching keys, as p.ids
-      const best = out.fits.reduce((a, f) => (f.summary_dE00_after.mean < a.summary_dE00_after.mean ? f : a));
+      f0.patches.forEach(({ patch: id }, i) => { targetById[id] = { wavelengths: f0.wavelengths, values: f0.target.values[i] }; });   // matching keys, as p.ids
+      const best = out.fits.reduce((a, f) => (f.dE00.after.mean < a.dE00.after.mean ? f : a));
       compare = { name: file.name, chart, fits: out.fits, targetById, colours: cssColours(out.sRGB), selected: best.choice.method };
-      compareState.textContent = `${file.name}: ${f0.ids.length} patches paired with ${chart} over ${f0.wavelengths[0]}–${f0.wavelengths.at(-1)} nm.`;
+      compareState.textContent = `${file.name}: ${f0.patches.length} patches paired with ${chart} over ${f0.wavelengths[0]}–${f0.wavelengths.at(-1)} nm.`;
       renderRanking();
       await app.save('surfaceCompare', file);
       if (app.derived.surface) render(app.derived.surface, reference().settings);
@@ -236,7 +236,7 @@ export function mount(section, app) {
 
   function renderRanking() {
     const { fits, name, chart } = compare;
-    const before = fits[0].summary_dE00_before;
+    const before = fits[0].dE00.before;
     const head = ['correction', 'fitted coefficients', 'spectral RMS (reflectance factor) before → after', 'mean ΔE00', 'max ΔE00', 'status', ''];
     const table = h('table', { class: 'compare surface-ranking' },
       h('caption', {}, `Phase I, ${chart} → ${name}: each correction fitted over ${st.range[0]}–${st.range[1]} nm (minimum spectral RMS). `
@@ -258,9 +258,9 @@ export function mount(section, app) {
         tr.append(
           h('th', { scope: 'row' }, label, byId[f.choice.method]?.equation ? h('small', { class: 'hint' }, ` ${byId[f.choice.method].equation}`) : null),
           h('td', {}, h('code', {}, coefficientText(f)), f.free.length ? h('small', { class: 'hint' }, ` (fitted: ${f.free.join(', ')})`) : null),
-          h('td', { dataset: { col: 'rms' } }, `${fmt(f.spectral_rms_before, 4)} → ${fmt(f.spectral_rms_after, 4)}`),
-          h('td', { dataset: { col: 'mean' } }, fmt(f.summary_dE00_after.mean)),
-          h('td', { dataset: { col: 'max' } }, fmt(f.summary_dE00_after.max)),
+          h('td', { dataset: { col: 'rms' } }, `${fmt(f.spectral_rms.before, 4)} → ${fmt(f.spectral_rms.after, 4)}`),
+          h('td', { dataset: { col: 'mean' } }, fmt(f.dE00.after.mean)),
+          h('td', { dataset: { col: 'max' } }, fmt(f.dE00.after.max)),
           h('td', { title: f.message || null }, f.status),
           h('td', {}, f.choice.method === 'none' ? '' : use));
         return tr;
@@ -271,26 +271,26 @@ export function mount(section, app) {
 
   /// The selected Phase I fit: curves of the patches it moves most, and ΔE00 before/after per patch.
   function renderCompareFit(f) {
-    const n = f.ids.length, wl = f.wavelengths;
-    const idx = f.ids.map((_, i) => i);
-    const worst = (e) => [...idx].sort((a, b) => e[b] - e[a]).slice(0, 2);
+    const ids = f.patches.map((p) => p.patch), n = ids.length, wl = f.wavelengths;
+    const idx = ids.map((_, i) => i);
+    const worst = (key) => [...idx].sort((a, b) => f.patches[b][key] - f.patches[a][key]).slice(0, 2);
     const Y = (i) => f.measured.values[i].reduce((a, v) => a + v, 0);
-    const chosen = [...new Set([...worst(f.dE00_before), ...worst(f.dE00_after), idx.reduce((a, b) => (Y(b) > Y(a) ? b : a))])];
+    const chosen = [...new Set([...worst('dE00_before'), ...worst('dE00_after'), idx.reduce((a, b) => (Y(b) > Y(a) ? b : a))])];
     const curves = [];
     for (const [k, i] of chosen.entries()) {
       const colour = PALETTE[k % PALETTE.length];
       for (const [kind, set] of [['measured', f.measured], ['corrected', f.corrected], ['target', f.target]]) {
         if (kind === 'corrected' && f.choice.method === 'none') continue;
-        set.values[i].forEach((v, w) => curves.push({ id: f.ids[i], kind, wavelength: wl[w], value: v, colour, last: w === wl.length - 1 }));
+        set.values[i].forEach((v, w) => curves.push({ id: ids[i], kind, wavelength: wl[w], value: v, colour, last: w === wl.length - 1 }));
       }
     }
     const label = byId[f.choice.method]?.label ?? f.choice.method;
-    const bars = f.ids.map((id, i) => ({ id, before: f.dE00_before[i], after: f.dE00_after[i], fill: compare.colours[i] ?? '#888' }));
+    const bars = f.patches.map((p, i) => ({ id: p.patch, before: p.dE00_before, after: p.dE00_after, fill: compare.colours[i] ?? '#888' }));
     rankPlots.replaceChildren(
       figure(reflectancePlot(curves), { name: 'surface-compare-reflectances',
-        caption: `${label}: the two patches farthest apart before and after the correction and the lightest (${chosen.map((i) => f.ids[i]).join(', ')}) — ${compare.chart} as measured (solid), corrected (dashed), ${compare.name} (dotted)` }),
+        caption: `${label}: the two patches farthest apart before and after the correction and the lightest (${chosen.map((i) => ids[i]).join(', ')}) — ${compare.chart} as measured (solid), corrected (dashed), ${compare.name} (dotted)` }),
       figure(beforeAfterBarsPlot(bars), { name: 'surface-compare-de00',
-        caption: `CIEDE2000 between ${compare.chart} and ${compare.name} per patch: before (grey) and after (patch colour) ${label}; mean ${fmt(f.summary_dE00_before.mean)} → ${fmt(f.summary_dE00_after.mean)} over ${n} patches` }));
+        caption: `CIEDE2000 between ${compare.chart} and ${compare.name} per patch: before (grey) and after (patch colour) ${label}; mean ${fmt(f.dE00.before.mean)} → ${fmt(f.dE00.after.mean)} over ${n} patches` }));
   }
   /// A fitted choice's coefficients (its row's, in the row's order) to 4 significant digits.
   const coefficientText = (f) => {
@@ -321,7 +321,7 @@ export function mount(section, app) {
         h('thead', {}, h('tr', {}, h('th', { scope: 'col' }, 'training chart'), methods.map((m) => h('th', { scope: 'col' }, m)))),
         h('tbody', {}, trainings.map((t) => h('tr', {}, h('th', { scope: 'row' }, t), methods.map((m) => {
           const c = cell(t, m);
-          return h('td', { dataset: { method: m }, title: c.ok ? `${c.status}${c.correction.method !== 'none' ? ` · ${c.correction.method}` : ''}` : c.message },
+          return h('td', { dataset: { method: m }, title: c.ok ? `${c.status}${c.surface !== 'none' ? ` · ${c.surface}` : ''}` : c.message },
             c.ok ? `${fmt(c.dE00.mean)} / ${fmt(c.dE00.max)} · ${fmt(c.dE_xyz.mean, 4)}` : c.error_code);
         }))))));
     } catch (e) { showError(e.input ?? table4Btn, e, 'Table IV'); } finally { table4Btn.disabled = false; }

@@ -297,6 +297,8 @@ SurfaceFitResult fit_surface(const MethodChoice& start, const SpectralData& meas
   }
   const SpectralData illuminant = options.illuminant.size() ? options.illuminant : illuminant_spd("D50");
   r.white = illuminant_white_XYZ(illuminant, options.observer);
+  r.illuminant = illuminant.names.empty() ? "" : illuminant.names[0];
+  r.observer = options.observer;
   // XYZ through the integration rule as one L × 3 matrix (correction.hpp): the same numbers
   // as reflectances_to_XYZ, without aligning every column to the 1 nm grid.
   const Eigen::MatrixXd Tm = surface_detail::integration_matrix(grid, r.measured.linear, illuminant, options.observer);

@@ -17,6 +17,7 @@
 
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/evaluation/evaluation.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/methods.hpp"
 
 namespace tristim {
@@ -51,6 +52,8 @@ struct SurfaceFitResult {
   double spectral_rms_before = 0, spectral_rms_after = 0;  ///< over every patch and wavelength
   Summary summary_dE00_before, summary_dE00_after;
   Vec3 white = Vec3::Zero();        ///< white of the CIELAB report (Y = 100)
+  std::string illuminant;           ///< the report's illuminant: its name ("D50"; the CLI: as given)
+  Observer observer = Observer::CIE1931_2;  ///< the report's observer
   int evaluations = 0;              ///< objective evaluations, all starts and wavelengths
   std::string status = "ok";        ///< "ok", "iteration_limit" or "at_bound"
   std::string message;              ///< what to look at when status is not "ok"
@@ -68,3 +71,14 @@ SurfaceFitResult fit_surface(const MethodChoice& start, const SpectralData& meas
 std::vector<size_t> free_coefficients(const std::string& method, const std::string& free);
 
 }  // namespace tristim
+
+// The field list (io/fields.hpp; defined in surface/fields.cpp) of what `tristim surface fit --json`
+// prints and the module's fitSurface gives: method, choice, surface (the choice as a --surface
+// value), free, range_nm, wavelengths, illuminant, observer, status, message, evaluations,
+// spectral_rms {before, after}, dE00 {before, after} (Summary's list), patches (one row per patch:
+// patch, rms_before, rms_after, dE00_before, dE00_after), then measured, corrected and target
+// (spectra: wavelengths, names, values, linear) when the result holds them — the CLI prints the
+// figures and leaves the spectra out, the page draws them. Written only (derived members).
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(SurfaceFitResult);
+}  // namespace tristim::fields

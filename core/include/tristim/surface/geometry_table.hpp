@@ -26,6 +26,7 @@
 #include "tristim/characterisation/models.hpp"
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/evaluation/evaluation.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/methods.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 #include "tristim/surface/saunderson.hpp"
@@ -106,3 +107,12 @@ GeometryExperiment geometry_experiment_Abed2013(const std::string& camera = "Nik
                                                 uint64_t seed = 1);
 
 }  // namespace tristim
+
+// The field list (io/fields.hpp; defined in surface/fields.cpp) of a cell as `tristim surface table4
+// --json` prints it under "cells" and the module's surfaceTable4 gives it: training, method, ok,
+// error_code (only when not ok), message, dE_xyz, dE00 (Summary's list), surface (the fitted
+// correction as a --surface value; read back by parse_choice), mu (corrected-3x3 only), status.
+// The matrix stays in C++.
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(GeometryTableCell);
+}  // namespace tristim::fields

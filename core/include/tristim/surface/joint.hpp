@@ -25,6 +25,7 @@
 
 #include "tristim/characterisation/models.hpp"
 #include "tristim/colorimetry/spectra.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/methods.hpp"
 
 namespace tristim {
@@ -77,3 +78,11 @@ CorrectedMatrix fit_corrected_3x3_Abed2013(const PatchMatrix& camera_RGB, const 
                                            const Vec3& white_RGB, const Vec3& white_XYZ);
 
 }  // namespace tristim
+
+// The field list (io/fields.hpp; defined in surface/fields.cpp) of what `tristim surface joint
+// --json` prints and the module's fitSurfaceJoint gives: choice, surface (the choice as a --surface
+// value), matrix (9 numbers, row-major), dE_xyz_rms_start, dE_xyz_rms, status, message,
+// evaluations. Written only (surface is derived from choice).
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(JointFitResult);
+}  // namespace tristim::fields
