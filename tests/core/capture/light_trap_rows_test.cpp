@@ -3,9 +3,11 @@
 // an edge is refused with CORNERS_OUTSIDE naming the light trap (Abed 2013 App. C step 1).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <map>
 #include <string>
 
+#include "synthetic.hpp"
 #include "test_support.hpp"
 #include "tristim/chart/light_trap.hpp"
 
@@ -15,12 +17,8 @@ namespace {
 
 // A W × H image of 500 DN with a dark cavity (20 DN) in its bottom-right corner, 30 × 40 pixels.
 RawImage dark_corner(int W, int H) {
-  RawImage img;
-  img.width = W;
-  img.height = H;
-  img.meta.saturation = {16000, 16000, 16000};
-  img.rgb.assign(size_t(W) * H * 3, 500.f);
-  img.saturated.assign(size_t(W) * H, 0);
+  RawImage img = test::blank_raw(W, H, 16000);
+  std::fill(img.rgb.begin(), img.rgb.end(), 500.f);
   for (int y = H - 40; y < H; ++y)
     for (int x = W - 30; x < W; ++x)
       for (int c = 0; c < 3; ++c) img.rgb[(size_t(y) * W + x) * 3 + c] = 20.f;
