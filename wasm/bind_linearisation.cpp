@@ -1,6 +1,8 @@
 // Declarations: the linearisation stage (issue 11) — the table with what each row needs, a fit of
 // one row, its application and inverse, curve samples for plots — and spectral characterisation
-// (Shen et al. 2008 eqs 26-28). Structs cross with their C++ field names (boundary.hpp).
+// (Shen et al. 2008 eqs 26-28). Linearisation, CurveSamples, SpectralModel and SpectralEvaluation
+// cross by their field lists (the objects their JSON is: convert_fields.hpp); the rest with their
+// C++ field names (boundary.hpp).
 #include "tristim/chart/reference.hpp"
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/linearisation/linearisation.hpp"
@@ -10,7 +12,6 @@
 
 using namespace tristim;
 using emscripten::val;
-using emscripten::value_object;
 using wasm::def;
 
 namespace {
@@ -21,10 +22,6 @@ SpectralEvaluation evaluate_spectral_under(const SpectralModel& model, const std
                                            const std::string& illuminant, Observer observer) {
   return evaluate_spectral(model, ids, camera_RGB, measured, illuminant_spd(illuminant.empty() ? "D65" : illuminant), observer);
 }
-
-// W is N × 3 (a wavelength per row), not the 3 × P of a model's coefficients: row-major Float64Array(3N).
-val spectral_W(const SpectralModel& m) { return wasm::Conv<PatchMatrix>::to(m.W); }
-void set_spectral_W(SpectralModel& m, val v) { m.W = wasm::Conv<PatchMatrix>::from(v); }
 
 MethodInfo spectral_info() { return spectral_method(); }
 
@@ -37,13 +34,6 @@ std::string spectral_model_text(const SpectralModel& m) { return spectral_model_
 EMSCRIPTEN_BINDINGS(tristim_linearisation) {
   STRUCT(LinearisationListing, id, label, reference, needs, needs_text, options);
   STRUCT(LinearisationData, camera_RGB, ids, full_scale, reference_XYZ, white, reflectances, basis_reflectances);
-  STRUCT(Linearisation, choice, coefficients, full_scale, domain, r_squared, fitted, greys, grey_reason,
-           grey_coefficients, monotonic, extrapolated, message);
-  STRUCT(CurveSamples, x, linear, grey_based);
-  { using S = SpectralModel; value_object<S>("SpectralModel") FIELD(linearisation) FIELD(wavelengths)
-      .field("W", &spectral_W, &set_spectral_W) FIELD(training_patches) FIELD(training_set) FIELD(training_ids)
-      FIELD(greys) FIELD(grey_reason); }
-  STRUCT(SpectralEvaluation, ids, rms, dE00, rms_summary, dE00_summary);
 
   def<&linearisation_listing>("listLinearisations");
   def<&fit_linearisation>("fitLinearisation");

@@ -1,7 +1,6 @@
 // CLI: `tristim linearise` (fit one linearisation, write linear per-patch values and, with
 // --json, the curves and R²), `tristim spectral fit|apply` (Shen et al. 2008 eqs 26-28), and the
 // `--linearisation` option other commands take (linearise_option.hpp).
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -117,15 +116,12 @@ MethodChoice choice_of(const Args& args, const std::string& key, LinearisationDa
   return c;
 }
 
+/// The three channels' curves, 101 samples each: {"channel": "R", then CurveSamples' list}.
 json::Value curves_json(const Linearisation& l) {
   json::Value a = json::Value::array();
   for (int c = 0; c < 3; ++c) {
-    const CurveSamples s = sample_curve(l, c, 101);
-    json::Value o = json::Value::object();
-    o.set("channel", std::string(1, "RGB"[c]));
-    o.set("x", json::Value(s.x));
-    o.set("linear", json::Value(s.linear));
-    if (!s.grey_based.empty()) o.set("grey_based", json::Value(s.grey_based));
+    json::Value o = fields::object({{"channel", std::string(1, "RGB"[c])}});
+    fields::write_members(sample_curve(l, c, 101), o);
     a.push(o);
   }
   return a;
@@ -194,19 +190,14 @@ int run_linearise(const Args& args, std::ostream& out) {
   const std::string csv = linear_csv(rgb.labels, lin);
   if (args.has("out")) write_text(args.get("out"), csv);
   if (args.has("json")) {
-    json::Value o = json::Value::object();
-    o.set("method", l.choice.method);
-    o.set("full_scale", l.full_scale);
-    json::Value r2 = json::Value::array();
-    for (int c = 0; c < 3; ++c) r2.push(std::isfinite(l.r_squared[c]) ? json::Value(l.r_squared[c]) : json::Value(nullptr));
-    o.set("r_squared", r2);
-    o.set("monotonic", l.monotonic);
-    o.set("warnings", l.message);
     Linearisation shown = l;  // the patches it names, as the RGB file spells them
     shown.fitted = patch_labels(rgb, l.fitted);
     shown.greys = patch_labels(rgb, l.greys);
     for (Extrapolation& e : shown.extrapolated) e.patch = patch_labels(rgb, {e.patch})[0];
-    o.set("linearisation", linearisation_json(shown));
+    // A summary (Linearisation's own members, the message as "warnings"), the fitted linearisation, the curves.
+    json::Value o = fields::write_picked(l, {"method", "full_scale", "r_squared", "monotonic"});
+    o.set("warnings", l.message);
+    o.set("linearisation", fields::write(shown));
     o.set("curves", curves_json(l));
     out << o.dump(2) << "\n";
   } else if (!args.has("out")) {
@@ -328,20 +319,10 @@ SpectralData labelled(SpectralData estimates, const PatchTable& table) {
   return estimates;
 }
 
-/// The errors as JSON, each patch named as `table` (the RGB file) spells it.
-json::Value evaluation_json(const SpectralEvaluation& e, const PatchTable& table) {
-  const std::vector<std::string> labels = patch_labels(table, e.ids);
-  json::Value o = json::Value::object();
-  json::Value s = json::Value::object();
-  s.set("spectral_rms_mean", e.rms_summary.mean);
-  s.set("spectral_rms_std", e.rms_summary.std);
-  s.set("spectral_rms_max", e.rms_summary.max);
-  s.set("dE00_mean", e.dE00_summary.mean);
-  s.set("dE00_std", e.dE00_summary.std);
-  s.set("dE00_max", e.dE00_summary.max);
-  o.set("summary", s);
-  o.set("patches", fields::rows({{"patch", labels}, {"spectral_rms", e.rms}, {"dE00", e.dE00}}));
-  return o;
+/// The errors as JSON (SpectralEvaluation's list), each patch named as `table` (the RGB file) spells it.
+json::Value evaluation_json(SpectralEvaluation e, const PatchTable& table) {
+  e.ids = patch_labels(table, e.ids);
+  return fields::write(e);
 }
 
 int run_spectral(const Args& args, std::ostream& out) {

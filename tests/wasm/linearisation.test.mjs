@@ -54,13 +54,14 @@ test('fitSpectral: estimates, spectral RMS and CIEDE2000 per patch', async () =>
   assert.equal(model.training_patches, 19);
   assert.equal(T.fitSpectral(lin, ids, rgb, cc24, { method: '', parameters: { use_greys: 1 }, settings: {} }).training_patches, 24);
   assert.deepEqual(T.spectralMethod().options.map((o) => o.name), ['grey', 'grey_threshold', 'use_greys']);
-  assert.equal(model.W.length, 3 * model.wavelengths.length);
+  assert.equal(model.W.length, model.wavelengths.length);  // W: a row [w_R, w_G, w_B] per wavelength
+  assert.ok(model.W.every((row) => row.length === 3));
   const est = T.estimateReflectances(model, ids, rgb);
   assert.equal(est.values.length, 24);
   assert.equal(est.values[0].length, model.wavelengths.length);
   const e = T.evaluateSpectral(model, ids, rgb, cc24, 'D65', '1931');
-  assert.equal(e.rms.length, 24);
-  assert.ok(e.rms_summary.mean > 0 && e.rms_summary.mean < 0.08, `rms ${e.rms_summary.mean}`);
+  assert.equal(e.patches.length, 24);
+  assert.ok(e.summary.spectral_rms_mean > 0 && e.summary.spectral_rms_mean < 0.08, `rms ${e.summary.spectral_rms_mean}`);
   assert.match(T.spectralModelToJson(model), /"format": "tristim-spectral"/);
   assert.match(T.spectralCsv(est), /^wavelength_nm,A1,/);
 });

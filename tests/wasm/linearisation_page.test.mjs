@@ -49,5 +49,5 @@ test('linearisationFit: gamma and Shen2008 on the simulated scanner, with the sp
   assert.equal(s.spectral.ids.length, 24);
   assert.equal(s.spectral.estimated.length, 24);
   assert.equal(s.spectral.measured.values[0].length, s.spectral.measured.wavelengths.length);
-  assert.ok(s.spectral.rms_summary.mean > 0 && s.spectral.rms_summary.mean < 0.08, `spectral RMS ${s.spectral.rms_summary.mean}`);
+  assert.ok(s.spectral.summary.spectral_rms_mean > 0 && s.spectral.summary.spectral_rms_mean < 0.08, `spectral RMS ${s.spectral.summary.spectral_rms_mean}`);
 });

@@ -56,7 +56,7 @@ async function linearise(page, method, options = {}) {
   }
   await page.waitForFunction(([m, b]) => {
     const d = window.tristim.derived.linearisation;
-    return d && d !== b && d.lin.choice.method === m && document.querySelector('#step-linearisation .progress').hidden;
+    return d && d !== b && d.lin.method === m && document.querySelector('#step-linearisation .progress').hidden;
   }, [method, before], { timeout: 60000 });
   const r2 = await page.$$eval('#step-linearisation .linearisation-r2 td[data-col="r2"]', (tds) => tds.map((td) => Number(td.dataset.value)));
   return { r2, text: await page.textContent(SUMMARY) };

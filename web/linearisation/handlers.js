@@ -32,18 +32,21 @@ function curveAt(T, lin, x, c) {
 /// same definition, with the engine's grey-polynomial of degree K (3 unless the row has a K). The
 /// grey-* rows are the grey-based OECF themselves.
 /// `generic`: compare any row here (tests check this path against the engine's Shen2008 R²).
+/// The engine's R² per channel (null in its JSON where there is nothing to compare with) as numbers, NaN there.
+const r2 = (lin) => lin.r_squared.map((v) => v ?? NaN);
+
 export function compareWithGreys(T, lin, data, { generic = false } = {}) {
-  const method = lin.choice.method;
+  const method = lin.method;
   if (method === 'Shen2008' && !generic) {
     const curves = [0, 1, 2].map((c) => T.sampleCurve(lin, c, 101));
-    if (!curves[0].grey_based.length) return { greys: [], reason: lin.grey_reason, error: null, curves: null };
-    return { source: 'engine', greys: lin.greys, reason: lin.grey_reason, r_squared: Array.from(lin.r_squared), K: lin.choice.parameters.K,
+    if (!curves[0].grey_based?.length) return { greys: [], reason: lin.grey_reason, error: null, curves: null };
+    return { source: 'engine', greys: lin.greys, reason: lin.grey_reason, r_squared: r2(lin), K: lin.parameters.K,
       curves: curves.map((s) => ({ x: s.x, estimated: s.linear, grey_based: s.grey_based })) };
   }
-  if (method.startsWith('grey-') && !generic) return { source: 'self', greys: lin.greys, reason: lin.grey_reason, r_squared: Array.from(lin.r_squared), curves: null };
-  const K = lin.choice.parameters.K ?? 3;
-  const settings = lin.choice.settings.grey !== undefined ? { grey: lin.choice.settings.grey } : {};
-  const parameters = { K, ...(lin.choice.parameters.grey_threshold ? { grey_threshold: lin.choice.parameters.grey_threshold } : {}) };
+  if (method.startsWith('grey-') && !generic) return { source: 'self', greys: lin.greys, reason: lin.grey_reason, r_squared: r2(lin), curves: null };
+  const K = lin.parameters.K ?? 3;
+  const settings = lin.settings.grey !== undefined ? { grey: lin.settings.grey } : {};
+  const parameters = { K, ...(lin.parameters.grey_threshold ? { grey_threshold: lin.parameters.grey_threshold } : {}) };
   let g;
   try {
     g = T.fitLinearisation({ method: 'grey-polynomial', parameters, settings }, { ...data, full_scale: lin.full_scale });
@@ -91,7 +94,8 @@ export const handlers = {
         // the measured curves of the fitted patches, in the order of `ids`, on their own grid
         const norm = (id) => String(id).trim().toUpperCase().replace(/^([A-Z]+)0+(\d)/, '$1$2');
         const at = new Map(measured.names.map((n, i) => [norm(n), i]));
-        out.spectral = { ids: ev.ids, rms: ev.rms, dE00: ev.dE00, rms_summary: ev.rms_summary, dE00_summary: ev.dE00_summary,
+        // ev: what `tristim spectral apply --json` prints ({summary, patches: [{patch, spectral_rms, dE00}]})
+        out.spectral = { summary: ev.summary, ids: ev.patches.map((p) => p.patch), rms: ev.patches.map((p) => p.spectral_rms), dE00: ev.patches.map((p) => p.dE00),
           training_patches: model.training_patches, training_set: model.training_set, training_ids: model.training_ids,
           greys: model.greys, grey_reason: model.grey_reason, wavelengths: est.wavelengths, estimated: est.values, est_ids: est.names,
           measured: { wavelengths: measured.wavelengths, values: est.names.map((n) => measured.values[at.get(norm(n))] ?? []) } };

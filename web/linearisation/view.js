@@ -157,11 +157,11 @@ export function mount(section, app) {
     const clipped = warnings.filter((w) => /clipped/.test(w));
     const noted = warnings.filter((w) => !/clipped/.test(w) && !/not increasing/.test(w) && !/^extrapolated /.test(w));
     const left = d.excluded;   // the engine's lines: "A3 (saturated)", "D1 (outside the frame)"
-    summary.dataset.method = lin.choice.method;
-    summary.textContent = `${byId[lin.choice.method]?.label ?? lin.choice.method}: `
+    summary.dataset.method = lin.method;
+    summary.textContent = `${byId[lin.method]?.label ?? lin.method}: `
       + (lin.fitted.length ? `fitted on ${lin.fitted.length} of ${d.ids.length} paired patches` : `a stated curve (nothing fitted), applied to the ${d.ids.length} paired patches`)
       + (lin.full_scale > 1 ? `, x = stored value / ${fmt(lin.full_scale, lin.full_scale % 1 ? 2 : 0)}` : '')
-      + `. Options: ${optionText(lin.choice)}.`
+      + `. Options: ${optionText(lin)}.`
       + (noted.length ? ` Notes: ${noted.join('; ')}.` : '');
     greysNote.textContent = cmp?.greys?.length
       ? `Grey patches (${cmp.greys.length}): ${cmp.greys.join(', ')} — ${cmp.reason || 'given'}.`
@@ -236,7 +236,7 @@ export function mount(section, app) {
     d.ids.forEach((id, k) => CHANNELS.forEach((c, i) => ticks.push({ channel: c, id, x: d.rgb[3 * k + i] / fs })));
     const scaled = engineCurves ? 'both scaled to 1 at the brightest fitted patch' : cmp?.curves ? 'both scaled to 1 at the top of the greys\' range' : 'scaled to 1 at the top of its range';
     curveBox.replaceChildren(figure(oecfPlot(rows, ticks), { name: 'linearisation-oecf',
-      caption: `Inverse OECF per channel (as Shen et al. 2008 Fig 5): ${byId[lin.choice.method]?.label ?? lin.choice.method} (solid)`
+      caption: `Inverse OECF per channel (as Shen et al. 2008 Fig 5): ${byId[lin.method]?.label ?? lin.method} (solid)`
         + (cmp?.curves || engineCurves ? ' against the grey-based curve (dashed)' : '') + `, ${scaled}. `
         + `Ticks below: each patch's stored value / ${fmt(fs, fs % 1 ? 2 : 0)} per channel (R, G, B rows).` }));
   }
@@ -256,14 +256,14 @@ export function mount(section, app) {
     const current = ids.includes(st.patch) ? st.patch : worstPatch(sp);   // the user's patch, else the worst estimated
     patchSel.replaceChildren(...ids.map((id) => h('option', { value: id, selected: id === current }, id)));
     patchSel.value = current;
-    spectralNote.dataset.rmsMean = String(sp.rms_summary.mean);
+    spectralNote.dataset.rmsMean = String(sp.summary.spectral_rms_mean);
     spectralNote.dataset.trainingSet = sp.training_set;
     spectralNote.dataset.trainingPatches = String(sp.training_patches);
     const left = sp.ids.filter((id) => !sp.training_ids.includes(id));
     spectralNote.textContent = `W trained on ${sp.training_patches} of ${sp.ids.length} patches (${sp.training_set === 'non-grey'
       ? `the non-grey ones, as the paper does; greys left out: ${left.join(', ') || 'none found'}` : 'all, greys included'}). `
-      + `All ${sp.ids.length} patches: spectral RMS mean ${fmt(sp.rms_summary.mean, 4)}, max ${fmt(sp.rms_summary.max, 4)} (reflectance factor); `
-      + `CIEDE2000 of the estimated reflectances mean ${fmt(sp.dE00_summary.mean)}, max ${fmt(sp.dE00_summary.max)} `
+      + `All ${sp.ids.length} patches: spectral RMS mean ${fmt(sp.summary.spectral_rms_mean, 4)}, max ${fmt(sp.summary.spectral_rms_max, 4)} (reflectance factor); `
+      + `CIEDE2000 of the estimated reflectances mean ${fmt(sp.summary.dE00_mean)}, max ${fmt(sp.summary.dE00_max)} `
       + `(${d.reference.settings.illuminant}, CIE ${d.reference.settings.observer}).`;
     drawPatch(sp, current);
     const colours = colourOf(d);

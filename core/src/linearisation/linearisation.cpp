@@ -9,7 +9,7 @@
 
 #include "rows.hpp"
 #include "../table_lookup.hpp"
-#include "tristim/io/fields.hpp"
+#include "tristim/profile/fields.hpp"
 #include "tristim/error.hpp"
 #include "tristim/linearisation/guarnera2018.hpp"
 
@@ -162,155 +162,72 @@ CurveSamples sample_curve(const Linearisation& fitted, int channel, int n) {
   return s;
 }
 
-// ---- JSON ----------------------------------------------------------------------------------------
-
-namespace linearisation_detail {
-
-json::Value strings_json(const std::vector<std::string>& v) {
-  json::Value a = json::Value::array();
-  for (const auto& s : v) a.push(s);
-  return a;
-}
-
-std::vector<std::string> strings_from_json(const json::Value& a, const std::string& what) {
-  if (!a.is_array()) throw Error(ErrorCode::ProfileInvalid, what + " must be an array");
-  std::vector<std::string> out;
-  for (const auto& e : a.as_array()) {
-    if (!e.is_string()) throw Error(ErrorCode::ProfileInvalid, what + " must hold strings");
-    out.push_back(e.as_string());
-  }
-  return out;
-}
-
-}  // namespace linearisation_detail
-
-namespace {
-
-using linearisation_detail::strings_json;
-
-[[noreturn]] void invalid(const std::string& what) {
-  throw Error(ErrorCode::ProfileInvalid, "linearisation: " + what);
-}
-
-const json::Value& field(const json::Value& o, const std::string& key) {
-  const json::Value* v = o.find(key);
-  if (!v) invalid("missing field '" + key + "'");
-  return *v;
-}
-
-std::vector<std::string> strings_of(const json::Value& o, const std::string& key) {
-  return linearisation_detail::strings_from_json(field(o, key), "linearisation: '" + key + "'");
-}
-
-std::array<std::vector<double>, 3> triple_of(const json::Value& o, const std::string& key) {
-  const json::Value& a = field(o, key);
-  if (!a.is_array() || a.size() != 3) invalid("'" + key + "' must be an array of 3 arrays");
-  std::array<std::vector<double>, 3> out;
-  for (int c = 0; c < 3; ++c) {
-    const json::Value& e = a.as_array()[static_cast<size_t>(c)];
-    if (!e.is_array()) invalid("'" + key + "' must be an array of 3 arrays");
-    for (const auto& v : e.as_array()) {
-      if (!v.is_number() || !std::isfinite(v.as_number())) invalid("'" + key + "' must hold finite numbers");
-      out[static_cast<size_t>(c)].push_back(v.as_number());
-    }
-  }
-  return out;
-}
-
-}  // namespace
+// ---- JSON: the field lists --------------------------------------------------------------------
 
 namespace fields {
+
 TRISTIM_FIELDS_DEFINE(Extrapolation, member<&Extrapolation::patch>("patch"), member<&Extrapolation::channel>("channel"),
                member<&Extrapolation::x>("x"), member<&Extrapolation::bound>("bound"),
                member<&Extrapolation::relative>("relative"));
-}  // namespace fields
 
-json::Value linearisation_json(const Linearisation& l) {
-  json::Value o = json::Value::object();
-  o.set("method", l.choice.method);
-  json::Value p = json::Value::object(), s = json::Value::object();
-  for (const auto& [k, v] : l.choice.parameters) p.set(k, v);
-  for (const auto& [k, v] : l.choice.settings) s.set(k, v);
-  o.set("parameters", p);
-  o.set("settings", s);
-  o.set("full_scale", l.full_scale);
-  json::Value coef = json::Value::array(), dom = json::Value::array(), grey = json::Value::array(),
-              r2 = json::Value::array();
-  for (int c = 0; c < 3; ++c) {
-    coef.push(json::Value(l.coefficients[c]));
-    dom.push(json::Value(std::vector<double>{l.domain[c][0], l.domain[c][1]}));
-    grey.push(json::Value(l.grey_coefficients[c]));
-    r2.push(std::isfinite(l.r_squared[c]) ? json::Value(l.r_squared[c]) : json::Value(nullptr));
-  }
-  o.set("coefficients", coef);
-  o.set("domain", dom);
-  o.set("r_squared", r2);
-  o.set("fitted", strings_json(l.fitted));
-  o.set("greys", strings_json(l.greys));
-  o.set("grey_reason", l.grey_reason);
-  o.set("grey_coefficients", grey);
-  o.set("monotonic", l.monotonic);
-  o.set("message", l.message);
-  if (!l.extrapolated.empty()) o.set("extrapolated", fields::write(l.extrapolated));  // other rows: unchanged JSON
-  return o;
+namespace {
+
+using L = Linearisation;
+
+json::Value choice_parameters(const L& l) { return parameters_json(l.choice); }
+void read_choice_parameters(const json::Value& v, L& l, const Context& c, const std::string& p) {
+  read_parameters(v, l.choice, c, p);
 }
+/// R² per channel: null where there is nothing to compare with (NaN), in any reader's context.
+json::Value r_squared_json(const L& l) {
+  json::Value a = json::Value::array();
+  for (double r : l.r_squared) a.push(std::isfinite(r) ? json::Value(r) : json::Value());
+  return a;
+}
+void read_r_squared(const json::Value& v, L& l, const Context& c, const std::string& p) {
+  Context nan = c;
+  nan.null_is_nan = true;
+  read(v, l.r_squared, nan, p);
+}
+bool has_extrapolated(const L& l) { return !l.extrapolated.empty(); }
+bool has_grey_based(const CurveSamples& s) { return !s.grey_based.empty(); }
 
-Linearisation linearisation_from_json(const json::Value& o) {
-  if (!o.is_object()) invalid("not a JSON object");
+}  // namespace
+
+// The order is the JSON's (profiles and spectral models embed it: pinned bytes).
+TRISTIM_FIELDS_DEFINE(Linearisation, nested<&L::choice, &MethodChoice::method>("method"),
+                      Field<L>{"parameters", choice_parameters, read_choice_parameters},
+                      nested<&L::choice, &MethodChoice::settings>("settings"), member<&L::full_scale>("full_scale"),
+                      member<&L::coefficients>("coefficients"), member<&L::domain>("domain"),
+                      Field<L>{"r_squared", r_squared_json, read_r_squared},
+                      member<&L::fitted>("fitted"), member<&L::greys>("greys"), member<&L::grey_reason>("grey_reason"),
+                      member<&L::grey_coefficients>("grey_coefficients"), member<&L::monotonic>("monotonic"),
+                      member<&L::message>("message"),
+                      with_shown(member<&L::extrapolated>("extrapolated", false), has_extrapolated));
+
+TRISTIM_FIELDS_DEFINE(CurveSamples, member<&CurveSamples::x>("x"), member<&CurveSamples::linear>("linear"),
+                      with_shown(member<&CurveSamples::grey_based>("grey_based", false), has_grey_based));
+
+void Codec<Linearisation>::read(const json::Value& v, Linearisation& out, const Context& c, const std::string& p) {
   Linearisation l;
-  const json::Value& method = field(o, "method");
-  if (!method.is_string()) invalid("'method' must be a string");
-  MethodChoice choice;
-  choice.method = method.as_string();
-  const json::Value& p = field(o, "parameters");
-  const json::Value& s = field(o, "settings");
-  if (!p.is_object() || !s.is_object()) invalid("'parameters' and 'settings' must be objects");
-  for (const auto& [k, v] : p.members()) {
-    if (!v.is_number()) invalid("parameter '" + k + "' must be a number");
-    choice.parameters[k] = v.as_number();
-  }
-  for (const auto& [k, v] : s.members()) {
-    if (!v.is_string()) invalid("setting '" + k + "' must be a string");
-    choice.settings[k] = v.as_string();
-  }
-  l.choice = complete_choice(linearisation_method(choice.method).info, choice);
-  const json::Value& fs = field(o, "full_scale");
-  if (!fs.is_number() || !(fs.as_number() > 0) || !std::isfinite(fs.as_number())) invalid("'full_scale' must be > 0");
-  l.full_scale = fs.as_number();
-  l.coefficients = triple_of(o, "coefficients");
-  const auto dom = triple_of(o, "domain");
-  for (int c = 0; c < 3; ++c) {
-    if (dom[c].size() != 2) invalid("'domain' must hold 3 pairs");
-    l.domain[c] = {dom[c][0], dom[c][1]};
-  }
-  const json::Value& r2 = field(o, "r_squared");
-  if (!r2.is_array() || r2.size() != 3) invalid("'r_squared' must have 3 entries");
-  for (int c = 0; c < 3; ++c) {
-    const json::Value& v = r2.as_array()[static_cast<size_t>(c)];
-    if (v.is_null()) continue;
-    if (!v.is_number()) invalid("'r_squared' must hold numbers or null");
-    l.r_squared[c] = v.as_number();
-  }
-  l.fitted = strings_of(o, "fitted");
-  l.greys = strings_of(o, "greys");
-  const json::Value& reason = field(o, "grey_reason");
-  if (!reason.is_string()) invalid("'grey_reason' must be a string");
-  l.grey_reason = reason.as_string();
-  l.grey_coefficients = triple_of(o, "grey_coefficients");
-  const json::Value& mono = field(o, "monotonic");
-  if (!mono.is_bool()) invalid("'monotonic' must be true or false");
-  l.monotonic = mono.as_bool();
-  const json::Value& msg = field(o, "message");
-  if (!msg.is_string()) invalid("'message' must be a string");
-  l.message = msg.as_string();
-  if (const json::Value* e = o.find("extrapolated"))
-    fields::read(*e, l.extrapolated, fields::Context{ErrorCode::ProfileInvalid, "linearisation: "}, "extrapolated");
+  read_members(v, l, c, p);
+  l.choice = complete_choice(linearisation_method(l.choice.method).info, l.choice);
+  if (!(l.full_scale > 0)) c.refuse("'" + join(p, "full_scale") + "' must be > 0");
   // A curve that needs coefficients must have them.
   const std::string& id = l.choice.method;
   if (id != "identity" && id != "sRGB")
-    for (int c = 0; c < 3; ++c)
-      if (l.coefficients[c].empty()) invalid("'coefficients' of channel " + std::to_string(c) + " are empty");
-  return l;
+    for (int ch = 0; ch < 3; ++ch)
+      if (l.coefficients[ch].empty())
+        c.refuse("'" + join(p, "coefficients") + "' of channel " + std::to_string(ch) + " are empty");
+  out = std::move(l);
+}
+
+}  // namespace fields
+
+json::Value linearisation_json(const Linearisation& l) { return fields::write(l); }
+
+Linearisation linearisation_from_json(const json::Value& o) {
+  return linearisation_detail::read_fields<Linearisation>(o, "linearisation: ");
 }
 
 }  // namespace tristim

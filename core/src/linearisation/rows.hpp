@@ -35,9 +35,14 @@ std::vector<int> usable_rows(const LinearisationData& data, const std::vector<in
 /// 400-700 nm when reflectances are known (Shen 2008 Fig 5), else Y / Y_white of the reference.
 PatchMatrix grey_values(const LinearisationData& data, const std::vector<int>& rows);
 
-/// JSON array of strings, and back (Error(ProfileInvalid) "<what> must be an array / hold strings").
-json::Value strings_json(const std::vector<std::string>& v);
-std::vector<std::string> strings_from_json(const json::Value& a, const std::string& what);
+/// A struct of this folder read from JSON by its field list (Error(ProfileInvalid), the message
+/// starting with `prefix`: "linearisation: ").
+template <class T>
+T read_fields(const json::Value& o, const char* prefix) {
+  T out;
+  fields::read(o, out, fields::Context{ErrorCode::ProfileInvalid, prefix});
+  return out;
+}
 
 /// Appends a warning to l.message ("; "-separated).
 void add_warning(Linearisation& l, const std::string& warning);

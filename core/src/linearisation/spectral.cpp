@@ -6,7 +6,6 @@
 #include <cstdio>
 
 #include "tristim/error.hpp"
-#include "tristim/io/limits.hpp"
 #include "../citations.hpp"
 #include "rows.hpp"
 
@@ -164,64 +163,113 @@ std::string spectral_csv(const SpectralData& s) {
   return out;
 }
 
-json::Value spectral_model_json(const SpectralModel& m) {
-  json::Value o = json::Value::object();
-  o.set("format", "tristim-spectral");
-  o.set("version", 1);
-  o.set("linearisation", linearisation_json(m.linearisation));
-  o.set("wavelengths", json::Value(m.wavelengths));
-  json::Value W = json::Value::array();
-  for (Eigen::Index i = 0; i < m.W.rows(); ++i) W.push(json::Value(std::vector<double>{m.W(i, 0), m.W(i, 1), m.W(i, 2)}));
-  o.set("W", W);
-  o.set("training_patches", m.training_patches);
-  o.set("training_set", m.training_set);
-  o.set("training_ids", linearisation_detail::strings_json(m.training_ids));
-  o.set("greys", linearisation_detail::strings_json(m.greys));
-  o.set("grey_reason", m.grey_reason);
-  return o;
+namespace fields {
+
+namespace {
+
+using M = SpectralModel;
+using E = SpectralEvaluation;
+constexpr const char* kFormat = "tristim-spectral";
+constexpr int kVersion = 1;
+
+void read_format(const json::Value& v, M&, const Context& c, const std::string& p) {
+  if (!v.is_string() || v.as_string() != kFormat) c.refuse("'" + p + "' must be \"" + kFormat + "\"");
+}
+void read_version(const json::Value& v, M&, const Context& c, const std::string& p) {
+  if (!v.is_number() || v.as_number() != kVersion)
+    throw Error(ErrorCode::ProfileVersion, c.prefix + ("'" + p + "' must be " + std::to_string(kVersion)));
 }
 
-SpectralModel spectral_model_from_json(const json::Value& o) {
-  auto invalid = [](const std::string& what) { return Error(ErrorCode::ProfileInvalid, "spectral model: " + what); };
-  if (!o.is_object()) throw invalid("not a JSON object");
-  const json::Value* f = o.find("format");
-  if (!f || !f->is_string() || f->as_string() != "tristim-spectral") throw invalid("'format' must be \"tristim-spectral\"");
-  const json::Value* v = o.find("version");
-  if (!v || !v->is_number() || v->as_number() != 1) throw Error(ErrorCode::ProfileVersion, "spectral model: version must be 1");
+/// The two summaries' figures the CLI prints, flat, in this order; read back into the same members.
+struct SummaryFigure {
+  const char* name;
+  Summary E::*summary;
+  double Summary::*figure;
+};
+const SummaryFigure kSummaryFigures[] = {
+    {"spectral_rms_mean", &E::rms_summary, &Summary::mean}, {"spectral_rms_std", &E::rms_summary, &Summary::std},
+    {"spectral_rms_max", &E::rms_summary, &Summary::max},   {"dE00_mean", &E::dE00_summary, &Summary::mean},
+    {"dE00_std", &E::dE00_summary, &Summary::std},          {"dE00_max", &E::dE00_summary, &Summary::max}};
+
+json::Value summary_json(const E& e) {
+  json::Value o = json::Value::object();
+  for (const auto& f : kSummaryFigures) o.set(f.name, e.*f.summary.*f.figure);
+  return o;
+}
+void read_summary(const json::Value& v, E& e, const Context& c, const std::string& p) {
+  if (!v.is_object()) c.refuse("'" + p + "' must be an object");
+  for (const auto& [name, x] : v.members()) {
+    const SummaryFigure* f = nullptr;
+    for (const auto& g : kSummaryFigures) f = name == g.name ? &g : f;
+    if (!f) c.refuse("unknown field '" + join(p, name) + "'");
+    read(x, e.*f->summary.*f->figure, c, join(p, name));
+  }
+}
+/// One row per patch: {"patch", "spectral_rms", "dE00"}.
+json::Value patches_json(const E& e) { return rows({{"patch", e.ids}, {"spectral_rms", e.rms}, {"dE00", e.dE00}}); }
+struct PatchRow {
+  std::string patch;
+  double spectral_rms = 0, dE00 = 0;
+};
+void read_patches(const json::Value& v, E& e, const Context& c, const std::string& p);
+
+}  // namespace
+
+TRISTIM_FIELDS(PatchRow, member<&PatchRow::patch>("patch"), member<&PatchRow::spectral_rms>("spectral_rms"),
+               member<&PatchRow::dE00>("dE00"));
+
+namespace {
+
+void read_patches(const json::Value& v, E& e, const Context& c, const std::string& p) {
+  std::vector<PatchRow> rows;
+  read(v, rows, c, p);
+  e.ids.clear();
+  e.rms.clear();
+  e.dE00.clear();
+  for (const PatchRow& r : rows) {
+    e.ids.push_back(r.patch);
+    e.rms.push_back(r.spectral_rms);
+    e.dE00.push_back(r.dE00);
+  }
+}
+
+}  // namespace
+
+// The order is the document's (pinned bytes).
+TRISTIM_FIELDS_DEFINE(SpectralModel, Field<M>{"format", [](const M&) { return json::Value(kFormat); }, read_format},
+                      Field<M>{"version", [](const M&) { return json::Value(kVersion); }, read_version},
+                      member<&M::linearisation>("linearisation"), member<&M::wavelengths>("wavelengths"),
+                      member<&M::W>("W"), member<&M::training_patches>("training_patches", false),
+                      // Written since the non-grey default; a model without them was trained on every patch.
+                      member<&M::training_set>("training_set", false), member<&M::training_ids>("training_ids", false),
+                      member<&M::greys>("greys", false), member<&M::grey_reason>("grey_reason", false),
+                      // What `tristim spectral fit` writes beside the model: known, not read.
+                      Field<M>{"training", [](const M&) { return json::Value(); },
+                               [](const json::Value&, M&, const Context&, const std::string&) {},
+                               [](const M&) { return false; }, false});
+
+TRISTIM_FIELDS_DEFINE(SpectralEvaluation, Field<E>{"summary", summary_json, read_summary},
+                      Field<E>{"patches", patches_json, read_patches});
+
+void Codec<SpectralModel>::read(const json::Value& v, SpectralModel& out, const Context& c, const std::string& p) {
   SpectralModel m;
-  const json::Value* lin = o.find("linearisation");
-  if (!lin) throw invalid("missing 'linearisation'");
-  m.linearisation = linearisation_from_json(*lin);
-  const json::Value* wl = o.find("wavelengths");
-  if (!wl || !wl->is_array()) throw invalid("'wavelengths' must be an array");
-  m.wavelengths = wl->as_numbers("wavelengths");
+  read_members(v, m, c, p);
   for (size_t i = 0; i < m.wavelengths.size(); ++i)
-    if (!std::isfinite(m.wavelengths[i]) || (i > 0 && !(m.wavelengths[i] > m.wavelengths[i - 1])))
-      throw invalid("'wavelengths' must be finite and increasing");
-  const json::Value* W = o.find("W");
-  if (!W || !W->is_array() || W->size() != m.wavelengths.size() || m.wavelengths.empty())
-    throw invalid("'W' must have one row per wavelength");
-  m.W.resize(static_cast<Eigen::Index>(m.wavelengths.size()), 3);
-  for (size_t i = 0; i < m.wavelengths.size(); ++i) {
-    const std::vector<double> row = W->as_array()[i].as_numbers("W row");
-    if (row.size() != 3) throw invalid("each row of 'W' must have 3 numbers");
-    for (int c = 0; c < 3; ++c) {
-      if (!std::isfinite(row[static_cast<size_t>(c)])) throw invalid("'W' must be finite");
-      m.W(static_cast<Eigen::Index>(i), c) = row[static_cast<size_t>(c)];
-    }
-  }
-  const json::Value* q = o.find("training_patches");
-  if (q && q->is_number()) m.training_patches = q->as_int("training_patches", 0, limits::kMaxJsonInt);
-  // Written since the non-grey default; a model without them was trained on every patch.
-  if (const json::Value* t = o.find("training_set")) {
-    if (!t->is_string() || (t->as_string() != "all" && t->as_string() != "non-grey"))
-      throw invalid("'training_set' must be \"all\" or \"non-grey\"");
-    m.training_set = t->as_string();
-  }
-  for (const auto& [key, out] : {std::pair{"training_ids", &m.training_ids}, std::pair{"greys", &m.greys}})
-    if (const json::Value* a = o.find(key)) *out = linearisation_detail::strings_from_json(*a, std::string("spectral model: '") + key + "'");
-  if (const json::Value* r = o.find("grey_reason"); r && r->is_string()) m.grey_reason = r->as_string();
-  return m;
+    if (i > 0 && !(m.wavelengths[i] > m.wavelengths[i - 1])) c.refuse("'" + join(p, "wavelengths") + "' must be increasing");
+  if (m.wavelengths.empty() || m.W.rows() != static_cast<Eigen::Index>(m.wavelengths.size()) || m.W.cols() != 3)
+    c.refuse("'" + join(p, "W") + "' must have one row of 3 numbers per wavelength");
+  if (m.training_patches < 0) c.refuse("'" + join(p, "training_patches") + "' must be >= 0");
+  if (m.training_set != "all" && m.training_set != "non-grey")
+    c.refuse("'" + join(p, "training_set") + "' must be \"all\" or \"non-grey\"");
+  out = std::move(m);
+}
+
+}  // namespace fields
+
+json::Value spectral_model_json(const SpectralModel& m) { return fields::write(m); }
+
+SpectralModel spectral_model_from_json(const json::Value& o) {
+  return linearisation_detail::read_fields<SpectralModel>(o, "spectral model: ");
 }
 
 }  // namespace tristim

@@ -14,6 +14,7 @@
 #include "tristim/io/patch_files.hpp"
 #include "tristim/linearisation/guarnera2018.hpp"
 #include "tristim/linearisation/linearisation.hpp"
+#include "tristim/linearisation/spectral.hpp"
 
 using namespace tristim;
 
@@ -326,4 +327,71 @@ TEST_CASE("catalog: every row's need has its words for the pickers", "[linearisa
   }
   CHECK(linearisation_needs_text("reference") == "fitted against the reference XYZ of every patch");
   tristim::test::require_code([] { linearisation_needs_text("nothing"); }, ErrorCode::UnknownId);
+}
+
+TEST_CASE("linearisation fields: documents of b19940b read back and write the same bytes, unknown members refused",
+          "[linearisation][spectral][fields]") {
+  // Written by the hand-written writers before the field lists (tests/data/documents/SOURCES.md):
+  // a spectral model with its Shen2008 linearisation and the training errors beside it.
+  const json::Value doc = json::parse(test::read_test_file("tests/data/documents/spectral_model_v1.json"));
+  const SpectralModel m = spectral_model_from_json(doc);  // "training": known, not read
+  json::Value model = json::Value::object();
+  for (const auto& [k, v] : doc.members())
+    if (k != "training") model.set(k, v);
+  CHECK(spectral_model_json(m).dump(2) == model.dump(2));
+  const Linearisation& l = m.linearisation;
+  REQUIRE(l.choice.method == "Shen2008");
+  REQUIRE(!l.extrapolated.empty());
+  // The training errors are a SpectralEvaluation's list: read and written back the same.
+  SpectralEvaluation e;
+  fields::read(*doc.find("training"), e, fields::Context{});
+  CHECK(e.ids.size() == 24);
+  CHECK(fields::write(e).dump(2) == doc.find("training")->dump(2));
+  // A linearisation as a profile of b19940b embeds it (tristim fit --linearisation gamma:gamma=1.8): R² null.
+  const json::Value gamma = json::parse(
+      R"({"method": "gamma", "parameters": {"gamma": 1.8}, "settings": {}, "full_scale": 238, "coefficients": [[1.8], [1.8], [1.8]], )"
+      R"("domain": [[0, 1], [0, 1], [0, 1]], "r_squared": [null, null, null], "fitted": [], "greys": [], "grey_reason": "", )"
+      R"("grey_coefficients": [[], [], []], "monotonic": true, "message": ""})");
+  const Linearisation g = linearisation_from_json(gamma);
+  CHECK(std::isnan(g.r_squared[1]));
+  CHECK(linearisation_json(g).dump() == gamma.dump());
+
+  // Written by the list, read back equal: every member, as what it writes again (17 digits: exact).
+  const Linearisation back = linearisation_from_json(json::parse(linearisation_json(l).dump()));
+  CHECK(linearisation_json(back).dump() == linearisation_json(l).dump());
+  CHECK(back.r_squared == l.r_squared);
+  REQUIRE(back.extrapolated.size() == l.extrapolated.size());
+  CHECK(back.extrapolated.back().relative == l.extrapolated.back().relative);
+  const SpectralModel m2 = spectral_model_from_json(json::parse(spectral_model_json(m).dump()));
+  CHECK(m2.W == m.W);
+  CHECK(m2.training_ids == m.training_ids);
+  // Curve samples: the CLI's curves; grey_based only where there is one.
+  const CurveSamples s = sample_curve(l, 1, 5), sg = sample_curve(g, 1, 5);
+  CurveSamples s2, sg2;
+  fields::read(fields::write(s), s2, fields::Context{});
+  fields::read(fields::write(sg), sg2, fields::Context{});
+  CHECK(s2.x == s.x);
+  CHECK(s2.linear == s.linear);
+  CHECK(s2.grey_based == s.grey_based);
+  CHECK(s.grey_based.size() == 5);
+  CHECK(fields::write(sg).find("grey_based") == nullptr);
+  CHECK(sg2.linear == sg.linear);
+
+  // Unknown members refused, in the model and in its linearisation; another version; a curve without coefficients.
+  const auto with = [](json::Value o, const char* key, json::Value v) {
+    o.set(key, std::move(v));
+    return o;
+  };
+  test::require_code([&] { spectral_model_from_json(with(model, "spline", 1)); }, ErrorCode::ProfileInvalid);
+  test::require_code([&] { spectral_model_from_json(with(model, "linearisation", with(*model.find("linearisation"), "spline", 1))); },
+                     ErrorCode::ProfileInvalid);
+  test::require_code([&] { spectral_model_from_json(with(model, "version", 2)); }, ErrorCode::ProfileVersion);
+  test::require_code([&] { spectral_model_from_json(with(model, "W", json::Value::array())); }, ErrorCode::ProfileInvalid);
+  test::require_code([&] { linearisation_from_json(with(gamma, "spline", 1)); }, ErrorCode::ProfileInvalid);
+  test::require_code([&] { linearisation_from_json(with(gamma, "coefficients", json::parse("[[], [], []]"))); },
+                     ErrorCode::ProfileInvalid);
+  json::Value missing = json::Value::object();
+  for (const auto& [k, v] : gamma.members())
+    if (k != "monotonic") missing.set(k, v);
+  test::require_code([&] { linearisation_from_json(missing); }, ErrorCode::ProfileInvalid);
 }

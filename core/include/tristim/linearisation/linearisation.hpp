@@ -153,13 +153,14 @@ struct CurveSamples {
 };
 CurveSamples sample_curve(const Linearisation& fitted, int channel, int n = 101);
 
-/// JSON of a fitted linearisation (every double with 17 significant digits: exact round trip):
-/// {"method", "parameters", "settings", "full_scale", "coefficients": [[..],[..],[..]],
-///  "domain", "r_squared", "fitted", "greys", "grey_reason", "grey_coefficients", "monotonic",
-///  "message"} and, when not empty, "extrapolated": [{"patch", "channel", "x", "bound",
-///  "relative"}]. NaN R² is written as null.
+/// JSON of a fitted linearisation, written by its field list (below; every double with 17
+/// significant digits: exact round trip): {"method", "parameters", "settings", "full_scale",
+/// "coefficients": [[..],[..],[..]], "domain", "r_squared", "fitted", "greys", "grey_reason",
+/// "grey_coefficients", "monotonic", "message"} and, when not empty, "extrapolated": [{"patch",
+/// "channel", "x", "bound", "relative"}]. NaN R² is written as null.
 json::Value linearisation_json(const Linearisation& fitted);
-/// Reads it back (Error(ProfileInvalid) naming the field; UnknownId for an unknown method).
+/// Reads it back by the same list (Error(ProfileInvalid) naming the member, an unknown one too;
+/// UnknownId for an unknown method).
 Linearisation linearisation_from_json(const json::Value& value);
 
 // --- building blocks shared by the rows (exposed for tests) --------------------------------
@@ -202,7 +203,24 @@ double sRGB_decode(double encoded);
 
 }  // namespace tristim
 
-// Its field list (defined in linearisation.cpp): the JSON and the wasm binding use it.
+// Their field lists (defined in linearisation.cpp): the JSON, the CLI's output and the wasm
+// binding use them. A Linearisation is its choice's method, parameters and settings at the top
+// level, then its members; CurveSamples writes grey_based only when there is one.
 namespace tristim::fields {
 TRISTIM_FIELDS_DECLARE(Extrapolation);
+TRISTIM_FIELDS_DECLARE(Linearisation);
+TRISTIM_FIELDS_DECLARE(CurveSamples);
+/// A Linearisation reads by its list and is then checked, wherever it is read (a profile, a
+/// spectral model, a JS object): a known method with its options completed from the table
+/// (UnknownId / InvalidArgument), full_scale > 0 and coefficients for every curve that needs them
+/// (the context's code).
+template <>
+struct Codec<Linearisation> {
+  static json::Value write(const Linearisation& l) {
+    json::Value o = json::Value::object();
+    write_members(l, o);
+    return o;
+  }
+  static void read(const json::Value& v, Linearisation& out, const Context& c, const std::string& p);
+};
 }  // namespace tristim::fields

@@ -20,6 +20,7 @@
 
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/evaluation/evaluation.hpp"
+#include "tristim/io/fields.hpp"
 #include "tristim/io/json.hpp"
 #include "tristim/linearisation/linearisation.hpp"
 
@@ -80,11 +81,34 @@ void estimate_reflectance_image(const SpectralModel& model, const float* rgb, si
 /// read_spectral_csv / read_patch_file read back), values with 9 significant digits.
 std::string spectral_csv(const SpectralData& spectra);
 
-/// JSON: {"format": "tristim-spectral", "version": 1, "linearisation": {...},
-/// "wavelengths": [...], "W": [[w_R, w_G, w_B] per wavelength], "training_patches": Q,
-/// "training_set": "non-grey"|"all", "training_ids": [...], "greys": [...], "grey_reason"}
-/// (17 significant digits: exact round trip). The reader refuses anything else (ProfileInvalid).
+/// JSON, written by SpectralModel's field list (below): {"format": "tristim-spectral", "version": 1,
+/// "linearisation": {...}, "wavelengths": [...], "W": [[w_R, w_G, w_B] per wavelength],
+/// "training_patches": Q, "training_set": "non-grey"|"all", "training_ids": [...], "greys": [...],
+/// "grey_reason"} (17 significant digits: exact round trip). The reader refuses another format
+/// or an unknown member (ProfileInvalid), another version (ProfileVersion); a model written before
+/// training_set existed reads as trained on "all"; the "training" member `tristim spectral fit`
+/// writes beside the model is known and not read.
 json::Value spectral_model_json(const SpectralModel& model);
 SpectralModel spectral_model_from_json(const json::Value& value);
 
 }  // namespace tristim
+
+// Their field lists (defined in spectral.cpp). A SpectralModel's object is its document (format
+// and version first); a SpectralEvaluation's is what `tristim spectral apply --json` prints:
+// {"summary": {"spectral_rms_mean", "_std", "_max", "dE00_mean", "_std", "_max"}, "patches":
+// [{"patch", "spectral_rms", "dE00"}]} (only those figures of the two summaries are read back).
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(SpectralModel);
+TRISTIM_FIELDS_DECLARE(SpectralEvaluation);
+/// A SpectralModel reads by its list and is then checked: wavelengths finite and increasing, W
+/// one row of 3 per wavelength, training_set "all" or "non-grey" (the context's code).
+template <>
+struct Codec<SpectralModel> {
+  static json::Value write(const SpectralModel& m) {
+    json::Value o = json::Value::object();
+    write_members(m, o);
+    return o;
+  }
+  static void read(const json::Value& v, SpectralModel& out, const Context& c, const std::string& p);
+};
+}  // namespace tristim::fields
