@@ -12,12 +12,15 @@ namespace tristim::cli {
 namespace {
 const char* kEvaluateUsage =
     "tristim evaluate --profile p.json --rgb test.csv --xyz ref.csv [--ref-white ...] [--csv out.csv]\n"
-    "  Applies the profile to the test patches and prints JSON metrics (per patch and summaries).";
+    "  Applies the profile to the test patches and prints JSON metrics (per patch and summaries), in\n"
+    "  the order of test.csv. Every test patch must be in ref.csv; reference patches with no RGB (a\n"
+    "  chart cut by the frame) are named on stderr and left out, as the page's held-out set does.";
 
 int run_evaluate(const Args& args, std::ostream& out) {
   args.allow_only({"profile", "rgb", "xyz", "ref-white", "csv"});
   const Profile p = profile_from_json(read_file(args.get("profile")));
-  const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), parse_white(args, "ref-white", whites::D50()));
+  const PatchData d = load_pairs(args.get("rgb"), args.get("xyz"), parse_white(args, "ref-white", whites::D50()), true);
+  std::cerr << without_rgb_note("evaluate", "evaluated", d);
   validate_patches(d.rgb, d.xyz);
   const PatchMatrix est = profile_predict(p, d.rgb);  // (a profile with a linearisation takes stored values)
   const Metrics m = evaluate(est, d.xyz, p.white);

@@ -110,11 +110,7 @@ PatchData classic_pairs(const Args& args, const std::string& chart, const Method
   // Several --rgb: their union (patch_args.hpp). An RGB file may lack patches of its reference.
   if (args.all("rgb").size() > 1 || (chart.empty() && surface.method == "none")) {
     PatchData d = load_pairs(args, parse_white(args, "ref-white", whites::D50()), true);
-    if (!d.without_rgb.empty()) {  // a chart cut by the frame: fitted on the patches it shows
-      std::cerr << "tristim fit: " << d.without_rgb.size() << " reference patches have no RGB (";
-      for (size_t i = 0; i < d.without_rgb.size(); ++i) std::cerr << (i ? ", " : "") << d.without_rgb[i];
-      std::cerr << "): fitted on the " << d.ids.size() << " others\n";
-    }
+    std::cerr << without_rgb_note("fit", "fitted", d);  // a chart cut by the frame: fitted on the patches it shows
     return d;
   }
   const PatchTable rgb = read_patch_file(read_file(rgb_path), rgb_path);

@@ -131,6 +131,13 @@ PatchData load_pairs(const Args& args, const Vec3& ref_white, bool subset) {
   return d;
 }
 
+std::string without_rgb_note(const std::string& command, const std::string& done, const PatchData& d) {
+  if (d.without_rgb.empty()) return "";
+  std::string s = "tristim " + command + ": " + std::to_string(d.without_rgb.size()) + " reference patches have no RGB (";
+  for (size_t i = 0; i < d.without_rgb.size(); ++i) s += (i ? ", " : "") + d.without_rgb[i];
+  return s + "): " + done + " on the " + std::to_string(d.ids.size()) + " others\n";
+}
+
 std::string read_files(const std::vector<std::string>& paths) {
   std::string all;
   for (const auto& p : paths) all += read_file(p);

@@ -39,6 +39,9 @@ PatchData load_pairs(const std::string& rgb_path, const std::string& xyz_path, c
 /// fit on them is the fit on one table holding the same rows. InvalidArgument when the counts of
 /// --rgb and --xyz differ. `subset`: as above, for each pair (without_rgb prefixed like the ids).
 PatchData load_pairs(const Args& args, const Vec3& ref_white, bool subset = false);
+/// "tristim <command>: 3 reference patches have no RGB (A1, B3, D6): <done> on the 21 others\n"
+/// for load_pairs's `without_rgb` with `subset` ("" when every reference patch has RGB).
+std::string without_rgb_note(const std::string& command, const std::string& done, const PatchData& d);
 /// The bytes of every file of `paths`, one after the other (the data digest of several --xyz; one
 /// file: its bytes).
 std::string read_files(const std::vector<std::string>& paths);

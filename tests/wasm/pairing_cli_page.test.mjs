@@ -3,8 +3,8 @@
 // reference's "A5"), the page's fit (web/fit/handlers.js, its sample built from the file's rows)
 // and held-out set (web/lib/pairs.js heldOutSet) list the patches in the order of
 // `tristim fit --rgb --xyz` and `tristim evaluate --rgb --xyz` on the same files — the RGB file's
-// order — with the same per-patch CSV, training digest and held-out errors; an id the reference
-// lacks is PATCH_MISMATCH on both.
+// order — with the same per-patch CSV, training digest and held-out errors; reference patches the
+// held-out file lacks are named on both sides, an id the reference lacks is PATCH_MISMATCH on both.
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -39,7 +39,8 @@ test('the page pairs patch files in the order tristim fit/evaluate --rgb --xyz d
   const held = T.simulateCamera('Nikon_D850', 'cc24', 'D50', { noise_sigma: 0.002, seed: 3 });
   const n = ref.ids.length;
   const trainOrder = Array.from({ length: n }, (_, i) => (7 * i + 5) % n);    // a permutation of 24
-  const heldOrder = Array.from({ length: n }, (_, i) => (11 * i + 2) % n);
+  const cut = ['A1', 'B3', 'D6'];   // the held-out chart cut by the frame: no RGB for these
+  const heldOrder = Array.from({ length: n }, (_, i) => (11 * i + 2) % n).filter((i) => !cut.includes(ref.ids[i]));
   assert.notDeepEqual(trainOrder, [...trainOrder].sort((a, b) => a - b));
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'tristim-pairing-'));
   try {
@@ -57,6 +58,7 @@ test('the page pairs patch files in the order tristim fit/evaluate --rgb --xyz d
     assert.deepEqual(profile.training.labels, expectTrain);   // the RGB file's order
     const ev = tristim(['evaluate', '--profile', path.join(dir, 'p.json'), '--rgb', heldFile.path, '--xyz', refFile.path]);
     assert.equal(ev.code, 0, ev.err);
+    assert.equal(ev.err, 'tristim evaluate: 3 reference patches have no RGB (A1, B3, D6): evaluated on the 21 others\n');
     const cliHeld = JSON.parse(ev.out).metrics.patches;
     assert.deepEqual(cliHeld.ids, heldOrder.map((i) => twoDigits(held.ids[i])));
 
@@ -66,6 +68,7 @@ test('the page pairs patch files in the order tristim fit/evaluate --rgb --xyz d
     const patches = parsed.ids.map((id, i) => ({ id, mean: Array.from(parsed.RGB.subarray(3 * i, 3 * i + 3)) }));
     const heldOut = await heldOutSet(engine, heldFile, reference);
     assert.deepEqual(heldOut.ids, expectHeld);
+    assert.deepEqual(heldOut.withoutRGB, cut);   // what the CLI names on stderr
     const { source, settings, data_digest, ...chart } = reference;
     const { format, version, ...recipe } = profile.recipe;   // the CLI's recipe, as the page holds one
     const page = await engine.call('fit', { recipe, sample: { patches }, reference: chart, heldOut });

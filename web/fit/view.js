@@ -122,7 +122,9 @@ export function mount(section, app) {
     clearError(heldInput);
     try {
       heldOut = file ? await heldOutSet(engine, file, app.derived.reference) : null;
-      heldState.textContent = heldOut ? `${heldOut.name}: ${heldOut.ids.length} patches held out.` : '';
+      const without = heldOut?.withoutRGB ?? [];
+      heldState.textContent = heldOut ? `${heldOut.name}: ${heldOut.ids.length} patches held out`
+        + (without.length ? ` (${without.length} reference patches have no RGB: ${without.join(', ')}).` : '.') : '';
       heldClear.hidden = !heldOut;
       await app.save('heldOutFile', file ?? undefined);
     } catch (e) { showError(heldInput, e, file.name); }

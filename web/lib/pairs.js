@@ -30,20 +30,23 @@ export async function pairData(engine, sample, reference, sampling = {}) {
   return { ids: t.ids, labels: t.labels, rgb: t.camera_RGB, xyz: t.reference_XYZ, excluded: t.excluded };
 }
 
-/// The fit step's held-out set {name, ids, rgb, xyz} from a patch file `{name, text}`: a file with
-/// its own X, Y, Z columns as it is; one with R, G, B only paired with `reference` (step 1) as a
-/// chart sample is (pairData, the engine's pair_by_id). Either way in the file's order, as
-/// `tristim evaluate --rgb` and `tristim compare --test-rgb/--test-xyz` pair it. Rejects with a
-/// coded error: MISSING_COLUMN (no R, G, B), NO_REFERENCE, or the engine's PATCH_MISMATCH naming
-/// the file.
+/// The fit step's held-out set {name, ids, rgb, xyz, withoutRGB} from a patch file `{name, text}`:
+/// a file with its own X, Y, Z columns as it is; one with R, G, B only paired with `reference`
+/// (step 1) as a chart sample is (pairData, the engine's pair_by_id). Either way in the file's
+/// order, as `tristim evaluate --rgb` and `tristim compare --test-rgb/--test-xyz` pair it.
+/// `withoutRGB`: the reference's patches the file lacks (as the reference spells them), which
+/// `tristim evaluate` names on stderr too. Rejects with a coded error: MISSING_COLUMN (no R, G, B),
+/// NO_REFERENCE, or the engine's PATCH_MISMATCH naming the file.
 export async function heldOutSet(engine, file, reference) {
   const p = await engine.call('parsePatchFile', { text: file.text, fileName: file.name });
   if (!p.has_RGB) throw Object.assign(new Error(`${file.name} has no R, G, B columns`), { code: 'MISSING_COLUMN' });
-  let ids = p.ids, rgb = p.RGB, xyz = p.XYZ;
+  let ids = p.ids, rgb = p.RGB, xyz = p.XYZ, withoutRGB = [];
   if (!p.has_XYZ) {
     if (!reference) throw Object.assign(new Error('no reference to pair the held-out patches with (step 1)'), { code: 'NO_REFERENCE' });
     const patches = ids.map((id, i) => ({ id, mean: [rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]] }));
     ({ ids, rgb, xyz } = await pairData(engine, { patches }, reference).catch((e) => { throw Object.assign(new Error(`${file.name}: ${e.message}`), { code: e.code }); }));
+    const held = new Set(ids);
+    withoutRGB = reference.ids.map((id, i) => (held.has(id) ? null : reference.labels?.[i] ?? id)).filter((id) => id != null);
   }
-  return { name: file.name, ids, rgb: Float64Array.from(rgb), xyz: Float64Array.from(xyz) };
+  return { name: file.name, ids, rgb: Float64Array.from(rgb), xyz: Float64Array.from(xyz), withoutRGB };
 }
