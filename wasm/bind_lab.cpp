@@ -43,5 +43,6 @@ EMSCRIPTEN_BINDINGS(tristim_lab) {
   def<&lab_option_table>("listLabOptions");
   def<&lab_file_kinds>("listLabFileKinds");
   def<&metamer_match_table>("listMetamerMatches");
+  def<&shen_training_table>("listShenTrainings");
   def<&lab_option>("labOption");
 }

@@ -30,7 +30,7 @@ const handlers = {
     surfaceOptions: T.listSurfaceOptions(), sensitivityOptions: T.listSensitivityOptions(),
     layoutOptions: T.listLayoutOptions(), labOptions: T.listLabOptions(), sampleFlags: T.listSampleFlags(),
     absoluteWhiteRules: T.listAbsoluteWhiteRules(), absoluteSensitivities: T.listAbsoluteSensitivities(),
-    labCharts: T.listLabCharts(), labFileKinds: T.listLabFileKinds(), metamerMatches: T.listMetamerMatches(),
+    labCharts: T.listLabCharts(), labFileKinds: T.listLabFileKinds(), metamerMatches: T.listMetamerMatches(), shenTrainings: T.listShenTrainings(),
     bootstrapOptions: T.bootstrapOptions(),
     exampleLights: T.listExampleLights(), exampleTrainings: T.listExampleTrainings(),
     layouts: Object.fromEntries(T.listChartLayouts().map((id) => [id, id === 'custom' ? null : T.chartLayout({ chart: id })])),

@@ -54,6 +54,18 @@ OptionSpec text_option(const std::string& name, const std::string& label, const 
   return o;
 }
 
+std::string ids_of(const std::vector<MethodInfo>& rows, const std::string& separator) {
+  std::string s;
+  for (const auto& r : rows) s += (s.empty() ? "" : separator) + r.id;
+  return s;
+}
+
+bool has_id(const std::vector<MethodInfo>& rows, const std::string& id) {
+  for (const auto& r : rows)
+    if (r.id == id) return true;
+  return false;
+}
+
 MethodChoice complete_choice(const MethodInfo& info, const MethodChoice& choice) {
   MethodChoice out;
   out.method = info.id;

@@ -116,7 +116,7 @@ test('every picker lists the engine catalog\'s ids and labels, and every options
     'lab/Match for': rows(T.listMetamerMatches()),
     'lab/Munsell chip': { owned: 'the engine\'s Munsell ids, loaded when the picker opens (checked below)' },
     'lab/or Munsell chips': { owned: 'the engine\'s Munsell ids for a chart of one\'s own, loaded when the picker opens (checked below)' },
-    'lab/Training chart': { owned: 'the charts the exercise trains on, named by their role in the paper (ids checked below)' },
+    'lab/Training chart': rows(T.listShenTrainings()),
     'lab/Light on the scene': rows(T.listExampleLights()),
   };
   const b = await openPage();

@@ -15,7 +15,12 @@ export function optionInput(table, row, attrs = {}) {
     value: row.default_number, title: row.description, [`data-${table}-option`]: row.name, ...attrs });
   if (row.min_exclusive) {
     input.dataset.minExclusive = '';
-    const check = () => input.setCustomValidity(input.value !== '' && Number(input.value) <= row.min ? `${row.label}: more than ${row.min}` : '');
+    const check = () => {
+      const bad = input.value !== '' && Number(input.value) <= row.min;
+      input.setCustomValidity(bad ? `${row.label}: more than ${row.min}` : '');
+      if (bad) input.setAttribute('aria-invalid', 'true');   // outlined as the page's other refused inputs
+      else input.removeAttribute('aria-invalid');
+    };
     input.addEventListener('input', check);
     input.addEventListener('change', check);
   }

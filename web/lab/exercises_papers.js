@@ -48,7 +48,9 @@ export function shenJPlot(e, kind, { width = 720, height = 280, Plot = getPlot()
 
 export function shenPanel(app) {
   const camSel = select(cameraOptions(app), 'Canon_EOS_5D_Mark_II');
-  const chartSel = select([{ value: 'cc24', label: 'ColorChecker Classic (the paper\'s MCC, 18 non-grey)' }, { value: 'sg140', label: 'ColorChecker SG (140, in the CDC\'s role)' }], 'cc24');
+  // The charts the exercise trains on, named by their role in the paper (shen_training_table).
+  const trainings = app.catalog.shenTrainings ?? [];
+  const chartSel = select(trainings.map((t) => ({ value: t.id, label: t.label })), trainings[0]?.id);
   const btn = h('button', { type: 'button', 'data-action': 'lab-ex3' }, 'Sweep J and L');
   const out = h('div', { 'data-lab': 'ex3' });
   const cli = h('pre', { class: 'cli' });

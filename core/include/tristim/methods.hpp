@@ -62,6 +62,11 @@ std::vector<MethodInfo> method_infos(const std::vector<Row>& rows) {
   return out;
 }
 
+/// The ids of `rows` joined by `separator` (a message naming what a field takes).
+std::string ids_of(const std::vector<MethodInfo>& rows, const std::string& separator = ", ");
+/// Whether one of `rows` has this id.
+bool has_id(const std::vector<MethodInfo>& rows, const std::string& id);
+
 /// Checks `choice` against `info` (Error(UnknownId) for an option the method lacks,
 /// Error(InvalidArgument) for a value of the wrong kind or out of bounds) and returns it with
 /// every missing option filled with its default.

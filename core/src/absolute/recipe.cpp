@@ -207,8 +207,6 @@ AbsoluteRecipe complete_absolute_recipe(const AbsoluteRecipe& in) {
     }
   }
   AbsoluteSensitivities& a = r.inputs.sensitivities;
-  std::string ids;
-  for (const MethodInfo& m : absolute_sensitivity_table()) ids += (ids.empty() ? "" : ", ") + m.id;
   if (a.choice == "none") {
     a.camera.clear(), a.source.clear(), a.ssf = {};
   } else if (a.choice == "camera") {
@@ -222,7 +220,7 @@ AbsoluteRecipe complete_absolute_recipe(const AbsoluteRecipe& in) {
     a.camera.clear();
     if (a.source.empty()) a.source = "given";
   } else {
-    throw Error(ErrorCode::InvalidArgument, "sensitivities: choice is one of " + ids + ", not '" + a.choice + "'");
+    throw Error(ErrorCode::InvalidArgument, "sensitivities: choice is one of " + ids_of(absolute_sensitivity_table()) + ", not '" + a.choice + "'");
   }
   return r;
 }

@@ -9,6 +9,7 @@
 #include "tristim/chart/reference.hpp"
 #include "tristim/error.hpp"
 #include "tristim/lab/exercises.hpp"
+#include "tristim/lab/lab_options.hpp"
 #include "tristim/linearisation/linearisation.hpp"
 #include "tristim/linearisation/spectral.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
@@ -69,8 +70,8 @@ void accumulate(Summary& into, const Summary& s, double w) {
 }  // namespace
 
 ShenExercise lab_shen_exercise(const SpectralData& ssf, const ShenOptions& o) {
-  if (o.chart != "cc24" && o.chart != "sg140")
-    throw Error(ErrorCode::UnknownId, "exercise 3 trains on cc24 or sg140, not '" + o.chart + "'");
+  if (!has_id(shen_training_table(), o.chart))
+    throw Error(ErrorCode::UnknownId, "exercise 3 trains on " + ids_of(shen_training_table(), " or ") + ", not '" + o.chart + "'");
   if (o.seeds < 1 || o.seeds > 20) throw Error(ErrorCode::InvalidArgument, "seeds must be 1..20");
   for (double s : o.sigmas)
     if (!(s >= 0 && s <= 50)) throw Error(ErrorCode::InvalidArgument, "noise sigma must be in [0, 50] (rho units)");

@@ -11,6 +11,7 @@
 #include "tristim/lab/metamerism.hpp"
 #include "tristim/lab/render.hpp"
 #include "tristim/surface/options_table.hpp"
+#include "../citations.hpp"
 
 namespace tristim {
 
@@ -79,6 +80,14 @@ std::vector<MethodInfo> metamer_match_table() {
   return {{"observer", "the observer", "CIE XYZ under each light (CIE 15), CIELAB, ΔE00 (Sharma, Wu & Dalal 2005)", {}},
           {"camera", "the camera",
            "the virtual camera's RGB through its ISO 17321-1 matrix fitted under each light, CIELAB, ΔE00", {}}};
+}
+
+std::vector<MethodInfo> shen_training_table() {
+  const std::string shen = citation::kShen2008;
+  return {{"cc24", "ColorChecker Classic (the paper's MCC, 18 non-grey)",
+           shen + ": the Macbeth ColorChecker, its greys D1-D6 left out of the fits", {}},
+          {"sg140", "ColorChecker SG (140, in the CDC's role)",
+           shen + ": the ColorChecker DC's role, a chart of many patches (the SG's 140 here)", {}}};
 }
 
 std::string lab_option_number(const OptionSpec& o, double value) {

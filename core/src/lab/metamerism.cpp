@@ -91,10 +91,8 @@ struct Setup {
 SpectralData light_of(const std::string& id, const SpectralData& given) { return given.values.empty() ? illuminant_spd(id) : given; }
 
 Setup setup(const MetamerOptions& o, const SpectralData& set) {
-  std::string ids;  // metamer_match_table(): the viewers a pair can match for
-  bool known = false;
-  for (const MethodInfo& m : metamer_match_table()) ids += (ids.empty() ? "'" : "' or '") + m.id, known = known || m.id == o.match;
-  if (!known) throw Error(ErrorCode::UnknownId, "match must be " + ids + "', got '" + o.match + "'");
+  if (!has_id(metamer_match_table(), o.match))  // the viewers a pair can match for
+    throw Error(ErrorCode::UnknownId, "match must be '" + ids_of(metamer_match_table(), "' or '") + "', got '" + o.match + "'");
   const bool has_camera = !o.camera.empty() || !o.sensitivities.values.empty();
   if (o.match == "camera" && !has_camera)
     throw Error(ErrorCode::InvalidArgument, "match 'camera' needs a camera (--camera or --sensitivities)");

@@ -180,3 +180,22 @@ TEST_CASE("metamer match table: the search takes exactly its viewers", "[lab][ca
   CHECK(MetamerOptions{}.match == metamer_match_table().front().id);
   test::require_code([] { metamers_with([](auto& o) { o.match = "eye"; }); }, ErrorCode::UnknownId);
 }
+
+TEST_CASE("shen training table: exercise 3 trains on exactly its charts", "[lab][catalog]") {
+  const SpectralData ssf = camera_ssf("Nikon_D850");
+  ShenOptions o;  // one J, one σ, one seed: the chart is what is checked
+  o.J = {3};
+  o.sigmas = {0};
+  o.J_table = 3;
+  o.seeds = 1;
+  CHECK(ids_of(shen_training_table()) == "cc24, sg140");
+  for (const MethodInfo& m : shen_training_table()) {
+    INFO(m.id);
+    CHECK(m.reference.find("Shen") != std::string::npos);
+    o.chart = m.id;
+    CHECK(lab_shen_exercise(ssf, o).chart == m.id);
+  }
+  CHECK(ShenOptions{}.chart == shen_training_table().front().id);
+  o.chart = "passport";
+  test::require_code([&] { lab_shen_exercise(ssf, o); }, ErrorCode::UnknownId);
+}

@@ -37,6 +37,11 @@ std::vector<LabFileKind> lab_file_kinds();
 /// matrix to XYZ); metamer_pairs and construct_metamer accept exactly these ids.
 std::vector<MethodInfo> metamer_match_table();
 
+/// The charts exercise 3 trains on (ShenOptions::chart; the page's "Training chart"), named by
+/// their role in Shen et al. 2008: "cc24" (the paper's MCC: its 18 non-grey patches) and "sg140"
+/// (in the CDC's role); lab_shen_exercise accepts exactly these ids.
+std::vector<MethodInfo> shen_training_table();
+
 /// `value` checked against row `name` of lab_option_table(): returned when inside [min, max] (and
 /// whole for an integer row); otherwise Error(InvalidArgument) naming the option, its bounds and the
 /// value. Error(Internal) for a name the table does not have.
