@@ -6,6 +6,7 @@
 
 #include "absolute_cli.hpp"
 #include "patch_args.hpp"
+#include "tristim/absolute/fields.hpp"
 #include "tristim/error.hpp"
 #include "tristim/simulate/virtual_camera.hpp"
 
@@ -116,18 +117,14 @@ int run_absolute_fit(const Args& args, std::ostream& out) {
   const AbsoluteCharacterisation c = characterise_absolute(recipe, loaded.frames);
   const AbsoluteProfile& p = c.profile;
   const std::string profile = absolute_profile_to_json(p);
-  json::Value s = json::Value::object();
-  s.set("luminance_stimuli", p.training.luminance_stimuli);
-  s.set("colour_stimuli", p.colour_stimuli);
-  s.set("exposures", static_cast<int>(p.luminance.exposures.size()));
-  s.set("reciprocity_ok", p.luminance.reciprocity_ok);
-  s.set("reciprocity_message", p.luminance.message);
-  s.set("inverse_oecf", absolute_report_json(c.report).at("fit").at("channels"));  // eq (8): k1, k2, k3 and the fit
-  const SaturationEstimate& sat = p.saturation;
-  s.set("saturation_fraction", json::Value(std::vector<double>{sat.fraction[0], sat.fraction[1], sat.fraction[2]}));
-  s.set("areas_source", p.areas_source);
-  s.set("colour_message", p.colour_message);
-  s.set("training_relative_Y_error", p.training.figures.relative_Y_error);
+  // The summary: a picked part of the report the page gets (AbsoluteReport's lists, as `tristim
+  // absolute evaluate --json` writes "training" and "fit").
+  const json::Value s = fields::object(
+      {{"training", fields::write_picked(c.report.training, {"luminance_stimuli", "colour_stimuli", "saturated_stimuli",
+                                                             "figures"})},
+       {"fit", fields::write_picked(c.report.fit, {"reciprocity_ok", "reciprocity_message", "exposures", "channels",
+                                                   "saturation_fraction", "areas_source", "colour_status",
+                                                   "colour_message"})}});
   if (p.areas_source == "none") std::cerr << "tristim absolute fit: no sensitivities given (--camera or --ssf): A_R = A_G = A_B\n";
   if (args.has("recipe-out")) {
     const std::string r = absolute_recipe_to_json(c.recipe);

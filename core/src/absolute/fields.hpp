@@ -1,7 +1,8 @@
-// Field lists (io/fields.hpp) shared by the absolute profile and report: the training summary (the
-// exposure's codec and the declarations a binding sees are in tristim/absolute/fields.hpp; the
-// fall-off fit's list is declared in tristim/capture/calibration.hpp and defined in
-// calibration.cpp; the section 4.1 figures' list is in report.cpp).
+// The field lists (io/fields.hpp) the absolute profile, recipe and report are written with: the
+// exposure's codec and the declarations (a binding and the CLI see them) are in
+// tristim/absolute/fields.hpp, the lists of the report's parts (training summary, section 4.1
+// figures, fit summary) are defined in report.cpp; the fall-off fit's list is declared in
+// tristim/capture/calibration.hpp and defined in calibration.cpp.
 #pragma once
 #include "tristim/absolute/fields.hpp"
 #include "tristim/absolute/normalisation.hpp"
@@ -9,12 +10,3 @@
 #include "tristim/capture/calibration.hpp"
 #include "tristim/io/fields.hpp"
 #include "tristim/profile/fields.hpp"
-
-namespace tristim::fields {
-
-TRISTIM_FIELDS(AbsoluteTraining, member<&AbsoluteTraining::luminance_stimuli>("luminance_stimuli"),
-               member<&AbsoluteTraining::colour_stimuli>("colour_stimuli"),
-               member<&AbsoluteTraining::saturated_stimuli>("saturated_stimuli"),
-               member<&AbsoluteTraining::evaluated>("evaluated"), member<&AbsoluteTraining::figures>("figures"));
-
-}  // namespace tristim::fields

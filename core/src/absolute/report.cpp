@@ -16,6 +16,11 @@ namespace tristim {
 
 namespace fields {
 
+TRISTIM_FIELDS_DEFINE(AbsoluteTraining, member<&AbsoluteTraining::luminance_stimuli>("luminance_stimuli"),
+                      member<&AbsoluteTraining::colour_stimuli>("colour_stimuli"),
+                      member<&AbsoluteTraining::saturated_stimuli>("saturated_stimuli"),
+                      member<&AbsoluteTraining::evaluated>("evaluated"), member<&AbsoluteTraining::figures>("figures"));
+
 TRISTIM_FIELDS_DEFINE(AbsoluteMetrics, member<&AbsoluteMetrics::metrics>("metrics"),
                member<&AbsoluteMetrics::relative_Y_error>("relative_Y_error"),
                member<&AbsoluteMetrics::median_absolute_error>("median_absolute_error"),
@@ -35,7 +40,7 @@ TRISTIM_FIELDS(AbsoluteExposureCheck, member<&AbsoluteExposureCheck::exposure>("
                member<&AbsoluteExposureCheck::rms_relative>("rms_relative"));
 
 using Fit = AbsoluteFitSummary;
-TRISTIM_FIELDS(Fit, member<&Fit::make>("make"), member<&Fit::model>("model"), member<&Fit::width>("width"),
+TRISTIM_FIELDS_DEFINE(Fit, member<&Fit::make>("make"), member<&Fit::model>("model"), member<&Fit::width>("width"),
                member<&Fit::height>("height"), member<&Fit::channels>("channels"),
                member<&Fit::iso_reference>("iso_reference"), member<&Fit::reciprocity_ok>("reciprocity_ok"),
                member<&Fit::reciprocity_message>("reciprocity_message"), member<&Fit::exposures>("exposures"),

@@ -2,7 +2,7 @@
 // recipe and its parts, the training figures, the maps summary, the pointer read-out, the sensitivity
 // estimate's uncertainty and the report — declared here so a binding converts them by their lists
 // and the CLI writes them by the same lists, and defined once in core/src/absolute (recipe.cpp,
-// report.cpp, fields.hpp). An exposure is the array [t, N, ISO] wherever it is written.
+// report.cpp). An exposure is the array [t, N, ISO] wherever it is written.
 #pragma once
 #include <array>
 
@@ -34,6 +34,8 @@ TRISTIM_FIELDS_DECLARE(AbsoluteInputs);
 TRISTIM_FIELDS_DECLARE(AbsoluteOptions);
 TRISTIM_FIELDS_DECLARE(AbsoluteRecipe);
 TRISTIM_FIELDS_DECLARE(AbsoluteMetrics);
+TRISTIM_FIELDS_DECLARE(AbsoluteTraining);
+TRISTIM_FIELDS_DECLARE(AbsoluteFitSummary);
 TRISTIM_FIELDS_DECLARE(AbsoluteMapsSummary);
 TRISTIM_FIELDS_DECLARE(AbsoluteReadout);
 TRISTIM_FIELDS_DECLARE(SensitivityUncertainty);
