@@ -50,8 +50,8 @@ std::vector<OptionSpec> light_trap_option_table(int W, int H) {
     return o;
   };
   // Abed et al. 2013 App. C step 1: the trap is marked like a patch, inside the photographed scene.
-  return {px("x", "Light trap left", 0, 0, W - 1, "the box's left edge, pixels from the image's left"),
-          px("y", "Light trap top", 0, 0, H - 1, "the box's top edge, pixels from the image's top"),
+  return {px("x", "Light trap x", 0, 0, W - 1, "the box's left edge, pixels from the image's left"),
+          px("y", "Light trap y", 0, 0, H - 1, "the box's top edge, pixels from the image's top"),
           px("width", "Light trap width", 1, 1, W, "the box's width; left + width at most the image's width"),
           px("height", "Light trap height", 1, 1, H, "the box's height; top + height at most the image's height")};
 }
