@@ -162,36 +162,36 @@ int run_apply(const Args& args, std::ostream& out) {
   if (args.has("mode")) p.fusion = fusion_mode_from_id(args.get("mode"));
   const std::vector<std::string> files(args.positional.begin() + 2, args.positional.end());
   const std::vector<ExposureSettings> given = exposure_args(args, files.size());
-  auto exposure_of = [&](size_t i, const RawImage& f) {
-    try {
-      return frame_exposure(f, "'" + files[i] + "'", given.empty() ? ExposureSettings{} : given[i]);
-    } catch (const Error& e) {
-      rethrow_with_exposure_hint(e);
-    }
-  };
   const std::string out_path = args.get("out");
-  AbsoluteImage img;
+  AbsoluteMaps maps;  // what the page's applyAbsolute gives: the profile as applied, the maps, the frames' names
   if (p.fusion == FusionMode::Weighted) {  // stream: one decoded frame in memory at a time
+    maps.profile = p;
+    maps.names = files;
     std::unique_ptr<ExposureFusion> fusion;
     for (size_t i = 0; i < files.size(); ++i) {
       const RawImage f = load_raw_file(files[i]);
-      check_profile_frame(p, f, "'" + files[i] + "'");
+      check_profile_frame(p, f, series_frame_name(files, i));
       if (!fusion) fusion = std::make_unique<ExposureFusion>(p.normalisation, p.luminance, f.width, f.height);
-      fusion->add(f, exposure_of(i, f));
+      try {
+        fusion->add(f, frame_exposure(f, series_frame_name(files, i), given.empty() ? ExposureSettings{} : given[i]));
+      } catch (const Error& e) {
+        rethrow_with_exposure_hint(e);
+      }
     }
-    img.luminance = fusion->finish();
-    luminance_to_XYZ(p, img.luminance.L, img.XYZ);
-  } else {
+    maps.image.luminance = fusion->finish();
+    luminance_to_XYZ(p, maps.image.luminance.L, maps.image.XYZ);
+  } else {  // Algorithm 1 needs every frame at once: the engine's series path (the page's)
     std::vector<RawImage> frames;
-    std::vector<ExposureSettings> exposures;
-    for (size_t i = 0; i < files.size(); ++i) {
-      frames.push_back(load_raw_file(files[i]));
-      exposures.push_back(exposure_of(i, frames.back()));
-    }
+    for (const auto& f : files) frames.push_back(load_raw_file(f));
     std::vector<const RawImage*> ptrs;
     for (const auto& f : frames) ptrs.push_back(&f);
-    img = apply_absolute(p, ptrs, exposures);
+    try {
+      maps = apply_absolute_series(p, ptrs, {"", given, files});
+    } catch (const Error& e) {
+      rethrow_with_exposure_hint(e);
+    }
   }
+  const AbsoluteImage& img = maps.image;
   const FusedLuminance& L = img.luminance;
   write_bytes(out_path, float_tiff(img.XYZ.data(), L.width, L.height, "CIE XYZ, cd/m2 (tristim absolute, Guarnera 2018)"));
   if (args.has("source-map")) {
@@ -209,7 +209,6 @@ int run_apply(const Args& args, std::ostream& out) {
                                                    "source exposure index, count, mask (tristim absolute)"));
   }
   // The exposure-selection summary by its field list (what the page's maps summary() gives).
-  const AbsoluteMaps maps{p, std::move(img), files};
   json::Value s = fields::write(absolute_maps_summary(maps));
   s.set("out", out_path);
   if (args.has("points")) s.set("points", point_readout(args.get("points"), maps, static_cast<int>(args.get_double("window", 5))));
