@@ -75,7 +75,8 @@ int run_compare(const Args& args, std::ostream& out) {
     set_compare_threads(static_cast<int>(n));
   }
   const Vec3 ref_white = parse_white(args, "ref-white", whites::D50());
-  PatchData d = load_pairs(args, ref_white);  // several --rgb/--xyz: one table of their union (patch_args.hpp)
+  PatchData d = load_pairs(args, ref_white, true);  // several --rgb/--xyz: one table of their union (patch_args.hpp)
+  std::cerr << without_rgb_note("compare", "compared", d);  // a chart cut by the frame, as tristim fit takes it
   const Linearisation lin = linearisation_option(args, "compare", d.ids, d.rgb, d.xyz, ref_white);  // linearise_option.hpp
   int white_index = -1;
   const FitOptions o = fit_options(args, d, white_index);
@@ -133,7 +134,8 @@ int run_compare(const Args& args, std::ostream& out) {
   }
   std::vector<TransferCell> transfer;
   if (args.has("test-rgb") || args.has("test-xyz")) {
-    PatchData t = load_pairs(args.get("test-rgb"), args.get("test-xyz"), ref_white);
+    PatchData t = load_pairs(args.get("test-rgb"), args.get("test-xyz"), ref_white, true);
+    std::cerr << without_rgb_note("compare", "held out", t);  // as tristim evaluate and the page's held-out set
     t.rgb = linearise(lin, t.rgb);
     std::vector<std::string> ids = models;
     if (ids.empty())

@@ -90,4 +90,31 @@ TEST_CASE("cli: fit still refuses RGB patches the reference lacks, naming both f
         std::string::npos);
   CHECK(said.find("rc=0") == std::string::npos);
 }
+TEST_CASE("cli: compare takes a cut chart for training and held out, as fit and evaluate do",
+          "[characterisation][cli][patches]") {
+  const Dir t;
+  const std::string& d = t.d;
+  t.drop("rgb.csv", "rgb_cut.csv", {"A1", "B3", "D6"});
+  t.drop("rgb.csv", "test_cut.csv", {"A2", "C4"});
+  const std::string cli = TRISTIM_CLI;
+  const std::string said =
+      run_shell(cli + " compare --rgb " + d + "rgb_cut.csv --xyz " + d + "xyz.csv --test-rgb " + d + "test_cut.csv --test-xyz " +
+                    d + "xyz.csv --models matrix-3x3 --objectives ls --json 2>" + d + "err.txt >" + d +
+                    "out.json; echo rc=$?",
+                false);
+  CHECK(said == "rc=0\n");
+  CHECK(slurp(d + "err.txt") ==
+        "tristim compare: 3 reference patches have no RGB (A1, B3, D6): compared on the 21 others\n"
+        "tristim compare: 2 reference patches have no RGB (A2, C4): held out on the 22 others\n");
+  const std::string out = slurp(d + "out.json");
+  CHECK(out.find("\"patches\": 21") != std::string::npos);
+  CHECK(out.find("\"transfer\"") != std::string::npos);
+  // An RGB id the reference lacks is still refused.
+  spit(d + "rgb_odd.csv", "patch,R,G,B\nA2,0.2,0.3,0.2\nZ9,0.1,0.1,0.1\nC3,0.05,0.1,0.2\nD1,0.6,0.6,0.6\n");
+  const std::string odd = run_shell(cli + " compare --rgb " + d + "rgb.csv --xyz " + d + "xyz.csv --test-rgb " + d +
+                                        "rgb_odd.csv --test-xyz " + d + "xyz.csv --models matrix-3x3 2>&1; echo rc=$?",
+                                    false);
+  CHECK(odd.find("PATCH_MISMATCH") != std::string::npos);
+  CHECK(odd.find("rc=0") == std::string::npos);
+}
 #endif
