@@ -83,10 +83,16 @@ int run_render(const Args& args, std::ostream& out) {
   o.oecf = args.get("oecf", o.oecf);
   o.jpeg_quality = static_cast<int>(args.get_double("quality", o.jpeg_quality));
   const std::string path = args.get("out");
-  const std::string ext = ext_of(path);
-  const std::string format = ext == "dng" ? "dng" : ext == "tiff" || ext == "tif" ? "tiff" : ext == "jpg" || ext == "jpeg" ? "jpeg" : "";
+  // The file kind by --out's extension: one of lab_file_kinds() (the page's File picker), by its
+  // extension or its id (.jpeg as .jpg); .tif is the short form of .tiff.
+  const std::string ext = ext_of(path) == "tif" ? "tiff" : ext_of(path);
+  std::string format, names;
+  for (const auto& k : lab_file_kinds()) {
+    if (ext == k.extension || ext == k.id) format = k.id;
+    names += (names.empty() ? "." : ", .") + k.extension;
+  }
   if (format.empty())
-    throw Error(ErrorCode::InvalidArgument, "--out must name a .dng, .tiff or .jpg file, got '" + path + "'");
+    throw Error(ErrorCode::InvalidArgument, "--out must end in one of " + names + ", got '" + path + "'");
   const LabRenderFiles r = lab_render_files(o, format);
   write_bytes(path, r.dng.data(), r.dng.size());
   if (args.has("reference-out")) write_bytes(args.get("reference-out"), r.reference.data(), r.reference.size());
