@@ -4,7 +4,8 @@
 // bracketed series (applyAbsolute -> the AbsoluteMaps handle), and the one report
 // (tristim/absolute/report.hpp), which crosses as the object its JSON is — the same fields, to the
 // bit, that `tristim absolute evaluate --json` prints. The recipe, its stimuli and the summaries
-// cross by their field lists (tristim/absolute/fields.hpp, wasm/types.hpp): the names and forms of
+// and the options of applyAbsolute and report() cross by their field lists (tristim/absolute/fields.hpp,
+// wasm/types.hpp; an unknown member refused with INVALID_ARGUMENT): the names and forms of
 // the JSON, e.g. an exposure as [t, N, ISO] and a region row's rectangle as region: [x, y, w, h].
 //
 // AbsoluteMaps methods (the handle owns wasm memory: call .delete()): summary(), XYZ() ->
@@ -63,8 +64,6 @@ EMSCRIPTEN_BINDINGS(tristim_absolute) {
       FIELD(curve_Y) FIELD(curve_R) FIELD(own_Y); }
   { using S = AbsoluteCharacterisation; value_object<S>("AbsoluteCharacterisation") FIELD(recipe) FIELD(profile) FIELD(panels)
       FIELD(report); }
-  { using S = AbsoluteApplyOptions; value_object<S>("AbsoluteApplyOptions") FIELD(mode) FIELD(exposures) FIELD(names); }
-  { using S = AbsoluteEvaluateOptions; value_object<S>("AbsoluteEvaluateOptions") FIELD(white); }
 
   using M = const AbsoluteMaps&;
   class_<AbsoluteMaps>("AbsoluteMaps")

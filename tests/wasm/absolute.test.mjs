@@ -162,6 +162,15 @@ test('absolute: mismatched brackets, a dark series, non-monotonic stimuli and ba
     // per-patch stimuli with neither S nor frames to measure it from
     throwsCode(assert, () => T.fitAbsolute({ inputs: { stimuli: T.readAbsoluteStimuli(ex.stimuli_csv, 's.csv') } }, {}), 'INVALID_ARGUMENT');
     throwsCode(assert, () => T.applyAbsolute('{"format":"tristim-absolute-profile","version":7}', ex.frames), 'PROFILE_VERSION');
+    // the options cross by their field lists: an unknown member or a short exposure is refused, coded
+    throwsCode(assert, () => T.applyAbsolute(fit.profile, ex.frames, { names: ex.frame_names, fusion: 'recursive' }), 'INVALID_ARGUMENT');
+    throwsCode(assert, () => T.checkAbsoluteSeries(ex.frames, { exposures: ex.frames.map(() => [0.01, 8]) }), 'INVALID_ARGUMENT');
+    assert.equal(T.checkAbsoluteSeries(ex.frames, {}).length, 5, 'members left out: their C++ defaults (exposures from the metadata)');
+    const maps = T.applyAbsolute(fit.profile, [ex.frames[2]], { mode: 'recursive' });
+    try {
+      throwsCode(assert, () => maps.report([], { white: 'E', whitepoint: 'D65' }), 'INVALID_ARGUMENT');
+      assert.equal(maps.report([], {}).fit.fusion, 'recursive', 'the mode as applied');
+    } finally { maps.delete(); }
     throwsCode(assert, () => T.absoluteExample({ camera: 'No_Such_Camera' }), 'UNKNOWN_ID');
   } finally {
     del(small.frames, small.lens_cap, small.flat, nikon.frames, nikon.lens_cap, nikon.flat);

@@ -91,6 +91,13 @@ TRISTIM_FIELDS_DEFINE(Readout, member<&Readout::x>("x"), member<&Readout::y>("y"
                       member<&Readout::XYZ>("XYZ"), member<&Readout::L>("L"), member<&Readout::source>("source"),
                       member<&Readout::source_label>("source_label"), member<&Readout::contributors>("contributors"));
 
+// How a profile is applied to a series and its report made (a JS caller's options; every member
+// may be left out: its C++ default).
+using ApplyOptions = AbsoluteApplyOptions;
+TRISTIM_FIELDS_DEFINE(ApplyOptions, member<&ApplyOptions::mode>("mode", false),
+                      member<&ApplyOptions::exposures>("exposures", false), member<&ApplyOptions::names>("names", false));
+TRISTIM_FIELDS_DEFINE(AbsoluteEvaluateOptions, member<&AbsoluteEvaluateOptions::white>("white", false));
+
 // The sensitivity estimate's uncertainty (tristim/absolute/sensitivities.hpp): the page's note and
 // `tristim sensitivities estimate`'s "uncertainty".
 using Uncertainty = SensitivityUncertainty;
