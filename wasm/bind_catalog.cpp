@@ -2,7 +2,9 @@
 // charts, illuminants, observers, models and their families, the method tables of each stage
 // (MethodInfo / OptionSpec rows; the flat-field modes too), chart layouts, the custom grid's and the
 // sampling's option rows, the sensitivity estimate's option rows and the Absolute mode's choices of
-// sensitivities, a light trap's rows for an image's size, and the corner homography.
+// sensitivities, a light trap's rows for an image's size, and the corner homography. ModelInfo,
+// ModelFamily, OptionSpec and MethodInfo cross by their field lists (convert_fields.hpp: the objects
+// `tristim models --json` prints; a bound that is not a number is null); the rest by value_object.
 #include "tristim/absolute/options_table.hpp"
 #include "tristim/absolute/recipe.hpp"
 #include "tristim/capture/calibration.hpp"
@@ -30,13 +32,6 @@ EMSCRIPTEN_BINDINGS(tristim_catalog) {
   { using S = ChartInfo; value_object<S>("ChartInfo") FIELD(id) FIELD(name) FIELD(patches) FIELD(rows) FIELD(columns) FIELD(source); }
   { using S = IlluminantInfo; value_object<S>("IlluminantInfo") FIELD(id) FIELD(name); }
   { using S = ObserverInfo; value_object<S>("ObserverInfo") FIELD(id) FIELD(name); }
-  { using S = Monomial; value_object<S>("Monomial") FIELD(r) FIELD(g) FIELD(b); }
-  { using S = ModelInfo; value_object<S>("ModelInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(n_terms)
-      FIELD(term_names) FIELD(terms) FIELD(root) FIELD(linear) FIELD(exposure_invariant) FIELD(duplicate_of) FIELD(family); }
-  { using S = ModelFamily; value_object<S>("ModelFamily") FIELD(id) FIELD(label) FIELD(about); }
-  { using S = OptionSpec; value_object<S>("OptionSpec") FIELD(name) FIELD(type) FIELD(label) FIELD(default_number)
-      FIELD(default_text) FIELD(min) FIELD(max) FIELD(choices) FIELD(description) FIELD(step) FIELD(unit) FIELD(min_exclusive); }
-  { using S = MethodInfo; value_object<S>("MethodInfo") FIELD(id) FIELD(label) FIELD(reference) FIELD(options); }
   { using S = SurfaceListing; value_object<S>("SurfaceListing") FIELD(id) FIELD(label) FIELD(reference) FIELD(options)
       FIELD(coefficients) FIELD(equation) FIELD(geometry); }
   { using S = PatchCell; value_object<S>("PatchCell") FIELD(id) FIELD(row) FIELD(column) FIELD(u0) FIELD(v0) FIELD(u1) FIELD(v1); }

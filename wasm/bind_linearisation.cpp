@@ -1,8 +1,8 @@
 // Declarations: the linearisation stage (issue 11) — the table with what each row needs, a fit of
 // one row, its application and inverse, curve samples for plots — and spectral characterisation
-// (Shen et al. 2008 eqs 26-28). Linearisation, CurveSamples, SpectralModel and SpectralEvaluation
-// cross by their field lists (the objects their JSON is: convert_fields.hpp); the rest with their
-// C++ field names (boundary.hpp).
+// (Shen et al. 2008 eqs 26-28). LinearisationListing, Linearisation, CurveSamples, SpectralModel and
+// SpectralEvaluation cross by their field lists (the objects their JSON is: convert_fields.hpp); the
+// rest with their C++ field names (boundary.hpp).
 #include "tristim/chart/reference.hpp"
 #include "tristim/colorimetry/spectra.hpp"
 #include "tristim/linearisation/linearisation.hpp"
@@ -32,7 +32,6 @@ std::string spectral_model_text(const SpectralModel& m) { return spectral_model_
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(tristim_linearisation) {
-  STRUCT(LinearisationListing, id, label, reference, needs, needs_text, options);
   STRUCT(LinearisationData, camera_RGB, ids, full_scale, reference_XYZ, white, reflectances, basis_reflectances);
 
   def<&linearisation_listing>("listLinearisations");

@@ -166,19 +166,8 @@ int run_linearise(const Args& args, std::ostream& out) {
   args.allow_only({"method", "rgb", "reflectances", "xyz", "illuminant", "ref-white", "grey", "J", "K", "L", "basis",
                    "full-scale", "out", "json", "list"});
   if (args.has("list")) {
-    json::Value a = json::Value::array();
-    for (const auto& m : linearisation_table()) {
-      json::Value o = json::Value::object();
-      o.set("id", m.info.id);
-      o.set("label", m.info.label);
-      o.set("reference", m.info.reference);
-      o.set("needs", m.needs);
-      json::Value opts = json::Value::array();
-      for (const auto& s : m.info.options) opts.push(s.name);
-      o.set("options", opts);
-      a.push(o);
-    }
-    out << a.dump(2) << "\n";
+    // LinearisationListing's list (methods.hpp): the rows the page's catalog has, options as rows.
+    out << fields::write(linearisation_listing()).dump(2) << "\n";
     return 0;
   }
   PatchTable rgb;

@@ -18,30 +18,14 @@ namespace tristim::cli {
 
 namespace {
 
-/// An OptionSpec row as the page's catalog has it (its members, by name).
-json::Value option_json(const OptionSpec& o) {
-  json::Value choices = json::Value::array();
-  for (const auto& c : o.choices) choices.push(c);
-  return fields::object({{"name", o.name}, {"type", o.type}, {"label", o.label}, {"default_number", o.default_number},
-                         {"default_text", o.default_text}, {"min", o.min}, {"max", o.max}, {"choices", choices},
-                         {"description", o.description}, {"step", o.step}, {"unit", o.unit}});
-}
-
-json::Value options_json(const std::vector<OptionSpec>& rows) {
-  json::Value a = json::Value::array();
-  for (const auto& o : rows) a.push(option_json(o));
-  return a;
-}
-
 int run_models(const Args& args, std::ostream& out) {
   args.allow_only({"json"});
   if (args.has("json")) {
-    json::Value a = json::Value::array();
-    for (const auto& m : model_table())
-      a.push(fields::object({{"id", m.id}, {"label", m.label}, {"reference", m.reference}, {"n_terms", m.n_terms},
-                             {"duplicate_of", m.duplicate_of}, {"family", m.family}}));
-    out << fields::object({{"models", a}, {"layout_options", options_json(layout_option_table())},
-                           {"sample_flags", options_json(sample_flag_table())}})
+    // The rows by their field lists (methods.hpp, models.hpp): what the page's catalog call gives.
+    out << fields::object({{"models", fields::write(model_table())},
+                           {"layout_options", fields::write(layout_option_table())},
+                           {"sample_flags", fields::write(sample_flag_table())},
+                           {"families", fields::write(model_families())}})
                .dump(2)
         << "\n";
     return 0;
@@ -59,7 +43,8 @@ int run_models(const Args& args, std::ostream& out) {
 const CommandRegistration reg_models({"models",
                                       "list the characterisation models, the chart grid's bounds and the sample flags",
                                       "tristim models [--json]\n"
-                                      "  --json: {\"models\": [...], \"layout_options\": [...], \"sample_flags\": [...]}",
+                                      "  --json: {\"models\": [...], \"layout_options\": [...], \"sample_flags\": [...], \"families\": [...]}\n"
+                                      "  (the rows the page's catalog has: a model's terms, an option's bounds)",
                                       run_models});
 
 }  // namespace

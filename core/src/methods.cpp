@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "tristim/characterisation/models.hpp"
 #include "tristim/error.hpp"
+#include "tristim/linearisation/linearisation.hpp"
 #include "tristim/number.hpp"
 
 namespace tristim {
@@ -153,3 +155,29 @@ MethodChoice parse_choice(const std::string& text) {
 }
 
 }  // namespace tristim
+
+namespace tristim::fields {
+
+TRISTIM_FIELDS_DEFINE(OptionSpec, member<&OptionSpec::name>("name"), member<&OptionSpec::type>("type"),
+                      member<&OptionSpec::label>("label"), member<&OptionSpec::default_number>("default_number"),
+                      member<&OptionSpec::default_text>("default_text"), member<&OptionSpec::min>("min"),
+                      member<&OptionSpec::max>("max"), member<&OptionSpec::choices>("choices"),
+                      member<&OptionSpec::description>("description"), member<&OptionSpec::step>("step"),
+                      member<&OptionSpec::unit>("unit"), member<&OptionSpec::min_exclusive>("min_exclusive"))
+TRISTIM_FIELDS_DEFINE(MethodInfo, member<&MethodInfo::id>("id"), member<&MethodInfo::label>("label"),
+                      member<&MethodInfo::reference>("reference"), member<&MethodInfo::options>("options"))
+using LL = LinearisationListing;
+TRISTIM_FIELDS_DEFINE(LinearisationListing, member<&LL::id>("id"), member<&LL::label>("label"),
+                      member<&LL::reference>("reference"), member<&LL::needs>("needs"),
+                      member<&LL::needs_text>("needs_text"), member<&LL::options>("options"))
+TRISTIM_FIELDS_DEFINE(Monomial, member<&Monomial::r>("r"), member<&Monomial::g>("g"), member<&Monomial::b>("b"))
+TRISTIM_FIELDS_DEFINE(ModelInfo, member<&ModelInfo::id>("id"), member<&ModelInfo::label>("label"),
+                      member<&ModelInfo::reference>("reference"), member<&ModelInfo::n_terms>("n_terms"),
+                      member<&ModelInfo::term_names>("term_names"), member<&ModelInfo::terms>("terms"),
+                      member<&ModelInfo::root>("root"), member<&ModelInfo::linear>("linear"),
+                      member<&ModelInfo::exposure_invariant>("exposure_invariant"),
+                      member<&ModelInfo::duplicate_of>("duplicate_of"), member<&ModelInfo::family>("family"))
+TRISTIM_FIELDS_DEFINE(ModelFamily, member<&ModelFamily::id>("id"), member<&ModelFamily::label>("label"),
+                      member<&ModelFamily::about>("about"))
+
+}  // namespace tristim::fields

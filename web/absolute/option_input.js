@@ -13,7 +13,7 @@ export const optionLabel = (row) => (row.unit ? `${row.label} (${row.unit})` : r
 export function optionInput(table, row, attrs = {}) {
   const input = h('input', { type: 'number', min: row.min, max: row.max, step: row.step || (row.type === 'integer' ? 1 : 'any'),
     value: row.default_number, title: row.description, [`data-${table}-option`]: row.name, ...attrs });
-  if (row.min_exclusive) {
+  if (row.min_exclusive && row.min != null) {  // a bound that is not a number crosses as null
     input.dataset.minExclusive = '';
     const check = () => {
       const bad = input.value !== '' && Number(input.value) <= row.min;

@@ -37,7 +37,7 @@ export function lightTrapBox({ engine, editor, stored, save }) {
         const k = trapIns.findIndex((i) => i.dataset.trap === o.name);
         if (k < 0) continue;
         const label = o.unit ? `${o.label} (${o.unit})` : o.label;
-        Object.assign(trapIns[k], { min: o.min, max: o.max, step: o.step || 1, title: o.description });
+        Object.assign(trapIns[k], { min: o.min ?? '', max: o.max ?? '', step: o.step || 1, title: o.description });  // null: unbounded
         trapIns[k].dataset.lightTrapOption = o.name;
         trapIns[k].setAttribute('aria-label', label);
         trapLabels[k].textContent = label.replace(/^Light trap /, '');

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "tristim/io/fields.hpp"
+
 namespace tristim {
 
 /// One option of a method. `type` is "number", "integer", "boolean" (0/1 in the parameters
@@ -81,4 +83,17 @@ const std::string& choice_text(const MethodChoice& choice, const std::string& na
 /// values that parse as numbers go to parameters, others to settings.
 MethodChoice parse_choice(const std::string& text);
 
+struct LinearisationListing;  // linearisation/linearisation.hpp
+
 }  // namespace tristim
+
+// Field lists (io/fields.hpp), defined in methods.cpp: the catalog's rows are the objects their JSON
+// is, in their C++ names and order — what `tristim models --json`, `tristim linearise --list` print
+// and the page's catalog call gives (a bound that is not a number: null). A LinearisationListing
+// (a linearisation row with what it needs) is declared here so every stage's listing has its list
+// beside OptionSpec's.
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(OptionSpec);
+TRISTIM_FIELDS_DECLARE(MethodInfo);
+TRISTIM_FIELDS_DECLARE(LinearisationListing);
+}  // namespace tristim::fields

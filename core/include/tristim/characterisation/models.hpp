@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tristim/colorimetry/colorimetry.hpp"
+#include "tristim/io/fields.hpp"
 
 namespace tristim {
 
@@ -109,3 +110,12 @@ void apply_to_image(const Model& model, const float* rgb, size_t n_pixels, float
 int set_image_kernel_limit(int level);
 
 }  // namespace tristim
+
+// Field lists (io/fields.hpp), defined in methods.cpp with the other catalog rows': a model row,
+// its terms ({r, g, b} exponents) and a family are the objects their JSON is (`tristim models
+// --json`, the page's listModels / listModelFamilies).
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(Monomial);
+TRISTIM_FIELDS_DECLARE(ModelInfo);
+TRISTIM_FIELDS_DECLARE(ModelFamily);
+}  // namespace tristim::fields
