@@ -1,4 +1,4 @@
-# Shared by the wasm build (wasm/third_party.cmake) and the fuzz build (TRISTIM_FUZZ, top-level
+# Shared by the wasm build (cmake/wasm_third_party.cmake) and the fuzz build (TRISTIM_FUZZ, top-level
 # CMakeLists.txt): finding the Debian source packages that scripts/install-deps.sh unpacked into
 # TRISTIM_THIRD_PARTY_DIR, and LibRaw's list of sources. Nothing here is committed third-party
 # source: only the list of what to compile.

@@ -169,7 +169,7 @@ RawImage decode_tiff(const std::uint8_t* data, std::size_t size, const ImageDeco
   TIFFGetFieldDefaulted(t, TIFFTAG_EXTRASAMPLES, &n_extra, &extra);
   if (TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &photometric) != 1) corrupt(src, "no PhotometricInterpretation tag");
 
-  // What is read: the same set natively and in wasm (wasm/third_party.cmake builds these codecs).
+  // What is read: the same set natively and in wasm (cmake/wasm_third_party.cmake builds these codecs).
   switch (compression) {
     case COMPRESSION_NONE: case COMPRESSION_LZW: case COMPRESSION_PACKBITS:
     case COMPRESSION_ADOBE_DEFLATE: case COMPRESSION_DEFLATE: case COMPRESSION_JPEG:
