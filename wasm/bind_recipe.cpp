@@ -4,7 +4,9 @@
 // defaults), or as its JSON text.
 // Several chart images (issue 48, docs/multi-image.md), as `tristim fit --recipe` with an `images`
 // list: trainingSet(imageRecipe(recipe, recipe.images[k]), sample_k, reference_k) per chart, then
-// fitTraining(recipe, trainingUnion(recipe, [{name, training}, …])) — its `charts` the per-chart figures.
+// fitTraining(recipe, trainingUnion(recipe, [{name, training}, …])) — its `charts` the per-chart figures,
+// each the object `tristim fit` writes in the profile's "charts" ({chart, patches, training, loo,
+// held_out, held_out_error}; ChartFigures' field list, characterise.hpp).
 #include "tristim/profile/characterise.hpp"
 #include "types.hpp"
 
@@ -25,7 +27,7 @@ struct FitOutcome {
   std::string profile;
   MethodChoice surface;          // the correction the reference went through (Phase II: the fitted one)
   std::string surface_status;
-  std::vector<ChartFigures> charts;  // several charts: each one's training / leave-one-out / held-out figures
+  std::vector<ChartFigures> charts;  // several charts: each one's figures, the objects of the profile's "charts" (its field list)
 };
 FitOutcome outcome(const Recipe& recipe, const TrainingSet& training) {
   const Characterisation c = characterise(recipe, training);
@@ -51,8 +53,6 @@ EMSCRIPTEN_BINDINGS(tristim_recipe) {
   { using S = TrainingSet; value_object<S>("TrainingSet") FIELD(ids) FIELD(labels) FIELD(camera_RGB) FIELD(reference_XYZ)
       FIELD(excluded) FIELD(chart_names) FIELD(chart_rows); }
   { using S = ChartPart; value_object<S>("ChartPart") FIELD(name) FIELD(training); }
-  { using S = ChartFigures; value_object<S>("ChartFigures") FIELD(name) FIELD(patches) FIELD(training_dE00) FIELD(has_loo)
-      FIELD(loo_dE00) FIELD(has_held_out) FIELD(held_out_dE00) FIELD(held_out_error); }
   { using S = FitOutcome; value_object<S>("FitOutcome") FIELD(recipe) FIELD(ids) FIELD(labels) FIELD(excluded) FIELD(linear_RGB)
       FIELD(reference_XYZ) FIELD(evaluation) FIELD(profile) FIELD(surface) FIELD(surface_status) FIELD(charts); }
 

@@ -325,12 +325,9 @@ int run_fit(const Args& args, std::ostream& out) {
   const std::vector<ChartFigures> charts = chart_figures(c, training);  // several charts: each one's figures
   if (c.recipe.characterisation.model == kCorrected3x3 || args.has("bootstrap") || !charts.empty()) {
     json::Value p = json::parse(text);
-    if (!charts.empty()) p.set("charts", chart_figures_json(charts));
+    if (!charts.empty()) p.set("charts", fields::write(charts));  // ChartFigures' field list
     if (c.recipe.characterisation.model == kCorrected3x3) {  // μ of Abed 2013 eq (27), beside the profile
-      json::Value k = json::Value::object();
-      k.set("mu", ev.fit.mu);
-      k.set("white_patch", c.recipe.characterisation.white_patch);
-      p.set("corrected_3x3", k);
+      p.set("corrected_3x3", fields::object({{"mu", ev.fit.mu}, {"white_patch", c.recipe.characterisation.white_patch}}));
       std::cerr << "tristim fit: corrected 3x3, white scaling mu = " << fmt(ev.fit.mu, 6) << " (Abed 2013 eq 27)\n";
     }
     if (args.has("bootstrap")) add_bootstrap(args, c, training, pixels, p);

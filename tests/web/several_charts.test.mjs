@@ -29,8 +29,8 @@ pageTest('a second chart image: one fit on both charts, equal to tristim fit --r
   });
   assert.equal(result.ids.length, 48 - (await page.evaluate(() => window.tristim.session.results[0].recipe.images
     .reduce((n, e) => n + e.sampling.exclude.length, 0))));
-  assert.deepEqual(result.charts.map((c) => c.name), ['passport.dng', 'second.dng']);
-  assert.ok(result.charts.every((c) => c.has_loo && c.has_held_out), 'per-chart leave-one-out and held-out figures');
+  assert.deepEqual(result.charts.map((c) => c.chart), ['passport.dng', 'second.dng']);
+  assert.ok(result.charts.every((c) => c.loo && c.held_out), 'per-chart leave-one-out and held-out figures');
 
   // The Results step: one row per chart with its figures.
   await step(page, 'results');

@@ -69,7 +69,7 @@ pageTest('two charts in one image: both sampled and fitted, equal to tristim fit
     return { profile: r.fit.profile, ids: Array.from(r.ids), charts: r.fit.charts };
   });
   assert.equal(made.ids.length, 48);
-  assert.ok(made.charts.every((c) => c.has_loo && c.has_held_out), 'per-chart leave-one-out and held-out figures');
+  assert.ok(made.charts.every((c) => c.loo && c.held_out), 'per-chart leave-one-out and held-out figures');
 
   // The CLI on the recipe the profile embeds: the same file for both entries, each with its corners.
   const profile = JSON.parse(made.profile);

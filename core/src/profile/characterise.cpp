@@ -385,14 +385,6 @@ Summary summary_of(const std::vector<double>& v, const std::vector<int>& rows) {
   return summarize(x);
 }
 
-json::Value mean_max(bool has, const Summary& s) {
-  if (!has) return json::Value();
-  json::Value o = json::Value::object();
-  o.set("dE00_mean", s.mean);
-  o.set("dE00_max", s.max);
-  return o;
-}
-
 }  // namespace
 
 std::vector<ChartFigures> chart_figures(const Characterisation& c, const TrainingSet& t) {
@@ -434,19 +426,44 @@ std::vector<ChartFigures> chart_figures(const Characterisation& c, const Trainin
   return out;
 }
 
-json::Value chart_figures_json(const std::vector<ChartFigures>& figures) {
-  json::Value a = json::Value::array();
-  for (const auto& f : figures) {
-    json::Value o = json::Value::object();
-    o.set("chart", f.name);
-    o.set("patches", f.patches);
-    o.set("training", mean_max(f.patches > 0, f.training_dE00));
-    o.set("loo", mean_max(f.has_loo && f.patches > 0, f.loo_dE00));
-    o.set("held_out", mean_max(f.has_held_out, f.held_out_dE00));
-    o.set("held_out_error", f.held_out_error);
-    a.push(o);
-  }
-  return a;
+namespace {
+using fields::Context;
+using fields::Field;
+
+// A summary as the figures write it: its mean and max CIEDE2000.
+const fields::FieldList<Summary>& mean_max_fields() {
+  static const fields::FieldList<Summary> list = {fields::member<&Summary::mean>("dE00_mean"),
+                                                  fields::member<&Summary::max>("dE00_max")};
+  return list;
 }
+bool trained(const ChartFigures& f) { return f.patches > 0; }
+bool has_loo(const ChartFigures& f) { return f.has_loo && f.patches > 0; }
+bool has_held_out(const ChartFigures& f) { return f.has_held_out; }
+
+/// The summary M as {"dE00_mean", "dE00_max"} when Has(figures), null otherwise; read back with
+/// the flag Flag (if any) set to whether it was an object.
+template <bool (*Has)(const ChartFigures&), bool ChartFigures::*Flag, Summary ChartFigures::*M>
+Field<ChartFigures> mean_max(const char* name) {
+  return {name,
+          [](const ChartFigures& f) {
+            if (!Has(f)) return json::Value();
+            json::Value o = json::Value::object();
+            fields::write_list(f.*M, mean_max_fields(), o);
+            return o;
+          },
+          [](const json::Value& v, ChartFigures& f, const Context& c, const std::string& p) {
+            if constexpr (Flag != nullptr) f.*Flag = !v.is_null();
+            if (!v.is_null()) fields::read_list(v, f.*M, mean_max_fields(), c, p);
+          }};
+}
+}  // namespace
+
+namespace fields {
+TRISTIM_FIELDS_DEFINE(ChartFigures, member<&ChartFigures::name>("chart"), member<&ChartFigures::patches>("patches"),
+                      (mean_max<trained, nullptr, &ChartFigures::training_dE00>("training")),
+                      (mean_max<has_loo, &ChartFigures::has_loo, &ChartFigures::loo_dE00>("loo")),
+                      (mean_max<has_held_out, &ChartFigures::has_held_out, &ChartFigures::held_out_dE00>("held_out")),
+                      member<&ChartFigures::held_out_error>("held_out_error"));
+}  // namespace fields
 
 }  // namespace tristim

@@ -260,7 +260,7 @@ TEST_CASE("recipe images: a planted 3x3 is recovered from two charts, with figur
     REQUIRE(x.has_held_out);  // fitted on the other chart alone: the same planted matrix
     CHECK(x.held_out_dE00.max < 1e-6);
   }
-  const json::Value j = chart_figures_json(f);
+  const json::Value j = fields::write(f);  // ChartFigures' field list
   CHECK(j.size() == 2);
   CHECK(j.dump().find("\"held_out\":{\"dE00_mean\":") != std::string::npos);
 }

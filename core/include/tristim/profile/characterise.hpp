@@ -151,8 +151,13 @@ struct ChartFigures {
 };
 /// One entry per chart of `training` (none for a single chart).
 std::vector<ChartFigures> chart_figures(const Characterisation& c, const TrainingSet& training);
-/// The figures as JSON: [{"chart", "patches", "training": {"dE00_mean", "dE00_max"}, "loo": {…}
-/// (or null), "held_out": {…} (or null), "held_out_error"}].
-json::Value chart_figures_json(const std::vector<ChartFigures>& figures);
 
 }  // namespace tristim
+
+// ChartFigures' field list (io/fields.hpp), defined in characterise.cpp: {"chart", "patches",
+// "training": {"dE00_mean", "dE00_max"} (null for a chart without patches), "loo": {…} (null without
+// leave-one-out), "held_out": {…} (null without a held-out figure), "held_out_error"} — what
+// `tristim fit` writes as the profile's "charts" and what FitOutcome.charts is in JS.
+namespace tristim::fields {
+TRISTIM_FIELDS_DECLARE(ChartFigures);
+}  // namespace tristim::fields
