@@ -3,8 +3,10 @@
 // from per-patch camera RGB paired by id with reflectances under an illuminant, the comparison of
 // two sets (RMS with each channel at peak 1; areas) and the CSV the CLI writes; the estimate's
 // own illuminant (wavelength and one value column) and reflectance files (the CLI's --illuminant
-// and --reflectances files). The uncertainty (SensitivityUncertainty) crosses by its field list
-// (tristim/absolute/fields.hpp): the object `tristim sensitivities estimate` prints as "uncertainty".
+// and --reflectances files). The estimate (SensitivityEstimate) and its uncertainty
+// (SensitivityUncertainty) cross by their field lists (tristim/absolute/fields.hpp): the object
+// `tristim sensitivities estimate` prints and its "uncertainty"; the uncertainty is computed from
+// the same inputs as the estimate (ids, RGB, reflectances, illuminant, options), paired alike.
 #include "tristim/absolute/normalisation.hpp"
 #include "tristim/absolute/sensitivities.hpp"
 #include "tristim/io/patch_files.hpp"
@@ -17,8 +19,6 @@ using wasm::def;
 
 EMSCRIPTEN_BINDINGS(tristim_sensitivities) {
   STRUCT(SensitivityOptions, components, smoothness, exclude_cameras);
-  STRUCT(SensitivityEstimate, ssf, residual, residual_rms, patches, components, basis_cameras, areas, clipped, ids,
-           unpaired, paired_reflectances, paired_RGB);
   STRUCT(SensitivityUncertaintyOptions, coverage, residual_limit, distance_limit);
 
   def<&camera_ssf>("cameraSensitivities");
@@ -27,7 +27,7 @@ EMSCRIPTEN_BINDINGS(tristim_sensitivities) {
   def<&read_illuminant_csv>("readIlluminantCsv");
   def<&read_reflectance_file>("readReflectanceFile");
   def<&estimate_sensitivities_by_id>("estimateSensitivities");
-  def<&sensitivity_uncertainty>("sensitivityUncertainty");
+  def<&sensitivity_uncertainty_by_id>("sensitivityUncertainty");
   def<&sensitivity_rms>("sensitivityRms");
   def<&channel_areas>("channelAreas");
   def<&sensitivities_to_csv>("sensitivitiesToCsv");

@@ -90,15 +90,11 @@ int run_sensitivities(const Args& args, std::ostream& out) {
   o.smoothness = args.get_double("smoothness", o.smoothness);
   for (const auto& e : args.all("exclude")) o.exclude_cameras.push_back(e);
   // Paired by patch id: the reflectance columns in the order of the RGB rows.
-  const SensitivityEstimate e = estimate_sensitivities_by_id(rgb.ids, rgb.RGB, refl, illuminant_arg(args.get("illuminant")), o);
-  json::Value s = fields::object(
-      {{"method", "Jiang2013"}, {"patches", e.patches}, {"unpaired_rgb_rows", e.unpaired},
-       {"components", e.components}, {"basis_cameras", e.basis_cameras}, {"residual", fields::write(e.residual)},
-       {"residual_rms", e.residual_rms}, {"areas", fields::write(e.areas)}, {"area_ratio_R_G", e.areas[0] / e.areas[1]},
-       {"area_ratio_B_G", e.areas[2] / e.areas[1]}, {"clipped_samples", e.clipped}});
+  const SpectralData illuminant = illuminant_arg(args.get("illuminant"));
+  const SensitivityEstimate e = estimate_sensitivities_by_id(rgb.ids, rgb.RGB, refl, illuminant, o);
+  json::Value s = fields::write(e);  // by its field list: what the page gets
   // How sure the areas are (leave-one-camera-out bases, K ± 1) and whether the camera is unlike the basis.
-  const SensitivityUncertainty u =
-      sensitivity_uncertainty(e.paired_RGB, e.paired_reflectances, illuminant_arg(args.get("illuminant")), o, e);
+  const SensitivityUncertainty u = sensitivity_uncertainty_by_id(rgb.ids, rgb.RGB, refl, illuminant, o, e);
   s.set("uncertainty", fields::write(u));  // by its field list: what the page gets
   std::cerr << "tristim sensitivities: A_R/A_G " << e.areas[0] / e.areas[1] << " ± " << 100 * u.u[0] << " %, A_B/A_G "
             << e.areas[2] / e.areas[1] << " ± " << 100 * u.u[1] << " % (k = " << u.coverage << ")\n";

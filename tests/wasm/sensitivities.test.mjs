@@ -3,7 +3,8 @@
 // (ratios kept), the estimate from a simulated ColorChecker photo under D65 with the camera held
 // out of the basis (area ratios within the issue's 2 %), pairing by patch id, a given set feeding
 // the absolute fit (same areas as the built-in camera, source recorded in the profile), coded
-// errors for bad CSVs and unpaired patches, and the uncertainty equal to the CLI's to the bit.
+// errors for bad CSVs and unpaired patches, and the estimate and its uncertainty equal to the CLI's
+// JSON to the bit.
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -94,7 +95,7 @@ test('sensitivities: coded errors for bad CSVs, unknown cameras and unpaired pat
 // ---- one field list: the uncertainty the page shows is what `tristim sensitivities estimate` prints
 const { dir: fixture, cli } = absoluteFixture('tristim-sensitivities-');
 
-test('sensitivities: the module\'s uncertainty equals the CLI\'s "uncertainty", to the bit (SensitivityUncertainty\'s list)', async () => {
+test('sensitivities: the module\'s estimate and its uncertainty equal the CLI\'s JSON, to the bit (SensitivityEstimate\'s and SensitivityUncertainty\'s lists)', async () => {
   const T = await loadTristim();
   const dir = fixture();
   const printed = JSON.parse(cli(dir, ['sensitivities', 'estimate', '--rgb', 'patches_rgb.csv', '--reflectances', 'cc24', '--illuminant', 'D65',
@@ -103,8 +104,15 @@ test('sensitivities: the module\'s uncertainty equals the CLI\'s "uncertainty", 
   const p = T.parsePatchFile(fs.readFileSync(path.join(dir, 'patches_rgb.csv'), 'utf8'), 'patches_rgb.csv');
   const spd = T.illuminantSpectrum('D65'), options = { exclude_cameras: [CAMERA] };
   const e = T.estimateSensitivities(p.ids, p.RGB, T.chartReflectances('cc24'), spd, options);
-  const u = T.sensitivityUncertainty(e.paired_RGB, e.paired_reflectances, spd, options, e);
+  const refl = T.chartReflectances('cc24');
+  const u = T.sensitivityUncertainty(p.ids, p.RGB, refl, spd, options, e);
   assert.deepStrictEqual(u, printed.uncertainty);
+  // the estimate itself is the CLI's JSON without its extras (SensitivityEstimate's list)
+  const { uncertainty, ...estimate } = printed;
+  assert.deepStrictEqual(e, estimate);
+  assert.ok(Array.isArray(e.ssf.values[0]) && Array.isArray(e.residual), 'plain Arrays, as the JSON has them');
+  // handed back, it is read by the list: an unknown member refused, the CLI's old names too
+  throwsCode(assert, () => T.sensitivityUncertainty(p.ids, p.RGB, refl, spd, options, { ...e, clipped_samples: 0 }), 'INVALID_ARGUMENT');
   assert.ok(Array.isArray(u.ratio) && Array.isArray(u.u), 'plain Arrays, as the JSON has them');
   assert.equal(u.ratio[0], printed.area_ratio_R_G);
 });

@@ -64,14 +64,14 @@ export const handlers = {
     let refl, spd;
     if (chart === 'file') { const f = fromFile('reflectances', 'reflectance'); refl = f.data; chart = `file:${f.name}`; } else refl = T.chartReflectances(chart);
     if (illuminant === 'file') { const f = fromFile('illuminant', 'illuminant'); spd = f.data; illuminant = `file:${f.name}`; } else spd = T.illuminantSpectrum(illuminant);
+    // SensitivityEstimate's field list: the object `tristim sensitivities estimate` prints (plain arrays, NaN as null)
     const e = T.estimateSensitivities(ids, rgb, refl, spd, options);
     // the areas' uncertainty (leave-one-camera-out bases, K ± 1) and whether the camera is unlike the basis
-    const u = T.sensitivityUncertainty(e.paired_RGB, e.paired_reflectances, spd, options, e);
-    delete e.paired_RGB; delete e.paired_reflectances;
+    const u = T.sensitivityUncertainty(ids, rgb, refl, spd, options, e);
     const label = `Jiang 2013 estimate (${chart}, ${illuminant}, ${e.patches} patches)`;
     const left = options.exclude_cameras?.length ? ` basis without ${options.exclude_cameras.join(' ')}` : '';
     s.estimate = { ssf: e.ssf, source: `estimate:Jiang2013 ${chart} ${illuminant} ${e.patches} patches K ${e.components}${left} residual ${e.residual_rms.toPrecision(3)}` };
-    return reply({ ...e, ssf: spectral(e.ssf), residual: Array.from(e.residual), areas: Array.from(e.areas), csv: T.sensitivitiesToCsv(e.ssf), label,
+    return reply({ ...e, csv: T.sensitivitiesToCsv(e.ssf), label,
       uncertainty: u });  // SensitivityUncertainty's field list: plain arrays, what the CLI prints as "uncertainty"
   },
 

@@ -111,6 +111,52 @@ TRISTIM_FIELDS_DEFINE(Uncertainty, member<&Uncertainty::ratio>("ratio"), member<
                       member<&Uncertainty::distance_limit>("distance_limit"), member<&Uncertainty::warnings>("warnings"),
                       member<&Uncertainty::message>("message"));
 
+// The sensitivity estimate (tristim/absolute/sensitivities.hpp): `tristim sensitivities estimate`'s
+// JSON and the page's object. "method" is always "Jiang2013"; the area ratios (A_R/A_G, A_B/A_G:
+// what eq (7) uses) are written from `areas` and, read back, checked to be numbers only; the
+// curves as {wavelengths, names, values} (SpectralData's own JS object is not changed).
+namespace {
+using Estimate = SensitivityEstimate;
+const FieldList<SpectralData>& curve_fields() {
+  static const FieldList<SpectralData> f = {member<&SpectralData::wavelengths>("wavelengths"),
+                                            member<&SpectralData::names>("names"),
+                                            member<&SpectralData::values>("values")};
+  return f;
+}
+template <int C>
+Field<Estimate> area_ratio(const char* name) {
+  return {name, [](const Estimate& e) { return json::Value(e.areas[C] / e.areas[1]); },
+          [](const json::Value& v, Estimate&, const Context& c, const std::string& p) {
+            double ignored = 0;  // derived from areas
+            fields::read(v, ignored, c, p);
+          }};
+}
+}  // namespace
+TRISTIM_FIELDS_DEFINE(Estimate,
+                      Field<Estimate>{"method", [](const Estimate&) { return json::Value("Jiang2013"); },
+                                      [](const json::Value& v, Estimate&, const Context& c, const std::string& p) {
+                                        if (!v.is_string() || v.as_string() != "Jiang2013")
+                                          c.refuse("'" + p + "' must be \"Jiang2013\"");
+                                      }},
+                      member<&Estimate::patches>("patches"), member<&Estimate::unpaired>("unpaired"),
+                      member<&Estimate::components>("components"), member<&Estimate::basis_cameras>("basis_cameras"),
+                      member<&Estimate::residual>("residual"), member<&Estimate::residual_rms>("residual_rms"),
+                      member<&Estimate::areas>("areas"), area_ratio<0>("area_ratio_R_G"),
+                      area_ratio<2>("area_ratio_B_G"), member<&Estimate::clipped>("clipped"),
+                      member<&Estimate::ids>("ids"),
+                      Field<Estimate>{"ssf",
+                                      [](const Estimate& e) {
+                                        json::Value o = json::Value::object();
+                                        write_list(e.ssf, curve_fields(), o);
+                                        return o;
+                                      },
+                                      [](const json::Value& v, Estimate& e, const Context& c, const std::string& p) {
+                                        read_list(v, e.ssf, curve_fields(), c, p);
+                                        bool ok = e.ssf.names.size() == e.ssf.values.size();
+                                        for (const auto& col : e.ssf.values) ok = ok && col.size() == e.ssf.wavelengths.size();
+                                        if (!ok) c.refuse("'" + p + "' must have one value column per name, one value per wavelength");
+                                      }});
+
 using Report = AbsoluteReport;
 TRISTIM_FIELDS_DEFINE(Report, member<&Report::fit>("fit"),
                member_or_null<&Report::has_training, &Report::training>("training"),

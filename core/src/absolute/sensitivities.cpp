@@ -124,34 +124,54 @@ SensitivityEstimate estimate_sensitivities_Jiang2013(const std::vector<Vec3>& rg
   return out;
 }
 
-SensitivityEstimate estimate_sensitivities_by_id(const std::vector<std::string>& ids, const std::vector<Vec3>& rgb,
-                                                 const SpectralData& reflectances, const SpectralData& illuminant,
-                                                 const SensitivityOptions& o) {
+namespace {
+
+/// The camera RGB rows with a reflectance of the same patch id (normalise_patch_id), and those
+/// reflectances as columns in the rows' order.
+struct Pairs {
+  SpectralData reflectances;
+  std::vector<Vec3> RGB;
+};
+Pairs pair_by_id(const std::vector<std::string>& ids, const std::vector<Vec3>& rgb, const SpectralData& reflectances) {
   if (ids.size() != rgb.size())
     throw Error(ErrorCode::PatchMismatch, std::to_string(ids.size()) + " patch ids but " + std::to_string(rgb.size()) +
                                               " camera RGB rows");
   std::vector<std::string> names;
   for (const auto& n : reflectances.names) names.push_back(normalise_patch_id(n));
-  SpectralData paired;
-  paired.wavelengths = reflectances.wavelengths;
-  paired.linear = reflectances.linear;
-  std::vector<Vec3> camera_RGB;
+  Pairs p;
+  p.reflectances.wavelengths = reflectances.wavelengths;
+  p.reflectances.linear = reflectances.linear;
   for (size_t i = 0; i < ids.size(); ++i) {
     const auto k = std::find(names.begin(), names.end(), normalise_patch_id(ids[i]));
     if (k == names.end()) continue;
-    paired.names.push_back(ids[i]);
-    paired.values.push_back(reflectances.values[k - names.begin()]);
-    camera_RGB.push_back(rgb[i]);
+    p.reflectances.names.push_back(ids[i]);
+    p.reflectances.values.push_back(reflectances.values[k - names.begin()]);
+    p.RGB.push_back(rgb[i]);
   }
-  if (camera_RGB.empty())
+  if (p.RGB.empty())
     throw Error(ErrorCode::PatchMismatch, "no camera RGB patch id matches a reflectance (" +
                                               (ids.empty() ? std::string("no patches") : "e.g. '" + ids[0] + "'") + ")");
-  SensitivityEstimate e = estimate_sensitivities_Jiang2013(camera_RGB, paired, illuminant, o);
-  e.ids = paired.names;
-  e.paired_reflectances = paired;
-  e.paired_RGB = camera_RGB;
-  e.unpaired = static_cast<int>(ids.size() - camera_RGB.size());
+  return p;
+}
+
+}  // namespace
+
+SensitivityEstimate estimate_sensitivities_by_id(const std::vector<std::string>& ids, const std::vector<Vec3>& rgb,
+                                                 const SpectralData& reflectances, const SpectralData& illuminant,
+                                                 const SensitivityOptions& o) {
+  const Pairs p = pair_by_id(ids, rgb, reflectances);
+  SensitivityEstimate e = estimate_sensitivities_Jiang2013(p.RGB, p.reflectances, illuminant, o);
+  e.ids = p.reflectances.names;
+  e.unpaired = static_cast<int>(ids.size() - p.RGB.size());
   return e;
+}
+
+SensitivityUncertainty sensitivity_uncertainty_by_id(const std::vector<std::string>& ids, const std::vector<Vec3>& rgb,
+                                                     const SpectralData& reflectances, const SpectralData& illuminant,
+                                                     const SensitivityOptions& options, const SensitivityEstimate& e,
+                                                     const SensitivityUncertaintyOptions& uo) {
+  const Pairs p = pair_by_id(ids, rgb, reflectances);
+  return sensitivity_uncertainty(p.RGB, p.reflectances, illuminant, options, e, uo);
 }
 
 SensitivityUncertainty sensitivity_uncertainty(const std::vector<Vec3>& rgb, const SpectralData& reflectances,

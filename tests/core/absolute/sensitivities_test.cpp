@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
 #include "test_support.hpp"
 #include "tristim/absolute/fields.hpp"
@@ -200,4 +201,54 @@ TEST_CASE("absolute: the uncertainty's field list — JSON round trip exact, unk
   json::Value short_u = json::parse(text);
   short_u.set("u", json::Value(std::vector<double>{0.002}));  // two ratios, two uncertainties
   test::require_code([&] { fields::read(short_u, back, ctx); }, ErrorCode::InvalidArgument);
+}
+
+TEST_CASE("absolute: the estimate's field list — JSON round trip exact, unknown members refused", "[absolute][sensitivities]") {
+  // One list gives `tristim sensitivities estimate`'s JSON and the object the page gets; a real
+  // estimate (a held-out camera, one patch id without a reflectance) written, read back, equal.
+  const SpectralData refl = chart_reflectances("cc24"), d65 = illuminant_spd("D65");
+  const std::vector<Vec3> rgb = simulate_camera_RGB(camera_ssf("Nikon_D5100"), refl, d65);
+  std::vector<std::string> ids = refl.names;
+  ids.back() = "Z99";
+  SensitivityOptions o;
+  o.exclude_cameras = {"Nikon_D5100"};
+  const SensitivityEstimate e = estimate_sensitivities_by_id(ids, rgb, refl, d65, o);
+  REQUIRE(e.unpaired == 1);
+  const fields::Context ctx{ErrorCode::InvalidArgument, "estimate: "};
+  const json::Value written = fields::write(e);
+  CHECK(written.find("method")->as_string() == "Jiang2013");
+  CHECK(written.find("area_ratio_R_G")->as_number() == e.areas[0] / e.areas[1]);
+  CHECK(written.find("area_ratio_B_G")->as_number() == e.areas[2] / e.areas[1]);
+  const std::string text = written.dump();
+  SensitivityEstimate back;
+  fields::read(json::parse(text), back, ctx);
+  CHECK((back.patches == 23 && back.basis_cameras == 51));
+  CHECK(std::tie(back.unpaired, back.components, back.clipped, back.residual_rms, back.areas, back.ids) ==
+        std::tie(e.unpaired, e.components, e.clipped, e.residual_rms, e.areas, e.ids));
+  CHECK(back.residual == e.residual);
+  CHECK(std::tie(back.ssf.wavelengths, back.ssf.names, back.ssf.values) == std::tie(e.ssf.wavelengths, e.ssf.names, e.ssf.values));
+  CHECK(fields::write(back).dump() == text);
+  const auto refused = [&](const char* name, json::Value v) {
+    json::Value x = json::parse(text);
+    x.set(name, std::move(v));
+    test::require_code([&] { fields::read(x, back, ctx); }, ErrorCode::InvalidArgument);
+  };
+  refused("unpaired_rgb_rows", 0);                     // a name the list does not have
+  refused("method", "Jiang2014");                      // the one method it states
+  refused("area_ratio_R_G", "0.45");                   // a ratio that is not a number
+  refused("residual", json::Value(std::vector<double>{0.1, 0.2}));  // three channels
+  json::Value short_ssf = json::parse(text);
+  json::Value curves = *short_ssf.find("ssf");
+  curves.set("names", json::Value::array());           // three columns, no names
+  short_ssf.set("ssf", curves);
+  test::require_code([&] { fields::read(short_ssf, back, ctx); }, ErrorCode::InvalidArgument);
+  // The uncertainty from the same inputs, paired alike, equals the one from the pairs themselves.
+  SpectralData paired = refl;
+  paired.names.pop_back();
+  paired.values.pop_back();
+  const std::vector<Vec3> paired_rgb(rgb.begin(), rgb.end() - 1);
+  const SensitivityUncertainty by_id = sensitivity_uncertainty_by_id(ids, rgb, refl, d65, o, e);
+  const SensitivityUncertainty direct = sensitivity_uncertainty(paired_rgb, paired, d65, o, e);
+  CHECK(by_id.u == direct.u);
+  CHECK(by_id.loo_bases == 51);
 }

@@ -1,6 +1,6 @@
 // The field lists (io/fields.hpp) of the absolute mode's structs that cross a boundary — the
 // recipe and its parts, the training figures, the maps summary, the pointer read-out, the sensitivity
-// estimate's uncertainty, the options of applying a profile and of its report, and the report — declared here so a binding converts them by their lists
+// estimate and its uncertainty, the options of applying a profile and of its report, and the report — declared here so a binding converts them by their lists
 // and the CLI writes them by the same lists, and defined once in core/src/absolute (recipe.cpp,
 // report.cpp). An exposure is the array [t, N, ISO] wherever it is written.
 #pragma once
@@ -41,6 +41,7 @@ TRISTIM_FIELDS_DECLARE(AbsoluteReadout);
 TRISTIM_FIELDS_DECLARE(AbsoluteApplyOptions);
 TRISTIM_FIELDS_DECLARE(AbsoluteEvaluateOptions);
 TRISTIM_FIELDS_DECLARE(SensitivityUncertainty);
+TRISTIM_FIELDS_DECLARE(SensitivityEstimate);
 TRISTIM_FIELDS_DECLARE(AbsoluteReport);
 
 }  // namespace tristim::fields

@@ -38,11 +38,11 @@ struct SensitivityEstimate {
   int clipped = 0;             ///< samples set to 0 because the solve went negative
   std::vector<std::string> ids;  ///< the patches used, in order (estimate_sensitivities_by_id)
   int unpaired = 0;            ///< camera RGB rows without a reflectance of the same id (by_id)
-  /// estimate_sensitivities_by_id: the paired reflectances (columns in the order of `ids`) and
-  /// camera RGB, so the uncertainty can be computed from the same pairs.
-  SpectralData paired_reflectances;
-  std::vector<Vec3> paired_RGB;
 };
+// Its JSON (field list in tristim/absolute/fields.hpp): what `tristim sensitivities estimate`
+// prints and the page gets — {method: "Jiang2013", patches, unpaired, components, basis_cameras,
+// residual, residual_rms, areas, area_ratio_R_G, area_ratio_B_G (written from areas), clipped, ids,
+// ssf: {wavelengths, names, values}}.
 
 /// Estimates the sensitivities from linear camera RGB (N patches, black-subtracted, no white
 /// balance) of patches with known `reflectances` (columns in the same order as camera_RGB,
@@ -102,6 +102,15 @@ SensitivityUncertainty sensitivity_uncertainty(const std::vector<Vec3>& camera_R
                                                const SpectralData& illuminant, const SensitivityOptions& options,
                                                const SensitivityEstimate& estimate,
                                                const SensitivityUncertaintyOptions& u = {});
+
+/// sensitivity_uncertainty of an estimate made by estimate_sensitivities_by_id from these inputs:
+/// the camera RGB rows paired by id with the reflectances as that function pairs them.
+SensitivityUncertainty sensitivity_uncertainty_by_id(const std::vector<std::string>& ids,
+                                                     const std::vector<Vec3>& camera_RGB,
+                                                     const SpectralData& reflectances, const SpectralData& illuminant,
+                                                     const SensitivityOptions& options,
+                                                     const SensitivityEstimate& estimate,
+                                                     const SensitivityUncertaintyOptions& u = {});
 
 /// RMS difference of two sets of sensitivities with each channel scaled to peak 1, over the
 /// common 5 nm grid of `a` (b interpolated): how well the shapes agree.
