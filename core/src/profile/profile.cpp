@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "tristim/error.hpp"
+#include "tristim/profile/characterise.hpp"  // ChartFigures (the "charts" tristim fit writes)
 #include "tristim/profile/export.hpp"
 #include "tristim/profile/fields.hpp"
 #include "tristim/version.hpp"
@@ -124,9 +125,14 @@ Profile profile_from_document(const json::Value& document) {
   Profile p;
   fields::check_document(document, kProfileDocument);
   // What `tristim fit` writes beside the profile's members (its bootstrap intervals, the figures
-  // per chart, a corrected 3x3's mu) is known and not read.
-  fields::read_members(document, p, fields::Context{ErrorCode::ProfileInvalid, ""}, "",
-                       {"format", "version", "bootstrap", "charts", "corrected_3x3"});
+  // per chart, a corrected 3x3's mu) is known and not kept; the figures per chart are checked by
+  // their field list (ChartFigures, profile/characterise.hpp: an unknown member refused).
+  const fields::Context context{ErrorCode::ProfileInvalid, ""};
+  fields::read_members(document, p, context, "", {"format", "version", "bootstrap", "charts", "corrected_3x3"});
+  if (const json::Value* charts = document.find("charts")) {
+    std::vector<ChartFigures> figures;
+    fields::read(*charts, figures, context, "charts");
+  }
   p.version = kProfileVersion;
   const auto n = static_cast<Eigen::Index>(p.training_labels.size());
   if (p.training_camera_RGB.rows() != n || p.training_reference_XYZ.rows() != n)

@@ -7,6 +7,7 @@
 
 #include "tristim/error.hpp"
 #include "tristim/profile/characterise.hpp"
+#include "tristim/profile/profile.hpp"
 
 using namespace tristim;
 
@@ -96,4 +97,31 @@ TEST_CASE("chart figures: an unknown, missing or mistyped member is refused nami
         "charts: missing field 'charts[0].held_out_error'");
   CHECK(refusal("[{\"chart\":\"a\",\"patches\":1,\"training\":null,\"loo\":3,\"held_out\":null,\"held_out_error\":\"\"}]") ==
         "charts: 'charts[0].loo' must be an object");
+}
+
+TEST_CASE("a profile's \"charts\" are read by ChartFigures' list: an unknown member refused", "[profile][chart][fields]") {
+  PatchMatrix rgb(12, 3);
+  for (int i = 0; i < 12; ++i) rgb.row(i) << 0.05 + 0.07 * i, 0.9 - 0.06 * i, 0.1 + 0.03 * (i % 5);
+  const PatchMatrix xyz = rgb * Eigen::Matrix3d::Identity() * 0.8;
+  std::vector<std::string> ids;
+  for (int i = 0; i < 12; ++i) ids.push_back("P" + std::to_string(i + 1));
+  const FitOptions o;
+  json::Value doc = profile_json(make_profile(evaluate_model("matrix-3x3", rgb, xyz, o), o, ids, rgb, xyz));
+  doc.set("charts", fields::write(planted()));
+  CHECK(profile_from_document(doc).model.id == "matrix-3x3");
+  CHECK(profile_from_json(doc.dump(2)).model.id == "matrix-3x3");
+
+  json::Value bad = fields::write(planted());
+  json::Value row = bad.as_array()[1];
+  row.set("has_loo", false);  // the C++ name, which the JSON does not use
+  json::Value rows = json::Value::array();
+  rows.push(row);
+  doc.set("charts", rows);
+  try {
+    profile_from_document(doc);
+    FAIL("read");
+  } catch (const Error& e) {
+    CHECK(e.code() == ErrorCode::ProfileInvalid);
+    CHECK(std::string(e.what()) == "unknown field 'charts[0].has_loo'");
+  }
 }
