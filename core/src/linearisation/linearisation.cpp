@@ -208,9 +208,7 @@ TRISTIM_FIELDS_DEFINE(Linearisation, nested<&L::choice, &MethodChoice::method>("
 TRISTIM_FIELDS_DEFINE(CurveSamples, member<&CurveSamples::x>("x"), member<&CurveSamples::linear>("linear"),
                       with_shown(member<&CurveSamples::grey_based>("grey_based", false), has_grey_based));
 
-void Codec<Linearisation>::read(const json::Value& v, Linearisation& out, const Context& c, const std::string& p) {
-  Linearisation l;
-  read_members(v, l, c, p);
+void Checks<Linearisation>::check(Linearisation& l, const Context& c, const std::string& p) {
   l.choice = complete_choice(linearisation_method(l.choice.method).info, l.choice);
   if (!(l.full_scale > 0)) c.refuse("'" + join(p, "full_scale") + "' must be > 0");
   // A curve that needs coefficients must have them.
@@ -219,7 +217,6 @@ void Codec<Linearisation>::read(const json::Value& v, Linearisation& out, const 
     for (int ch = 0; ch < 3; ++ch)
       if (l.coefficients[ch].empty())
         c.refuse("'" + join(p, "coefficients") + "' of channel " + std::to_string(ch) + " are empty");
-  out = std::move(l);
 }
 
 }  // namespace fields

@@ -251,9 +251,7 @@ TRISTIM_FIELDS_DEFINE(SpectralModel, Field<M>{"format", [](const M&) { return js
 TRISTIM_FIELDS_DEFINE(SpectralEvaluation, Field<E>{"summary", summary_json, read_summary},
                       Field<E>{"patches", patches_json, read_patches});
 
-void Codec<SpectralModel>::read(const json::Value& v, SpectralModel& out, const Context& c, const std::string& p) {
-  SpectralModel m;
-  read_members(v, m, c, p);
+void Checks<SpectralModel>::check(SpectralModel& m, const Context& c, const std::string& p) {
   for (size_t i = 0; i < m.wavelengths.size(); ++i)
     if (i > 0 && !(m.wavelengths[i] > m.wavelengths[i - 1])) c.refuse("'" + join(p, "wavelengths") + "' must be increasing");
   if (m.wavelengths.empty() || m.W.rows() != static_cast<Eigen::Index>(m.wavelengths.size()) || m.W.cols() != 3)
@@ -261,7 +259,6 @@ void Codec<SpectralModel>::read(const json::Value& v, SpectralModel& out, const 
   if (m.training_patches < 0) c.refuse("'" + join(p, "training_patches") + "' must be >= 0");
   if (m.training_set != "all" && m.training_set != "non-grey")
     c.refuse("'" + join(p, "training_set") + "' must be \"all\" or \"non-grey\"");
-  out = std::move(m);
 }
 
 }  // namespace fields

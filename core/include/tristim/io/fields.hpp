@@ -327,6 +327,13 @@ void read_members(const json::Value& o, S& s, const Context& c, const std::strin
   read_list(o, s, Schema<S>::fields(), c, path, also_known);
 }
 
+/// What a struct's reader checks beyond its list, after its members are read (a known method, a
+/// monotonic axis, …): specialise Checks<S>::check to refuse through the context.
+template <class S>
+struct Checks {
+  static void check(S&, const Context&, const std::string&) {}
+};
+
 template <class S>
 struct Codec<S, std::enable_if_t<has_schema<S>::value>> {
   static json::Value write(const S& s) {
@@ -334,7 +341,10 @@ struct Codec<S, std::enable_if_t<has_schema<S>::value>> {
     write_members(s, o);
     return o;
   }
-  static void read(const json::Value& v, S& out, const Context& c, const std::string& p) { read_members(v, out, c, p); }
+  static void read(const json::Value& v, S& out, const Context& c, const std::string& p) {
+    read_members(v, out, c, p);
+    Checks<S>::check(out, c, p);
+  }
 };
 
 // ---- versioned documents --------------------------------------------------------------------

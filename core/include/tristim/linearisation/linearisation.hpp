@@ -215,12 +215,7 @@ TRISTIM_FIELDS_DECLARE(CurveSamples);
 /// (UnknownId / InvalidArgument), full_scale > 0 and coefficients for every curve that needs them
 /// (the context's code).
 template <>
-struct Codec<Linearisation> {
-  static json::Value write(const Linearisation& l) {
-    json::Value o = json::Value::object();
-    write_members(l, o);
-    return o;
-  }
-  static void read(const json::Value& v, Linearisation& out, const Context& c, const std::string& p);
+struct Checks<Linearisation> {
+  static void check(Linearisation& l, const Context& c, const std::string& p);
 };
 }  // namespace tristim::fields

@@ -103,12 +103,7 @@ TRISTIM_FIELDS_DECLARE(SpectralEvaluation);
 /// A SpectralModel reads by its list and is then checked: wavelengths finite and increasing, W
 /// one row of 3 per wavelength, training_set "all" or "non-grey" (the context's code).
 template <>
-struct Codec<SpectralModel> {
-  static json::Value write(const SpectralModel& m) {
-    json::Value o = json::Value::object();
-    write_members(m, o);
-    return o;
-  }
-  static void read(const json::Value& v, SpectralModel& out, const Context& c, const std::string& p);
+struct Checks<SpectralModel> {
+  static void check(SpectralModel& m, const Context& c, const std::string& p);
 };
 }  // namespace tristim::fields
