@@ -8,7 +8,6 @@ using emscripten::value_object;
 using wasm::def;
 
 EMSCRIPTEN_BINDINGS(tristim_lab_exercises) {
-  { using S = LabTable; value_object<S>("LabTable") FIELD(name) FIELD(columns) FIELD(rows); }
   { using S = ShenOptions; value_object<S>("ShenOptions") FIELD(chart) FIELD(J) FIELD(sigmas) FIELD(J_table) FIELD(sigma_table)
       FIELD(seeds) FIELD(seed); }
   { using S = ShenRow; value_object<S>("ShenRow") FIELD(method) FIELD(J) FIELD(L) FIELD(sigma) FIELD(ok) FIELD(error_code)

@@ -24,17 +24,7 @@ void print_table(const Args& args, const LabTable& t, std::ostream& out) {
     out << lab_table_csv(t);
     return;
   }
-  json::Value o = json::Value::object(), cols = json::Value::array(), rows = json::Value::array();
-  o.set("name", t.name);
-  for (const auto& c : t.columns) cols.push(c);
-  for (const auto& r : t.rows) {
-    json::Value a = json::Value::array();
-    for (const auto& c : r) a.push(c);
-    rows.push(a);
-  }
-  o.set("columns", cols);
-  o.set("rows", rows);
-  out << o.dump(1) << "\n";
+  out << fields::write(t).dump(1) << "\n";  // LabTable's field list (lab/exercises.hpp), as the page gets it
 }
 
 std::vector<int> integers(const std::string& text, const std::string& option) {

@@ -67,6 +67,8 @@ TRISTIM_FIELDS_DEFINE(R, member<&R::model>("model"), member<&R::training>("train
                       member<&R::patches>("patches"), member<&R::ok>("ok"), member<&R::error_code>("error_code"),
                       member<&R::message>("message"), member<&R::train_dE00>("train_dE00"),
                       member<&R::loo_dE00>("loo_dE00"), member<&R::test_dE00>("test_dE00"));
+TRISTIM_FIELDS_DEFINE(LabTable, member<&LabTable::name>("name"), member<&LabTable::columns>("columns"),
+                      member<&LabTable::rows>("rows"));
 }  // namespace fields
 
 json::Value overfit_row_json(const OverfitRow& row) {

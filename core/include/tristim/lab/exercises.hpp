@@ -198,8 +198,9 @@ LabTable guarnera_table(const std::vector<GuarneraRow>& rows);
 
 }  // namespace tristim
 
-// The over-fitting row's field list (defined in exercises.cpp): the CLI's rows and the wasm
-// binding use it.
+// The field lists of the over-fitting row and of a results table (defined in exercises.cpp): the
+// CLI's rows and tables (--json) and the wasm binding use them.
 namespace tristim::fields {
 TRISTIM_FIELDS_DECLARE(OverfitRow);
+TRISTIM_FIELDS_DECLARE(LabTable);
 }  // namespace tristim::fields
