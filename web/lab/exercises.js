@@ -10,8 +10,6 @@ import { figure } from '../plots/common.js';
 import { stimulusPlot, overfitPlot } from './plots.js';
 import { labOptionBoxes } from './options.js';
 
-const ILLUMINANTS = ['D65', 'A', 'F11'], OBSERVERS = ['1931', '1964'];
-
 export function spectraPanel(app) {
   const ids = app.catalog.layouts.cc24?.patches?.map((p) => p.id) ?? ['A1'];
   const patchSel = select(ids, 'C3');
@@ -20,9 +18,10 @@ export function spectraPanel(app) {
   const cli = h('pre', { class: 'cli' });
   async function run() {
     clearError(btn);
-    cli.textContent = ILLUMINANTS.map((i) => `tristim reference --chart cc24 --illuminant ${i} --observer 1964   # row ${patchSel.value}`).join('\n');
-    let e;
-    try { e = await app.engine.call('labSpectra', { chart: 'cc24', patch: patchSel.value, illuminants: ILLUMINANTS, observers: OBSERVERS }); } catch (err) { showError(btn, err, 'Exercise 1'); return null; }
+    cli.textContent = '';
+    let e;  // the exercise's lights and observers are the engine's (lab_spectra_to_colour)
+    try { e = await app.engine.call('labSpectra', { chart: 'cc24', patch: patchSel.value }); } catch (err) { showError(btn, err, 'Exercise 1'); return null; }
+    cli.textContent = e.illuminants.map((i) => `tristim reference --chart cc24 --illuminant ${i} --observer 1964   # row ${patchSel.value}`).join('\n');
     const rows = e.rows.map((r) => h('tr', {}, h('td', {}, r.illuminant), h('td', {}, r.observer),
       ...[...r.XYZ, ...r.Lab, r.x, r.y].map((v, i) => h('td', { class: 'num' }, fmt(v, i < 6 ? 2 : 4)))));
     out.replaceChildren(

@@ -19,7 +19,7 @@ export const handlers = {
   },
   /// Exercise 5: exposure invariance (ΔE00 vs k) and Table 4 under one light, both trainings.
   labGuarnera: (T, { camera, illuminant }) => {
-    const exposure = T.labExposure(sensitivities(T, camera), T.illuminantSpectrum(illuminant), ['Guarnera2018-T1', 'Guarnera2018-To', 'Guarnera2018-T2R', 'Cheung2004-10'], [0.125, 0.25, 0.5, 1, 2, 4, 8]);
+    const exposure = T.labExposure(sensitivities(T, camera), T.illuminantSpectrum(illuminant));  // the engine's models and k
     const table4 = camera === 'cmf' ? [] : T.labGuarneraTable4(camera, [illuminant], ['projector', 'reflective']);
     const tables = [withCsv(T, T.labExposureTable(exposure))];
     if (table4.length) tables.push(withCsv(T, T.labGuarneraTable(table4)));

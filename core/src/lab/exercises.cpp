@@ -25,7 +25,12 @@ PatchMatrix lab_patch_matrix(const std::vector<Vec3>& v) {
 }
 
 SpectraToColour lab_spectra_to_colour(const std::string& chart, const std::string& patch,
-                                      const std::vector<std::string>& illuminants, const std::vector<std::string>& observers) {
+                                      const std::vector<std::string>& illuminants_given,
+                                      const std::vector<std::string>& observers_given) {
+  // The exercise's lights (daylight, tungsten, a narrow-band fluorescent) and both CIE observers.
+  const std::vector<std::string> illuminants =
+      illuminants_given.empty() ? std::vector<std::string>{"D65", "A", "F11"} : illuminants_given;
+  const std::vector<std::string> observers = observers_given.empty() ? std::vector<std::string>{"1931", "1964"} : observers_given;
   const SpectralData refl = chart_reflectances(chart);
   const std::string want = normalise_patch_id(patch);
   size_t k = refl.names.size();

@@ -34,7 +34,14 @@ Vec3 paper_nrmse(const std::string& light, bool multiple) {
 }  // namespace
 
 std::vector<ExposureRow> lab_exposure_exercise(const SpectralData& ssf, const SpectralData& illuminant,
-                                               const std::vector<std::string>& models, const std::vector<double>& ks) {
+                                               const std::vector<std::string>& models_given,
+                                               const std::vector<double>& ks_given) {
+  // The paper's three transforms (eqs 11-15) and a polynomial with an offset; k from 1/8 to 8.
+  const std::vector<std::string> models =
+      models_given.empty()
+          ? std::vector<std::string>{"Guarnera2018-T1", "Guarnera2018-To", "Guarnera2018-T2R", "Cheung2004-10"}
+          : models_given;
+  const std::vector<double> ks = ks_given.empty() ? std::vector<double>{0.125, 0.25, 0.5, 1, 2, 4, 8} : ks_given;
   for (const auto& m : models) model_info(m);  // UnknownId before any work
   for (double k : ks)
     if (!(k > 0 && k <= 1000)) throw Error(ErrorCode::InvalidArgument, "exposure factors k must be in (0, 1000]");

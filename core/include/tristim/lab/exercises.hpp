@@ -67,10 +67,11 @@ struct SpectraToColour {
   std::vector<std::string> illuminants;
   std::vector<ColourRow> rows;                ///< illuminant-major, then observer
 };
-/// Error(UnknownId) for an unknown chart, patch, illuminant or observer.
+/// `illuminants` empty: the exercise's D65, A and F11; `observers` empty: 1931 and 1964 (the page
+/// leaves both to the engine). Error(UnknownId) for an unknown chart, patch, illuminant or observer.
 SpectraToColour lab_spectra_to_colour(const std::string& chart, const std::string& patch,
-                                      const std::vector<std::string>& illuminants = {"D65", "A", "F11"},
-                                      const std::vector<std::string>& observers = {"1931", "1964"});
+                                      const std::vector<std::string>& illuminants = {},
+                                      const std::vector<std::string>& observers = {});
 
 /// The CIE 1931 colour-matching functions as R, G, B sensitivities on 380-780 nm at 5 nm (the
 /// built-in cameras' grid): a camera that meets the Luther condition.
@@ -170,10 +171,11 @@ struct ExposureRow {
   double k = 1;
   double dE00_mean = 0, dE00_max = 0;
 };
+/// `models` empty: Guarnera2018-T1, -To, -T2R and Cheung2004-10; `ks` empty: 1/8 … 8 in stops (the
+/// page leaves both to the engine).
 std::vector<ExposureRow> lab_exposure_exercise(const SpectralData& sensitivities, const SpectralData& illuminant,
-                                               const std::vector<std::string>& models = {"Guarnera2018-T1", "Guarnera2018-To",
-                                                                                         "Guarnera2018-T2R", "Cheung2004-10"},
-                                               const std::vector<double>& ks = {0.125, 0.25, 0.5, 1, 2, 4, 8});
+                                               const std::vector<std::string>& models = {},
+                                               const std::vector<double>& ks = {});
 LabTable exposure_table(const std::vector<ExposureRow>& rows);
 
 // (b) Table 4: the Absolute mode's virtual bracket (absolute/example.hpp) under each light, with
